@@ -1,0 +1,13 @@
+//! vericad — verification-first computer-aided geometric design for surface grid generation.
+//!
+//! Layers (nothing below imports from above), see `ARCHITECTURE.md`:
+//! `cli` → pipelines → `io`/`model` → `spline` → `predicates` → `scalar`, `geom`.
+
+pub mod cli;
+pub mod geom;
+pub mod model;
+pub mod predicates;
+pub mod scalar;
+pub mod spline;
+
+pub use scalar::{RealScalar, Scalar, Sign};

@@ -1,0 +1,1 @@
+//! Exact geometric predicates.

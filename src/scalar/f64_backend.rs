@@ -1,0 +1,70 @@
+//! `f64`: the fast path. Predicates are Shewchuk's adaptive exact ones (crate `robust`):
+//! a floating-point filter answers when the sign is clear, exact expansions when not.
+
+use super::{NotFinite, RealScalar, Scalar, Sign};
+
+impl Scalar for f64 {
+    const EXACT: bool = false;
+    const NAME: &'static str = "f64";
+
+    #[inline(always)]
+    fn zero() -> Self {
+        0.0
+    }
+    #[inline(always)]
+    fn one() -> Self {
+        1.0
+    }
+    #[inline(always)]
+    fn from_i64(i: i64) -> Self {
+        i as f64
+    }
+    #[inline(always)]
+    fn from_f64(x: f64) -> Result<Self, NotFinite> {
+        if x.is_finite() { Ok(x) } else { Err(NotFinite(x)) }
+    }
+    #[inline(always)]
+    fn to_f64(&self) -> f64 {
+        *self
+    }
+    #[inline(always)]
+    fn sign(&self) -> Sign {
+        if *self > 0.0 {
+            Sign::Positive
+        } else if *self < 0.0 {
+            Sign::Negative
+        } else {
+            Sign::Zero
+        }
+    }
+    #[inline(always)]
+    fn abs(&self) -> Self {
+        f64::abs(*self)
+    }
+
+    /// Adaptive exact orientation (Shewchuk's `orient2d`).
+    #[inline]
+    fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
+        let c2 = |p: &[f64; 2]| robust::Coord { x: p[0], y: p[1] };
+        robust::orient2d(c2(a), c2(b), c2(c)).sign()
+    }
+
+    /// Adaptive exact orientation. Shewchuk's `orient3d(a,b,c,d)` is
+    /// `det[a-d, b-d, c-d] = -det[b-a, c-a, d-a]`, hence the negation.
+    #[inline]
+    fn orient3d(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
+        let c3 = |p: &[f64; 3]| robust::Coord3D {
+            x: p[0],
+            y: p[1],
+            z: p[2],
+        };
+        robust::orient3d(c3(a), c3(b), c3(c), c3(d)).sign().flip()
+    }
+}
+
+impl RealScalar for f64 {
+    #[inline(always)]
+    fn sqrt(&self) -> Self {
+        f64::sqrt(*self)
+    }
+}

@@ -1,0 +1,196 @@
+//! The arithmetic the kernel is written against.
+//!
+//! Every kernel routine is generic over [`Scalar`] and is instantiated for
+//! * `f64` — the fast path: `Copy` values, no allocation, static dispatch, and
+//!   adaptive exact predicates (Shewchuk's filters via the `robust` crate);
+//! * [`BigRational`](num_rational::BigRational) — the exact reference;
+//! * `rug::Rational` and [`BigFloat<P>`](self::rug_backend::BigFloat) — GMP/MPFR backends
+//!   behind the non-default feature `rug`.
+//!
+//! An `f64` converts *exactly* into the exact types ([`Scalar::from_f64`]), so the same
+//! input can be run through the f64 kernel and through the exact kernel and the two answers
+//! compared: that is how the tests certify the f64 path.
+//!
+//! The trait is bounded on `Clone`, not `Copy`, so that arbitrary-precision types qualify.
+//! Sign questions (orientation of points) are associated functions, so each backend picks
+//! its own implementation: the f64 one is filtered and adaptive, the exact ones evaluate the
+//! plain determinant exactly.
+
+mod f64_backend;
+pub mod interval;
+mod rational_backend;
+#[cfg(feature = "rug")]
+pub mod rug_backend;
+
+use std::fmt::Debug;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+pub use interval::Interval;
+
+/// The sign of an exactly decided quantity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub enum Sign {
+    Negative,
+    Zero,
+    Positive,
+}
+
+impl Sign {
+    /// Sign of an `i32`-like comparison result.
+    pub fn of_ordering(o: std::cmp::Ordering) -> Sign {
+        match o {
+            std::cmp::Ordering::Less => Sign::Negative,
+            std::cmp::Ordering::Equal => Sign::Zero,
+            std::cmp::Ordering::Greater => Sign::Positive,
+        }
+    }
+    /// The opposite sign.
+    pub fn flip(self) -> Sign {
+        match self {
+            Sign::Negative => Sign::Positive,
+            Sign::Zero => Sign::Zero,
+            Sign::Positive => Sign::Negative,
+        }
+    }
+    /// Product of two signs.
+    pub fn times(self, o: Sign) -> Sign {
+        match (self, o) {
+            (Sign::Zero, _) | (_, Sign::Zero) => Sign::Zero,
+            (a, b) if a == b => Sign::Positive,
+            _ => Sign::Negative,
+        }
+    }
+    /// -1, 0 or 1.
+    pub fn as_i8(self) -> i8 {
+        match self {
+            Sign::Negative => -1,
+            Sign::Zero => 0,
+            Sign::Positive => 1,
+        }
+    }
+}
+
+/// A value that is not a finite real number (NaN or ±inf) was given where one is required.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("not a finite number: {0}")]
+pub struct NotFinite(pub f64);
+
+/// The arithmetic every kernel routine needs.
+///
+/// Division by zero is a logic error for exact types (they panic); kernel code checks
+/// every denominator it forms (knot-span widths, weights) before dividing, and reports a
+/// typed error where the input could make one zero.
+pub trait Scalar:
+    Clone
+    + Debug
+    + PartialEq
+    + PartialOrd
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// `true` when `+ - * /` are exact (rationals); `false` for rounded types.
+    const EXACT: bool;
+    /// Human-readable backend name for reports.
+    const NAME: &'static str;
+
+    fn zero() -> Self;
+    fn one() -> Self;
+    /// Exact conversion of a small integer.
+    fn from_i64(i: i64) -> Self;
+    /// Conversion of a finite `f64`. Exact for every backend that can hold 53-bit
+    /// significands (all of them here).
+    fn from_f64(x: f64) -> Result<Self, NotFinite>;
+    /// Nearest `f64` (correctly rounded for the rational backends).
+    fn to_f64(&self) -> f64;
+    /// Exact sign.
+    fn sign(&self) -> Sign;
+
+    fn is_zero(&self) -> bool {
+        self.sign() == Sign::Zero
+    }
+    fn abs(&self) -> Self {
+        if self.sign() == Sign::Negative {
+            -self.clone()
+        } else {
+            self.clone()
+        }
+    }
+    /// `self / rhs`, or `None` when `rhs` is zero.
+    fn checked_div(&self, rhs: &Self) -> Option<Self> {
+        if rhs.is_zero() {
+            None
+        } else {
+            Some(self.clone() / rhs.clone())
+        }
+    }
+    /// Binomial coefficient `C(n, k)` as a scalar (exact for n ≤ 60).
+    fn binomial(n: usize, k: usize) -> Self {
+        Self::from_i64(binomial_i64(n, k))
+    }
+
+    /// Sign of `det[b-a, c-a]`: positive when `a, b, c` turn counter-clockwise.
+    /// Default: the plain determinant, exact for exact types. f64 overrides it with the
+    /// adaptive exact predicate.
+    fn orient2d(a: &[Self; 2], b: &[Self; 2], c: &[Self; 2]) -> Sign {
+        let d = (b[0].clone() - a[0].clone()) * (c[1].clone() - a[1].clone())
+            - (b[1].clone() - a[1].clone()) * (c[0].clone() - a[0].clone());
+        d.sign()
+    }
+
+    /// Sign of `det[b-a, c-a, d-a]`: positive when `d` lies on the side of the plane
+    /// `abc` into which the normal `(b-a)×(c-a)` points.
+    fn orient3d(a: &[Self; 3], b: &[Self; 3], c: &[Self; 3], d: &[Self; 3]) -> Sign {
+        let u = sub3(b, a);
+        let v = sub3(c, a);
+        let w = sub3(d, a);
+        det3(&u, &v, &w).sign()
+    }
+}
+
+/// Scalars with a (rounded) square root: the kernel routines that need lengths
+/// (chord-length parameters, unit normals) are bounded on this.
+pub trait RealScalar: Scalar {
+    fn sqrt(&self) -> Self;
+}
+
+fn sub3<S: Scalar>(a: &[S; 3], b: &[S; 3]) -> [S; 3] {
+    [
+        a[0].clone() - b[0].clone(),
+        a[1].clone() - b[1].clone(),
+        a[2].clone() - b[2].clone(),
+    ]
+}
+
+fn det3<S: Scalar>(u: &[S; 3], v: &[S; 3], w: &[S; 3]) -> S {
+    u[0].clone() * (v[1].clone() * w[2].clone() - v[2].clone() * w[1].clone())
+        - u[1].clone() * (v[0].clone() * w[2].clone() - v[2].clone() * w[0].clone())
+        + u[2].clone() * (v[0].clone() * w[1].clone() - v[1].clone() * w[0].clone())
+}
+
+/// `C(n, k)` in `i64` (exact for n ≤ 60, saturating beyond — far above any spline degree).
+pub fn binomial_i64(n: usize, k: usize) -> i64 {
+    if k > n {
+        return 0;
+    }
+    let k = k.min(n - k);
+    let mut r: i128 = 1;
+    for i in 0..k {
+        r = r * (n - i) as i128 / (i + 1) as i128;
+        if r > i64::MAX as i128 {
+            return i64::MAX;
+        }
+    }
+    r as i64
+}
+
+/// Convert between backends through `f64` when the source is rounded, exactly otherwise.
+/// Used to lift f64 input into an exact backend: `lift::<BigRational>(x)` is exact.
+pub fn lift<S: Scalar>(x: f64) -> S {
+    S::from_f64(x).expect("lift: caller guarantees a finite value")
+}

@@ -1,0 +1,132 @@
+//! B-spline basis functions and their derivatives (The NURBS Book, algorithms A2.2, A2.3),
+//! allocation-free for degrees up to [`MAX_DEGREE`](super::MAX_DEGREE).
+
+use super::knots::KnotVector;
+use crate::scalar::Scalar;
+
+/// Fixed-capacity buffer used on the evaluation hot path.
+pub type Buf<S> = arrayvec::ArrayVec<S, 32>;
+
+/// The `p + 1` non-zero basis functions `N_{span-p..=span, p}(t)` (A2.2).
+pub fn basis_funs<S: Scalar>(kv: &KnotVector<S>, span: usize, t: &S) -> Buf<S> {
+    let p = kv.degree();
+    let u = kv.knots();
+    let mut n: Buf<S> = Buf::new();
+    let mut left: Buf<S> = Buf::new();
+    let mut right: Buf<S> = Buf::new();
+    n.push(S::one());
+    left.push(S::zero());
+    right.push(S::zero());
+    for j in 1..=p {
+        left.push(t.clone() - u[span + 1 - j].clone());
+        right.push(u[span + j].clone() - t.clone());
+        let mut saved = S::zero();
+        for r in 0..j {
+            let den = right[r + 1].clone() + left[j - r].clone();
+            // den = u[span+r+1] - u[span+1-j+r] > 0 inside a valid span.
+            let temp = n[r].clone() / den;
+            n[r] = saved + right[r + 1].clone() * temp.clone();
+            saved = left[j - r].clone() * temp;
+        }
+        n.push(saved);
+    }
+    n
+}
+
+/// Basis functions and their derivatives up to order `nd` (A2.3):
+/// `ders[k][j]` is the k-th derivative of `N_{span-p+j, p}` at `t`; orders above `p` are 0.
+pub fn ders_basis_funs<S: Scalar>(
+    kv: &KnotVector<S>,
+    span: usize,
+    t: &S,
+    nd: usize,
+) -> Vec<Vec<S>> {
+    let p = kv.degree();
+    let u = kv.knots();
+    let mut ndu = vec![vec![S::zero(); p + 1]; p + 1];
+    let mut left = vec![S::zero(); p + 1];
+    let mut right = vec![S::zero(); p + 1];
+    ndu[0][0] = S::one();
+    for j in 1..=p {
+        left[j] = t.clone() - u[span + 1 - j].clone();
+        right[j] = u[span + j].clone() - t.clone();
+        let mut saved = S::zero();
+        for r in 0..j {
+            ndu[j][r] = right[r + 1].clone() + left[j - r].clone();
+            let temp = ndu[r][j - 1].clone() / ndu[j][r].clone();
+            ndu[r][j] = saved + right[r + 1].clone() * temp.clone();
+            saved = left[j - r].clone() * temp;
+        }
+        ndu[j][j] = saved;
+    }
+    let mut ders = vec![vec![S::zero(); p + 1]; nd + 1];
+    for j in 0..=p {
+        ders[0][j] = ndu[j][p].clone();
+    }
+    let mut a = vec![vec![S::zero(); p + 1]; 2];
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0usize, 1usize);
+        a[0][0] = S::one();
+        for k in 1..=nd.min(p) {
+            let mut d = S::zero();
+            let rk = r as isize - k as isize;
+            let pk = p - k;
+            if r >= k {
+                a[s2][0] = a[s1][0].clone() / ndu[pk + 1][rk as usize].clone();
+                d = a[s2][0].clone() * ndu[rk as usize][pk].clone();
+            }
+            let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2 = if (r as isize - 1) <= pk as isize { k - 1 } else { p - r };
+            for j in j1..=j2 {
+                let idx = (rk + j as isize) as usize;
+                a[s2][j] = (a[s1][j].clone() - a[s1][j - 1].clone()) / ndu[pk + 1][idx].clone();
+                d = d + a[s2][j].clone() * ndu[idx][pk].clone();
+            }
+            if r <= pk {
+                a[s2][k] = -a[s1][k - 1].clone() / ndu[pk + 1][r].clone();
+                d = d + a[s2][k].clone() * ndu[r][pk].clone();
+            }
+            ders[k][r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    let mut fac = S::from_i64(p as i64);
+    for k in 1..=nd.min(p) {
+        for j in 0..=p {
+            ders[k][j] = ders[k][j].clone() * fac.clone();
+        }
+        fac = fac * S::from_i64((p - k) as i64);
+    }
+    ders
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_rational::BigRational;
+    use crate::scalar::Scalar;
+
+    #[test]
+    fn partition_of_unity_exact() {
+        let kv = KnotVector::<BigRational>::new(
+            [0., 0., 0., 0., 0.25, 0.5, 0.5, 1., 1., 1., 1.]
+                .iter()
+                .map(|&x| crate::scalar::lift(x))
+                .collect(),
+            3,
+            7,
+        )
+        .unwrap();
+        for i in 0..=20 {
+            let t: BigRational = crate::scalar::lift(i as f64 / 20.0);
+            let span = kv.find_span(&t);
+            let n = basis_funs(&kv, span, &t);
+            let s = n.iter().fold(BigRational::zero(), |a, b| a + b.clone());
+            assert_eq!(s, BigRational::one());
+            let d = ders_basis_funs(&kv, span, &t, 2);
+            assert_eq!(d[0].as_slice(), n.as_slice());
+            let s1 = d[1].iter().fold(BigRational::zero(), |a, b| a + b.clone());
+            assert_eq!(s1, BigRational::zero());
+        }
+    }
+}

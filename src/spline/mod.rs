@@ -1,0 +1,61 @@
+//! The spline kernel, generic over [`Scalar`](crate::scalar::Scalar) and over the control
+//! point type ([`Point`](crate::geom::Point)): polynomial and rational, 2D and 3D, on every
+//! backend, from one source.
+//!
+//! * [`knots`] — validated knot vectors, spans, multiplicities;
+//! * [`basis`] — B-spline basis functions and their derivatives (The NURBS Book A2.2/A2.3);
+//! * [`bezier_curve`], [`bezier_surface`] — de Casteljau, blossoms, subdivision, degree
+//!   elevation, hodographs;
+//! * [`bspline_curve`], [`bspline_surface`] — de Boor evaluation, derivative splines, Boehm
+//!   knot insertion, Bézier extraction, sub-patch extraction;
+//! * [`nurbs`] — rational curves/surfaces via homogeneous points, rational derivatives, normals;
+//! * [`compose`] — a planar Bézier curve composed with a Bézier surface, exactly;
+//! * [`interpolate`], [`fit`] — cubic interpolation and least-squares fitting;
+//! * [`linalg`] — the small dense solver both use.
+
+pub mod basis;
+pub mod bezier_curve;
+pub mod bezier_surface;
+pub mod bspline_curve;
+pub mod bspline_surface;
+pub mod compose;
+pub mod fit;
+pub mod interpolate;
+pub mod knots;
+pub mod linalg;
+pub mod nurbs;
+
+pub use bezier_curve::BezierCurve;
+pub use bezier_surface::BezierSurface;
+pub use bspline_curve::BSplineCurve;
+pub use bspline_surface::BSplineSurface;
+pub use knots::{KnotError, KnotVector};
+pub use nurbs::{NurbsCurve, NurbsSurface};
+
+/// Largest degree the allocation-free evaluation paths support.
+pub const MAX_DEGREE: usize = 31;
+
+/// Errors of spline construction and operations.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SplineError {
+    #[error("knot vector: {0}")]
+    Knots(#[from] KnotError),
+    #[error("control net has {got} points, expected {expected} ({what})")]
+    NetSize {
+        got: usize,
+        expected: usize,
+        what: &'static str,
+    },
+    #[error("degree {0} is not supported (1..={MAX_DEGREE})")]
+    Degree(usize),
+    #[error("weight {index} is not positive")]
+    Weight { index: usize },
+    #[error("parameter {0} lies outside the domain [{1}, {2}]")]
+    OutOfDomain(f64, f64, f64),
+    #[error("need at least {need} points, got {got}")]
+    TooFewPoints { need: usize, got: usize },
+    #[error("parameters are not strictly increasing at index {0}")]
+    Parameters(usize),
+    #[error("linear system is singular")]
+    Singular,
+}

@@ -1,0 +1,244 @@
+//! Rational B-spline (NURBS) curves and surfaces as B-splines of homogeneous points
+//! (The NURBS Book, §4.2–4.5): evaluation by projection, derivatives by the quotient
+//! rule (eqs. 4.8, 4.20), normals.
+
+use super::bspline_curve::BSplineCurve;
+use super::bspline_surface::BSplineSurface;
+use super::SplineError;
+use crate::geom::{cross, Hom, Point};
+use crate::scalar::{RealScalar, Scalar};
+
+/// A NURBS curve in `D` dimensions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsCurve<S: Scalar, const D: usize> {
+    pub hom: BSplineCurve<Hom<S, D>>,
+}
+
+/// A NURBS surface in `D` dimensions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface<S: Scalar, const D: usize> {
+    pub hom: BSplineSurface<Hom<S, D>>,
+}
+
+fn check_weights<S: Scalar>(w: &[S]) -> Result<(), SplineError> {
+    for (i, wi) in w.iter().enumerate() {
+        if wi.sign() != crate::scalar::Sign::Positive {
+            return Err(SplineError::Weight { index: i });
+        }
+    }
+    Ok(())
+}
+
+fn project<S: Scalar, const D: usize>(h: &Hom<S, D>) -> [S; D] {
+    // Weights are validated positive and basis functions form a partition of unity,
+    // so the interpolated weight is positive inside the domain.
+    h.project().unwrap_or_else(|| h.wp.clone())
+}
+
+impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
+    /// From Cartesian control points and positive weights.
+    pub fn new(knots: Vec<S>, degree: usize, pts: Vec<[S; D]>, weights: Vec<S>) -> Result<Self, SplineError> {
+        if weights.len() != pts.len() {
+            return Err(SplineError::NetSize {
+                got: weights.len(),
+                expected: pts.len(),
+                what: "one weight per control point",
+            });
+        }
+        check_weights(&weights)?;
+        let h = pts.iter().zip(&weights).map(|(p, w)| Hom::from_point(p, w)).collect();
+        Ok(NurbsCurve {
+            hom: BSplineCurve::new(knots, degree, h)?,
+        })
+    }
+    /// Point at `t`.
+    pub fn eval(&self, t: &S) -> [S; D] {
+        project(&self.hom.eval(t))
+    }
+    /// First derivative: `C' = (A' - w' C) / w` (eq. 4.8).
+    pub fn derivative_at(&self, t: &S) -> [S; D] {
+        let h = self.hom.eval(t);
+        let dh = self.hom.derivative_at(t);
+        let c = project(&h);
+        dh.wp.sub(&c.scale(&dh.w)).scale(&(S::one() / h.w))
+    }
+    /// Control points and weights.
+    pub fn points_weights(&self) -> (Vec<[S; D]>, Vec<S>) {
+        self.hom.control.iter().map(|h| (project(h), h.w.clone())).unzip()
+    }
+}
+
+impl<S: Scalar, const D: usize> NurbsSurface<S, D> {
+    /// From a row-major Cartesian net and positive weights.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        knots_u: Vec<S>,
+        deg_u: usize,
+        knots_v: Vec<S>,
+        deg_v: usize,
+        nu: usize,
+        nv: usize,
+        pts: Vec<[S; D]>,
+        weights: Vec<S>,
+    ) -> Result<Self, SplineError> {
+        if weights.len() != pts.len() {
+            return Err(SplineError::NetSize {
+                got: weights.len(),
+                expected: pts.len(),
+                what: "one weight per control point",
+            });
+        }
+        check_weights(&weights)?;
+        let h = pts.iter().zip(&weights).map(|(p, w)| Hom::from_point(p, w)).collect();
+        Ok(NurbsSurface {
+            hom: BSplineSurface::new(knots_u, deg_u, knots_v, deg_v, nu, nv, h)?,
+        })
+    }
+    /// A polynomial surface as a NURBS surface with unit weights.
+    pub fn from_polynomial(s: &BSplineSurface<[S; D]>) -> Self {
+        NurbsSurface {
+            hom: s.map(|k| k.clone(), |p| Hom::from_point(p, &S::one())),
+        }
+    }
+    /// Point at `(u, v)`.
+    pub fn eval(&self, u: &S, v: &S) -> [S; D] {
+        project(&self.hom.eval(u, v))
+    }
+    /// `S`, `S_u`, `S_v`, `S_uu`, `S_uv`, `S_vv` at `(u, v)` by the rational quotient rule
+    /// (The NURBS Book eq. 4.20 / A4.4, up to second order).
+    pub fn derivatives2(&self, u: &S, v: &S) -> [[S; D]; 6] {
+        let a = self.hom.derivatives(u, v, 2);
+        let w = |k: usize, l: usize| a[k][l].w.clone();
+        let aw = |k: usize, l: usize| a[k][l].wp.clone();
+        let inv = S::one() / w(0, 0);
+        let s = aw(0, 0).scale(&inv);
+        let su = aw(1, 0).sub(&s.scale(&w(1, 0))).scale(&inv);
+        let sv = aw(0, 1).sub(&s.scale(&w(0, 1))).scale(&inv);
+        let two = S::from_i64(2);
+        let suu = aw(2, 0)
+            .sub(&su.scale(&(two.clone() * w(1, 0))))
+            .sub(&s.scale(&w(2, 0)))
+            .scale(&inv);
+        let svv = aw(0, 2)
+            .sub(&sv.scale(&(two * w(0, 1))))
+            .sub(&s.scale(&w(0, 2)))
+            .scale(&inv);
+        let suv = aw(1, 1)
+            .sub(&su.scale(&w(0, 1)))
+            .sub(&sv.scale(&w(1, 0)))
+            .sub(&s.scale(&w(1, 1)))
+            .scale(&inv);
+        [s, su, sv, suu, suv, svv]
+    }
+    /// Control points and weights, row-major.
+    pub fn points_weights(&self) -> (Vec<[S; D]>, Vec<S>) {
+        self.hom.net.iter().map(|h| (project(h), h.w.clone())).unzip()
+    }
+    /// Whether every weight equals the first (then the surface is polynomial).
+    pub fn is_polynomial(&self) -> bool {
+        let w0 = &self.hom.net[0].w;
+        self.hom.net.iter().all(|h| h.w == *w0)
+    }
+}
+
+impl<S: Scalar> NurbsSurface<S, 3> {
+    /// Unnormalized normal `S_u × S_v` (exact in exact arithmetic).
+    pub fn normal(&self, u: &S, v: &S) -> [S; 3] {
+        let d = self.derivatives2(u, v);
+        cross(&d[1], &d[2])
+    }
+}
+
+impl<S: RealScalar> NurbsSurface<S, 3> {
+    /// Unit normal; `None` where `S_u × S_v` vanishes (degenerate point).
+    pub fn unit_normal(&self, u: &S, v: &S) -> Option<[S; 3]> {
+        let n = self.normal(u, v);
+        let l = crate::geom::norm(&n);
+        if l.is_zero() {
+            None
+        } else {
+            Some(n.scale(&(S::one() / l)))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::norm2;
+    use num_rational::BigRational;
+    type Q = BigRational;
+    fn q(x: f64) -> Q {
+        crate::scalar::lift(x)
+    }
+
+    /// Quadratic rational arc with control (1,0),(1,1),(0,1) and weights (1,1,2): its
+    /// homogeneous form is ((1-t²), 2t, 1+t²), the rational parametrization of the unit
+    /// circle. Every point must lie on the circle exactly.
+    #[test]
+    fn rational_quadratic_circle_is_exact() {
+        let c = NurbsCurve::<Q, 2>::new(
+            [0., 0., 0., 1., 1., 1.].iter().map(|&x| q(x)).collect(),
+            2,
+            vec![[q(1.), q(0.)], [q(1.), q(1.)], [q(0.), q(1.)]],
+            vec![q(1.), q(1.), q(2.)],
+        )
+        .unwrap();
+        for i in 0..=64 {
+            let p = c.eval(&Q::new(i.into(), 64.into()));
+            assert_eq!(norm2(&p), q(1.0), "point {i} off the circle");
+        }
+    }
+
+    /// Upper unit semicircle as a rational cubic: control (1,0),(1,2),(-1,2),(-1,0),
+    /// weights (1, 1/3, 1/3, 1) (Piegl & Tiller, §7.5).
+    #[test]
+    fn rational_cubic_semicircle_is_exact() {
+        let third = Q::new(1.into(), 3.into());
+        let c = NurbsCurve::<Q, 2>::new(
+            [0., 0., 0., 0., 1., 1., 1., 1.].iter().map(|&x| q(x)).collect(),
+            3,
+            vec![[q(1.), q(0.)], [q(1.), q(2.)], [q(-1.), q(2.)], [q(-1.), q(0.)]],
+            vec![q(1.), third.clone(), third, q(1.)],
+        )
+        .unwrap();
+        for i in 0..=50 {
+            let p = c.eval(&Q::new(i.into(), 50.into()));
+            assert_eq!(norm2(&p), q(1.0), "point {i} off the circle");
+        }
+    }
+
+    /// Rational sphere patch: the surface of revolution of the quadratic circle arc
+    /// (a meridian from the pole to the equator) about the z axis, by the same exact
+    /// rational quarter circle. Tensor product of two rational quadratics with rational
+    /// weights; every point lies on the unit sphere exactly.
+    #[test]
+    fn rational_sphere_patch_is_exact() {
+        // Meridian in the (r, z) plane: r = 2t/(1+t²), z = (1-t²)/(1+t²): control
+        // (0,1),(1,1),(1,0), weights (1,1,2) — from the pole (t=0) to the equator (t=1).
+        let mer = [([0., 1.], 1.), ([1., 1.], 1.), ([1., 0.], 2.)];
+        // Parallel circle of radius 1: (x, y) = ((1-s²), 2s)/(1+s²).
+        let par = [([1., 0.], 1.), ([1., 1.], 1.), ([0., 1.], 2.)];
+        let mut pts = Vec::new();
+        let mut ws = Vec::new();
+        for (rz, wm) in mer {
+            for (xy, wp) in par {
+                pts.push([q(rz[0] * xy[0]), q(rz[0] * xy[1]), q(rz[1])]);
+                ws.push(q(wm * wp));
+            }
+        }
+        let k: Vec<Q> = [0., 0., 0., 1., 1., 1.].iter().map(|&x| q(x)).collect();
+        let s = NurbsSurface::<Q, 3>::new(k.clone(), 2, k, 2, 3, 3, pts, ws).unwrap();
+        for i in 0..=12 {
+            for j in 0..=12 {
+                let p = s.eval(&Q::new(i.into(), 12.into()), &Q::new(j.into(), 12.into()));
+                assert_eq!(norm2(&p), q(1.0), "({i},{j}) off the sphere");
+            }
+        }
+        // The normal is radial: n × p = 0 exactly.
+        let (u, v) = (Q::new(1.into(), 3.into()), Q::new(2.into(), 7.into()));
+        let n = s.normal(&u, &v);
+        let p = s.eval(&u, &v);
+        assert_eq!(cross(&n, &p), [q(0.), q(0.), q(0.)]);
+    }
+}
