@@ -46,11 +46,19 @@ impl<const D: usize> Aabb<f64, D> {
     pub fn to_f32_outward(&self) -> ([f32; D], [f32; D]) {
         let lo = std::array::from_fn(|i| {
             let f = self.min[i] as f32;
-            if (f as f64) > self.min[i] { f.next_down() } else { f }
+            if (f as f64) > self.min[i] {
+                f.next_down()
+            } else {
+                f
+            }
         });
         let hi = std::array::from_fn(|i| {
             let f = self.max[i] as f32;
-            if (f as f64) < self.max[i] { f.next_up() } else { f }
+            if (f as f64) < self.max[i] {
+                f.next_up()
+            } else {
+                f
+            }
         });
         (lo, hi)
     }

@@ -21,7 +21,11 @@ impl Scalar for f64 {
     }
     #[inline(always)]
     fn from_f64(x: f64) -> Result<Self, NotFinite> {
-        if x.is_finite() { Ok(x) } else { Err(NotFinite(x)) }
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(NotFinite(x))
+        }
     }
     #[inline(always)]
     fn to_f64(&self) -> f64 {
@@ -36,6 +40,11 @@ impl Scalar for f64 {
         } else {
             Sign::Zero
         }
+    }
+    fn to_big_rational(&self) -> num_rational::BigRational {
+        // Finite by construction of every f64 the kernel accepts; NaN/inf map to 0 here and
+        // are rejected at the input boundary (model validation).
+        num_rational::BigRational::from_float(*self).unwrap_or_default()
     }
     #[inline(always)]
     fn abs(&self) -> Self {

@@ -48,7 +48,12 @@ impl Interval {
         if o.contains_zero() {
             return None;
         }
-        let c = [self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi];
+        let c = [
+            self.lo / o.lo,
+            self.lo / o.hi,
+            self.hi / o.lo,
+            self.hi / o.hi,
+        ];
         let lo = c.iter().cloned().fold(f64::INFINITY, f64::min);
         let hi = c.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         Some(Interval::widen(lo, hi))
@@ -79,7 +84,12 @@ impl Neg for Interval {
 impl Mul for Interval {
     type Output = Interval;
     fn mul(self, o: Interval) -> Interval {
-        let c = [self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi];
+        let c = [
+            self.lo * o.lo,
+            self.lo * o.hi,
+            self.hi * o.lo,
+            self.hi * o.hi,
+        ];
         let lo = c.iter().cloned().fold(f64::INFINITY, f64::min);
         let hi = c.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         Interval::widen(lo, hi)

@@ -110,6 +110,8 @@ pub trait Scalar:
     fn to_f64(&self) -> f64;
     /// Exact sign.
     fn sign(&self) -> Sign;
+    /// The exact value as a `BigRational` (every backend holds rationals; none rounds here).
+    fn to_big_rational(&self) -> num_rational::BigRational;
 
     fn is_zero(&self) -> bool {
         self.sign() == Sign::Zero

@@ -39,6 +39,9 @@ impl Scalar for BigRational {
             Sign::Zero
         }
     }
+    fn to_big_rational(&self) -> BigRational {
+        self.clone()
+    }
     fn is_zero(&self) -> bool {
         Zero::is_zero(self)
     }

@@ -14,6 +14,13 @@ fn sign_of(o: Option<Ordering>) -> Sign {
     }
 }
 
+fn rug_to_big(r: &Rational) -> num_rational::BigRational {
+    let conv = |i: &rug::Integer| {
+        num_bigint::BigInt::parse_bytes(i.to_string_radix(16).as_bytes(), 16).unwrap_or_default()
+    };
+    num_rational::BigRational::new(conv(r.numer()), conv(r.denom()))
+}
+
 impl Scalar for Rational {
     const EXACT: bool = true;
     const NAME: &'static str = "rug::Rational";
@@ -35,6 +42,9 @@ impl Scalar for Rational {
     }
     fn sign(&self) -> Sign {
         Sign::of_ordering(self.cmp0())
+    }
+    fn to_big_rational(&self) -> num_rational::BigRational {
+        rug_to_big(self)
     }
 }
 
@@ -107,6 +117,9 @@ impl<const P: u32> Scalar for BigFloat<P> {
     }
     fn sign(&self) -> Sign {
         sign_of(self.0.cmp0())
+    }
+    fn to_big_rational(&self) -> num_rational::BigRational {
+        rug_to_big(&self.to_rational())
     }
     /// Exact: the operands are converted to rationals without rounding.
     fn orient2d(a: &[Self; 2], b: &[Self; 2], c: &[Self; 2]) -> Sign {

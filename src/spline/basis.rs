@@ -76,7 +76,11 @@ pub fn ders_basis_funs<S: Scalar>(
                 d = a[s2][0].clone() * ndu[rk as usize][pk].clone();
             }
             let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
-            let j2 = if (r as isize - 1) <= pk as isize { k - 1 } else { p - r };
+            let j2 = if (r as isize - 1) <= pk as isize {
+                k - 1
+            } else {
+                p - r
+            };
             for j in j1..=j2 {
                 let idx = (rk + j as isize) as usize;
                 a[s2][j] = (a[s1][j].clone() - a[s1][j - 1].clone()) / ndu[pk + 1][idx].clone();
@@ -103,8 +107,8 @@ pub fn ders_basis_funs<S: Scalar>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
     use crate::scalar::Scalar;
+    use num_rational::BigRational;
 
     #[test]
     fn partition_of_unity_exact() {

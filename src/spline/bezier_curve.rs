@@ -27,7 +27,11 @@ impl<P: Point> BezierCurve<P> {
     /// `ts.len()` must equal the degree. Symmetric and multi-affine in its arguments; on the
     /// diagonal it is the curve point.
     pub fn blossom(&self, ts: &[P::S]) -> P {
-        assert_eq!(ts.len(), self.degree(), "blossom needs degree-many arguments");
+        assert_eq!(
+            ts.len(),
+            self.degree(),
+            "blossom needs degree-many arguments"
+        );
         let mut b = self.control.clone();
         for (level, t) in ts.iter().enumerate() {
             for i in 0..b.len() - 1 - level {
@@ -66,7 +70,10 @@ impl<P: Point> BezierCurve<P> {
             right.push(b[n - 1 - level].clone());
         }
         right.reverse();
-        (BezierCurve { control: left }, BezierCurve { control: right })
+        (
+            BezierCurve { control: left },
+            BezierCurve { control: right },
+        )
     }
 
     /// The piece over `[a, b]` reparametrized to `[0, 1]` (blossom: control point `i` is
@@ -149,8 +156,13 @@ mod tests {
         crate::scalar::lift(x)
     }
     fn curve() -> BezierCurve<[Q; 2]> {
-        BezierCurve::new(vec![[q(0.), q(0.)], [q(1.), q(2.)], [q(3.), q(-1.)], [q(4.), q(0.5)]])
-            .unwrap()
+        BezierCurve::new(vec![
+            [q(0.), q(0.)],
+            [q(1.), q(2.)],
+            [q(3.), q(-1.)],
+            [q(4.), q(0.5)],
+        ])
+        .unwrap()
     }
 
     #[test]
@@ -192,7 +204,9 @@ mod tests {
         let h1 = c.hodograph().unwrap();
         let h3 = h1.hodograph().unwrap().hodograph().unwrap();
         let (t, h) = (q(0.4), q(0.125));
-        let num = c.eval(&(t.clone() + h.clone())).sub(&c.eval(&(t.clone() - h.clone())));
+        let num = c
+            .eval(&(t.clone() + h.clone()))
+            .sub(&c.eval(&(t.clone() - h.clone())));
         let lhs = num.scale(&(q(1.) / (q(2.) * h.clone())));
         let rhs = h1
             .eval(&t)

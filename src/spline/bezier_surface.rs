@@ -129,7 +129,11 @@ mod tests {
         let mut net = Vec::new();
         for i in 0..3 {
             for j in 0..4 {
-                net.push([q(i as f64), q(j as f64), q(((i * 7 + j * 3) % 5) as f64 - 2.0)]);
+                net.push([
+                    q(i as f64),
+                    q(j as f64),
+                    q(((i * 7 + j * 3) % 5) as f64 - 2.0),
+                ]);
             }
         }
         BezierSurface::new(2, 3, net).unwrap()
@@ -153,7 +157,10 @@ mod tests {
                 assert_eq!(c.eval(&u, &v), s.eval(&u, &(t.clone() * v.clone())));
                 assert_eq!(
                     sub.eval(&u, &v),
-                    s.eval(&(q(0.25) + q(0.5) * u.clone()), &(q(0.5) + q(0.5) * v.clone()))
+                    s.eval(
+                        &(q(0.25) + q(0.5) * u.clone()),
+                        &(q(0.5) + q(0.5) * v.clone())
+                    )
                 );
                 assert_eq!(s.elevate_u().elevate_v().eval(&u, &v), s.eval(&u, &v));
             }

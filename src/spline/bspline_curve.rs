@@ -188,7 +188,11 @@ impl<P: Point> BSplineCurve<P> {
     pub fn sub_curve(&self, a: &P::S, b: &P::S) -> Result<Self, SplineError> {
         let (d0, d1) = self.domain();
         if *a < d0 || *b > d1 || *a >= *b {
-            return Err(SplineError::OutOfDomain(a.to_f64(), d0.to_f64(), d1.to_f64()));
+            return Err(SplineError::OutOfDomain(
+                a.to_f64(),
+                d0.to_f64(),
+                d1.to_f64(),
+            ));
         }
         let p = self.degree();
         let mut c = self.clone();
@@ -218,7 +222,11 @@ impl<P: Point> BSplineCurve<P> {
     }
 
     /// Map every control point (e.g. to convert backends).
-    pub fn map<Q: Point>(&self, kmap: impl Fn(&P::S) -> Q::S, f: impl Fn(&P) -> Q) -> BSplineCurve<Q> {
+    pub fn map<Q: Point>(
+        &self,
+        kmap: impl Fn(&P::S) -> Q::S,
+        f: impl Fn(&P) -> Q,
+    ) -> BSplineCurve<Q> {
         BSplineCurve {
             knots: KnotVector::new_unchecked(
                 self.knots.knots().iter().map(kmap).collect(),
@@ -240,7 +248,13 @@ mod tests {
     fn curve() -> BSplineCurve<[Q; 3]> {
         let knots = [0., 0., 0., 0., 0.2, 0.45, 0.45, 0.8, 1., 1., 1., 1.];
         let pts: Vec<[Q; 3]> = (0..8)
-            .map(|i| [q(i as f64), q(((i * 5) % 7) as f64), q(((i * 3) % 4) as f64 * 0.5)])
+            .map(|i| {
+                [
+                    q(i as f64),
+                    q(((i * 5) % 7) as f64),
+                    q(((i * 3) % 4) as f64 * 0.5),
+                ]
+            })
             .collect();
         BSplineCurve::new(knots.iter().map(|&x| q(x)).collect(), 3, pts).unwrap()
     }
@@ -255,10 +269,7 @@ mod tests {
         for i in 0..=40 {
             let t = q(i as f64 / 40.0);
             assert_eq!(c2.eval(&t), c.eval(&t));
-            let pc = pieces
-                .iter()
-                .find(|p| p.t0 <= t && t <= p.t1)
-                .unwrap();
+            let pc = pieces.iter().find(|p| p.t0 <= t && t <= p.t1).unwrap();
             let s = (t.clone() - pc.t0.clone()) / (pc.t1.clone() - pc.t0.clone());
             assert_eq!(pc.curve.eval(&s), c.eval(&t));
             if t >= q(0.1) && t <= q(0.7) {

@@ -185,13 +185,17 @@ impl<P: Point> BSplineSurface<P> {
     }
     /// Insert the v-knot `t` `r` times (Boehm on every row); shape unchanged.
     pub fn insert_knot_v(&self, t: &P::S, r: usize) -> Self {
-        let rows = (0..self.nu()).map(|i| self.row(i).insert_knot(t, r)).collect();
+        let rows = (0..self.nu())
+            .map(|i| self.row(i).insert_knot(t, r))
+            .collect();
         Self::from_rows(self.ku.clone(), rows)
     }
 
     /// ∂S/∂u as a B-spline surface of degrees `(p-1, q)`; `None` when `p < 2`.
     pub fn derivative_u(&self) -> Option<Self> {
-        let cols: Option<Vec<_>> = (0..self.nv()).map(|j| self.column(j).derivative()).collect();
+        let cols: Option<Vec<_>> = (0..self.nv())
+            .map(|j| self.column(j).derivative())
+            .collect();
         Some(Self::from_columns(self.kv.clone(), cols?))
     }
     /// ∂S/∂v as a B-spline surface of degrees `(p, q-1)`; `None` when `q < 2`.
@@ -244,7 +248,13 @@ impl<P: Point> BSplineSurface<P> {
     }
 
     /// The part over `[u0,u1]×[v0,v1]` as a clamped B-spline surface.
-    pub fn sub_patch(&self, u0: &P::S, u1: &P::S, v0: &P::S, v1: &P::S) -> Result<Self, SplineError> {
+    pub fn sub_patch(
+        &self,
+        u0: &P::S,
+        u1: &P::S,
+        v0: &P::S,
+        v1: &P::S,
+    ) -> Result<Self, SplineError> {
         let cols: Result<Vec<_>, _> = (0..self.nv())
             .map(|j| self.column(j).sub_curve(u0, u1))
             .collect();
@@ -254,10 +264,20 @@ impl<P: Point> BSplineSurface<P> {
     }
 
     /// Map control points and knots (e.g. to convert backends).
-    pub fn map<Q: Point>(&self, kmap: impl Fn(&P::S) -> Q::S, f: impl Fn(&P) -> Q) -> BSplineSurface<Q> {
+    pub fn map<Q: Point>(
+        &self,
+        kmap: impl Fn(&P::S) -> Q::S,
+        f: impl Fn(&P) -> Q,
+    ) -> BSplineSurface<Q> {
         BSplineSurface {
-            ku: KnotVector::new_unchecked(self.ku.knots().iter().map(&kmap).collect(), self.ku.degree()),
-            kv: KnotVector::new_unchecked(self.kv.knots().iter().map(&kmap).collect(), self.kv.degree()),
+            ku: KnotVector::new_unchecked(
+                self.ku.knots().iter().map(&kmap).collect(),
+                self.ku.degree(),
+            ),
+            kv: KnotVector::new_unchecked(
+                self.kv.knots().iter().map(&kmap).collect(),
+                self.kv.degree(),
+            ),
             net: self.net.iter().map(f).collect(),
         }
     }
@@ -278,7 +298,11 @@ mod tests {
         let net = (0..nu * nv)
             .map(|k| {
                 let (i, j) = (k / nv, k % nv);
-                [q(i as f64), q(j as f64), q(((i * 3 + j * 5) % 7) as f64 * 0.25)]
+                [
+                    q(i as f64),
+                    q(j as f64),
+                    q(((i * 3 + j * 5) % 7) as f64 * 0.25),
+                ]
             })
             .collect();
         BSplineSurface::new(

@@ -33,7 +33,9 @@ impl<S: Scalar> Bernstein<S> {
     }
     /// The constant 1 of degree 0.
     pub fn one() -> Self {
-        Bernstein { coef: vec![S::one()] }
+        Bernstein {
+            coef: vec![S::one()],
+        }
     }
     /// `1 - self` (Bernstein polynomials form a partition of unity).
     pub fn one_minus(&self) -> Self {
@@ -118,7 +120,11 @@ pub fn compose<P: Point>(s: &BezierSurface<P>, c: &BezierCurve<[P::S; 2]>) -> Be
 
 /// The exact image `S(a + t (b - a))` of a domain segment: degree `p + q`, control points
 /// from the surface blossom (Yang et al. §4, "mapping segments onto the surface").
-pub fn compose_line<P: Point>(s: &BezierSurface<P>, a: &[P::S; 2], b: &[P::S; 2]) -> BezierCurve<P> {
+pub fn compose_line<P: Point>(
+    s: &BezierSurface<P>,
+    a: &[P::S; 2],
+    b: &[P::S; 2],
+) -> BezierCurve<P> {
     let (p, q) = (s.p, s.q);
     let mut out = Vec::with_capacity(p + q + 1);
     for k in 0..=p + q {
@@ -152,7 +158,11 @@ mod tests {
         let mut net = Vec::new();
         for i in 0..4 {
             for j in 0..3 {
-                net.push([q(i as f64), q(j as f64 * 1.5), q(((i * 5 + j * 2) % 3) as f64)]);
+                net.push([
+                    q(i as f64),
+                    q(j as f64 * 1.5),
+                    q(((i * 5 + j * 2) % 3) as f64),
+                ]);
             }
         }
         let s = BezierSurface::new(3, 2, net).unwrap();

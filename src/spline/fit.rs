@@ -1,11 +1,11 @@
 //! Least-squares B-spline fitting with interpolated end points (The NURBS Book §9.4.1,
 //! eqs. 9.63–9.67): minimize `Σ |Q_k - C(t_k)|²` over the free control points.
 
+use super::SplineError;
 use super::basis::basis_funs;
 use super::bspline_curve::BSplineCurve;
 use super::knots::KnotVector;
 use super::linalg::solve;
-use super::SplineError;
 use crate::geom::Point;
 use crate::scalar::Scalar;
 
@@ -40,7 +40,10 @@ pub fn fit_least_squares<P: Point>(
 ) -> Result<BSplineCurve<P>, SplineError> {
     let m = data.len();
     if n_ctrl < p + 1 || m < n_ctrl || t.len() != m {
-        return Err(SplineError::TooFewPoints { need: n_ctrl.max(p + 1), got: m });
+        return Err(SplineError::TooFewPoints {
+            need: n_ctrl.max(p + 1),
+            got: m,
+        });
     }
     for i in 1..m {
         if t[i] <= t[i - 1] {
@@ -51,7 +54,10 @@ pub fn fit_least_squares<P: Point>(
     let n = n_ctrl - 1;
     let (q0, qm) = (data[0].clone(), data[m - 1].clone());
     if n_ctrl == 2 || n == 1 {
-        return Ok(BSplineCurve { knots: kv, control: vec![q0, qm] });
+        return Ok(BSplineCurve {
+            knots: kv,
+            control: vec![q0, qm],
+        });
     }
     // N[k][i] for interior data k = 1..m-2 and all i.
     let rows: Vec<Vec<P::S>> = t[1..m - 1]
@@ -109,7 +115,10 @@ mod tests {
             let x = i as f64 / 100.0;
             let e = c.eval(&x);
             let g = f(x);
-            assert!((e[0] - g[0]).abs() < 1e-10 && (e[1] - g[1]).abs() < 1e-10, "{x}");
+            assert!(
+                (e[0] - g[0]).abs() < 1e-10 && (e[1] - g[1]).abs() < 1e-10,
+                "{x}"
+            );
         }
     }
 }

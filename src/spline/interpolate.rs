@@ -3,7 +3,7 @@
 
 use super::bspline_curve::BSplineCurve;
 use super::linalg::solve;
-use super::{basis::basis_funs, knots::KnotVector, SplineError};
+use super::{SplineError, basis::basis_funs, knots::KnotVector};
 use crate::geom::Point;
 use crate::scalar::{RealScalar, Scalar};
 
@@ -23,7 +23,10 @@ pub fn parameters<S: RealScalar, const D: usize>(
     kind: Parametrization,
 ) -> Result<Vec<S>, SplineError> {
     if pts.len() < 2 {
-        return Err(SplineError::TooFewPoints { need: 2, got: pts.len() });
+        return Err(SplineError::TooFewPoints {
+            need: 2,
+            got: pts.len(),
+        });
     }
     let mut d = Vec::with_capacity(pts.len() - 1);
     for (i, w) in pts.windows(2).enumerate() {
@@ -71,10 +74,16 @@ pub fn interpolate_with_parameters<P: Point>(
 ) -> Result<BSplineCurve<P>, SplineError> {
     let n = pts.len();
     if n < p + 1 {
-        return Err(SplineError::TooFewPoints { need: p + 1, got: n });
+        return Err(SplineError::TooFewPoints {
+            need: p + 1,
+            got: n,
+        });
     }
     if t.len() != n {
-        return Err(SplineError::TooFewPoints { need: n, got: t.len() });
+        return Err(SplineError::TooFewPoints {
+            need: n,
+            got: t.len(),
+        });
     }
     for i in 1..n {
         if t[i] <= t[i - 1] {
@@ -90,7 +99,10 @@ pub fn interpolate_with_parameters<P: Point>(
         }
     }
     let ctrl = solve(a, pts.to_vec())?;
-    Ok(BSplineCurve { knots: kv, control: ctrl })
+    Ok(BSplineCurve {
+        knots: kv,
+        control: ctrl,
+    })
 }
 
 /// Cubic interpolation with chord-length or centripetal parameters.
@@ -115,7 +127,10 @@ mod tests {
             .iter()
             .map(|p| crate::geom::lift_point(p))
             .collect();
-        let t: Vec<Q> = [0., 0.1, 0.35, 0.5, 0.8, 1.].iter().map(|&x| crate::scalar::lift(x)).collect();
+        let t: Vec<Q> = [0., 0.1, 0.35, 0.5, 0.8, 1.]
+            .iter()
+            .map(|&x| crate::scalar::lift(x))
+            .collect();
         let c = interpolate_with_parameters(&pts, &t, 3).unwrap();
         for (p, ti) in pts.iter().zip(&t) {
             assert_eq!(&c.eval(ti), p);
@@ -124,7 +139,13 @@ mod tests {
 
     #[test]
     fn chord_and_centripetal_interpolate_in_f64() {
-        let pts = [[0., 0., 0.], [1., 2., 0.], [3., 3., 1.], [4., 1., 1.], [6., 0.5, 2.]];
+        let pts = [
+            [0., 0., 0.],
+            [1., 2., 0.],
+            [3., 3., 1.],
+            [4., 1., 1.],
+            [6., 0.5, 2.],
+        ];
         for kind in [Parametrization::ChordLength, Parametrization::Centripetal] {
             let t = parameters(&pts, kind).unwrap();
             let c = interpolate_cubic(&pts, kind).unwrap();

@@ -15,8 +15,14 @@ pub enum KnotError {
     #[error("knots decrease at index {0}")]
     Unsorted(usize),
     #[error("knot {index} has multiplicity {mult} > degree + 1 = {max}")]
-    Multiplicity { index: usize, mult: usize, max: usize },
-    #[error("interior knot {index} has multiplicity {mult} > degree {degree}: the spline would be discontinuous")]
+    Multiplicity {
+        index: usize,
+        mult: usize,
+        max: usize,
+    },
+    #[error(
+        "interior knot {index} has multiplicity {mult} > degree {degree}: the spline would be discontinuous"
+    )]
     InteriorMultiplicity {
         index: usize,
         mult: usize,

@@ -2,10 +2,10 @@
 //! (The NURBS Book, §4.2–4.5): evaluation by projection, derivatives by the quotient
 //! rule (eqs. 4.8, 4.20), normals.
 
+use super::SplineError;
 use super::bspline_curve::BSplineCurve;
 use super::bspline_surface::BSplineSurface;
-use super::SplineError;
-use crate::geom::{cross, Hom, Point};
+use crate::geom::{Hom, Point, cross};
 use crate::scalar::{RealScalar, Scalar};
 
 /// A NURBS curve in `D` dimensions.
@@ -37,7 +37,12 @@ fn project<S: Scalar, const D: usize>(h: &Hom<S, D>) -> [S; D] {
 
 impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
     /// From Cartesian control points and positive weights.
-    pub fn new(knots: Vec<S>, degree: usize, pts: Vec<[S; D]>, weights: Vec<S>) -> Result<Self, SplineError> {
+    pub fn new(
+        knots: Vec<S>,
+        degree: usize,
+        pts: Vec<[S; D]>,
+        weights: Vec<S>,
+    ) -> Result<Self, SplineError> {
         if weights.len() != pts.len() {
             return Err(SplineError::NetSize {
                 got: weights.len(),
@@ -46,7 +51,11 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
             });
         }
         check_weights(&weights)?;
-        let h = pts.iter().zip(&weights).map(|(p, w)| Hom::from_point(p, w)).collect();
+        let h = pts
+            .iter()
+            .zip(&weights)
+            .map(|(p, w)| Hom::from_point(p, w))
+            .collect();
         Ok(NurbsCurve {
             hom: BSplineCurve::new(knots, degree, h)?,
         })
@@ -64,7 +73,11 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
     }
     /// Control points and weights.
     pub fn points_weights(&self) -> (Vec<[S; D]>, Vec<S>) {
-        self.hom.control.iter().map(|h| (project(h), h.w.clone())).unzip()
+        self.hom
+            .control
+            .iter()
+            .map(|h| (project(h), h.w.clone()))
+            .unzip()
     }
 }
 
@@ -89,7 +102,11 @@ impl<S: Scalar, const D: usize> NurbsSurface<S, D> {
             });
         }
         check_weights(&weights)?;
-        let h = pts.iter().zip(&weights).map(|(p, w)| Hom::from_point(p, w)).collect();
+        let h = pts
+            .iter()
+            .zip(&weights)
+            .map(|(p, w)| Hom::from_point(p, w))
+            .collect();
         Ok(NurbsSurface {
             hom: BSplineSurface::new(knots_u, deg_u, knots_v, deg_v, nu, nv, h)?,
         })
@@ -132,7 +149,11 @@ impl<S: Scalar, const D: usize> NurbsSurface<S, D> {
     }
     /// Control points and weights, row-major.
     pub fn points_weights(&self) -> (Vec<[S; D]>, Vec<S>) {
-        self.hom.net.iter().map(|h| (project(h), h.w.clone())).unzip()
+        self.hom
+            .net
+            .iter()
+            .map(|h| (project(h), h.w.clone()))
+            .unzip()
     }
     /// Whether every weight equals the first (then the surface is polynomial).
     pub fn is_polynomial(&self) -> bool {
@@ -196,9 +217,17 @@ mod tests {
     fn rational_cubic_semicircle_is_exact() {
         let third = Q::new(1.into(), 3.into());
         let c = NurbsCurve::<Q, 2>::new(
-            [0., 0., 0., 0., 1., 1., 1., 1.].iter().map(|&x| q(x)).collect(),
+            [0., 0., 0., 0., 1., 1., 1., 1.]
+                .iter()
+                .map(|&x| q(x))
+                .collect(),
             3,
-            vec![[q(1.), q(0.)], [q(1.), q(2.)], [q(-1.), q(2.)], [q(-1.), q(0.)]],
+            vec![
+                [q(1.), q(0.)],
+                [q(1.), q(2.)],
+                [q(-1.), q(2.)],
+                [q(-1.), q(0.)],
+            ],
             vec![q(1.), third.clone(), third, q(1.)],
         )
         .unwrap();
