@@ -4,6 +4,7 @@
 //! `cli` → pipelines → `io`/`model` → `spline` → `predicates` → `scalar`, `geom`.
 
 pub mod cli;
+pub mod demo;
 pub mod geom;
 pub mod model;
 pub mod predicates;

@@ -1,1 +1,126 @@
-//! Command-line interface.
+//! Command-line interface: parses arguments, calls one library job, prints its report.
+//! Exit codes: 0 success, 2 bad input (unreadable or invalid file, bad arguments),
+//! 1 failure of the computation or of writing outputs.
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Exit code for bad input.
+pub const EXIT_BAD_INPUT: i32 = 2;
+/// Exit code for a failed computation or output.
+pub const EXIT_FAILURE: i32 = 1;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "vericad",
+    version,
+    about = "Verification-first CAGD for surface grid generation: exact predicates, certified curves on surfaces, SSI, repair."
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Run the main job on the embedded default model (Yang et al. Table 2 data) and write
+    /// its outputs.
+    Demo {
+        /// Directory for the outputs.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Print the report as JSON instead of the human summary.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Summarize a model file: surfaces, curves, degrees, rational or not, bounding box.
+    Info {
+        /// Model file (native JSON).
+        file: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
+    Eval {
+        /// Model file (native JSON).
+        file: PathBuf,
+        /// Index of the surface to evaluate (use with --uv).
+        #[arg(long, conflicts_with = "curve")]
+        surface: Option<usize>,
+        /// Index of the curve to evaluate (use with --t).
+        #[arg(long)]
+        curve: Option<usize>,
+        /// Surface parameters `u,v`.
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        uv: Vec<f64>,
+        /// Curve parameter.
+        #[arg(long, allow_hyphen_values = true)]
+        t: Option<f64>,
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
+    if json {
+        println!("{}", serde_json::to_string_pretty(r).unwrap_or_default());
+    } else {
+        print!("{r}");
+    }
+}
+
+fn bad(msg: impl std::fmt::Display) -> i32 {
+    eprintln!("error: {msg}");
+    EXIT_BAD_INPUT
+}
+
+/// Run a parsed command; returns the process exit code.
+pub fn run(cli: Cli) -> i32 {
+    match cli.command {
+        Command::Demo { out, json } => match crate::demo::run(crate::demo::DEFAULT_MODEL, &out) {
+            Ok(r) => {
+                print(&r, json);
+                0
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                EXIT_FAILURE
+            }
+        },
+        Command::Info { file, json } => match crate::model::json::read(&file) {
+            Ok(m) => {
+                print(&crate::model::info::summarize(&m), json);
+                0
+            }
+            Err(e) => bad(e),
+        },
+        Command::Eval {
+            file,
+            surface,
+            curve,
+            uv,
+            t,
+            json,
+        } => {
+            let m = match crate::model::json::read(&file) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
+            let r = match (surface, curve) {
+                (Some(i), None) => crate::model::eval::eval_surface(&m, i, &uv),
+                (None, Some(i)) => match t {
+                    Some(t) => crate::model::eval::eval_curve(&m, i, &[t]),
+                    None => return bad("--curve needs --t"),
+                },
+                _ => return bad("give either --surface I --uv U,V or --curve I --t T"),
+            };
+            match r {
+                Ok(r) => {
+                    print(&r, json);
+                    0
+                }
+                Err(e) => bad(e),
+            }
+        }
+    }
+}

@@ -1,1 +1,61 @@
-//! Native model format.
+//! The model: named NURBS curves (2D domain curves and 3D curves), surfaces and patch sets,
+//! in `f64` as read from files. Exact backends get their data by exact lifting
+//! ([`crate::geom::lift_point`]).
+//!
+//! [`json`] reads and writes the native JSON format (schema in `docs/model-format.md`);
+//! every fault in a file is a [`ModelError`] naming the file, the JSON path and the reason.
+
+pub mod eval;
+pub mod info;
+pub mod json;
+
+use crate::spline::{NurbsCurve, NurbsSurface};
+
+/// A curve in the parameter plane of a surface (`u, v`) or in space.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CurveGeometry {
+    Domain(NurbsCurve<f64, 2>),
+    Space(NurbsCurve<f64, 3>),
+}
+
+/// A named curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    pub name: String,
+    pub geometry: CurveGeometry,
+}
+
+/// A named surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Surface {
+    pub name: String,
+    pub nurbs: NurbsSurface<f64, 3>,
+}
+
+/// A named set of surfaces (indices into [`Model::surfaces`]) meant to form one shape.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchSet {
+    pub name: String,
+    pub surfaces: Vec<usize>,
+}
+
+/// Everything a model file holds.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Model {
+    /// Length unit as written in the file (e.g. `"mm"`), if any.
+    pub unit: Option<String>,
+    pub curves: Vec<Curve>,
+    pub surfaces: Vec<Surface>,
+    pub patch_sets: Vec<PatchSet>,
+}
+
+/// A fault in a model file: where, and why.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{file}: {path}: {reason}")]
+pub struct ModelError {
+    /// File name, or `<input>` for in-memory text.
+    pub file: String,
+    /// JSON path of the offending value, e.g. `surfaces[0].knots_u[4]`.
+    pub path: String,
+    pub reason: String,
+}

@@ -1,0 +1,161 @@
+//! A readable summary of a model: what `vericad info` prints.
+
+use super::{CurveGeometry, Model};
+use crate::geom::Aabb;
+use serde::Serialize;
+
+/// Summary of one surface.
+#[derive(Clone, Debug, Serialize)]
+pub struct SurfaceInfo {
+    pub index: usize,
+    pub name: String,
+    pub degree: [usize; 2],
+    pub control_net: [usize; 2],
+    pub rational: bool,
+    pub domain: [f64; 4],
+    /// Bounding box of the control net (contains the surface: convex hull property).
+    pub bbox: [[f64; 3]; 2],
+}
+
+/// Summary of one curve.
+#[derive(Clone, Debug, Serialize)]
+pub struct CurveInfo {
+    pub index: usize,
+    pub name: String,
+    /// `"domain"` (u, v) or `"space"`.
+    pub kind: &'static str,
+    pub degree: usize,
+    pub control_points: usize,
+    pub rational: bool,
+    pub domain: [f64; 2],
+}
+
+/// Summary of a model.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModelInfo {
+    pub unit: Option<String>,
+    pub surfaces: Vec<SurfaceInfo>,
+    pub curves: Vec<CurveInfo>,
+    pub patch_sets: usize,
+    /// Bounding box of all surface control nets.
+    pub bbox: Option<[[f64; 3]; 2]>,
+}
+
+/// Summarize a model.
+pub fn summarize(m: &Model) -> ModelInfo {
+    let mut all: Option<Aabb<f64, 3>> = None;
+    let surfaces = m
+        .surfaces
+        .iter()
+        .enumerate()
+        .map(|(index, s)| {
+            let (pts, _) = s.nurbs.points_weights();
+            let b = Aabb::of_points(pts.iter()).expect("validated surfaces have control points");
+            match &mut all {
+                Some(a) => {
+                    a.include(&b.min);
+                    a.include(&b.max);
+                }
+                None => all = Some(b.clone()),
+            }
+            let h = &s.nurbs.hom;
+            let (u0, u1, v0, v1) = h.domain();
+            SurfaceInfo {
+                index,
+                name: s.name.clone(),
+                degree: [h.ku.degree(), h.kv.degree()],
+                control_net: [h.nu(), h.nv()],
+                rational: !s.nurbs.is_polynomial(),
+                domain: [u0, u1, v0, v1],
+                bbox: [b.min, b.max],
+            }
+        })
+        .collect();
+    let curves = m
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(index, c)| {
+            let (kind, degree, n, w, dom) = match &c.geometry {
+                CurveGeometry::Domain(g) => (
+                    "domain",
+                    g.hom.degree(),
+                    g.hom.control.len(),
+                    g.points_weights().1,
+                    g.hom.domain(),
+                ),
+                CurveGeometry::Space(g) => (
+                    "space",
+                    g.hom.degree(),
+                    g.hom.control.len(),
+                    g.points_weights().1,
+                    g.hom.domain(),
+                ),
+            };
+            CurveInfo {
+                index,
+                name: c.name.clone(),
+                kind,
+                degree,
+                control_points: n,
+                rational: w.iter().any(|x| *x != w[0]),
+                domain: [dom.0, dom.1],
+            }
+        })
+        .collect();
+    ModelInfo {
+        unit: m.unit.clone(),
+        surfaces,
+        curves,
+        patch_sets: m.patch_sets.len(),
+        bbox: all.map(|a| [a.min, a.max]),
+    }
+}
+
+impl std::fmt::Display for ModelInfo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{} surface(s), {} curve(s), {} patch set(s), unit: {}",
+            self.surfaces.len(),
+            self.curves.len(),
+            self.patch_sets,
+            self.unit.as_deref().unwrap_or("(none)")
+        )?;
+        for s in &self.surfaces {
+            writeln!(
+                f,
+                "  surface {:>3} {:<28} degree {}x{}  net {}x{}  {}  domain [{}, {}]x[{}, {}]",
+                s.index,
+                s.name,
+                s.degree[0],
+                s.degree[1],
+                s.control_net[0],
+                s.control_net[1],
+                if s.rational { "rational" } else { "polynomial" },
+                s.domain[0],
+                s.domain[1],
+                s.domain[2],
+                s.domain[3]
+            )?;
+        }
+        for c in &self.curves {
+            writeln!(
+                f,
+                "  curve   {:>3} {:<28} {} curve, degree {}, {} control points, {}, t in [{}, {}]",
+                c.index,
+                c.name,
+                c.kind,
+                c.degree,
+                c.control_points,
+                if c.rational { "rational" } else { "polynomial" },
+                c.domain[0],
+                c.domain[1]
+            )?;
+        }
+        if let Some(b) = self.bbox {
+            writeln!(f, "  bounding box (control nets): {:?} .. {:?}", b[0], b[1])?;
+        }
+        Ok(())
+    }
+}
