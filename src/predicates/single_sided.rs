@@ -14,7 +14,7 @@
 //! The odd-multiplicity roots are also where a double-sided piece must be split (the paper's
 //! `t_1` for cubics generalizes to all of them); [`split_parameters`] isolates them.
 
-use super::poly::{Poly, count_roots, isolate_roots};
+use super::poly::{Poly, count_roots, descartes_isolate, integer_bernstein, isolate_roots};
 use crate::geom::Point;
 use crate::scalar::{Scalar, Sign};
 use num_rational::BigRational;
@@ -31,6 +31,9 @@ pub enum Sidedness {
     /// `P_0 == P_n`: there is no chord (closed piece); the caller must split first.
     DegenerateChord,
 }
+
+/// Bisection depth of the Descartes fast path before falling back to Sturm sequences.
+const DESCARTES_DEPTH: u32 = 64;
 
 /// Exact Bernstein coefficients of `f(t) = (C(t) - P_0) × (P_n - P_0)`.
 pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<BigRational> {
@@ -65,7 +68,21 @@ pub fn single_sided<S: Scalar>(ctrl: &[[S; 2]]) -> Sidedness {
             decided_by_hull: true,
         };
     }
-    // Step 2: exact root analysis.
+    // Step 2a: exact Bernstein–Descartes bisection (integer arithmetic): decides every
+    // case whose roots in (0,1) are simple and off the dyadic bisection points.
+    let b = chord_cross_coefficients(ctrl);
+    if let Some(roots) = descartes_isolate(&integer_bernstein(&b), DESCARTES_DEPTH) {
+        return if roots.is_empty() {
+            Sidedness::SingleSided {
+                decided_by_hull: false,
+            }
+        } else {
+            Sidedness::DoubleSided {
+                crossings: roots.len(),
+            }
+        };
+    }
+    // Step 2b: multiple roots or a root on a bisection point: square-free odd part + Sturm.
     let odd = odd_crossing_polynomial(ctrl);
     let k = count_roots(
         &odd,
