@@ -1,0 +1,102 @@
+//! The command-line tool end to end: exit codes distinguish bad input (2) from failure (1).
+
+use std::process::Command;
+
+fn vericad(args: &[&str]) -> (i32, String, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_vericad"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into(),
+        String::from_utf8_lossy(&o.stderr).into(),
+    )
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("vericad-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn demo_runs_and_writes_its_outputs() {
+    let out = tmp("demo");
+    let (code, stdout, _) = vericad(&["demo", "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(
+        stdout.contains("degree 8 with 9 control points"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("50/50"), "{stdout}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("demo-report.json")).unwrap())
+            .unwrap();
+    assert_eq!(report["composition"]["exact_agreements"], 50);
+    // The written curve is a valid model that vericad reads back.
+    let (code, stdout, _) = vericad(&[
+        "info",
+        out.join("demo-exact-curve.json").to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let info: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(info["curves"][0]["degree"], 8);
+    assert_eq!(info["curves"][0]["control_points"], 9);
+}
+
+#[test]
+fn bad_input_exits_2_with_a_located_message() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/malformed");
+    let (code, _, stderr) = vericad(&["info", dir.join("negative-weight.json").to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("surfaces[0].weights[1][1]"), "{stderr}");
+    let (code, _, _) = vericad(&["info", "/nonexistent.json"]);
+    assert_eq!(code, 2);
+    let (code, _, _) = vericad(&["frobnicate"]);
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn eval_reports_exact_and_f64_points() {
+    let d = tmp("eval");
+    let f = d.join("m.json");
+    std::fs::write(&f, vericad::demo::DEFAULT_MODEL).unwrap();
+    let (code, stdout, stderr) = vericad(&[
+        "eval",
+        f.to_str().unwrap(),
+        "--surface",
+        "0",
+        "--uv",
+        "0.25,0.5",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let r: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let err = r["f64_error"].as_f64().unwrap();
+    assert!(err < 1e-14, "{err}");
+    let (code, _, stderr) = vericad(&[
+        "eval",
+        f.to_str().unwrap(),
+        "--surface",
+        "0",
+        "--uv",
+        "1.5,0.5",
+    ]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("outside the domain"), "{stderr}");
+    let (code, _, _) = vericad(&["eval", f.to_str().unwrap(), "--curve", "0", "--t", "0.3"]);
+    assert_eq!(code, 0);
+    let (code, _, _) = vericad(&["eval", f.to_str().unwrap(), "--surface", "7", "--uv", "0,0"]);
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn every_subcommand_has_help() {
+    for sub in ["demo", "info", "eval"] {
+        let (code, stdout, _) = vericad(&[sub, "--help"]);
+        assert_eq!(code, 0);
+        assert!(stdout.contains("Usage"), "{sub}");
+    }
+}
