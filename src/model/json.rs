@@ -279,8 +279,10 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
     let ctx = Ctx { file };
     let de = &mut serde_json::Deserializer::from_str(text);
     let raw: RawModel = serde_path_to_error::deserialize(de).map_err(|e| {
+        // serde_path_to_error writes `?` for a position it could not name (truncated input).
         let path = e.path().to_string();
-        let path = if path == "." {
+        let path = path.trim_end_matches('?').trim_end_matches('.').to_string();
+        let path = if path.is_empty() || path == "." {
             "(top level)".to_string()
         } else {
             path
