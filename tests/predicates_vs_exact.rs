@@ -96,6 +96,40 @@ fn orient3d_agrees_with_exact() {
     assert!(zeros > n / 10, "only {zeros} coplanar cases");
 }
 
+/// Magnitudes at the edges of the f64 range (huge, tiny, subnormal), where an unguarded
+/// floating-point filter would overflow or underflow.
+#[test]
+fn orientation_at_extreme_magnitudes_agrees_with_exact() {
+    let mut r = Rng(9);
+    let scales = [1e-310, 1e-250, 1e-160, 1e150, 1e200, 1e300];
+    for k in 0..cases() / 5 {
+        let s = scales[k % scales.len()];
+        let mut p = |r: &mut Rng| -> [f64; 3] {
+            std::array::from_fn(|_| {
+                r.int(-3, 3) as f64
+                    * s
+                    * if r.unit() < 0.5 {
+                        1.0
+                    } else {
+                        1.0 + f64::EPSILON
+                    }
+            })
+        };
+        let (a, b, c, d) = (p(&mut r), p(&mut r), p(&mut r), p(&mut r));
+        assert_eq!(
+            orient3d(&a, &b, &c, &d),
+            orient3d(&q3(&a), &q3(&b), &q3(&c), &q3(&d)),
+            "case {k}"
+        );
+        let (a2, b2, c2) = ([a[0], a[1]], [b[0], b[1]], [c[0], c[1]]);
+        assert_eq!(
+            orient2d(&a2, &b2, &c2),
+            orient2d(&q2(&a2), &q2(&b2), &q2(&c2)),
+            "case {k}"
+        );
+    }
+}
+
 #[test]
 fn segment_plane_and_point_in_triangle_agree_with_exact() {
     let mut r = Rng(3);

@@ -2,6 +2,27 @@
 //! a floating-point filter answers when the sign is clear, exact expansions when not.
 
 use super::{NotFinite, RealScalar, Scalar, Sign};
+use num_rational::BigRational;
+
+/// Shewchuk's predicates are exact only when no intermediate product overflows or
+/// underflows. With every non-zero coordinate magnitude in `[2^-200, 2^200]`, coordinate
+/// differences lie in `[2^-253, 2^201]` (differences of such numbers are multiples of the
+/// smaller one's ulp), triple products and their expansion tails in `[2^-900, 2^604]`: far
+/// inside the normal range. Outside it the predicates fall back to exact rationals.
+const SAFE_LO: f64 = 6.223015277861142e-61; // 2^-200
+const SAFE_HI: f64 = 1.6069380442589903e60; // 2^200
+
+#[inline(always)]
+fn safe(xs: &[f64]) -> bool {
+    xs.iter().all(|x| {
+        let a = x.abs();
+        a == 0.0 || (SAFE_LO..=SAFE_HI).contains(&a)
+    })
+}
+
+fn exact<const D: usize>(p: &[f64; D]) -> [BigRational; D] {
+    std::array::from_fn(|i| p[i].to_big_rational())
+}
 
 impl Scalar for f64 {
     const EXACT: bool = false;
@@ -51,9 +72,13 @@ impl Scalar for f64 {
         f64::abs(*self)
     }
 
-    /// Adaptive exact orientation (Shewchuk's `orient2d`).
+    /// Adaptive exact orientation (Shewchuk's `orient2d`); exact rationals outside the
+    /// safe exponent range.
     #[inline]
     fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
+        if !safe(&[a[0], a[1], b[0], b[1], c[0], c[1]]) {
+            return BigRational::orient2d(&exact(a), &exact(b), &exact(c));
+        }
         let c2 = |p: &[f64; 2]| robust::Coord { x: p[0], y: p[1] };
         robust::orient2d(c2(a), c2(b), c2(c)).sign()
     }
@@ -62,6 +87,11 @@ impl Scalar for f64 {
     /// `det[a-d, b-d, c-d] = -det[b-a, c-a, d-a]`, hence the negation.
     #[inline]
     fn orient3d(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> Sign {
+        if !safe(&[
+            a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2],
+        ]) {
+            return BigRational::orient3d(&exact(a), &exact(b), &exact(c), &exact(d));
+        }
         let c3 = |p: &[f64; 3]| robust::Coord3D {
             x: p[0],
             y: p[1],
