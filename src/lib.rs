@@ -5,6 +5,8 @@
 
 pub mod cli;
 pub mod demo;
+#[doc(hidden)]
+pub mod fuzz_entry;
 pub mod geom;
 pub mod model;
 pub mod predicates;

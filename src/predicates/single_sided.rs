@@ -14,7 +14,10 @@
 //! The odd-multiplicity roots are also where a double-sided piece must be split (the paper's
 //! `t_1` for cubics generalizes to all of them); [`split_parameters`] isolates them.
 
-use super::poly::{Poly, count_roots, descartes_isolate, integer_bernstein, isolate_roots};
+use super::poly::{
+    Poly, certify_squarefree, deflate_ends, descartes_isolate, integer_bernstein,
+    integer_power_from_bernstein, isolate_roots,
+};
 use crate::geom::Point;
 use crate::scalar::{Scalar, Sign};
 use num_rational::BigRational;
@@ -32,9 +35,6 @@ pub enum Sidedness {
     DegenerateChord,
 }
 
-/// Bisection depth of the Descartes fast path before falling back to Sturm sequences.
-const DESCARTES_DEPTH: u32 = 64;
-
 /// Exact Bernstein coefficients of `f(t) = (C(t) - P_0) × (P_n - P_0)`.
 pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<BigRational> {
     let q: Vec<[BigRational; 2]> = ctrl
@@ -46,6 +46,38 @@ pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<BigRational> 
     q.iter()
         .map(|p| crate::geom::cross2(&p.sub(&q[0]), &chord))
         .collect()
+}
+
+/// Exact crossings of the curve with its chord in `(0, 1)`, isolated to width
+/// `2^-min_depth`: the Descartes path when square-freeness is certified (fast, integer
+/// arithmetic), otherwise Yun's square-free decomposition and Sturm sequences.
+fn crossings<S: Scalar>(ctrl: &[[S; 2]], min_depth: u32) -> Vec<(BigRational, BigRational)> {
+    let b = chord_cross_coefficients(ctrl);
+    let ib = integer_bernstein(&b);
+    let g = deflate_ends(integer_power_from_bernstein(&ib));
+    if g.len() <= 1 {
+        // Constant after removing the end roots (or identically zero: the curve lies on its
+        // chord): no crossing inside.
+        return vec![];
+    }
+    if certify_squarefree(&g) {
+        let bits = ib.iter().map(|x| x.bits()).max().unwrap_or(0) as u32;
+        let n = ib.len() as u32;
+        // Generous cap above the root-separation depth of a square-free integer polynomial
+        // (Mahler: about n·(bits + log n)); reached only if the certificate were wrong.
+        let cap = 64 + n.saturating_mul(bits + 2 * n);
+        if let Some(r) = descartes_isolate(&ib, cap, min_depth) {
+            return r.into_iter().map(|x| (x.lo, x.hi)).collect();
+        }
+    }
+    let odd = odd_crossing_polynomial(ctrl);
+    let w = BigRational::new(1.into(), num_bigint::BigInt::from(1u8) << min_depth);
+    isolate_roots(
+        &odd,
+        &<BigRational as Zero>::zero(),
+        &<BigRational as One>::one(),
+        &w,
+    )
 }
 
 /// Classify a planar Bézier curve (at least 2 control points) against its chord.
@@ -68,27 +100,8 @@ pub fn single_sided<S: Scalar>(ctrl: &[[S; 2]]) -> Sidedness {
             decided_by_hull: true,
         };
     }
-    // Step 2a: exact Bernstein–Descartes bisection (integer arithmetic): decides every
-    // case whose roots in (0,1) are simple and off the dyadic bisection points.
-    let b = chord_cross_coefficients(ctrl);
-    if let Some(roots) = descartes_isolate(&integer_bernstein(&b), DESCARTES_DEPTH) {
-        return if roots.is_empty() {
-            Sidedness::SingleSided {
-                decided_by_hull: false,
-            }
-        } else {
-            Sidedness::DoubleSided {
-                crossings: roots.len(),
-            }
-        };
-    }
-    // Step 2b: multiple roots or a root on a bisection point: square-free odd part + Sturm.
-    let odd = odd_crossing_polynomial(ctrl);
-    let k = count_roots(
-        &odd,
-        &<BigRational as Zero>::zero(),
-        &<BigRational as One>::one(),
-    );
+    // Step 2: exact root analysis.
+    let k = crossings(ctrl, 0).len();
     if k == 0 {
         Sidedness::SingleSided {
             decided_by_hull: false,
@@ -107,58 +120,15 @@ fn odd_crossing_polynomial<S: Scalar>(ctrl: &[[S; 2]]) -> Poly {
 }
 
 /// The parameters in `(0, 1)` at which the curve crosses its chord (odd-multiplicity roots
-/// of `f`), each isolated in an exact rational interval of width ≤ `width`, ascending.
-/// Splitting there leaves pieces that are single-sided (the paper's `t_1` for cubics).
+/// of `f`), each isolated in an exact rational interval of width ≤ `width` (a point when
+/// exact), ascending. Splitting there leaves pieces that are single-sided (the paper's `t_1`
+/// for cubics).
 pub fn split_parameters<S: Scalar>(ctrl: &[[S; 2]], width: f64) -> Vec<(BigRational, BigRational)> {
     let n = ctrl.len() - 1;
     if ctrl[0] == ctrl[n] {
         return vec![];
     }
-    let w = BigRational::from_float(width.abs().max(f64::MIN_POSITIVE))
-        .unwrap_or_else(<BigRational as One>::one);
-    isolate_roots(
-        &odd_crossing_polynomial(ctrl),
-        &<BigRational as Zero>::zero(),
-        &<BigRational as One>::one(),
-        &w,
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn classic_cases() {
-        // Arc: single-sided by the hull.
-        let arc = [[0., 0.], [0.3, 1.], [0.7, 1.], [1., 0.]];
-        assert_eq!(
-            single_sided(&arc),
-            Sidedness::SingleSided {
-                decided_by_hull: true
-            }
-        );
-        // S-curve: double-sided, one crossing.
-        let s = [[0., 0.], [0.3, 1.], [0.7, -1.], [1., 0.]];
-        assert_eq!(single_sided(&s), Sidedness::DoubleSided { crossings: 1 });
-        let roots = split_parameters(&s, 1e-9);
-        assert_eq!(roots.len(), 1);
-        // Symmetric S: crossing exactly at t = 1/2.
-        assert!(roots[0].0 <= BigRational::new(1.into(), 2.into()));
-        assert!(roots[0].1 >= BigRational::new(1.into(), 2.into()));
-        // Mixed coefficient signs, but the curve only touches its chord (double root at
-        // 1/2): f = 48 t(1-t)(t-1/2)^2 has Bernstein coefficients (0, 3, -4, 3, 0), and with
-        // P0=(0,0), P4=(1,0), b_i = -y_i.
-        let q = [[0., 0.], [0.25, -3.], [0.5, 4.], [0.75, -3.], [1., 0.]];
-        assert_eq!(
-            single_sided(&q),
-            Sidedness::SingleSided {
-                decided_by_hull: false
-            }
-        );
-        assert_eq!(
-            single_sided(&[[0., 0.], [1., 1.], [0., 0.]]),
-            Sidedness::DegenerateChord
-        );
-    }
+    let w = width.abs().clamp(1e-300, 1.0);
+    let depth = (-w.log2()).ceil().max(0.0) as u32;
+    crossings(ctrl, depth)
 }

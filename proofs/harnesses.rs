@@ -1,0 +1,212 @@
+//! Proof harnesses. Each property is written once as a plain function; two drivers feed it:
+//! * `#[cfg(kani)] #[kani::proof]` — `cargo kani --tests` proves it for every input allowed
+//!   by `kani::assume` (symbolic, not sampled);
+//! * `#[test]` — runs under `cargo test`, exhaustively over the same bounded domain where it
+//!   is small enough, otherwise over a deterministic enumeration of a sub-domain (named so).
+//!
+//! Kani is kept on sign logic and integer/bounded kernels; floating-point arithmetic is left
+//! to the differential and property tests in `tests/`.
+
+use vericad::Sign;
+use vericad::predicates::point_in_triangle::{Location, from_edge_signs};
+use vericad::predicates::single_sided::{Sidedness, single_sided};
+use vericad::spline::KnotVector;
+
+const SIGNS: [Sign; 3] = [Sign::Negative, Sign::Zero, Sign::Positive];
+
+// ---------------------------------------------------------------- sign algebra
+
+/// `times` is the sign of the product; `flip` is `times(Negative)`.
+pub fn prop_sign_algebra(a: Sign, b: Sign) {
+    assert_eq!(a.times(b).as_i8(), a.as_i8() * b.as_i8());
+    assert_eq!(a.times(b), b.times(a));
+    assert_eq!(a.flip(), a.times(Sign::Negative));
+    assert_eq!(a.flip().flip(), a);
+}
+
+// ---------------------------------------------------------------- point location
+
+/// The location decided from the three edge signs (interior positive) is consistent:
+/// outside iff some sign is negative; inside iff all are positive; on an edge iff exactly one
+/// is zero; at a vertex iff the two edges meeting there are zero.
+pub fn prop_location_from_edge_signs(s: [Sign; 3]) {
+    let loc = from_edge_signs(s);
+    let neg = s.contains(&Sign::Negative);
+    let zeros = s.iter().filter(|x| **x == Sign::Zero).count();
+    match loc {
+        Location::Outside => assert!(neg),
+        Location::Inside => assert!(s.iter().all(|x| *x == Sign::Positive)),
+        Location::OnEdge(i) => {
+            assert!(!neg && zeros == 1);
+            assert_eq!(s[i as usize], Sign::Zero);
+        }
+        Location::OnVertex(k) => {
+            let k = k as usize;
+            assert!(!neg && zeros == 2);
+            // Vertex k is shared by edge k-1 and edge k.
+            assert_eq!(s[k], Sign::Zero);
+            assert_eq!(s[(k + 2) % 3], Sign::Zero);
+        }
+        Location::Degenerate => assert!(!neg && zeros == 3),
+    }
+}
+
+// ---------------------------------------------------------------- single-sided cubic
+
+/// Yang et al. §3 closed form for cubics: with `b_i = (P_i - P_0) × (P_3 - P_0)`,
+/// `f(t) = 3 t (1-t) [b_1 (1-t) + b_2 t]`, so the curve is single-sided iff `b_1 b_2 >= 0`
+/// (computed here in exact integer arithmetic, independently of the library).
+pub fn prop_single_sided_cubic_closed_form(p: [[i8; 2]; 4]) {
+    let ctrl: Vec<[f64; 2]> = p.iter().map(|q| [q[0] as f64, q[1] as f64]).collect();
+    let c = |i: usize| {
+        let (dx, dy) = ((p[i][0] - p[0][0]) as i64, (p[i][1] - p[0][1]) as i64);
+        let (cx, cy) = ((p[3][0] - p[0][0]) as i64, (p[3][1] - p[0][1]) as i64);
+        dx * cy - dy * cx
+    };
+    let got = single_sided(&ctrl);
+    if p[0] == p[3] {
+        assert_eq!(got, Sidedness::DegenerateChord);
+    } else if c(1) * c(2) >= 0 {
+        assert!(
+            matches!(got, Sidedness::SingleSided { .. }),
+            "{p:?}: {got:?}"
+        );
+    } else {
+        assert_eq!(got, Sidedness::DoubleSided { crossings: 1 }, "{p:?}");
+    }
+}
+
+// ---------------------------------------------------------------- knot spans
+
+/// For every valid knot vector (degree 2, 6 control points, small integer knots) and every
+/// parameter in its domain, `find_span` returns `k` with `knots[k] <= t < knots[k+1]`, or
+/// the last non-empty span at the domain's end.
+pub fn prop_find_span_brackets(inner: [i8; 3], t2: i8) {
+    let mut k = vec![0.0, 0.0, 0.0];
+    k.extend(inner.iter().map(|x| *x as f64));
+    k.extend([8.0, 8.0, 8.0]);
+    let Ok(kv) = KnotVector::new(k.clone(), 2, 6) else {
+        return;
+    };
+    let t = t2 as f64 / 2.0;
+    if !(0.0..=8.0).contains(&t) {
+        return;
+    }
+    let s = kv.find_span(&t);
+    assert!((2..6).contains(&s));
+    assert!(k[s] < k[s + 1], "span {s} is empty");
+    if t < 8.0 {
+        assert!(k[s] <= t && t < k[s + 1], "t = {t}, span {s}, knots {k:?}");
+    } else {
+        assert_eq!(k[s + 1], 8.0);
+    }
+}
+
+// ---------------------------------------------------------------- Kani drivers
+
+#[cfg(kani)]
+mod kani_drivers {
+    use super::*;
+    fn any_sign() -> Sign {
+        let i: u8 = kani::any();
+        kani::assume(i < 3);
+        SIGNS[i as usize]
+    }
+    #[kani::proof]
+    fn sign_algebra() {
+        prop_sign_algebra(any_sign(), any_sign());
+    }
+    #[kani::proof]
+    fn location_from_edge_signs() {
+        prop_location_from_edge_signs([any_sign(), any_sign(), any_sign()]);
+    }
+    #[kani::proof]
+    #[kani::unwind(12)]
+    fn find_span_brackets() {
+        let inner: [i8; 3] = kani::any();
+        let t2: i8 = kani::any();
+        kani::assume(inner.iter().all(|x| (0..=8).contains(x)));
+        prop_find_span_brackets(inner, t2);
+    }
+    #[kani::proof]
+    #[kani::unwind(8)]
+    fn single_sided_cubic_closed_form() {
+        let p: [[i8; 2]; 4] = kani::any();
+        kani::assume(p.iter().flatten().all(|x| (-2..=2).contains(x)));
+        prop_single_sided_cubic_closed_form(p);
+    }
+}
+
+// ---------------------------------------------------------------- test drivers
+
+#[test]
+fn sign_algebra_exhaustive() {
+    for a in SIGNS {
+        for b in SIGNS {
+            prop_sign_algebra(a, b);
+        }
+    }
+}
+
+#[test]
+fn location_from_edge_signs_exhaustive() {
+    for a in SIGNS {
+        for b in SIGNS {
+            for c in SIGNS {
+                prop_location_from_edge_signs([a, b, c]);
+            }
+        }
+    }
+}
+
+#[test]
+fn find_span_brackets_exhaustive() {
+    for a in 0..=8 {
+        for b in 0..=8 {
+            for c in 0..=8 {
+                for t2 in -1..=17 {
+                    prop_find_span_brackets([a, b, c], t2);
+                }
+            }
+        }
+    }
+}
+
+/// Exhaustive over the sub-domain `P_0 = (0,0)`, `P_1, P_2, P_3 ∈ [-2,2]²`
+/// (5^6 = 15,625 curves; translation invariance makes `P_0` free of loss), plus a
+/// deterministic sweep with `P_0` moving over `[-2,2]²`.
+#[test]
+fn single_sided_cubic_closed_form_exhaustive() {
+    let r = -2i8..=2;
+    for x1 in r.clone() {
+        for y1 in r.clone() {
+            for x2 in r.clone() {
+                for y2 in r.clone() {
+                    for x3 in r.clone() {
+                        for y3 in r.clone() {
+                            prop_single_sided_cubic_closed_form([
+                                [0, 0],
+                                [x1, y1],
+                                [x2, y2],
+                                [x3, y3],
+                            ]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for x0 in r.clone() {
+        for y0 in r.clone() {
+            for k in 0..625i32 {
+                let d = |j: i32| ((k / 5i32.pow(j as u32)) % 5 - 2) as i8;
+                prop_single_sided_cubic_closed_form([
+                    [x0, y0],
+                    [d(0), d(1)],
+                    [d(2), d(3)],
+                    [d(1), d(0)],
+                ]);
+            }
+        }
+    }
+}

@@ -1,0 +1,62 @@
+//! The fuzz targets' bodies run as ordinary tests: over the malformed-model corpus, the
+//! valid models, byte-level mutations of them, and random byte strings.
+
+mod common;
+use common::Rng;
+use vericad::fuzz_entry;
+
+fn corpus() -> Vec<Vec<u8>> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/malformed");
+    let mut v: Vec<Vec<u8>> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| std::fs::read(e.unwrap().path()).unwrap())
+        .collect();
+    v.push(vericad::demo::DEFAULT_MODEL.as_bytes().to_vec());
+    v.sort();
+    v
+}
+
+#[test]
+fn model_json_survives_corpus_and_mutations() {
+    let mut r = Rng(11);
+    let base = corpus();
+    for seed in &base {
+        fuzz_entry::model_json(seed);
+    }
+    for k in 0..20_000 {
+        let mut s = base[k % base.len()].clone();
+        for _ in 0..1 + r.below(4) {
+            if s.is_empty() {
+                break;
+            }
+            let i = r.below(s.len());
+            match r.below(4) {
+                0 => s[i] = b"0123456789-.eE,[]{}\":"[r.below(21)],
+                1 => {
+                    s.remove(i);
+                }
+                2 => s.insert(i, s[i]),
+                _ => s.truncate(i),
+            }
+        }
+        fuzz_entry::model_json(&s);
+    }
+}
+
+#[test]
+fn geometry_targets_survive_random_and_structured_bytes() {
+    let mut r = Rng(12);
+    for k in 0..20_000 {
+        let n = 8 * (2 + r.below(18));
+        let bytes: Vec<u8> = if k % 5 == 0 {
+            (0..n).map(|_| r.next_u64() as u8).collect()
+        } else {
+            // Small integers as f64: many exact degeneracies.
+            (0..n / 8)
+                .flat_map(|_| (r.int(-2, 2) as f64).to_le_bytes())
+                .collect()
+        };
+        fuzz_entry::single_sided_test(&bytes);
+        fuzz_entry::tri_tri_test(&bytes);
+    }
+}
