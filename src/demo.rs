@@ -51,9 +51,10 @@ pub enum DemoError {
     Write(String, std::io::Error),
 }
 
-fn bezier_parts(
-    m: &Model,
-) -> Result<(BezierSurface<Hom<f64, 3>>, BezierCurve<Hom<f64, 2>>), DemoError> {
+/// The default model's Bézier surface and domain curve (homogeneous points).
+type BezierParts = (BezierSurface<Hom<f64, 3>>, BezierCurve<Hom<f64, 2>>);
+
+fn bezier_parts(m: &Model) -> Result<BezierParts, DemoError> {
     let s = m.surfaces.first().ok_or(DemoError::Shape)?;
     let h = &s.nurbs.hom;
     let (p, q) = h.degrees();

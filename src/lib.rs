@@ -3,6 +3,9 @@
 //! Layers (nothing below imports from above), see `ARCHITECTURE.md`:
 //! `cli` → pipelines → `io`/`model` → `spline` → `predicates` → `scalar`, `geom`.
 
+// Index loops mirror the published algorithms (The NURBS Book, de Casteljau); keep them.
+#![allow(clippy::needless_range_loop)]
+
 pub mod cli;
 pub mod demo;
 #[doc(hidden)]

@@ -11,6 +11,7 @@
 //!   `|e| ≤ 6 r u M`;
 //! * rational evaluation multiplies the bound by `w_max / w_min` (the homogeneous sum is
 //!   divided by the interpolated weight).
+//!
 //! These are first-order bounds (terms in `u²` are negligible at these degrees); the tests
 //! check them on random, non-uniform data.
 

@@ -104,7 +104,7 @@ fn orientation_at_extreme_magnitudes_agrees_with_exact() {
     let scales = [1e-310, 1e-250, 1e-160, 1e150, 1e200, 1e300];
     for k in 0..cases() / 5 {
         let s = scales[k % scales.len()];
-        let mut p = |r: &mut Rng| -> [f64; 3] {
+        let p = |r: &mut Rng| -> [f64; 3] {
             std::array::from_fn(|_| {
                 r.int(-3, 3) as f64
                     * s
@@ -168,7 +168,7 @@ fn tri_pair(r: &mut Rng, k: usize) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
     match (k / 16) % 3 {
         0 => (a, [b0, b1, b2]),
         1 => (a, [a0, b1, x]),
-        _ => (a, [a1, a0, if k % 2 == 0 { b2 } else { x }]),
+        _ => (a, [a1, a0, if k.is_multiple_of(2) { b2 } else { x }]),
     }
 }
 

@@ -289,15 +289,15 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
         };
         ctx.err(path, e.into_inner().to_string())
     })?;
-    if let Some(f) = &raw.format {
-        if f != FORMAT {
-            return Err(ctx.err("format", format!("expected \"{FORMAT}\", got \"{f}\"")));
-        }
+    if let Some(f) = &raw.format
+        && f != FORMAT
+    {
+        return Err(ctx.err("format", format!("expected \"{FORMAT}\", got \"{f}\"")));
     }
-    if let Some(v) = raw.version {
-        if v != 1 {
-            return Err(ctx.err("version", format!("version {v} is not supported (1)")));
-        }
+    if let Some(v) = raw.version
+        && v != 1
+    {
+        return Err(ctx.err("version", format!("version {v} is not supported (1)")));
     }
     let curves = raw
         .curves

@@ -33,6 +33,56 @@ pub fn basis_funs<S: Scalar>(kv: &KnotVector<S>, span: usize, t: &S) -> Buf<S> {
     n
 }
 
+/// The `p + 1` non-zero basis functions and their first derivatives at `t`, allocation-free:
+/// `N'_{i,p} = p N_{i,p-1} / (u_{i+p} - u_i) - p N_{i+1,p-1} / (u_{i+p+1} - u_{i+1})`
+/// (The NURBS Book eq. 2.7), with the degree-`p-1` row kept from the A2.2 triangle.
+pub fn basis_funs_d1<S: Scalar>(kv: &KnotVector<S>, span: usize, t: &S) -> (Buf<S>, Buf<S>) {
+    let p = kv.degree();
+    let u = kv.knots();
+    let mut n: Buf<S> = Buf::new();
+    let mut left: Buf<S> = Buf::new();
+    let mut right: Buf<S> = Buf::new();
+    let mut lower: Buf<S> = Buf::new();
+    n.push(S::one());
+    left.push(S::zero());
+    right.push(S::zero());
+    for j in 1..=p {
+        if j == p {
+            lower = n.clone();
+        }
+        left.push(t.clone() - u[span + 1 - j].clone());
+        right.push(u[span + j].clone() - t.clone());
+        let mut saved = S::zero();
+        for r in 0..j {
+            let den = right[r + 1].clone() + left[j - r].clone();
+            let temp = n[r].clone() / den;
+            n[r] = saved + right[r + 1].clone() * temp.clone();
+            saved = left[j - r].clone() * temp;
+        }
+        n.push(saved);
+    }
+    let pp = S::from_i64(p as i64);
+    let mut d: Buf<S> = Buf::new();
+    for r in 0..=p {
+        let i = span - p + r;
+        let mut v = S::zero();
+        if r >= 1 {
+            let den = u[i + p].clone() - u[i].clone();
+            if !den.is_zero() {
+                v = v + lower[r - 1].clone() / den;
+            }
+        }
+        if r < p {
+            let den = u[i + p + 1].clone() - u[i + 1].clone();
+            if !den.is_zero() {
+                v = v - lower[r].clone() / den;
+            }
+        }
+        d.push(v * pp.clone());
+    }
+    (n, d)
+}
+
 /// Basis functions and their derivatives up to order `nd` (A2.3):
 /// `ders[k][j]` is the k-th derivative of `N_{span-p+j, p}` at `t`; orders above `p` are 0.
 pub fn ders_basis_funs<S: Scalar>(
@@ -129,6 +179,9 @@ mod tests {
             assert_eq!(s, BigRational::one());
             let d = ders_basis_funs(&kv, span, &t, 2);
             assert_eq!(d[0].as_slice(), n.as_slice());
+            let (n1, d1) = basis_funs_d1(&kv, span, &t);
+            assert_eq!(n1.as_slice(), n.as_slice());
+            assert_eq!(d1.as_slice(), d[1].as_slice());
             let s1 = d[1].iter().fold(BigRational::zero(), |a, b| a + b.clone());
             assert_eq!(s1, BigRational::zero());
         }

@@ -1,7 +1,7 @@
 //! Tensor-product B-spline surfaces: evaluation, partial derivative surfaces, knot
 //! insertion, Bézier patch extraction, sub-patches (The NURBS Book, ch. 3, 5).
 
-use super::basis::{basis_funs, ders_basis_funs};
+use super::basis::{basis_funs, basis_funs_d1, ders_basis_funs};
 use super::bezier_surface::BezierSurface;
 use super::bspline_curve::BSplineCurve;
 use super::knots::KnotVector;
@@ -113,6 +113,32 @@ impl<P: Point> BSplineSurface<P> {
             }
         }
         Ok(self.eval(u, v))
+    }
+
+    /// `(S, S_u, S_v)` at `(u, v)`, allocation-free (the hot path of SSI refinement and
+    /// tangent checks).
+    #[inline]
+    pub fn eval_d1(&self, u: &P::S, v: &P::S) -> (P, P, P) {
+        let (p, q) = self.degrees();
+        let nv = self.nv();
+        let su = self.ku.find_span(u);
+        let sv = self.kv.find_span(v);
+        let (nu_, du_) = basis_funs_d1(&self.ku, su, u);
+        let (nv_, dv_) = basis_funs_d1(&self.kv, sv, v);
+        let (mut s, mut s_u, mut s_v) = (P::origin(), P::origin(), P::origin());
+        for a in 0..=p {
+            let row = (su - p + a) * nv + sv - q;
+            let (mut t0, mut t1) = (P::origin(), P::origin());
+            for b in 0..=q {
+                let pt = &self.net[row + b];
+                t0 = t0.add(&pt.scale(&nv_[b]));
+                t1 = t1.add(&pt.scale(&dv_[b]));
+            }
+            s = s.add(&t0.scale(&nu_[a]));
+            s_u = s_u.add(&t0.scale(&du_[a]));
+            s_v = s_v.add(&t1.scale(&nu_[a]));
+        }
+        (s, s_u, s_v)
     }
 
     /// All partial derivatives `∂^{k+l} S / ∂u^k ∂v^l` for `k + l <= d` (A3.6):
@@ -343,6 +369,10 @@ mod tests {
                 }
                 let d = s.derivatives(&u, &v, 2);
                 assert_eq!(d[0][0], p);
+                assert_eq!(
+                    s.eval_d1(&u, &v),
+                    (d[0][0].clone(), d[1][0].clone(), d[0][1].clone())
+                );
                 assert_eq!(d[1][0], du.eval(&u, &v));
                 assert_eq!(d[0][1], dv.eval(&u, &v));
                 assert_eq!(d[1][1], du.derivative_v().unwrap().eval(&u, &v));

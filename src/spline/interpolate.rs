@@ -125,7 +125,7 @@ mod tests {
     fn interpolates_exactly_in_rationals() {
         let pts: Vec<[Q; 2]> = [[0., 0.], [1., 2.], [3., 3.], [4., 1.], [6., 0.5], [7., 2.]]
             .iter()
-            .map(|p| crate::geom::lift_point(p))
+            .map(crate::geom::lift_point)
             .collect();
         let t: Vec<Q> = [0., 0.1, 0.35, 0.5, 0.8, 1.]
             .iter()
