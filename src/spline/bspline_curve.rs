@@ -60,6 +60,24 @@ impl<P: Point> BSplineCurve<P> {
         acc
     }
 
+    /// Point at `t` by de Boor's algorithm (The NURBS Book eq. 5.x, the triangular scheme of
+    /// affine combinations); equals [`Self::eval`] exactly in exact arithmetic.
+    pub fn eval_de_boor(&self, t: &P::S) -> P {
+        let p = self.degree();
+        let k = self.knots.find_span(t);
+        let u = self.knots.knots();
+        let mut d: Vec<P> = self.control[k - p..=k].to_vec();
+        for r in 1..=p {
+            for j in (r..=p).rev() {
+                let i = k - p + j;
+                let a0 = u[i].clone();
+                let a1 = u[i + p + 1 - r].clone();
+                d[j] = d[j - 1].lerp_on(&d[j], &a0, &a1, t);
+            }
+        }
+        d.swap_remove(p)
+    }
+
     /// Point at `t`, or an error for a parameter outside the domain.
     pub fn eval_checked(&self, t: &P::S) -> Result<P, SplineError> {
         if !self.knots.contains(t) {
@@ -285,6 +303,7 @@ mod tests {
         for i in 0..=20 {
             let t = q(i as f64 / 20.0);
             assert_eq!(d.eval(&t), c.derivative_at(&t));
+            assert_eq!(c.eval_de_boor(&t), c.eval(&t));
         }
     }
 }

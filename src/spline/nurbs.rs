@@ -71,6 +71,28 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
         let c = project(&h);
         dh.wp.sub(&c.scale(&dh.w)).scale(&(S::one() / h.w))
     }
+    /// First and second derivatives: `C'' = (A'' - 2 w' C' - w'' C) / w` (eq. 4.8 applied
+    /// twice; A4.2 up to order 2). Returns `(C, C', C'')`.
+    pub fn derivatives2_at(&self, t: &S) -> ([S; D], [S; D], [S; D]) {
+        let span = self.hom.knots.find_span(t);
+        let p = self.hom.degree();
+        let ders = super::basis::ders_basis_funs(&self.hom.knots, span, t, 2);
+        let mut a = [Hom::origin(), Hom::origin(), Hom::origin()];
+        for (k, ak) in a.iter_mut().enumerate() {
+            for j in 0..=p {
+                *ak = ak.add(&self.hom.control[span - p + j].scale(&ders[k][j]));
+            }
+        }
+        let inv = S::one() / a[0].w.clone();
+        let c = a[0].wp.scale(&inv);
+        let c1 = a[1].wp.sub(&c.scale(&a[1].w)).scale(&inv);
+        let c2 = a[2]
+            .wp
+            .sub(&c1.scale(&(S::from_i64(2) * a[1].w.clone())))
+            .sub(&c.scale(&a[2].w))
+            .scale(&inv);
+        (c, c1, c2)
+    }
     /// Control points and weights.
     pub fn points_weights(&self) -> (Vec<[S; D]>, Vec<S>) {
         self.hom
@@ -206,8 +228,13 @@ mod tests {
         )
         .unwrap();
         for i in 0..=64 {
-            let p = c.eval(&Q::new(i.into(), 64.into()));
+            let t = Q::new(i.into(), 64.into());
+            let p = c.eval(&t);
             assert_eq!(norm2(&p), q(1.0), "point {i} off the circle");
+            // On a circle: C·C' = 0 and C·C'' = -|C'|² (differentiate |C|² = 1 twice).
+            let (c0, c1, c2) = c.derivatives2_at(&t);
+            assert_eq!(crate::geom::dot(&c0, &c1), q(0.0));
+            assert_eq!(crate::geom::dot(&c0, &c2), -norm2(&c1));
         }
     }
 
