@@ -78,3 +78,43 @@ pub fn tri_tri_test(data: &[u8]) {
         }
     }
 }
+
+/// Curve on surface: a random quadratic domain curve on the Table 2 surface, tolerance from
+/// the bytes (kept ≥ 1e-2 so a run is short): either a typed error or a result whose proven
+/// bound is within the tolerance and whose evidence does not exceed the bound.
+pub fn curve_on_surface(data: &[u8]) {
+    use crate::curve_on_surface::{Params, approximate};
+    let f = floats(data);
+    if f.len() < 7 {
+        return;
+    }
+    let Ok(m) = json::from_str(crate::demo::DEFAULT_MODEL, "embedded") else {
+        return;
+    };
+    let squash = |x: f64| (x.abs() % 1.5) - 0.25;
+    let pts = vec![
+        [squash(f[0]), squash(f[1])],
+        [squash(f[2]), squash(f[3])],
+        [squash(f[4]), squash(f[5])],
+    ];
+    let Ok(c) = crate::spline::NurbsCurve::new(vec![0., 0., 0., 1., 1., 1.], 2, pts, vec![1.0; 3])
+    else {
+        return;
+    };
+    let eps = 1e-2 + (f[6].abs() % 1.0);
+    if let Ok(r) = approximate(
+        &m.surfaces[0].nurbs,
+        &c,
+        &Params {
+            eps_d: eps,
+            evidence_samples: 4,
+            ..Params::default()
+        },
+    ) {
+        assert!(r.certificate.hausdorff_bound <= eps);
+        assert!(
+            r.evidence.max_distance_sampled <= r.certificate.hausdorff_bound * (1.0 + 1e-9) + 1e-12
+        );
+        assert!(r.bspline.joints_exact);
+    }
+}

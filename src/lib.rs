@@ -7,10 +7,12 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod cli;
+pub mod curve_on_surface;
 pub mod demo;
 #[doc(hidden)]
 pub mod fuzz_entry;
 pub mod geom;
+pub mod io;
 pub mod model;
 pub mod predicates;
 pub mod scalar;

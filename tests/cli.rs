@@ -94,9 +94,73 @@ fn eval_reports_exact_and_f64_points() {
 
 #[test]
 fn every_subcommand_has_help() {
-    for sub in ["demo", "info", "eval"] {
+    for sub in ["demo", "info", "eval", "curve-on-surface"] {
         let (code, stdout, _) = vericad(&[sub, "--help"]);
         assert_eq!(code, 0);
         assert!(stdout.contains("Usage"), "{sub}");
     }
+}
+
+#[test]
+fn curve_on_surface_writes_result_and_svg() {
+    let d = tmp("cos");
+    let m = d.join("m.json");
+    std::fs::write(&m, vericad::demo::DEFAULT_MODEL).unwrap();
+    let (out, svg) = (d.join("r.json"), d.join("d.svg"));
+    let (code, stdout, stderr) = vericad(&[
+        "curve-on-surface",
+        "--surface",
+        &format!("{}:0", m.display()),
+        "--curve",
+        m.to_str().unwrap(),
+        "--tol",
+        "1e-2",
+        "--angle",
+        "10",
+        "--out",
+        out.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("certified"), "{stdout}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    for key in [
+        "segments",
+        "domain_polyline",
+        "num_segments",
+        "num_control_points",
+        "certificate",
+        "evidence",
+    ] {
+        assert!(r.get(key).is_some(), "missing {key}");
+    }
+    for key in ["eps_d", "eps_t_deg", "hausdorff_bound", "max_angle_deg"] {
+        assert!(
+            r["certificate"].get(key).is_some(),
+            "missing certificate.{key}"
+        );
+    }
+    assert!(r["certificate"]["hausdorff_bound"].as_f64().unwrap() <= 1e-2);
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // Bad input: a surface index that does not exist, a tolerance that is not positive.
+    let (code, _, stderr) = vericad(&[
+        "curve-on-surface",
+        "--surface",
+        &format!("{}:5", m.display()),
+        "--curve",
+        m.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    let (code, _, _) = vericad(&[
+        "curve-on-surface",
+        "--surface",
+        m.to_str().unwrap(),
+        "--curve",
+        m.to_str().unwrap(),
+        "--tol",
+        "-1",
+    ]);
+    assert_eq!(code, 2);
 }

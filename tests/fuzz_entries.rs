@@ -60,3 +60,18 @@ fn geometry_targets_survive_random_and_structured_bytes() {
         fuzz_entry::tri_tri_test(&bytes);
     }
 }
+
+#[test]
+fn curve_on_surface_target_survives_random_bytes() {
+    let mut r = Rng(13);
+    for k in 0..60 {
+        let bytes: Vec<u8> = if k % 3 == 0 {
+            (0..56).map(|_| r.next_u64() as u8).collect()
+        } else {
+            (0..7)
+                .flat_map(|_| r.range(-0.3, 1.3).to_le_bytes())
+                .collect()
+        };
+        fuzz_entry::curve_on_surface(&bytes);
+    }
+}

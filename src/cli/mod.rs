@@ -40,6 +40,33 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Approximate the image of a domain curve on a B-spline surface by Bézier curves of degree
+    /// p+q lying exactly on it, with a proven Hausdorff bound (Yang et al. 2008).
+    CurveOnSurface {
+        /// Surface: model file, optionally `:INDEX` (default 0).
+        #[arg(long)]
+        surface: String,
+        /// Domain curve: model file with a 2D curve, optionally `:INDEX` (default 0).
+        #[arg(long)]
+        curve: String,
+        /// Distance tolerance ε_D (model units).
+        #[arg(long, default_value_t = 1e-3)]
+        tol: f64,
+        /// Angle tolerance ε_T (degrees).
+        #[arg(long, default_value_t = 10.0)]
+        angle: f64,
+        /// Lipschitz bound: `local` (tighter, proven) or `paper` (eq. 12 per patch).
+        #[arg(long, default_value = "local")]
+        bound: String,
+        /// Write the JSON result here.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Write an SVG plot of the parameter domain here.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+    },
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file (native JSON).
@@ -87,6 +114,40 @@ pub fn run(cli: Cli) -> i32 {
                 EXIT_FAILURE
             }
         },
+        Command::CurveOnSurface {
+            surface,
+            curve,
+            tol,
+            angle,
+            bound,
+            out,
+            svg,
+            json,
+        } => {
+            use crate::curve_on_surface::{Bound, Params, job};
+            let bound = match bound.as_str() {
+                "local" => Bound::Local,
+                "paper" => Bound::PaperEq12,
+                other => return bad(format!("--bound must be `local` or `paper`, not `{other}`")),
+            };
+            let params = Params {
+                eps_d: tol,
+                eps_t_deg: angle,
+                bound,
+                ..Params::default()
+            };
+            match job::run(&surface, &curve, &params, out.as_deref(), svg.as_deref()) {
+                Ok(r) => {
+                    print(&r, json);
+                    0
+                }
+                Err(e) if e.is_bad_input() => bad(e),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    EXIT_FAILURE
+                }
+            }
+        }
         Command::Info { file, json } => match crate::model::json::read(&file) {
             Ok(m) => {
                 print(&crate::model::info::summarize(&m), json);

@@ -1,0 +1,134 @@
+//! Measured evidence (not proof): the distance between the output curve and the exact image
+//! `S(D(t))` at dense samples, in both directions, with the nearest point found by sampling
+//! and Newton refinement.
+
+use super::map::MappedSegment;
+use super::segments::Seg;
+use crate::geom::{Point, dist};
+use crate::spline::{BSplineSurface, BezierCurve};
+use num_rational::BigRational;
+
+type Q = BigRational;
+
+fn nearest_on(curve: &BezierCurve<[f64; 3]>, x: &[f64; 3]) -> f64 {
+    let k = 32;
+    let mut best = (f64::INFINITY, 0.0);
+    for i in 0..=k {
+        let t = i as f64 / k as f64;
+        let d = dist(&curve.eval(&t), x);
+        if d < best.0 {
+            best = (d, t);
+        }
+    }
+    // Newton on g(t) = (C(t) - x)·C'(t).
+    let h = curve.hodograph();
+    let h2 = h.as_ref().and_then(|h| h.hodograph());
+    let mut t = best.1;
+    if let (Some(h), Some(h2)) = (h, h2) {
+        for _ in 0..8 {
+            let c = curve.eval(&t).sub(x);
+            let d1 = h.eval(&t);
+            let d2 = h2.eval(&t);
+            let g = crate::geom::dot(&c, &d1);
+            let gp = crate::geom::dot(&d1, &d1) + crate::geom::dot(&c, &d2);
+            if gp.abs() < 1e-300 {
+                break;
+            }
+            t = (t - g / gp).clamp(0.0, 1.0);
+        }
+    }
+    best.0.min(dist(&curve.eval(&t), x))
+}
+
+/// Max sampled distance and number of samples.
+pub fn measure(
+    surface: &BSplineSurface<[f64; 3]>,
+    segs: &[Seg],
+    mapped: &[MappedSegment],
+    pieces: &[BezierCurve<[Q; 2]>],
+    per_segment: usize,
+) -> (f64, usize) {
+    let mut worst = 0.0f64;
+    let mut n = 0;
+    for (s, m) in segs.iter().zip(mapped) {
+        let c = s.curve(pieces).map(crate::geom::to_f64_point);
+        let out = BezierCurve {
+            control: m.control_points.clone(),
+        };
+        for i in 0..=per_segment {
+            let t = i as f64 / per_segment as f64;
+            // Exact image point → output curve.
+            let uv = c.eval(&t);
+            let p = surface.eval(&uv[0], &uv[1]);
+            worst = worst.max(nearest_on(&out, &p));
+            n += 1;
+        }
+        // Output curve → exact image: nearest parameter of the piece by dense search, then
+        // ternary search on the distance in the bracketing interval.
+        let image = |t: f64| {
+            let uv = c.eval(&t.clamp(0.0, 1.0));
+            surface.eval(&uv[0], &uv[1])
+        };
+        let k = 16;
+        for i in 0..=per_segment {
+            let x = out.eval(&(i as f64 / per_segment as f64));
+            let mut best = (f64::INFINITY, 0usize);
+            for j in 0..=k {
+                let d = dist(&image(j as f64 / k as f64), &x);
+                if d < best.0 {
+                    best = (d, j);
+                }
+            }
+            let (mut lo, mut hi) = (
+                (best.1 as f64 - 1.0) / k as f64,
+                (best.1 as f64 + 1.0) / k as f64,
+            );
+            for _ in 0..40 {
+                let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+                if dist(&image(m1), &x) < dist(&image(m2), &x) {
+                    hi = m2;
+                } else {
+                    lo = m1;
+                }
+            }
+            worst = worst.max(best.0.min(dist(&image((lo + hi) / 2.0), &x)));
+            n += 1;
+        }
+    }
+    (worst, n)
+}
+
+/// Measured (evidence) deviation of the images of `n` chords at uniform parameters of the
+/// domain curve from the exact image: for sample points of `S(D)`, the distance to the
+/// nearest of 2049 samples of the corresponding chord's image. A baseline to compare
+/// segment counts with (e.g. the paper's 8 segments for Table 2).
+pub fn uniform_chord_deviation(
+    surface: &BSplineSurface<[f64; 3]>,
+    curve: &crate::spline::NurbsCurve<f64, 2>,
+    n: usize,
+) -> f64 {
+    let (ta, tb) = curve.hom.domain();
+    let img = |uv: [f64; 2]| surface.eval(&uv[0], &uv[1]);
+    let mut worst = 0.0f64;
+    for k in 0..n {
+        let (t0, t1) = (
+            ta + (tb - ta) * k as f64 / n as f64,
+            ta + (tb - ta) * (k + 1) as f64 / n as f64,
+        );
+        let (a, b) = (curve.eval(&t0), curve.eval(&t1));
+        for i in 0..=64 {
+            let x = img(curve.eval(&(t0 + (t1 - t0) * i as f64 / 64.0)));
+            let near = (0..=2048)
+                .map(|j| {
+                    let s = j as f64 / 2048.0;
+                    dist(
+                        &img([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]),
+                        &x,
+                    )
+                })
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(near);
+        }
+    }
+    worst
+}

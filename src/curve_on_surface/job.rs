@@ -1,0 +1,104 @@
+//! The `curve-on-surface` job: pick the surface and domain curve from model files, run the
+//! algorithm, write the JSON result and an optional SVG plot of the domain.
+
+use super::{CosError, CurveOnSurface, Params, approximate};
+use crate::model::{CurveGeometry, ModelError, json};
+
+/// Errors of the job: bad input (files, indices) or a refused computation.
+#[derive(Debug, thiserror::Error)]
+pub enum JobError {
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    #[error("{0}: {1}")]
+    Select(String, String),
+    #[error(transparent)]
+    Compute(#[from] CosError),
+    #[error("cannot write {0}: {1}")]
+    Write(String, std::io::Error),
+}
+
+impl JobError {
+    /// Whether the user's input is at fault (exit code 2) rather than the computation.
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            JobError::Model(_) | JobError::Select(..) => true,
+            JobError::Compute(e) => {
+                !matches!(e, CosError::Internal(_) | CosError::TooManySegments(_))
+            }
+            JobError::Write(..) => false,
+        }
+    }
+}
+
+/// `FILE[:INDEX]` split into path and index (default 0).
+pub fn file_and_index(spec: &str) -> (String, usize) {
+    if let Some((f, i)) = spec.rsplit_once(':')
+        && let Ok(i) = i.parse::<usize>()
+    {
+        return (f.to_string(), i);
+    }
+    (spec.to_string(), 0)
+}
+
+/// Run the job.
+pub fn run(
+    surface_spec: &str,
+    curve_spec: &str,
+    params: &Params,
+    out: Option<&std::path::Path>,
+    svg: Option<&std::path::Path>,
+) -> Result<CurveOnSurface, JobError> {
+    let (sf, si) = file_and_index(surface_spec);
+    let sm = json::read(std::path::Path::new(&sf))?;
+    let surf = sm.surfaces.get(si).ok_or_else(|| {
+        JobError::Select(
+            sf.clone(),
+            format!("no surface {si} (the file has {})", sm.surfaces.len()),
+        )
+    })?;
+    let (cf, ci) = file_and_index(curve_spec);
+    let cm = json::read(std::path::Path::new(&cf))?;
+    let domain_curves: Vec<_> = cm
+        .curves
+        .iter()
+        .filter_map(|c| match &c.geometry {
+            CurveGeometry::Domain(d) => Some(d),
+            _ => None,
+        })
+        .collect();
+    let curve = domain_curves.get(ci).ok_or_else(|| {
+        JobError::Select(
+            cf.clone(),
+            format!(
+                "no domain curve {ci} (the file has {} domain curves)",
+                domain_curves.len()
+            ),
+        )
+    })?;
+    let r = approximate(&surf.nurbs, curve, params)?;
+    if let Some(o) = out {
+        std::fs::write(o, serde_json::to_string_pretty(&r).unwrap_or_default())
+            .map_err(|e| JobError::Write(o.display().to_string(), e))?;
+    }
+    if let Some(p) = svg {
+        let (a, b) = curve.hom.domain();
+        let samples: Vec<[f64; 2]> = (0..=400)
+            .map(|i| curve.eval(&(a + (b - a) * i as f64 / 400.0)))
+            .collect();
+        let h = &surf.nurbs.hom;
+        let (u0, u1, v0, v1) = h.domain();
+        let doc = crate::io::svg::render(&crate::io::svg::DomainPlot {
+            domain: [u0, u1, v0, v1],
+            u_knots: &h.ku.breakpoints(),
+            v_knots: &h.kv.breakpoints(),
+            curve: &samples,
+            polyline: &r.domain_polyline,
+            title: &format!(
+                "{} segments, proven Hausdorff bound {:.3e}",
+                r.num_segments, r.certificate.hausdorff_bound
+            ),
+        });
+        std::fs::write(p, doc).map_err(|e| JobError::Write(p.display().to_string(), e))?;
+    }
+    Ok(r)
+}

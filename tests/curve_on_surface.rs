@@ -1,0 +1,298 @@
+//! Curves on B-spline surfaces (Yang et al. 2008): Table 2 reproduction and a Table 1–style
+//! experiment, plus the scaling of eq. (12) and the error cases.
+
+use num_rational::BigRational;
+use vericad::curve_on_surface::{Bound, CosError, Params, approximate};
+use vericad::geom::{Point, lift_point};
+use vericad::model::{CurveGeometry, json};
+use vericad::spline::{NurbsCurve, NurbsSurface};
+
+fn table2() -> (NurbsSurface<f64, 3>, NurbsCurve<f64, 2>) {
+    let m = json::from_str(vericad::demo::DEFAULT_MODEL, "embedded").unwrap();
+    let CurveGeometry::Domain(c) = m.curves[0].geometry.clone() else {
+        panic!()
+    };
+    (m.surfaces[0].nurbs.clone(), c)
+}
+
+#[test]
+fn table2_reproduction() {
+    let (s, c) = table2();
+    let eq12 = approximate(
+        &s,
+        &c,
+        &Params {
+            eps_d: 1e-3,
+            eps_t_deg: 10.0,
+            bound: Bound::PaperEq12,
+            ..Params::default()
+        },
+    )
+    .unwrap();
+    println!("with the paper's eq. (12) bound:\n{eq12}");
+    let r = approximate(
+        &s,
+        &c,
+        &Params {
+            eps_d: 1e-3,
+            eps_t_deg: 10.0,
+            ..Params::default()
+        },
+    )
+    .unwrap();
+    println!("with the local bound:\n{r}");
+    println!("                 paper (Yang et al. Table 2)   vericad");
+    println!(
+        "degree           4                            {}",
+        r.bspline.degree
+    );
+    println!(
+        "control points   33                           {}",
+        r.num_control_points
+    );
+    println!(
+        "segments         8                            {}",
+        r.num_segments
+    );
+    println!(
+        "distance to S    0                            {} (exact)",
+        r.certificate.distance_to_surface
+    );
+    println!(
+        "continuity       10°-G1                       {:.2}°-G1",
+        r.certificate.max_angle_deg
+    );
+    println!(
+        "time (ms)        15 (Pentium IV 2 GHz)        {:.2}",
+        r.elapsed_ms
+    );
+    assert_eq!(r.bspline.degree, 4);
+    // The paper reports 8 segments; a proven 1e-3 bound needs more on this data (see
+    // `paper_segment_count_cannot_meet_its_tolerance`). Same order as the local bound's
+    // measured need, and far below eq. (12)'s.
+    assert!(r.num_segments <= 64, "{} segments", r.num_segments);
+    assert!(r.num_segments < eq12.num_segments);
+    assert!(eq12.certificate.hausdorff_bound <= 1e-3);
+    assert!(r.certificate.hausdorff_bound <= 1e-3);
+    assert!(r.certificate.max_angle_deg <= 10.0);
+    assert!(r.evidence.max_distance_sampled <= r.certificate.hausdorff_bound);
+    assert!(r.bspline.joints_exact);
+    // Distance to S exactly 0: every exact segment equals S(chord(t)) at rational t.
+    let net: Vec<[BigRational; 3]> = s
+        .hom
+        .net
+        .iter()
+        .map(|h| lift_point(&h.project().unwrap()))
+        .collect();
+    let sq = vericad::spline::BezierSurface::new(2, 2, net).unwrap();
+    for seg in &r.segments {
+        let a: [BigRational; 2] = lift_point(&seg.domain[0]);
+        let b: [BigRational; 2] = lift_point(&seg.domain[1]);
+        let exact = vericad::spline::compose::compose_line(&sq, &a, &b);
+        for k in 0..=10i64 {
+            let t = BigRational::new(k.into(), 10.into());
+            let uv = a.lerp(&b, &t);
+            assert_eq!(exact.eval(&t), sq.eval(&uv[0], &uv[1]));
+        }
+    }
+}
+
+/// The paper's Table 2 row: 8 segments at ε_D = 1e-3. Take 8 chords at uniform parameters
+/// of the domain curve and *measure* (evidence, dense sampling) how far their images on S lie
+/// from the exact image: far above 1e-3, while vericad's certified result stays below it.
+#[test]
+fn paper_segment_count_cannot_meet_its_tolerance() {
+    let (s, c) = table2();
+    let (pts, _) = s.points_weights();
+    let bs = vericad::spline::BSplineSurface {
+        ku: s.hom.ku.clone(),
+        kv: s.hom.kv.clone(),
+        net: pts,
+    };
+    let worst = vericad::curve_on_surface::evidence::uniform_chord_deviation(&bs, &c, 8);
+    println!("8 uniform chords: measured deviation {worst:.3e} (paper: 8 segments within 1e-3)");
+    assert!(worst > 5e-3, "{worst}");
+}
+
+/// A "face-like" bicubic surface with 17 × 17 control points on [0,1]², smooth bumps.
+fn face() -> NurbsSurface<f64, 3> {
+    let n = 17;
+    let mut k = vec![0.0; 4];
+    for i in 1..n - 3 {
+        k.push(i as f64 / (n - 3) as f64);
+    }
+    k.extend([1.0; 4]);
+    let mut pts = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let (x, y) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
+            let z = 0.25 * (-((x - 0.5).powi(2) + (y - 0.45).powi(2)) * 6.0).exp()
+                + 0.06 * (7.0 * x).sin() * (5.0 * y).cos()
+                + 0.08 * (-((x - 0.5).powi(2) + (y - 0.7).powi(2)) * 80.0).exp();
+            pts.push([x, y, z]);
+        }
+    }
+    NurbsSurface::new(k.clone(), 3, k, 3, n, n, pts, vec![1.0; n * n]).unwrap()
+}
+
+/// A closed cubic B-spline with 10 control points (periodic: the first 3 repeated).
+fn closed_curve() -> NurbsCurve<f64, 2> {
+    let mut p: Vec<[f64; 2]> = (0..10)
+        .map(|i| {
+            let a = i as f64 / 10.0 * std::f64::consts::TAU;
+            let r = 0.3 + 0.06 * ((3.0 * a).cos());
+            [0.5 + r * a.cos(), 0.5 + 0.9 * r * a.sin()]
+        })
+        .collect();
+    p.extend_from_slice(&p.clone()[..3]);
+    let knots: Vec<f64> = (0..17).map(|i| i as f64).collect();
+    NurbsCurve::new(knots, 3, p, vec![1.0; 13]).unwrap()
+}
+
+/// Table 1–style experiment: the measured error never exceeds the tolerance; the table of
+/// tolerance, proven bound, measured error and tightness is printed.
+#[test]
+fn table1_experiment_measured_error_within_tolerance() {
+    let (s, c) = (face(), closed_curve());
+    println!(
+        "tolerance   segments  proven bound  measured (evidence)  measured/tolerance  max angle"
+    );
+    for eps in [1.0, 0.5, 0.3, 0.1, 0.01, 0.001, 0.0001] {
+        let r = approximate(
+            &s,
+            &c,
+            &Params {
+                eps_d: eps,
+                eps_t_deg: 10.0,
+                evidence_samples: 16,
+                ..Params::default()
+            },
+        )
+        .unwrap();
+        println!(
+            "{eps:<11} {:<9} {:<13.3e} {:<20.3e} {:<19.3} {:.2}",
+            r.num_segments,
+            r.certificate.hausdorff_bound,
+            r.evidence.max_distance_sampled,
+            r.evidence.max_distance_sampled / eps,
+            r.certificate.max_angle_deg
+        );
+        assert!(r.certificate.hausdorff_bound <= eps);
+        assert!(r.evidence.max_distance_sampled <= eps);
+        assert!(r.bspline.joints_exact);
+        assert_eq!(r.certificate.unresolved_junctions, 0);
+        assert!(r.certificate.max_angle_deg <= 10.0);
+    }
+}
+
+/// The scaling of eq. (12): on a patch with very unequal knot spans, measured Lipschitz
+/// quotients |S(x) - S(y)| / |x - y| (global parameters) never exceed the bound, and the
+/// unscaled ([0,1]²) bound would be violated.
+#[test]
+fn eq12_scaling_bounds_measured_quotients() {
+    use vericad::curve_on_surface::cells::Cells;
+    let (s, _) = table2();
+    // Same geometry, domain [0, 0.01] × [0, 7]: derivatives in u grow by 100, in v shrink by 7.
+    let (pts, w) = s.points_weights();
+    let sk = NurbsSurface::new(
+        vec![0., 0., 0., 0.01, 0.01, 0.01],
+        2,
+        vec![0., 0., 0., 7., 7., 7.],
+        2,
+        3,
+        3,
+        pts,
+        w,
+    )
+    .unwrap();
+    let (p, _) = sk.points_weights();
+    let bs = vericad::spline::BSplineSurface {
+        ku: sk.hom.ku.clone(),
+        kv: sk.hom.kv.clone(),
+        net: p,
+    };
+    let cells = Cells::new(&bs, 1.0);
+    let k_scaled = cells.cells[0].lipschitz;
+    let mut worst = 0.0f64;
+    let mut r = 1u64;
+    let mut rnd = || {
+        r = r
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (r >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..20000 {
+        let (u, v) = (rnd() * 0.01, rnd() * 7.0);
+        let (du, dv) = ((rnd() - 0.5) * 1e-5, (rnd() - 0.5) * 1e-3);
+        let (u2, v2) = ((u + du).clamp(0.0, 0.01), (v + dv).clamp(0.0, 7.0));
+        let a = bs.eval(&u, &v);
+        let b = bs.eval(&u2, &v2);
+        let dxy = ((u2 - u).powi(2) + (v2 - v).powi(2)).sqrt();
+        if dxy > 0.0 {
+            worst = worst.max(vericad::geom::dist(&a, &b) / dxy);
+        }
+    }
+    println!("max measured quotient {worst:.4}, scaled bound {k_scaled:.4}");
+    assert!(worst <= k_scaled);
+    // The unscaled bound (as for [0,1]²) is ~100x too small here.
+    let unscaled = {
+        let c1 = Cells::new(
+            &{
+                let (p, _) = s.points_weights();
+                vericad::spline::BSplineSurface {
+                    ku: s.hom.ku.clone(),
+                    kv: s.hom.kv.clone(),
+                    net: p,
+                }
+            },
+            1.0,
+        );
+        c1.cells[0].lipschitz
+    };
+    assert!(
+        worst > unscaled,
+        "quotient {worst} should exceed the unscaled bound {unscaled}"
+    );
+}
+
+#[test]
+fn bad_inputs_get_typed_errors() {
+    let (s, _) = table2();
+    // A domain curve leaving [0,1]².
+    let out = NurbsCurve::new(
+        vec![0., 0., 1., 1.],
+        1,
+        vec![[0.5, 0.5], [1.5, 0.5]],
+        vec![1.0, 1.0],
+    )
+    .unwrap();
+    assert!(matches!(
+        approximate(&s, &out, &Params::default()),
+        Err(CosError::OutOfDomain { .. })
+    ));
+    let (_, c) = table2();
+    // Rational surface.
+    let (pts, mut w) = s.points_weights();
+    w[4] = 2.0;
+    let k = vec![0., 0., 0., 1., 1., 1.];
+    let rs = NurbsSurface::new(k.clone(), 2, k, 2, 3, 3, pts, w).unwrap();
+    assert_eq!(
+        approximate(&rs, &c, &Params::default()).unwrap_err(),
+        CosError::RationalSurface
+    );
+    // Bad tolerances.
+    for (e, t) in [(0.0, 10.0), (f64::NAN, 10.0), (1e-3, -1.0)] {
+        assert!(matches!(
+            approximate(
+                &s,
+                &c,
+                &Params {
+                    eps_d: e,
+                    eps_t_deg: t,
+                    ..Params::default()
+                }
+            ),
+            Err(CosError::Tolerance(..))
+        ));
+    }
+}
