@@ -35,12 +35,15 @@ fn lipschitz(s: &Seg, c: &BezierCurve<[Q; 2]>, cells: &Cells, bound: Bound) -> f
                     hi[i] = hi[i].max(p[i]);
                 }
             }
+            // Rounded outward to the 2^-16 grid: the rectangle only grows (still a valid
+            // region for the bound) and its short dyadic corners keep the exact blossoms cheap.
             let local = |x: f64, (a, b): (f64, f64), up: bool| {
                 let y = (x - a) / (b - a);
+                let g = 65536.0;
                 let y = if up {
-                    y.next_up().next_up()
+                    (y.next_up().next_up() * g).ceil() / g
                 } else {
-                    y.next_down().next_down()
+                    (y.next_down().next_down() * g).floor() / g
                 };
                 crate::scalar::lift::<Q>(y.clamp(0.0, 1.0))
             };

@@ -46,17 +46,13 @@ impl Seg {
     }
 
     /// Split at local parameter `s ∈ (0, 1)` of this segment: the new vertex is the exact
-    /// curve point rounded to f64 and kept inside the segment's cell. The split parameter is
-    /// rounded to the nearest f64 inside `(t0, t1)` (where to split is a choice, not a claim;
-    /// short dyadics keep the exact arithmetic small).
+    /// curve point rounded to f64 and kept inside the segment's cell.
     pub fn split(&self, s: &Q, pieces: &[BezierCurve<[Q; 2]>], cells: &Cells) -> (Seg, Seg) {
-        let exact_t = self.t0.clone() + (self.t1.clone() - self.t0.clone()) * s.clone();
-        let rounded: Q = crate::scalar::lift(exact_t.to_f64());
-        let t = if rounded > self.t0 && rounded < self.t1 {
-            rounded
-        } else {
-            exact_t
-        };
+        // The split location is a choice, not a claim: take the nearest k/256 of the
+        // segment (1 <= k <= 255), which keeps the exact parameters short.
+        let k = (s.to_f64() * 256.0).round().clamp(1.0, 255.0) as i64;
+        let s = Q::new(k.into(), 256.into());
+        let t = self.t0.clone() + (self.t1.clone() - self.t0.clone()) * s;
         let exact = pieces[self.piece].eval(&t);
         let v = cells.clamp(self.cell, &round(&exact));
         let e = offset(&v, &exact);

@@ -118,26 +118,48 @@ pub fn compose<P: Point>(s: &BezierSurface<P>, c: &BezierCurve<[P::S; 2]>) -> Be
     BezierCurve { control: out }
 }
 
+/// Polar values `c[x^(n-j), y^j]`, `j = 0..=n`, of a Bézier curve of degree `n`.
+fn polar_values<P: Point>(c: &BezierCurve<P>, x: &P::S, y: &P::S) -> Vec<P> {
+    let n = c.degree();
+    (0..=n)
+        .map(|j| {
+            let mut ts = vec![x.clone(); n - j];
+            ts.extend(std::iter::repeat_n(y.clone(), j));
+            c.blossom(&ts)
+        })
+        .collect()
+}
+
 /// The exact image `S(a + t (b - a))` of a domain segment: degree `p + q`, control points
-/// from the surface blossom (Yang et al. §4, "mapping segments onto the surface").
+/// from the surface blossom (Yang et al. §4, "mapping segments onto the surface"). Each
+/// polar value `f(a_u^{p-i} b_u^i; a_v^{q-j} b_v^j)` is computed once: polar values of the
+/// rows in v, then of the resulting columns in u (the tensor-product blossom factorizes).
 pub fn compose_line<P: Point>(
     s: &BezierSurface<P>,
     a: &[P::S; 2],
     b: &[P::S; 2],
 ) -> BezierCurve<P> {
     let (p, q) = (s.p, s.q);
+    let rows: Vec<Vec<P>> = (0..=p)
+        .map(|r| polar_values(&s.row(r), &a[1], &b[1]))
+        .collect();
+    let mut h = vec![vec![P::origin(); q + 1]; p + 1];
+    for j in 0..=q {
+        let col = BezierCurve {
+            control: (0..=p).map(|r| rows[r][j].clone()).collect(),
+        };
+        for (i, v) in polar_values(&col, &a[0], &b[0]).into_iter().enumerate() {
+            h[i][j] = v;
+        }
+    }
     let mut out = Vec::with_capacity(p + q + 1);
     for k in 0..=p + q {
         let mut acc = P::origin();
-        let lo = k.saturating_sub(q);
-        for i in lo..=k.min(p) {
+        let den = P::S::binomial(p + q, k);
+        for i in k.saturating_sub(q)..=k.min(p) {
             let j = k - i;
-            let mut us = vec![a[0].clone(); p - i];
-            us.extend(std::iter::repeat_n(b[0].clone(), i));
-            let mut vs = vec![a[1].clone(); q - j];
-            vs.extend(std::iter::repeat_n(b[1].clone(), j));
-            let w = P::S::binomial(p, i) * P::S::binomial(q, j) / P::S::binomial(p + q, k);
-            acc = acc.add(&s.blossom(&us, &vs).scale(&w));
+            let w = P::S::binomial(p, i) * P::S::binomial(q, j) / den.clone();
+            acc = acc.add(&h[i][j].scale(&w));
         }
         out.push(acc);
     }
