@@ -35,7 +35,7 @@ pub enum Command {
     },
     /// Summarize a model file: surfaces, curves, degrees, rational or not, bounding box.
     Info {
-        /// Model file (native JSON).
+        /// Model file: native JSON or STEP (.step/.stp).
         file: PathBuf,
         #[arg(long)]
         json: bool,
@@ -88,12 +88,19 @@ pub enum Command {
     },
 }
 
+/// Print a report; a closed pipe (e.g. `| head`) is not an error.
 fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
-    if json {
-        println!("{}", serde_json::to_string_pretty(r).unwrap_or_default());
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = if json {
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(r).unwrap_or_default()
+        )
     } else {
-        print!("{r}");
-    }
+        write!(out, "{r}")
+    };
 }
 
 fn bad(msg: impl std::fmt::Display) -> i32 {
@@ -148,7 +155,7 @@ pub fn run(cli: Cli) -> i32 {
                 }
             }
         }
-        Command::Info { file, json } => match crate::model::json::read(&file) {
+        Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
                 print(&crate::model::info::summarize(&m), json);
                 0

@@ -12,6 +12,8 @@ pub struct SurfaceInfo {
     pub degree: [usize; 2],
     pub control_net: [usize; 2],
     pub rational: bool,
+    pub kind: super::SurfaceKind,
+    pub source: Option<String>,
     pub domain: [f64; 4],
     /// Bounding box of the control net (contains the surface: convex hull property).
     pub bbox: [[f64; 3]; 2],
@@ -39,6 +41,12 @@ pub struct ModelInfo {
     pub patch_sets: usize,
     /// Bounding box of all surface control nets.
     pub bbox: Option<[[f64; 3]; 2]>,
+    /// Faces/surfaces by source kind (B-spline, plane, sphere, ...).
+    pub surfaces_by_kind: std::collections::BTreeMap<String, usize>,
+    pub bspline_rational: usize,
+    pub bspline_polynomial: usize,
+    pub analytic: usize,
+    pub warnings: Vec<String>,
 }
 
 /// Summarize a model.
@@ -66,6 +74,8 @@ pub fn summarize(m: &Model) -> ModelInfo {
                 degree: [h.ku.degree(), h.kv.degree()],
                 control_net: [h.nu(), h.nv()],
                 rational: !s.nurbs.is_polynomial(),
+                kind: s.kind,
+                source: s.source.clone(),
                 domain: [u0, u1, v0, v1],
                 bbox: [b.min, b.max],
             }
@@ -103,12 +113,27 @@ pub fn summarize(m: &Model) -> ModelInfo {
             }
         })
         .collect();
+    let mut by_kind = std::collections::BTreeMap::new();
+    for s in &m.surfaces {
+        *by_kind.entry(format!("{:?}", s.kind)).or_insert(0) += 1;
+    }
+    let bs = |rational: bool| {
+        m.surfaces
+            .iter()
+            .filter(|s| !s.kind.is_analytic() && s.nurbs.is_polynomial() != rational)
+            .count()
+    };
     ModelInfo {
         unit: m.unit.clone(),
+        bspline_rational: bs(true),
+        bspline_polynomial: bs(false),
+        analytic: m.surfaces.iter().filter(|s| s.kind.is_analytic()).count(),
+        surfaces_by_kind: by_kind,
         surfaces,
         curves,
         patch_sets: m.patch_sets.len(),
         bbox: all.map(|a| [a.min, a.max]),
+        warnings: m.warnings.clone(),
     }
 }
 
@@ -122,6 +147,18 @@ impl std::fmt::Display for ModelInfo {
             self.patch_sets,
             self.unit.as_deref().unwrap_or("(none)")
         )?;
+        writeln!(
+            f,
+            "  faces: {} B-spline ({} non-rational, {} rational), {} analytic (converted exactly to NURBS); by kind: {:?}",
+            self.bspline_polynomial + self.bspline_rational,
+            self.bspline_polynomial,
+            self.bspline_rational,
+            self.analytic,
+            self.surfaces_by_kind
+        )?;
+        for w in &self.warnings {
+            writeln!(f, "  warning: {w}")?;
+        }
         for s in &self.surfaces {
             writeln!(
                 f,

@@ -268,10 +268,7 @@ fn surface(ctx: &Ctx, i: usize, s: RawSurface) -> Result<Surface, ModelError> {
     };
     let nurbs = NurbsSurface::new(ku, s.degree_u, kv, s.degree_v, nu, nv, pts, w)
         .map_err(|e| spline_err(ctx, &base, e))?;
-    Ok(Surface {
-        name: s.name,
-        nurbs,
-    })
+    Ok(Surface::new(s.name, nurbs))
 }
 
 /// Parse and validate model text. `file` names the source in error messages.
@@ -333,6 +330,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
         curves,
         surfaces,
         patch_sets,
+        warnings: vec![],
     })
 }
 

@@ -25,11 +25,47 @@ pub struct Curve {
     pub geometry: CurveGeometry,
 }
 
-/// A named surface.
+/// What a surface was in its source file (all are held as exact NURBS forms).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default, serde::Serialize)]
+pub enum SurfaceKind {
+    #[default]
+    BSpline,
+    Plane,
+    Cylinder,
+    Cone,
+    Sphere,
+    Torus,
+    Revolution,
+    Extrusion,
+}
+
+impl SurfaceKind {
+    /// Whether the source surface was analytic (converted to NURBS on reading).
+    pub fn is_analytic(self) -> bool {
+        self != SurfaceKind::BSpline
+    }
+}
+
+/// A named surface (a face or patch of the model).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Surface {
     pub name: String,
     pub nurbs: NurbsSurface<f64, 3>,
+    /// Where it came from: `"#123"` (STEP instance), `"DE 45"` (IGES directory entry).
+    pub source: Option<String>,
+    pub kind: SurfaceKind,
+}
+
+impl Surface {
+    /// A B-spline surface without source information.
+    pub fn new(name: impl Into<String>, nurbs: NurbsSurface<f64, 3>) -> Surface {
+        Surface {
+            name: name.into(),
+            nurbs,
+            source: None,
+            kind: SurfaceKind::BSpline,
+        }
+    }
 }
 
 /// A named set of surfaces (indices into [`Model::surfaces`]) meant to form one shape.
@@ -47,6 +83,8 @@ pub struct Model {
     pub curves: Vec<Curve>,
     pub surfaces: Vec<Surface>,
     pub patch_sets: Vec<PatchSet>,
+    /// What a reader skipped or approximated, counted and named (never silent).
+    pub warnings: Vec<String>,
 }
 
 /// A fault in a model file: where, and why.

@@ -19,6 +19,7 @@ pub mod bezier_surface;
 pub mod bspline_curve;
 pub mod bspline_surface;
 pub mod compose;
+pub mod construct;
 pub mod fit;
 pub mod interpolate;
 pub mod knots;

@@ -1,0 +1,417 @@
+//! ISO 10303-21 ("Part 21", STEP physical file) tokenizer and parser: the DATA section as a
+//! map from instance id to entity — simple `TYPE(args)` or complex `(TYPE1(args) TYPE2(…))`.
+//! Comments `/* … */`, multi-line instances, strings with `''`, enumerations, typed
+//! parameters and `$`/`*` are handled; any syntax fault is a typed error with its line.
+
+use std::collections::BTreeMap;
+
+/// A parameter value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Int(i64),
+    Real(f64),
+    Str(String),
+    Enum(String),
+    Ref(u64),
+    List(Vec<Value>),
+    /// A typed parameter such as `LENGTH_MEASURE(1.0)`.
+    Typed(String, Vec<Value>),
+    /// `$` (unset) or `*` (derived).
+    Unset,
+}
+
+impl Value {
+    /// A number (integers widen to reals).
+    pub fn num(&self) -> Option<f64> {
+        match self {
+            Value::Real(x) => Some(*x),
+            Value::Int(i) => Some(*i as f64),
+            Value::Typed(_, v) if v.len() == 1 => v[0].num(),
+            _ => None,
+        }
+    }
+    pub fn int(&self) -> Option<i64> {
+        match self {
+            Value::Int(i) => Some(*i),
+            _ => None,
+        }
+    }
+    pub fn reference(&self) -> Option<u64> {
+        match self {
+            Value::Ref(r) => Some(*r),
+            _ => None,
+        }
+    }
+    pub fn list(&self) -> Option<&[Value]> {
+        match self {
+            Value::List(v) => Some(v),
+            _ => None,
+        }
+    }
+    pub fn enumeration(&self) -> Option<&str> {
+        match self {
+            Value::Enum(e) => Some(e),
+            _ => None,
+        }
+    }
+    /// Every reference inside this value (recursively).
+    pub fn refs(&self, out: &mut Vec<u64>) {
+        match self {
+            Value::Ref(r) => out.push(*r),
+            Value::List(v) | Value::Typed(_, v) => v.iter().for_each(|x| x.refs(out)),
+            _ => {}
+        }
+    }
+}
+
+/// One entity instance.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Entity {
+    Simple(String, Vec<Value>),
+    /// A complex instance: its partial entities by name, in file order.
+    Complex(Vec<(String, Vec<Value>)>),
+}
+
+impl Entity {
+    /// The entity's type name (the first partial entity's for complex instances).
+    pub fn name(&self) -> &str {
+        match self {
+            Entity::Simple(n, _) => n,
+            Entity::Complex(p) => p.first().map(|x| x.0.as_str()).unwrap_or(""),
+        }
+    }
+    /// Arguments of the (partial) entity called `name`.
+    pub fn part(&self, name: &str) -> Option<&[Value]> {
+        match self {
+            Entity::Simple(n, a) if n == name => Some(a),
+            Entity::Complex(p) => p.iter().find(|x| x.0 == name).map(|x| x.1.as_slice()),
+            _ => None,
+        }
+    }
+    /// Whether the instance is, or contains, `name`.
+    pub fn is(&self, name: &str) -> bool {
+        self.part(name).is_some()
+    }
+    /// Every reference in the instance.
+    pub fn refs(&self) -> Vec<u64> {
+        let mut out = Vec::new();
+        match self {
+            Entity::Simple(_, a) => a.iter().for_each(|v| v.refs(&mut out)),
+            Entity::Complex(p) => p
+                .iter()
+                .for_each(|(_, a)| a.iter().for_each(|v| v.refs(&mut out))),
+        }
+        out
+    }
+}
+
+/// A parsed STEP file.
+#[derive(Clone, Debug, Default)]
+pub struct Part21 {
+    pub schema: Vec<String>,
+    pub entities: BTreeMap<u64, Entity>,
+}
+
+/// A syntax fault.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("line {line}: {reason}")]
+pub struct SyntaxError {
+    pub line: usize,
+    pub reason: String,
+}
+
+struct Lexer<'a> {
+    s: &'a [u8],
+    i: usize,
+    line: usize,
+}
+
+impl<'a> Lexer<'a> {
+    fn err<T>(&self, reason: impl Into<String>) -> Result<T, SyntaxError> {
+        Err(SyntaxError {
+            line: self.line,
+            reason: reason.into(),
+        })
+    }
+    fn skip_ws(&mut self) {
+        loop {
+            while self.i < self.s.len() && (self.s[self.i] as char).is_ascii_whitespace() {
+                if self.s[self.i] == b'\n' {
+                    self.line += 1;
+                }
+                self.i += 1;
+            }
+            if self.s[self.i..].starts_with(b"/*") {
+                match self.s[self.i + 2..].windows(2).position(|w| w == b"*/") {
+                    Some(p) => {
+                        self.line += self.s[self.i..self.i + 2 + p]
+                            .iter()
+                            .filter(|&&c| c == b'\n')
+                            .count();
+                        self.i += p + 4;
+                    }
+                    None => self.i = self.s.len(),
+                }
+            } else {
+                return;
+            }
+        }
+    }
+    fn peek(&mut self) -> Option<u8> {
+        self.skip_ws();
+        self.s.get(self.i).copied()
+    }
+    fn expect(&mut self, c: u8) -> Result<(), SyntaxError> {
+        match self.peek() {
+            Some(x) if x == c => {
+                self.i += 1;
+                Ok(())
+            }
+            Some(x) => self.err(format!("expected '{}', found '{}'", c as char, x as char)),
+            None => self.err(format!("expected '{}', found end of file", c as char)),
+        }
+    }
+    fn keyword(&mut self) -> String {
+        self.skip_ws();
+        let st = self.i;
+        while self.i < self.s.len()
+            && (self.s[self.i].is_ascii_alphanumeric()
+                || self.s[self.i] == b'_'
+                || self.s[self.i] == b'!')
+        {
+            self.i += 1;
+        }
+        String::from_utf8_lossy(&self.s[st..self.i]).to_ascii_uppercase()
+    }
+    fn value(&mut self, depth: usize) -> Result<Value, SyntaxError> {
+        if depth > 64 {
+            return self.err("lists nested too deeply");
+        }
+        match self.peek() {
+            Some(b'(') => {
+                self.i += 1;
+                let mut v = Vec::new();
+                if self.peek() == Some(b')') {
+                    self.i += 1;
+                    return Ok(Value::List(v));
+                }
+                loop {
+                    v.push(self.value(depth + 1)?);
+                    match self.peek() {
+                        Some(b',') => self.i += 1,
+                        Some(b')') => {
+                            self.i += 1;
+                            return Ok(Value::List(v));
+                        }
+                        _ => return self.err("expected ',' or ')' in a list"),
+                    }
+                }
+            }
+            Some(b'#') => {
+                self.i += 1;
+                let st = self.i;
+                while self.i < self.s.len() && self.s[self.i].is_ascii_digit() {
+                    self.i += 1;
+                }
+                match std::str::from_utf8(&self.s[st..self.i])
+                    .ok()
+                    .and_then(|t| t.parse().ok())
+                {
+                    Some(r) => Ok(Value::Ref(r)),
+                    None => self.err("malformed reference"),
+                }
+            }
+            Some(b'\'') => {
+                self.i += 1;
+                let mut out = Vec::new();
+                loop {
+                    match self.s.get(self.i) {
+                        None => return self.err("unterminated string"),
+                        Some(b'\'') if self.s.get(self.i + 1) == Some(&b'\'') => {
+                            out.push(b'\'');
+                            self.i += 2;
+                        }
+                        Some(b'\'') => {
+                            self.i += 1;
+                            break;
+                        }
+                        Some(&c) => {
+                            if c == b'\n' {
+                                self.line += 1;
+                            }
+                            out.push(c);
+                            self.i += 1;
+                        }
+                    }
+                }
+                Ok(Value::Str(String::from_utf8_lossy(&out).into_owned()))
+            }
+            Some(b'.') => {
+                self.i += 1;
+                let k = self.keyword();
+                self.expect(b'.')?;
+                Ok(Value::Enum(k))
+            }
+            Some(b'$') | Some(b'*') => {
+                self.i += 1;
+                Ok(Value::Unset)
+            }
+            Some(b'"') => {
+                // Binary: keep as a string of hex digits.
+                self.i += 1;
+                let st = self.i;
+                while self.i < self.s.len() && self.s[self.i] != b'"' {
+                    self.i += 1;
+                }
+                let v = String::from_utf8_lossy(&self.s[st..self.i]).into_owned();
+                self.expect(b'"')?;
+                Ok(Value::Str(v))
+            }
+            Some(c) if c == b'-' || c == b'+' || c.is_ascii_digit() => {
+                let st = self.i;
+                self.i += 1;
+                while self.i < self.s.len()
+                    && (self.s[self.i].is_ascii_digit()
+                        || matches!(self.s[self.i], b'.' | b'E' | b'e' | b'-' | b'+'))
+                {
+                    self.i += 1;
+                }
+                let t = std::str::from_utf8(&self.s[st..self.i]).unwrap_or("");
+                if !t.contains(['.', 'E', 'e']) {
+                    if let Ok(i) = t.parse::<i64>() {
+                        return Ok(Value::Int(i));
+                    }
+                }
+                let fixed = if t.ends_with('.') {
+                    format!("{t}0")
+                } else {
+                    t.replace(".E", ".0E").replace(".e", ".0e")
+                };
+                match fixed.parse::<f64>() {
+                    Ok(x) if x.is_finite() => Ok(Value::Real(x)),
+                    _ => self.err(format!("malformed number '{t}'")),
+                }
+            }
+            Some(c) if c.is_ascii_alphabetic() || c == b'!' => {
+                let k = self.keyword();
+                self.expect(b'(')?;
+                self.i -= 1;
+                match self.value(depth + 1)? {
+                    Value::List(v) => Ok(Value::Typed(k, v)),
+                    _ => self.err("expected arguments"),
+                }
+            }
+            Some(c) => self.err(format!("unexpected character '{}'", c as char)),
+            None => self.err("unexpected end of file"),
+        }
+    }
+    fn args(&mut self) -> Result<Vec<Value>, SyntaxError> {
+        match self.value(0)? {
+            Value::List(v) => Ok(v),
+            _ => self.err("expected an argument list"),
+        }
+    }
+}
+
+/// Parse a whole STEP file.
+pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
+    let mut lx = Lexer {
+        s: text.as_bytes(),
+        i: 0,
+        line: 1,
+    };
+    let mut out = Part21::default();
+    // Header: find FILE_SCHEMA's strings, then DATA;
+    if let Some(p) = text.find("FILE_SCHEMA") {
+        let rest = &text[p..];
+        let end = rest.find(';').unwrap_or(rest.len());
+        out.schema = rest[..end]
+            .split('\'')
+            .skip(1)
+            .step_by(2)
+            .map(|s| s.to_string())
+            .collect();
+    }
+    let Some(d) = text.find("DATA;") else {
+        return Err(SyntaxError {
+            line: 1,
+            reason: "no DATA section (not an ISO 10303-21 file?)".into(),
+        });
+    };
+    lx.line += text[..d].matches('\n').count();
+    lx.i = d + 5;
+    loop {
+        match lx.peek() {
+            None => return lx.err("missing ENDSEC"),
+            Some(b'#') => {
+                lx.i += 1;
+                let st = lx.i;
+                while lx.i < lx.s.len() && lx.s[lx.i].is_ascii_digit() {
+                    lx.i += 1;
+                }
+                let id: u64 = match std::str::from_utf8(&lx.s[st..lx.i])
+                    .ok()
+                    .and_then(|t| t.parse().ok())
+                {
+                    Some(v) => v,
+                    None => return lx.err("malformed instance id"),
+                };
+                lx.expect(b'=')?;
+                let e = if lx.peek() == Some(b'(') {
+                    lx.i += 1;
+                    let mut parts = Vec::new();
+                    while lx.peek() != Some(b')') {
+                        let k = lx.keyword();
+                        if k.is_empty() {
+                            return lx.err(format!("#{id}: expected a partial entity name"));
+                        }
+                        parts.push((k, lx.args()?));
+                    }
+                    lx.i += 1;
+                    Entity::Complex(parts)
+                } else {
+                    let k = lx.keyword();
+                    if k.is_empty() {
+                        return lx.err(format!("#{id}: expected an entity name"));
+                    }
+                    Entity::Simple(k, lx.args()?)
+                };
+                lx.expect(b';')?;
+                out.entities.insert(id, e);
+            }
+            Some(_) => {
+                let k = lx.keyword();
+                if k == "ENDSEC" {
+                    return Ok(out);
+                }
+                return lx.err(format!("unexpected '{k}' in DATA section"));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn parses_simple_complex_and_faults() {
+        let t = "ISO-10303-21;\nHEADER;FILE_SCHEMA(('CONFIG_CONTROL_DESIGN'));ENDSEC;\nDATA;\n#1=CARTESIAN_POINT('a''b',(0.,1.5E1,-2));\n/* c */ #2=( BOUNDED_SURFACE() B_SPLINE_SURFACE(1,1,((#1,#1),(#1,#1)),.UNSPECIFIED.,.F.,.F.,.F.) );\n#3=X(LENGTH_MEASURE(1.),$,*);\nENDSEC;END-ISO-10303-21;";
+        let p = parse(t).unwrap();
+        assert_eq!(p.schema, vec!["CONFIG_CONTROL_DESIGN"]);
+        assert_eq!(
+            p.entities[&1],
+            Entity::Simple(
+                "CARTESIAN_POINT".into(),
+                vec![
+                    Value::Str("a'b".into()),
+                    Value::List(vec![Value::Real(0.0), Value::Real(15.0), Value::Int(-2)])
+                ]
+            )
+        );
+        assert!(p.entities[&2].is("B_SPLINE_SURFACE"));
+        assert_eq!(p.entities[&3].part("X").unwrap()[0].num(), Some(1.0));
+        assert!(parse("DATA;\n#1=A((1,2);\nENDSEC;").is_err());
+        assert!(parse("no data").is_err());
+        assert_eq!(parse("DATA;\n#1=A(1e999);\nENDSEC;").unwrap_err().line, 2);
+    }
+}

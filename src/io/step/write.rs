@@ -1,0 +1,141 @@
+//! STEP writer: B-spline surfaces and curves of a model as an AP214 geometric set (rational
+//! ones as complex instances). Reals are written with the shortest decimal that reads back
+//! to the same double, so a write/read round trip keeps every bit.
+
+use crate::model::{CurveGeometry, Model};
+use std::fmt::Write;
+
+/// A real in Part 21 syntax (always with a decimal point).
+pub fn real(x: f64) -> String {
+    let s = format!("{x:?}");
+    let s = s.replace('e', "E");
+    match s.find('E') {
+        Some(i) if !s[..i].contains('.') => format!("{}.{}", &s[..i], &s[i..]),
+        _ if !s.contains('.') && !s.contains('E') => format!("{s}."),
+        _ => s,
+    }
+}
+
+fn knots_mults(k: &[f64]) -> (Vec<usize>, Vec<f64>) {
+    let mut m: Vec<usize> = Vec::new();
+    let mut v: Vec<f64> = Vec::new();
+    for &x in k {
+        if v.last() == Some(&x) {
+            *m.last_mut().unwrap_or(&mut 0) += 1;
+        } else {
+            v.push(x);
+            m.push(1);
+        }
+    }
+    (m, v)
+}
+
+fn list<T>(xs: &[T], f: impl Fn(&T) -> String) -> String {
+    format!("({})", xs.iter().map(f).collect::<Vec<_>>().join(","))
+}
+
+/// Write the model's surfaces and 3D curves.
+pub fn to_string(m: &Model, name: &str) -> String {
+    let mut out = String::new();
+    let mut id = 0u64;
+    let mut next = || {
+        id += 1;
+        id
+    };
+    let mut data = String::new();
+    let mut items = Vec::new();
+    let point = |data: &mut String, p: &[f64; 3], next: &mut dyn FnMut() -> u64| {
+        let i = next();
+        let _ = writeln!(
+            data,
+            "#{i}=CARTESIAN_POINT('',({},{},{}));",
+            real(p[0]),
+            real(p[1]),
+            real(p[2])
+        );
+        i
+    };
+    for s in &m.surfaces {
+        let h = &s.nurbs.hom;
+        let (pts, w) = s.nurbs.points_weights();
+        let nv = h.nv();
+        let ids: Vec<u64> = pts.iter().map(|p| point(&mut data, p, &mut next)).collect();
+        let net = list(&ids.chunks(nv).collect::<Vec<_>>(), |r| {
+            list(r, |i| format!("#{i}"))
+        });
+        let (mu, ku) = knots_mults(h.ku.knots());
+        let (mv, kv) = knots_mults(h.kv.knots());
+        let (p, q) = h.degrees();
+        let i = next();
+        let ml = |m: &[usize]| list(m, |x| x.to_string());
+        let kl = |k: &[f64]| list(k, |x| real(*x));
+        if s.nurbs.is_polynomial() && w.first() == Some(&1.0) {
+            let _ = writeln!(
+                data,
+                "#{i}=B_SPLINE_SURFACE_WITH_KNOTS('{}',{p},{q},{net},.UNSPECIFIED.,.F.,.F.,.F.,{},{},{},{},.UNSPECIFIED.);",
+                s.name.replace('\'', "''"),
+                ml(&mu),
+                ml(&mv),
+                kl(&ku),
+                kl(&kv)
+            );
+        } else {
+            let wl = list(&w.chunks(nv).collect::<Vec<_>>(), |r| list(r, |x| real(*x)));
+            let _ = writeln!(
+                data,
+                "#{i}=(BOUNDED_SURFACE() B_SPLINE_SURFACE({p},{q},{net},.UNSPECIFIED.,.F.,.F.,.F.) B_SPLINE_SURFACE_WITH_KNOTS({},{},{},{},.UNSPECIFIED.) GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_SURFACE({wl}) REPRESENTATION_ITEM('{}') SURFACE());",
+                ml(&mu),
+                ml(&mv),
+                kl(&ku),
+                kl(&kv),
+                s.name.replace('\'', "''")
+            );
+        }
+        items.push(i);
+    }
+    for c in &m.curves {
+        let CurveGeometry::Space(g) = &c.geometry else {
+            continue;
+        };
+        let (pts, w) = g.points_weights();
+        let ids: Vec<u64> = pts.iter().map(|p| point(&mut data, p, &mut next)).collect();
+        let (mu, ku) = knots_mults(g.hom.knots.knots());
+        let i = next();
+        let cl = list(&ids, |i| format!("#{i}"));
+        if w.iter().all(|x| *x == 1.0) {
+            let _ = writeln!(
+                data,
+                "#{i}=B_SPLINE_CURVE_WITH_KNOTS('{}',{},{cl},.UNSPECIFIED.,.F.,.F.,{},{},.UNSPECIFIED.);",
+                c.name.replace('\'', "''"),
+                g.hom.degree(),
+                list(&mu, |x| x.to_string()),
+                list(&ku, |x| real(*x))
+            );
+        } else {
+            let _ = writeln!(
+                data,
+                "#{i}=(BOUNDED_CURVE() B_SPLINE_CURVE({},{cl},.UNSPECIFIED.,.F.,.F.) B_SPLINE_CURVE_WITH_KNOTS({},{},.UNSPECIFIED.) CURVE() GEOMETRIC_REPRESENTATION_ITEM() RATIONAL_B_SPLINE_CURVE({}) REPRESENTATION_ITEM('{}'));",
+                g.hom.degree(),
+                list(&mu, |x| x.to_string()),
+                list(&ku, |x| real(*x)),
+                list(&w, |x| real(*x)),
+                c.name.replace('\'', "''")
+            );
+        }
+        items.push(i);
+    }
+    let gs = next();
+    let _ = writeln!(
+        data,
+        "#{gs}=GEOMETRIC_SET('',{});",
+        list(&items, |i| format!("#{i}"))
+    );
+    let _ = writeln!(
+        out,
+        "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('vericad geometry'),'2;1');\nFILE_NAME('{}','',(''),(''),'vericad','vericad','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;",
+        name.replace('\'', "''")
+    );
+    out.push_str(&data);
+    out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
+    out
+}

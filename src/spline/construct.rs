@@ -1,0 +1,242 @@
+//! Exact NURBS forms of analytic surfaces (The NURBS Book §7.5, A8.1): full circles as nine
+//! weighted points, surfaces of revolution and linear extrusions of NURBS profiles. Weights
+//! `√2/2` are rounded to f64 (the only inexact quantity).
+
+use super::{NurbsCurve, NurbsSurface, SplineError};
+use crate::geom::Point;
+
+const H: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// Unit circle in the plane, as a rational quadratic with 9 control points `(x, y, w)`.
+pub const UNIT_CIRCLE: [([f64; 2], f64); 9] = [
+    ([1.0, 0.0], 1.0),
+    ([1.0, 1.0], H),
+    ([0.0, 1.0], 1.0),
+    ([-1.0, 1.0], H),
+    ([-1.0, 0.0], 1.0),
+    ([-1.0, -1.0], H),
+    ([0.0, -1.0], 1.0),
+    ([1.0, -1.0], H),
+    ([1.0, 0.0], 1.0),
+];
+/// Its knots on `[0, 1]`.
+pub const CIRCLE_KNOTS: [f64; 12] = [
+    0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+];
+
+/// A placement: origin and orthonormal axes `x`, `y`, `z`.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    pub o: [f64; 3],
+    pub x: [f64; 3],
+    pub y: [f64; 3],
+    pub z: [f64; 3],
+}
+
+impl Frame {
+    /// The point `o + a x + b y + c z`.
+    pub fn at(&self, a: f64, b: f64, c: f64) -> [f64; 3] {
+        self.o
+            .add(&self.x.scale(&a))
+            .add(&self.y.scale(&b))
+            .add(&self.z.scale(&c))
+    }
+}
+
+/// Revolve a profile given in the frame's `(x, z)` half-plane (points `(ρ, h)` with weights)
+/// a full turn about the frame's z axis: `S(u, v)`, u around the axis, v along the profile.
+pub fn revolve(
+    f: &Frame,
+    profile: &[([f64; 2], f64)],
+    profile_knots: Vec<f64>,
+    degree: usize,
+) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let mut pts = Vec::with_capacity(9 * profile.len());
+    let mut ws = Vec::with_capacity(9 * profile.len());
+    for (c, wc) in UNIT_CIRCLE {
+        for (p, wp) in profile {
+            pts.push(f.at(p[0] * c[0], p[0] * c[1], p[1]));
+            ws.push(wc * wp);
+        }
+    }
+    NurbsSurface::new(
+        CIRCLE_KNOTS.to_vec(),
+        2,
+        profile_knots,
+        degree,
+        9,
+        profile.len(),
+        pts,
+        ws,
+    )
+}
+
+/// Revolve a 3D NURBS profile a full turn about the axis through `o` with unit direction
+/// `z` (The NURBS Book A8.1, full circle): each control point sweeps the circle about the
+/// axis through it, in its own radial frame.
+pub fn revolve_curve(
+    o: &[f64; 3],
+    z: &[f64; 3],
+    c: &NurbsCurve<f64, 3>,
+) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let (cp, cw) = c.points_weights();
+    let n = cp.len();
+    let mut pts = Vec::with_capacity(9 * n);
+    let mut ws = Vec::with_capacity(9 * n);
+    for (circ, wc) in UNIT_CIRCLE {
+        for (p, wp) in cp.iter().zip(&cw) {
+            let rel = p.sub(o);
+            let h = crate::geom::dot(&rel, z);
+            let radial = rel.sub(&z.scale(&h));
+            let y = crate::geom::cross(z, &radial);
+            pts.push(
+                o.add(&z.scale(&h))
+                    .add(&radial.scale(&circ[0]))
+                    .add(&y.scale(&circ[1])),
+            );
+            ws.push(wc * wp);
+        }
+    }
+    NurbsSurface::new(
+        CIRCLE_KNOTS.to_vec(),
+        2,
+        c.hom.knots.knots().to_vec(),
+        c.hom.degree(),
+        9,
+        n,
+        pts,
+        ws,
+    )
+}
+
+/// Extrude a NURBS curve along `d`: `S(u, v) = C(u) + v d`, `v ∈ [0, 1]`.
+pub fn extrude(c: &NurbsCurve<f64, 3>, d: &[f64; 3]) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let (cp, cw) = c.points_weights();
+    let n = cp.len();
+    let mut pts = Vec::with_capacity(2 * n);
+    let mut ws = Vec::with_capacity(2 * n);
+    for (p, w) in cp.iter().zip(&cw) {
+        pts.push(*p);
+        pts.push(p.add(d));
+        ws.push(*w);
+        ws.push(*w);
+    }
+    NurbsSurface::new(
+        c.hom.knots.knots().to_vec(),
+        c.hom.degree(),
+        vec![0.0, 0.0, 1.0, 1.0],
+        1,
+        n,
+        2,
+        pts,
+        ws,
+    )
+}
+
+/// Bilinear patch with corners `p00, p10, p01, p11` (u along the first index).
+pub fn bilinear(
+    p00: [f64; 3],
+    p10: [f64; 3],
+    p01: [f64; 3],
+    p11: [f64; 3],
+) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let k = vec![0.0, 0.0, 1.0, 1.0];
+    NurbsSurface::new(
+        k.clone(),
+        1,
+        k,
+        1,
+        2,
+        2,
+        vec![p00, p01, p10, p11],
+        vec![1.0; 4],
+    )
+}
+
+/// Cylinder of radius `r` about the frame's z axis for `h ∈ [h0, h1]`.
+pub fn cylinder(f: &Frame, r: f64, h0: f64, h1: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    revolve(
+        f,
+        &[([r, h0], 1.0), ([r, h1], 1.0)],
+        vec![0.0, 0.0, 1.0, 1.0],
+        1,
+    )
+}
+
+/// Cone with radius `r` at `h = 0` and semi-angle `alpha`, for `h ∈ [h0, h1]`.
+pub fn cone(
+    f: &Frame,
+    r: f64,
+    alpha: f64,
+    h0: f64,
+    h1: f64,
+) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let t = alpha.tan();
+    revolve(
+        f,
+        &[([r + h0 * t, h0], 1.0), ([r + h1 * t, h1], 1.0)],
+        vec![0.0, 0.0, 1.0, 1.0],
+        1,
+    )
+}
+
+/// Full sphere of radius `r` centred at the frame's origin.
+pub fn sphere(f: &Frame, r: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let prof = [
+        ([0.0, -r], 1.0),
+        ([r, -r], H),
+        ([r, 0.0], 1.0),
+        ([r, r], H),
+        ([0.0, r], 1.0),
+    ];
+    revolve(f, &prof, vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0], 2)
+}
+
+/// Full torus: tube of radius `minor` around the circle of radius `major`.
+pub fn torus(f: &Frame, major: f64, minor: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let prof: Vec<([f64; 2], f64)> = UNIT_CIRCLE
+        .iter()
+        .map(|(c, w)| ([major + minor * c[0], minor * c[1]], *w))
+        .collect();
+    revolve(f, &prof, CIRCLE_KNOTS.to_vec(), 2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{dist, norm};
+    fn frame() -> Frame {
+        let z = [0.0, 0.6, 0.8];
+        let x = [1.0, 0.0, 0.0];
+        Frame {
+            o: [1.0, -2.0, 3.0],
+            x,
+            y: crate::geom::cross(&z, &x),
+            z,
+        }
+    }
+    #[test]
+    fn closed_forms_hold_at_many_parameters() {
+        let f = frame();
+        let s = sphere(&f, 2.5).unwrap();
+        let c = cylinder(&f, 1.5, -1.0, 2.0).unwrap();
+        let k = cone(&f, 1.0, 0.3, -0.5, 1.5).unwrap();
+        let t = torus(&f, 3.0, 0.75).unwrap();
+        for i in 0..=40 {
+            for j in 0..=40 {
+                let (u, v) = (i as f64 / 40.0, j as f64 / 40.0);
+                assert!((dist(&s.eval(&u, &v), &f.o) - 2.5).abs() < 1e-14 * 8.0);
+                let p = c.eval(&u, &v).sub(&f.o);
+                let h = crate::geom::dot(&p, &f.z);
+                assert!((norm(&p.sub(&f.z.scale(&h))) - 1.5).abs() < 1e-14 * 8.0);
+                let p = k.eval(&u, &v).sub(&f.o);
+                let h = crate::geom::dot(&p, &f.z);
+                assert!((norm(&p.sub(&f.z.scale(&h))) - (1.0 + h * 0.3f64.tan())).abs() < 1e-13);
+                let p = t.eval(&u, &v).sub(&f.o);
+                let h = crate::geom::dot(&p, &f.z);
+                let rho = norm(&p.sub(&f.z.scale(&h)));
+                assert!((((rho - 3.0).powi(2) + h * h).sqrt() - 0.75).abs() < 1e-13);
+            }
+        }
+    }
+}
