@@ -134,6 +134,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         }],
         surfaces: model.surfaces.clone(),
         patch_sets: vec![],
+        triangulations: vec![],
         warnings: vec![],
     };
     let curve_path = out_dir.join("demo-exact-curve.json");

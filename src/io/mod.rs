@@ -1,7 +1,9 @@
 //! Readers and writers of exchange and viewing formats, one file (or folder) per format.
 //! [`read_model`] picks the reader from the file's extension.
 
+pub mod iges;
 pub mod step;
+pub mod stl;
 pub mod svg;
 
 use crate::model::{Model, ModelError};
@@ -13,7 +15,11 @@ pub enum ReadError {
     Json(#[from] ModelError),
     #[error(transparent)]
     Step(#[from] step::StepError),
-    #[error("{0}: unknown file type (expected .json, .step/.stp)")]
+    #[error(transparent)]
+    Iges(#[from] iges::IgesError),
+    #[error(transparent)]
+    Stl(#[from] stl::StlError),
+    #[error("{0}: unknown file type (expected .json, .step/.stp, .igs/.iges, .stl)")]
     UnknownFormat(String),
 }
 
@@ -22,6 +28,8 @@ pub enum ReadError {
 pub enum Format {
     Json,
     Step,
+    Iges,
+    Stl,
 }
 
 /// Format from a file name's extension (case-insensitive).
@@ -29,6 +37,8 @@ pub fn format_of(path: &std::path::Path) -> Option<Format> {
     match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
         "json" => Some(Format::Json),
         "step" | "stp" | "p21" => Some(Format::Step),
+        "igs" | "iges" => Some(Format::Iges),
+        "stl" => Some(Format::Stl),
         _ => None,
     }
 }
@@ -38,6 +48,8 @@ pub fn read_model(path: &std::path::Path) -> Result<Model, ReadError> {
     match format_of(path) {
         Some(Format::Json) => Ok(crate::model::json::read(path)?),
         Some(Format::Step) => Ok(step::read(path)?),
+        Some(Format::Iges) => Ok(iges::read(path)?),
+        Some(Format::Stl) => Ok(stl::read(path)?),
         None => Err(ReadError::UnknownFormat(path.display().to_string())),
     }
 }

@@ -47,6 +47,8 @@ pub struct ModelInfo {
     pub bspline_polynomial: usize,
     pub analytic: usize,
     pub warnings: Vec<String>,
+    /// Triangulations: (name, vertices, triangles).
+    pub triangulations: Vec<(String, usize, usize)>,
 }
 
 /// Summarize a model.
@@ -134,6 +136,11 @@ pub fn summarize(m: &Model) -> ModelInfo {
         patch_sets: m.patch_sets.len(),
         bbox: all.map(|a| [a.min, a.max]),
         warnings: m.warnings.clone(),
+        triangulations: m
+            .triangulations
+            .iter()
+            .map(|t| (t.name.clone(), t.vertices.len(), t.triangles.len()))
+            .collect(),
     }
 }
 
@@ -156,6 +163,12 @@ impl std::fmt::Display for ModelInfo {
             self.analytic,
             self.surfaces_by_kind
         )?;
+        for (n, v, t) in &self.triangulations {
+            writeln!(
+                f,
+                "  triangulation '{n}': {v} vertices (welded), {t} triangles"
+            )?;
+        }
         for w in &self.warnings {
             writeln!(f, "  warning: {w}")?;
         }

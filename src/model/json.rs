@@ -330,6 +330,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
         curves,
         surfaces,
         patch_sets,
+        triangulations: vec![],
         warnings: vec![],
     })
 }

@@ -75,6 +75,14 @@ pub struct PatchSet {
     pub surfaces: Vec<usize>,
 }
 
+/// A triangulation (e.g. from STL): vertices welded, triangles as vertex indices.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Triangulation {
+    pub name: String,
+    pub vertices: Vec<[f64; 3]>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
 /// Everything a model file holds.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Model {
@@ -83,6 +91,7 @@ pub struct Model {
     pub curves: Vec<Curve>,
     pub surfaces: Vec<Surface>,
     pub patch_sets: Vec<PatchSet>,
+    pub triangulations: Vec<Triangulation>,
     /// What a reader skipped or approximated, counted and named (never silent).
     pub warnings: Vec<String>,
 }

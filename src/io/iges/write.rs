@@ -1,0 +1,178 @@
+//! IGES writer: rational B-spline surfaces (128) and curves (126) of a model. Reals are
+//! written with the shortest decimal that reads back to the same double (round trips keep
+//! every bit).
+
+use crate::model::{CurveGeometry, Model};
+
+fn real(x: f64) -> String {
+    let s = format!("{x:?}").replace('e', "E");
+    if s.contains('.') || s.contains('E') {
+        s
+    } else {
+        format!("{s}.")
+    }
+}
+
+/// Lay out free-format text into 64-column P lines with the DE back pointer.
+fn p_lines(text: &str, de: usize, seq: &mut usize, out: &mut Vec<String>) -> usize {
+    let mut count = 0;
+    let mut line = String::new();
+    for tok in text.split_inclusive([',', ';']) {
+        if line.len() + tok.len() > 64 {
+            out.push(format!("{line:<64} {de:>7}P{:>7}", *seq));
+            *seq += 1;
+            count += 1;
+            line.clear();
+        }
+        line.push_str(tok);
+    }
+    if !line.is_empty() {
+        out.push(format!("{line:<64} {de:>7}P{:>7}", *seq));
+        *seq += 1;
+        count += 1;
+    }
+    count
+}
+
+fn hol(s: &str) -> String {
+    format!("{}H{s}", s.len())
+}
+
+/// Write the model's surfaces (128) and 3D curves (126).
+pub fn to_string(m: &Model, name: &str) -> String {
+    let mut params: Vec<(i64, String)> = Vec::new();
+    for s in &m.surfaces {
+        let h = &s.nurbs.hom;
+        let (pts, w) = s.nurbs.points_weights();
+        let (nu, nv) = (h.nu(), h.nv());
+        let (p, q) = h.degrees();
+        let rational = !s.nurbs.is_polynomial() || w[0] != 1.0;
+        let mut t = format!(
+            "128,{},{},{p},{q},0,0,{},0,0,",
+            nu - 1,
+            nv - 1,
+            if rational { 0 } else { 1 }
+        );
+        for k in h.ku.knots().iter().chain(h.kv.knots()) {
+            t += &format!("{},", real(*k));
+        }
+        for jv in 0..nv {
+            for iu in 0..nu {
+                t += &format!("{},", real(w[iu * nv + jv]));
+            }
+        }
+        for jv in 0..nv {
+            for iu in 0..nu {
+                let c = pts[iu * nv + jv];
+                t += &format!("{},{},{},", real(c[0]), real(c[1]), real(c[2]));
+            }
+        }
+        let (u0, u1, v0, v1) = h.domain();
+        t += &format!("{},{},{},{};", real(u0), real(u1), real(v0), real(v1));
+        params.push((128, t));
+    }
+    for c in &m.curves {
+        let CurveGeometry::Space(g) = &c.geometry else {
+            continue;
+        };
+        let (pts, w) = g.points_weights();
+        let k = pts.len() - 1;
+        let mut t = format!(
+            "126,{k},{},0,0,{},0,",
+            g.hom.degree(),
+            if w.iter().all(|x| *x == w[0]) { 1 } else { 0 }
+        );
+        for x in g.hom.knots.knots() {
+            t += &format!("{},", real(*x));
+        }
+        for x in &w {
+            t += &format!("{},", real(*x));
+        }
+        for p in &pts {
+            t += &format!("{},{},{},", real(p[0]), real(p[1]), real(p[2]));
+        }
+        let (a, b) = g.hom.domain();
+        t += &format!("{},{},0.,0.,0.;", real(a), real(b));
+        params.push((126, t));
+    }
+    let mut d = Vec::new();
+    let mut p = Vec::new();
+    let mut pseq = 1;
+    for (i, (ty, t)) in params.iter().enumerate() {
+        let de = 2 * i + 1;
+        let start = pseq;
+        let n = p_lines(t, de, &mut pseq, &mut p);
+        d.push(format!(
+            "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
+            0, 0, 0, 0, 0, 0, "00000000", de
+        ));
+        d.push(format!(
+            "{ty:>8}{:>8}{:>8}{n:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
+            0,
+            0,
+            0,
+            "",
+            "",
+            "",
+            0,
+            de + 1
+        ));
+    }
+    let unit = m.unit.as_deref().unwrap_or("mm");
+    let flag = match unit {
+        "inch" | "in" => 1,
+        "mm" => 2,
+        "ft" | "foot" => 4,
+        "m" => 6,
+        "cm" => 10,
+        _ => 2,
+    };
+    let g = format!(
+        "1H,,1H;,{},{},{},{},32,38,6,308,15,{},1.0,{flag},{},1,0.0,15H20260101.000000,1.0E-9,0.0,0H,0H,11,0,15H20260101.000000;",
+        hol("vericad"),
+        hol(name),
+        hol("vericad"),
+        hol("vericad"),
+        hol("vericad"),
+        hol(&unit.to_uppercase())
+    );
+    let mut gl = Vec::new();
+    let mut gseq = 1;
+    p_lines_global(&g, &mut gseq, &mut gl);
+    let mut out = String::new();
+    out += &format!("{:<72}S{:>7}\n", "vericad IGES export", 1);
+    for l in &gl {
+        out += l;
+        out.push('\n');
+    }
+    for l in d.iter().chain(&p) {
+        out += l;
+        out.push('\n');
+    }
+    out += &format!(
+        "S{:>7}G{:>7}D{:>7}P{:>7}{:>40}T{:>7}\n",
+        1,
+        gl.len(),
+        d.len(),
+        p.len(),
+        "",
+        1
+    );
+    out
+}
+
+fn p_lines_global(text: &str, seq: &mut usize, out: &mut Vec<String>) {
+    let mut line = String::new();
+    for tok in text.split_inclusive([',', ';']) {
+        if line.len() + tok.len() > 72 {
+            out.push(format!("{line:<72}G{:>7}", *seq));
+            *seq += 1;
+            line.clear();
+        }
+        line.push_str(tok);
+    }
+    if !line.is_empty() {
+        out.push(format!("{line:<72}G{:>7}", *seq));
+        *seq += 1;
+    }
+}
