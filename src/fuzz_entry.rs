@@ -118,3 +118,27 @@ pub fn curve_on_surface(data: &[u8]) {
         assert!(r.bspline.joints_exact);
     }
 }
+
+/// STEP, IGES and STL readers: any bytes give a model or a located error, never a panic;
+/// an accepted model's surfaces evaluate to finite points.
+pub fn readers(data: &[u8]) {
+    let text = String::from_utf8_lossy(data);
+    let check = |m: crate::model::Model| {
+        for s in &m.surfaces {
+            let (u0, _, v0, _) = s.nurbs.hom.domain();
+            let p = s.nurbs.eval(&u0, &v0);
+            assert!(p.iter().all(|x| !x.is_nan()), "{}", s.name);
+        }
+    };
+    match crate::io::step::from_str(&text, "fuzz.step") {
+        Ok(m) => check(m),
+        Err(e) => assert!(!e.reason.is_empty()),
+    }
+    match crate::io::iges::from_str(&text, "fuzz.igs") {
+        Ok(m) => check(m),
+        Err(e) => assert!(!e.reason.is_empty()),
+    }
+    if let Err(e) = crate::io::stl::from_bytes(data, "fuzz.stl") {
+        assert!(!e.reason.is_empty());
+    }
+}

@@ -94,7 +94,7 @@ fn eval_reports_exact_and_f64_points() {
 
 #[test]
 fn every_subcommand_has_help() {
-    for sub in ["demo", "info", "eval", "curve-on-surface"] {
+    for sub in ["demo", "info", "eval", "curve-on-surface", "convert"] {
         let (code, stdout, _) = vericad(&[sub, "--help"]);
         assert_eq!(code, 0);
         assert!(stdout.contains("Usage"), "{sub}");
@@ -163,4 +163,42 @@ fn curve_on_surface_writes_result_and_svg() {
         "-1",
     ]);
     assert_eq!(code, 2);
+}
+
+#[test]
+fn convert_and_curve_on_surface_from_iges_and_step() {
+    let d = tmp("convert");
+    let m = d.join("m.json");
+    std::fs::write(&m, vericad::demo::DEFAULT_MODEL).unwrap();
+    for ext in ["igs", "step"] {
+        let f = d.join(format!("m.{ext}"));
+        let (code, _, stderr) = vericad(&["convert", m.to_str().unwrap(), f.to_str().unwrap()]);
+        assert_eq!(code, 0, "{stderr}");
+        // The domain curve travels as a z = 0 curve (IGES convention) and is read back as one.
+        let (code, stdout, stderr) = vericad(&[
+            "curve-on-surface",
+            "--surface",
+            f.to_str().unwrap(),
+            "--curve",
+            f.to_str().unwrap(),
+            "--tol",
+            "1e-2",
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{ext}: {stderr}");
+        let r: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        assert!(r["certificate"]["hausdorff_bound"].as_f64().unwrap() <= 1e-2);
+    }
+    let (code, _, _) = vericad(&[
+        "convert",
+        m.to_str().unwrap(),
+        d.join("m.dwg").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2);
+    let (code, _, _) = vericad(&[
+        "convert",
+        m.to_str().unwrap(),
+        d.join("m.stl").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "no triangulation to write");
 }

@@ -16,20 +16,23 @@ fn count(m: &Model, k: SurfaceKind) -> usize {
     m.surfaces.iter().filter(|s| s.kind == k).count()
 }
 
+/// A table row.
+type Row = (
+    &'static str,
+    usize,
+    Option<(usize, usize)>,
+    usize,
+    usize,
+    usize,
+    usize,
+    usize,
+);
+
 /// (file, faces, B-spline non-rational, B-spline rational or None when the README does not
 /// split them, planes, spheres, cones, tori)
 #[test]
 fn every_shared_file_loads_with_the_readme_counts() {
-    let table: [(
-        &str,
-        usize,
-        Option<(usize, usize)>,
-        usize,
-        usize,
-        usize,
-        usize,
-        usize,
-    ); 8] = [
+    let table: [Row; 8] = [
         ("gmsh-t20_data.step", 21, Some((7, 14)), 21, 0, 0, 0, 0),
         ("gmsh-cube1000.igs", 6, None, 6, 0, 0, 0, 0),
         (

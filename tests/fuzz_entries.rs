@@ -75,3 +75,39 @@ fn curve_on_surface_target_survives_random_bytes() {
         fuzz_entry::curve_on_surface(&bytes);
     }
 }
+
+/// The readers on byte-level mutations of every real file in ../shared/data.
+#[test]
+fn readers_survive_mutated_real_files() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    let mut files: Vec<Vec<u8>> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x != "md"))
+        .map(|p| std::fs::read(p).unwrap())
+        .collect();
+    files.sort();
+    let mut r = Rng(14);
+    for f in &files {
+        fuzz_entry::readers(f);
+    }
+    for k in 0..300 {
+        let mut s = files[k % files.len()].clone();
+        for _ in 0..1 + r.below(6) {
+            let i = r.below(s.len());
+            match r.below(5) {
+                0 => s[i] = b"0123456789-.,;()#'HDE\n "[r.below(23)],
+                1 => {
+                    s.remove(i);
+                }
+                2 => s.insert(i, s[i]),
+                3 => s.truncate(i.max(1)),
+                _ => {
+                    let j = r.below(s.len());
+                    s.swap(i, j);
+                }
+            }
+        }
+        fuzz_entry::readers(&s);
+    }
+}

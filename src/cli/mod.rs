@@ -35,11 +35,14 @@ pub enum Command {
     },
     /// Summarize a model file: surfaces, curves, degrees, rational or not, bounding box.
     Info {
-        /// Model file: native JSON or STEP (.step/.stp).
+        /// Model file: native JSON, STEP (.step/.stp), IGES (.igs/.iges) or STL.
         file: PathBuf,
         #[arg(long)]
         json: bool,
     },
+    /// Convert a model between formats (from the extensions: .json, .step/.stp, .igs/.iges,
+    /// .stl). Analytic surfaces are written as their exact NURBS forms.
+    Convert { input: PathBuf, output: PathBuf },
     /// Approximate the image of a domain curve on a B-spline surface by Bézier curves of degree
     /// p+q lying exactly on it, with a proven Hausdorff bound (Yang et al. 2008).
     CurveOnSurface {
@@ -153,6 +156,28 @@ pub fn run(cli: Cli) -> i32 {
                     eprintln!("error: {e}");
                     EXIT_FAILURE
                 }
+            }
+        }
+        Command::Convert { input, output } => {
+            let m = match crate::io::read_model(&input) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
+            match crate::io::write_model(&output, &m) {
+                Ok(()) => {
+                    println!(
+                        "wrote {} ({} surfaces, {} curves)",
+                        output.display(),
+                        m.surfaces.len(),
+                        m.curves.len()
+                    );
+                    0
+                }
+                Err(e @ crate::io::WriteError::Io(..)) => {
+                    eprintln!("error: {e}");
+                    EXIT_FAILURE
+                }
+                Err(e) => bad(e),
             }
         }
         Command::Info { file, json } => match crate::io::read_model(&file) {

@@ -2,13 +2,16 @@
 //! algorithm, write the JSON result and an optional SVG plot of the domain.
 
 use super::{CosError, CurveOnSurface, Params, approximate};
-use crate::model::{CurveGeometry, ModelError, json};
+use crate::model::{CurveGeometry, ModelError};
+use crate::spline::NurbsCurve;
 
 /// Errors of the job: bad input (files, indices) or a refused computation.
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
     #[error(transparent)]
     Model(#[from] ModelError),
+    #[error(transparent)]
+    Read(#[from] crate::io::ReadError),
     #[error("{0}: {1}")]
     Select(String, String),
     #[error(transparent)]
@@ -21,7 +24,7 @@ impl JobError {
     /// Whether the user's input is at fault (exit code 2) rather than the computation.
     pub fn is_bad_input(&self) -> bool {
         match self {
-            JobError::Model(_) | JobError::Select(..) => true,
+            JobError::Model(_) | JobError::Read(_) | JobError::Select(..) => true,
             JobError::Compute(e) => {
                 !matches!(e, CosError::Internal(_) | CosError::TooManySegments(_))
             }
@@ -49,7 +52,7 @@ pub fn run(
     svg: Option<&std::path::Path>,
 ) -> Result<CurveOnSurface, JobError> {
     let (sf, si) = file_and_index(surface_spec);
-    let sm = json::read(std::path::Path::new(&sf))?;
+    let sm = crate::io::read_model(std::path::Path::new(&sf))?;
     let surf = sm.surfaces.get(si).ok_or_else(|| {
         JobError::Select(
             sf.clone(),
@@ -57,13 +60,28 @@ pub fn run(
         )
     })?;
     let (cf, ci) = file_and_index(curve_spec);
-    let cm = json::read(std::path::Path::new(&cf))?;
-    let domain_curves: Vec<_> = cm
+    let cm = crate::io::read_model(std::path::Path::new(&cf))?;
+    // Domain curves; as in IGES curves on surfaces, a 3D curve whose control points all
+    // have z = 0 is read as a (u, v) curve.
+    let domain_curves: Vec<NurbsCurve<f64, 2>> = cm
         .curves
         .iter()
         .filter_map(|c| match &c.geometry {
-            CurveGeometry::Domain(d) => Some(d),
-            _ => None,
+            CurveGeometry::Domain(d) => Some(d.clone()),
+            CurveGeometry::Space(s) => {
+                let (p, w) = s.points_weights();
+                if p.iter().all(|q| q[2] == 0.0) {
+                    NurbsCurve::new(
+                        s.hom.knots.knots().to_vec(),
+                        s.hom.degree(),
+                        p.iter().map(|q| [q[0], q[1]]).collect(),
+                        w,
+                    )
+                    .ok()
+                } else {
+                    None
+                }
+            }
         })
         .collect();
     let curve = domain_curves.get(ci).ok_or_else(|| {

@@ -53,3 +53,36 @@ pub fn read_model(path: &std::path::Path) -> Result<Model, ReadError> {
         None => Err(ReadError::UnknownFormat(path.display().to_string())),
     }
 }
+
+/// A fault writing a model.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    #[error(
+        "{0}: unknown or unsupported output type (expected .json, .step/.stp, .igs/.iges, .stl)"
+    )]
+    UnknownFormat(String),
+    #[error("{0}: the model has no triangulation to write as STL")]
+    NoTriangulation(String),
+    #[error("cannot write {0}: {1}")]
+    Io(String, std::io::Error),
+}
+
+/// Write a model in the format named by the path's extension.
+pub fn write_model(path: &std::path::Path, m: &crate::model::Model) -> Result<(), WriteError> {
+    let name = path.display().to_string();
+    let stem = path
+        .file_name()
+        .and_then(|s| s.to_str())
+        .unwrap_or("vericad");
+    let text = match format_of(path) {
+        Some(Format::Json) => crate::model::json::to_string(m),
+        Some(Format::Step) => step::write::to_string(m, stem),
+        Some(Format::Iges) => iges::write::to_string(m, stem),
+        Some(Format::Stl) => match m.triangulations.first() {
+            Some(t) => stl::to_string(t),
+            None => return Err(WriteError::NoTriangulation(name)),
+        },
+        None => return Err(WriteError::UnknownFormat(name)),
+    };
+    std::fs::write(path, text).map_err(|e| WriteError::Io(name, e))
+}

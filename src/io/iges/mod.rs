@@ -172,11 +172,14 @@ fn field(l: &str, k: usize) -> &str {
     l.get(k * 8..(k + 1) * 8).unwrap_or("").trim()
 }
 
+/// Directory entries by DE number, the unit, and header warnings.
+pub type Parsed = (BTreeMap<usize, Entry>, Option<String>, Vec<String>);
+
+/// An affine map `x ↦ R x + T`.
+type Affine = ([[f64; 3]; 3], [f64; 3]);
+
 /// Parse an IGES file into directory entries (by DE number), the unit and header warnings.
-pub fn parse(
-    text: &str,
-    file: &str,
-) -> Result<(BTreeMap<usize, Entry>, Option<String>, Vec<String>), IgesError> {
+pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
     let s = sections(text, file)?;
     let mut warnings = Vec::new();
     // Global: delimiters, then the unit (parameters 14, 15).
@@ -186,7 +189,7 @@ pub fn parse(
             |rest: &str| -> Option<char> { rest.strip_prefix("1H").and_then(|r| r.chars().next()) };
         let pd = gd(g).unwrap_or(',');
         let after = if g.starts_with("1H") {
-            &g[3.min(g.len())..]
+            g.get(2 + pd.len_utf8()..).unwrap_or("")
         } else {
             g.get(pd.len_utf8()..).unwrap_or("")
         };
@@ -293,9 +296,9 @@ impl Reader<'_> {
         Ok(v as usize)
     }
     /// The affine map of entity `de`'s transformation chain: `x ↦ R x + T`.
-    fn transform(&self, de: usize) -> R<Option<([[f64; 3]; 3], [f64; 3])>> {
+    fn transform(&self, de: usize) -> R<Option<Affine>> {
         let mut t = self.e[&de].transform;
-        let mut acc: Option<([[f64; 3]; 3], [f64; 3])> = None;
+        let mut acc: Option<Affine> = None;
         let mut guard = 0;
         while t != 0 {
             guard += 1;
@@ -472,13 +475,14 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
         }
     }
     for (de, x) in &e {
-        if x.etype == 126 && x.status.get(2..4) == Some("00") {
-            if let Some(c) = r.curve(*de)? {
-                model.curves.push(Curve {
-                    name: format!("DE {de}"),
-                    geometry: CurveGeometry::Space(c),
-                });
-            }
+        if x.etype == 126
+            && x.status.get(2..4) == Some("00")
+            && let Some(c) = r.curve(*de)?
+        {
+            model.curves.push(Curve {
+                name: format!("DE {de}"),
+                geometry: CurveGeometry::Space(c),
+            });
         }
     }
     let known = [

@@ -72,8 +72,27 @@ pub fn to_string(m: &Model, name: &str) -> String {
         params.push((128, t));
     }
     for c in &m.curves {
-        let CurveGeometry::Space(g) = &c.geometry else {
-            continue;
+        // Domain curves are written as 3D curves with z = 0 (the IGES convention for curves
+        // in a surface's parameter space).
+        let lifted;
+        let g = match &c.geometry {
+            CurveGeometry::Space(g) => g,
+            CurveGeometry::Domain(d) => {
+                let (p, w) = d.points_weights();
+                let pts = p.iter().map(|q| [q[0], q[1], 0.0]).collect();
+                match crate::spline::NurbsCurve::new(
+                    d.hom.knots.knots().to_vec(),
+                    d.hom.degree(),
+                    pts,
+                    w,
+                ) {
+                    Ok(c) => {
+                        lifted = c;
+                        &lifted
+                    }
+                    Err(_) => continue,
+                }
+            }
         };
         let (pts, w) = g.points_weights();
         let k = pts.len() - 1;

@@ -297,11 +297,10 @@ impl Reader<'_> {
                 if let (Some(pl), Some(r)) = (
                     a.get(1).and_then(|v| v.reference()),
                     a.get(2).and_then(|v| v.num()),
-                ) {
-                    if let Ok(f) = self.placement(pl) {
-                        for (s, t) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
-                            out.push(f.at(s * r, t * r, 0.0));
-                        }
+                ) && let Ok(f) = self.placement(pl)
+                {
+                    for (s, t) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                        out.push(f.at(s * r, t * r, 0.0));
                     }
                 }
                 continue;
@@ -489,10 +488,10 @@ fn unit(p: &Part21) -> (Option<String>, f64) {
                     }
                     .to_string(),
                 );
-            } else if let Some(cb) = e.part("CONVERSION_BASED_UNIT") {
-                if let Some(Value::Str(n)) = cb.first() {
-                    length = Some(n.to_lowercase());
-                }
+            } else if let Some(cb) = e.part("CONVERSION_BASED_UNIT")
+                && let Some(Value::Str(n)) = cb.first()
+            {
+                length = Some(n.to_lowercase());
             }
         }
         if e.is("PLANE_ANGLE_UNIT")
@@ -563,13 +562,13 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     }
     // Free B-spline curves (not referenced by edges or surfaces are still listed).
     for (id, e) in &p.entities {
-        if e.is("B_SPLINE_CURVE_WITH_KNOTS") {
-            if let Ok(c) = r.bspline_curve(*id, e) {
-                model.curves.push(Curve {
-                    name: format!("#{id}"),
-                    geometry: CurveGeometry::Space(c),
-                });
-            }
+        if e.is("B_SPLINE_CURVE_WITH_KNOTS")
+            && let Ok(c) = r.bspline_curve(*id, e)
+        {
+            model.curves.push(Curve {
+                name: format!("#{id}"),
+                geometry: CurveGeometry::Space(c),
+            });
         }
     }
     for (k, n) in skipped {

@@ -161,7 +161,7 @@ impl<'a> Lexer<'a> {
         self.skip_ws();
         self.s.get(self.i).copied()
     }
-    fn expect(&mut self, c: u8) -> Result<(), SyntaxError> {
+    fn eat(&mut self, c: u8) -> Result<(), SyntaxError> {
         match self.peek() {
             Some(x) if x == c => {
                 self.i += 1;
@@ -249,7 +249,7 @@ impl<'a> Lexer<'a> {
             Some(b'.') => {
                 self.i += 1;
                 let k = self.keyword();
-                self.expect(b'.')?;
+                self.eat(b'.')?;
                 Ok(Value::Enum(k))
             }
             Some(b'$') | Some(b'*') => {
@@ -264,7 +264,7 @@ impl<'a> Lexer<'a> {
                     self.i += 1;
                 }
                 let v = String::from_utf8_lossy(&self.s[st..self.i]).into_owned();
-                self.expect(b'"')?;
+                self.eat(b'"')?;
                 Ok(Value::Str(v))
             }
             Some(c) if c == b'-' || c == b'+' || c.is_ascii_digit() => {
@@ -277,10 +277,10 @@ impl<'a> Lexer<'a> {
                     self.i += 1;
                 }
                 let t = std::str::from_utf8(&self.s[st..self.i]).unwrap_or("");
-                if !t.contains(['.', 'E', 'e']) {
-                    if let Ok(i) = t.parse::<i64>() {
-                        return Ok(Value::Int(i));
-                    }
+                if !t.contains(['.', 'E', 'e'])
+                    && let Ok(i) = t.parse::<i64>()
+                {
+                    return Ok(Value::Int(i));
                 }
                 let fixed = if t.ends_with('.') {
                     format!("{t}0")
@@ -294,7 +294,7 @@ impl<'a> Lexer<'a> {
             }
             Some(c) if c.is_ascii_alphabetic() || c == b'!' => {
                 let k = self.keyword();
-                self.expect(b'(')?;
+                self.eat(b'(')?;
                 self.i -= 1;
                 match self.value(depth + 1)? {
                     Value::List(v) => Ok(Value::Typed(k, v)),
@@ -356,7 +356,7 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
                     Some(v) => v,
                     None => return lx.err("malformed instance id"),
                 };
-                lx.expect(b'=')?;
+                lx.eat(b'=')?;
                 let e = if lx.peek() == Some(b'(') {
                     lx.i += 1;
                     let mut parts = Vec::new();
@@ -376,7 +376,7 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
                     }
                     Entity::Simple(k, lx.args()?)
                 };
-                lx.expect(b';')?;
+                lx.eat(b';')?;
                 out.entities.insert(id, e);
             }
             Some(_) => {
