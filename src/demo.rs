@@ -135,6 +135,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         surfaces: model.surfaces.clone(),
         patch_sets: vec![],
         triangulations: vec![],
+        source_entities: Default::default(),
         warnings: vec![],
     };
     let curve_path = out_dir.join("demo-exact-curve.json");

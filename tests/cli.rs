@@ -202,3 +202,35 @@ fn convert_and_curve_on_surface_from_iges_and_step() {
     ]);
     assert_eq!(code, 2, "no triangulation to write");
 }
+
+#[test]
+fn viewing_formats_are_consistent() {
+    let d = tmp("view");
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/abc-0000.step");
+    let (vtp, obj) = (d.join("a.vtp"), d.join("a.obj"));
+    for out in [&vtp, &obj] {
+        let (code, _, stderr) = vericad(&["convert", src.to_str().unwrap(), out.to_str().unwrap()]);
+        assert_eq!(code, 0, "{stderr}");
+    }
+    // 25 faces on a 16 × 16 grid: 25 · 17² points, 25 · 256 quads, one patch id per quad.
+    let v = std::fs::read_to_string(&vtp).unwrap();
+    assert!(v.contains("NumberOfPoints=\"7225\"") && v.contains("NumberOfPolys=\"6400\""));
+    let ids = v
+        .split("Name=\"patch_id\" format=\"ascii\">")
+        .nth(1)
+        .unwrap()
+        .split('<')
+        .next()
+        .unwrap();
+    assert_eq!(ids.split_whitespace().count(), 6400);
+    let o = std::fs::read_to_string(&obj).unwrap();
+    assert_eq!(o.lines().filter(|l| l.starts_with("v ")).count(), 7225);
+    assert_eq!(o.lines().filter(|l| l.starts_with("f ")).count(), 6400);
+    // Plot3D in: an ASCII single-block grid becomes one bilinear surface.
+    let p3d = d.join("g.xyz");
+    std::fs::write(&p3d, "2 2\n0 1 0 1\n0 0 1 1\n0 0 0 1\n").unwrap();
+    let (code, stdout, _) = vericad(&["info", p3d.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0);
+    let info: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(info["surfaces"][0]["degree"], serde_json::json!([1, 1]));
+}

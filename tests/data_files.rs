@@ -90,6 +90,27 @@ fn every_shared_file_loads_with_the_readme_counts() {
             }
         }
     }
+    // Units, and the source entity counts the README names.
+    for (f, u) in [
+        ("gmsh-t20_data.step", "mm"),
+        ("abc-0000.step", "m"),
+        ("occt-bug28366_fuselage.stp", "foot"),
+        ("gmsh-cube1000.igs", "mm"),
+    ] {
+        assert_eq!(
+            read_model(&data(f)).unwrap().unit.as_deref(),
+            Some(u),
+            "{f}"
+        );
+    }
+    let cube = read_model(&data("gmsh-cube1000.igs")).unwrap();
+    let n126: usize = cube
+        .source_entities
+        .iter()
+        .filter(|(k, _)| k.starts_with("126 "))
+        .map(|(_, n)| n)
+        .sum();
+    assert_eq!(n126, 48, "gmsh-cube1000.igs: 48 entities 126");
     let stl = read_model(&data("gmsh-surface1.stl")).unwrap();
     let t = &stl.triangulations[0];
     assert!(!t.triangles.is_empty());

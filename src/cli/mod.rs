@@ -195,7 +195,7 @@ pub fn run(cli: Cli) -> i32 {
             t,
             json,
         } => {
-            let m = match crate::model::json::read(&file) {
+            let m = match crate::io::read_model(&file) {
                 Ok(m) => m,
                 Err(e) => return bad(e),
             };

@@ -2,9 +2,12 @@
 //! [`read_model`] picks the reader from the file's extension.
 
 pub mod iges;
+pub mod obj;
+pub mod plot3d;
 pub mod step;
 pub mod stl;
 pub mod svg;
+pub mod vtk;
 
 use crate::model::{Model, ModelError};
 
@@ -19,7 +22,9 @@ pub enum ReadError {
     Iges(#[from] iges::IgesError),
     #[error(transparent)]
     Stl(#[from] stl::StlError),
-    #[error("{0}: unknown file type (expected .json, .step/.stp, .igs/.iges, .stl)")]
+    #[error(transparent)]
+    Plot3d(#[from] plot3d::Plot3dError),
+    #[error("{0}: unknown file type (expected .json, .step/.stp, .igs/.iges, .stl, .xyz/.p3d)")]
     UnknownFormat(String),
 }
 
@@ -30,6 +35,7 @@ pub enum Format {
     Step,
     Iges,
     Stl,
+    Plot3d,
 }
 
 /// Format from a file name's extension (case-insensitive).
@@ -39,6 +45,7 @@ pub fn format_of(path: &std::path::Path) -> Option<Format> {
         "step" | "stp" | "p21" => Some(Format::Step),
         "igs" | "iges" => Some(Format::Iges),
         "stl" => Some(Format::Stl),
+        "xyz" | "p3d" | "x" | "g" => Some(Format::Plot3d),
         _ => None,
     }
 }
@@ -50,6 +57,7 @@ pub fn read_model(path: &std::path::Path) -> Result<Model, ReadError> {
         Some(Format::Step) => Ok(step::read(path)?),
         Some(Format::Iges) => Ok(iges::read(path)?),
         Some(Format::Stl) => Ok(stl::read(path)?),
+        Some(Format::Plot3d) => Ok(plot3d::read(path)?),
         None => Err(ReadError::UnknownFormat(path.display().to_string())),
     }
 }
@@ -78,11 +86,21 @@ pub fn write_model(path: &std::path::Path, m: &crate::model::Model) -> Result<()
         Some(Format::Json) => crate::model::json::to_string(m),
         Some(Format::Step) => step::write::to_string(m, stem),
         Some(Format::Iges) => iges::write::to_string(m, stem),
+        Some(Format::Plot3d) => return Err(WriteError::UnknownFormat(name)),
         Some(Format::Stl) => match m.triangulations.first() {
             Some(t) => stl::to_string(t),
             None => return Err(WriteError::NoTriangulation(name)),
         },
-        None => return Err(WriteError::UnknownFormat(name)),
+        None => match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("vtp") => vtk::model_to_vtp(m, 16),
+            Some("obj") => obj::model_to_obj(m, 16),
+            _ => return Err(WriteError::UnknownFormat(name)),
+        },
     };
     std::fs::write(path, text).map_err(|e| WriteError::Io(name, e))
 }

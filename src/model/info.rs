@@ -47,6 +47,8 @@ pub struct ModelInfo {
     pub bspline_polynomial: usize,
     pub analytic: usize,
     pub warnings: Vec<String>,
+    /// Entity counts by type in the source file.
+    pub source_entities: std::collections::BTreeMap<String, usize>,
     /// Triangulations: (name, vertices, triangles).
     pub triangulations: Vec<(String, usize, usize)>,
 }
@@ -136,6 +138,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
         patch_sets: m.patch_sets.len(),
         bbox: all.map(|a| [a.min, a.max]),
         warnings: m.warnings.clone(),
+        source_entities: m.source_entities.clone(),
         triangulations: m
             .triangulations
             .iter()
@@ -163,6 +166,22 @@ impl std::fmt::Display for ModelInfo {
             self.analytic,
             self.surfaces_by_kind
         )?;
+        if !self.source_entities.is_empty() {
+            let mut top: Vec<_> = self.source_entities.iter().collect();
+            top.sort_by(|a, b| b.1.cmp(a.1).then(a.0.cmp(b.0)));
+            let shown: Vec<String> = top
+                .iter()
+                .take(12)
+                .map(|(k, n)| format!("{k}: {n}"))
+                .collect();
+            writeln!(
+                f,
+                "  source entities ({} types): {}{}",
+                top.len(),
+                shown.join(", "),
+                if top.len() > 12 { ", ..." } else { "" }
+            )?;
+        }
         for (n, v, t) in &self.triangulations {
             writeln!(
                 f,

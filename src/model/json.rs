@@ -331,6 +331,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
         surfaces,
         patch_sets,
         triangulations: vec![],
+        source_entities: Default::default(),
         warnings: vec![],
     })
 }

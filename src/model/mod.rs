@@ -92,8 +92,27 @@ pub struct Model {
     pub surfaces: Vec<Surface>,
     pub patch_sets: Vec<PatchSet>,
     pub triangulations: Vec<Triangulation>,
+    /// Entity counts by type in the source file (IGES entity numbers, STEP entity names).
+    pub source_entities: std::collections::BTreeMap<String, usize>,
     /// What a reader skipped or approximated, counted and named (never silent).
     pub warnings: Vec<String>,
+}
+
+/// Canonical short name of a length unit (`"m"`, `"mm"`, `"cm"`, `"km"`, `"um"`, `"inch"`,
+/// `"foot"`); other names are kept, lowercased.
+pub fn normalize_unit(name: &str) -> String {
+    let n = name.trim().to_lowercase();
+    match n.as_str() {
+        "m" | "metre" | "meter" | "metres" | "meters" => "m",
+        "mm" | "millimetre" | "millimeter" | "millimetres" | "millimeters" => "mm",
+        "cm" | "centimetre" | "centimeter" => "cm",
+        "km" | "kilometre" | "kilometer" => "km",
+        "um" | "micrometre" | "micrometer" | "micron" => "um",
+        "in" | "inch" | "inches" => "inch",
+        "ft" | "foot" | "feet" => "foot",
+        _ => return n,
+    }
+    .to_string()
 }
 
 /// A fault in a model file: where, and why.

@@ -201,7 +201,7 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
         Ok(gp) => {
             let flag = gp.get(13).and_then(|p| p.num());
             unit = match (flag, gp.get(14)) {
-                (_, Some(Param::Str(n))) if !n.is_empty() => Some(n.to_lowercase()),
+                (_, Some(Param::Str(n))) if !n.is_empty() => Some(crate::model::normalize_unit(n)),
                 (Some(f), _) => Some(
                     match f as i64 {
                         1 => "inch",
@@ -504,6 +504,12 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
         warnings.push(format!("{n} entit(ies) of type {t} not supported, skipped"));
     }
     model.warnings = warnings;
+    for x in e.values() {
+        *model
+            .source_entities
+            .entry(format!("{} (form {})", x.etype, x.form))
+            .or_insert(0) += 1;
+    }
     Ok(model)
 }
 

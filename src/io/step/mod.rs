@@ -473,7 +473,26 @@ const SURFACE_TYPES: [&str; 8] = [
 fn unit(p: &Part21) -> (Option<String>, f64) {
     let mut length = None;
     let mut angle = 1.0;
-    for e in p.entities.values() {
+    // Prefer the units the representation context assigns; otherwise any unit instance.
+    let assigned: Vec<u64> = p
+        .entities
+        .values()
+        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
+        .flat_map(|a| {
+            let mut r = vec![];
+            a.iter().for_each(|v| v.refs(&mut r));
+            r
+        })
+        .collect();
+    let units: Vec<&Entity> = if assigned.is_empty() {
+        p.entities.values().collect()
+    } else {
+        assigned
+            .iter()
+            .filter_map(|id| p.entities.get(id))
+            .collect()
+    };
+    for e in units {
         if e.is("LENGTH_UNIT") {
             if let Some(si) = e.part("SI_UNIT") {
                 let prefix = si.first().and_then(|v| v.enumeration()).unwrap_or("");
@@ -491,7 +510,7 @@ fn unit(p: &Part21) -> (Option<String>, f64) {
             } else if let Some(cb) = e.part("CONVERSION_BASED_UNIT")
                 && let Some(Value::Str(n)) = cb.first()
             {
-                length = Some(n.to_lowercase());
+                length = Some(crate::model::normalize_unit(n));
             }
         }
         if e.is("PLANE_ANGLE_UNIT")
@@ -575,6 +594,20 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
         model.warnings.push(format!(
             "{n} face surface(s) of type {k} not supported, skipped"
         ));
+    }
+    for e in p.entities.values() {
+        let name = match e {
+            Entity::Simple(n, _) => n.clone(),
+            Entity::Complex(parts) => format!(
+                "({})",
+                parts
+                    .iter()
+                    .map(|x| x.0.as_str())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            ),
+        };
+        *model.source_entities.entry(name).or_insert(0) += 1;
     }
     Ok(model)
 }

@@ -149,6 +149,85 @@ pub fn to_string(m: &Model, name: &str) -> String {
         "#{gs}=GEOMETRIC_SET('',{});",
         list(&items, |i| format!("#{i}"))
     );
+    // Product structure and units, so that other systems transfer the set as a shape.
+    let mut n = || next();
+    let (mm, u1, u2, u3, u4, c1) = (n(), n(), n(), n(), n(), n());
+    let (app, apd, pc, p, pdf, pdc, pd, pds, rep, sdr) =
+        (n(), n(), n(), n(), n(), n(), n(), n(), n(), n());
+    let _ = writeln!(
+        data,
+        "#{mm}=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));"
+    );
+    match m.unit.as_deref().unwrap_or("mm") {
+        u @ ("inch" | "in" | "foot" | "ft") => {
+            let (nm, f) = if u.starts_with('i') {
+                ("INCH", "25.4")
+            } else {
+                ("FOOT", "304.8")
+            };
+            let (dim, mwu) = (n(), n());
+            let _ = writeln!(data, "#{dim}=DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);");
+            let _ = writeln!(
+                data,
+                "#{mwu}=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE({f}),#{mm});"
+            );
+            let _ = writeln!(
+                data,
+                "#{u1}=(CONVERSION_BASED_UNIT('{nm}',#{mwu}) LENGTH_UNIT() NAMED_UNIT(#{dim}));"
+            );
+        }
+        u => {
+            let prefix = match u {
+                "m" => "$",
+                "cm" => ".CENTI.",
+                "km" => ".KILO.",
+                "um" => ".MICRO.",
+                _ => ".MILLI.",
+            };
+            let _ = writeln!(
+                data,
+                "#{u1}=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT({prefix},.METRE.));"
+            );
+        }
+    }
+    let _ = writeln!(
+        data,
+        "#{u2}=(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.));"
+    );
+    let _ = writeln!(
+        data,
+        "#{u3}=(NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT());"
+    );
+    let _ = writeln!(
+        data,
+        "#{u4}=UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#{u1},'distance_accuracy_value','');"
+    );
+    let _ = writeln!(
+        data,
+        "#{c1}=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{u4})) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{u1},#{u2},#{u3})) REPRESENTATION_CONTEXT('',''));"
+    );
+    let _ = writeln!(data, "#{app}=APPLICATION_CONTEXT('automotive_design');");
+    let _ = writeln!(
+        data,
+        "#{apd}=APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app});"
+    );
+    let _ = writeln!(data, "#{pc}=PRODUCT_CONTEXT('',#{app},'mechanical');");
+    let _ = writeln!(data, "#{p}=PRODUCT('vericad','vericad','',(#{pc}));");
+    let _ = writeln!(data, "#{pdf}=PRODUCT_DEFINITION_FORMATION('','',#{p});");
+    let _ = writeln!(
+        data,
+        "#{pdc}=PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design');"
+    );
+    let _ = writeln!(data, "#{pd}=PRODUCT_DEFINITION('design','',#{pdf},#{pdc});");
+    let _ = writeln!(data, "#{pds}=PRODUCT_DEFINITION_SHAPE('','',#{pd});");
+    let _ = writeln!(
+        data,
+        "#{rep}=GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION('',(#{gs}),#{c1});"
+    );
+    let _ = writeln!(
+        data,
+        "#{sdr}=SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep});"
+    );
     let _ = writeln!(
         out,
         "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION(('vericad geometry'),'2;1');\nFILE_NAME('{}','',(''),(''),'vericad','vericad','');\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;",

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Independent read-back of files written by vericad, with Open CASCADE.
+
+For each input model (default: every IGES/STEP file in ../shared/data), vericad converts it
+to IGES and to STEP; Open CASCADE (pip install cadquery-ocp-novtk, module OCP.OCP) reads
+each written file, and every face's surface is evaluated at a 5x5 grid of parameters and
+compared with vericad's own evaluation of the same surface (`vericad eval --json`).
+
+Not part of the default test run (it needs the OCCT wheel). Usage:
+    cargo build --release && python3 scripts/occt_crosscheck.py [FILES...]
+Exit code 0 when every point agrees within 1e-9 relative to the model size.
+"""
+import glob, json, os, subprocess, sys, tempfile
+
+import OCP.OCP as o
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+VERICAD = os.path.join(HERE, "..", "target", "release", "vericad")
+
+
+def vericad(*args):
+    r = subprocess.run([VERICAD, *args], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"vericad {' '.join(args)}: {r.stderr.strip()}")
+    return r.stdout
+
+
+def occt_faces(path):
+    if path.endswith(".igs"):
+        o.IGESControl.IGESControl_Controller.Init_s()
+        rd = o.IGESControl.IGESControl_Reader()
+    else:
+        rd = o.STEPControl.STEPControl_Reader()
+    if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
+        raise RuntimeError(f"OCCT cannot read {path}")
+    rd.TransferRoots()
+    shape = rd.OneShape()
+    out = []
+    ex = o.TopExp.TopExp_Explorer(shape, o.TopAbs.TopAbs_ShapeEnum.TopAbs_FACE)
+    while ex.More():
+        out.append(o.BRep.BRep_Tool.Surface_s(o.TopoDS.TopoDS.Face(ex.Current())))
+        ex.Next()
+    return out
+
+
+def main(files):
+    worst, checked, failures = 0.0, 0, []
+    tmp = tempfile.mkdtemp()
+    for src in files:
+        info = json.loads(vericad("info", src, "--json"))
+        # OCCT converts lengths to millimetres on reading.
+        scale = {"mm": 1.0, "m": 1000.0, "cm": 10.0, "inch": 25.4, "in": 25.4, "foot": 304.8, "ft": 304.8}.get(info["unit"] or "mm", 1.0)
+        size = max(1.0, max(abs(c) for b in (info["bbox"] or [[1, 1, 1]]) for c in b))
+        for ext in ("igs", "step"):
+            out = os.path.join(tmp, os.path.basename(src) + "." + ext)
+            vericad("convert", src, out)
+            mine = json.loads(vericad("info", out, "--json"))["surfaces"]
+            try:
+                theirs = occt_faces(out)
+            except Exception as e:  # noqa: BLE001 - report and continue
+                failures.append(f"{out}: {e}")
+                continue
+            if len(theirs) != len(mine):
+                failures.append(f"{out}: OCCT reads {len(theirs)} faces, vericad wrote {len(mine)}")
+                continue
+            for k, (s, g) in enumerate(zip(mine, theirs)):
+                u0, u1, v0, v1 = s["domain"]
+                for i in range(5):
+                    for j in range(5):
+                        u, v = u0 + (u1 - u0) * i / 4, v0 + (v1 - v0) * j / 4
+                        p = json.loads(vericad("eval", out, "--surface", str(k), "--uv", f"{u!r},{v!r}", "--json"))["point"]
+                        q = g.Value(u, v)
+                        d = ((p[0] * scale - q.X()) ** 2 + (p[1] * scale - q.Y()) ** 2 + (p[2] * scale - q.Z()) ** 2) ** 0.5 / (size * scale)
+                        worst = max(worst, d)
+                        checked += 1
+                        if d > 1e-9:
+                            failures.append(f"{out} face {k} at ({u}, {v}): relative distance {d:.3e}")
+    print(f"{checked} points compared, worst relative distance {worst:.3e}, {len(failures)} failure(s)")
+    for f in failures[:20]:
+        print("  " + f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    data = os.path.join(HERE, "..", "..", "shared", "data")
+    args = sys.argv[1:] or sorted(glob.glob(os.path.join(data, "*.igs")) + glob.glob(os.path.join(data, "*.st*p")))
+    sys.exit(main(args))
