@@ -253,3 +253,45 @@ fn malformed_files_get_located_errors() {
         Err(vericad::io::ReadError::UnknownFormat(_))
     ));
 }
+
+/// IGES trims: each face of the cube (143 bounded by 141) keeps one closed outer loop of four
+/// parameter-space curves; the loops survive the JSON format.
+#[test]
+fn iges_trim_loops_are_kept_and_closed() {
+    let m = read_model(&data("gmsh-cube1000.igs")).unwrap();
+    for s in &m.surfaces {
+        assert_eq!(s.trim_loops.len(), 1, "{}", s.name);
+        let l = &s.trim_loops[0];
+        assert!(l.outer);
+        assert_eq!(l.curves.len(), 4);
+        let ends: Vec<([f64; 2], [f64; 2])> = l
+            .curves
+            .iter()
+            .map(|c| {
+                let (a, b) = c.hom.domain();
+                (c.eval(&a), c.eval(&b))
+            })
+            .collect();
+        for k in 0..4 {
+            let (e, s2) = (ends[k].1, ends[(k + 1) % 4].0);
+            assert!(
+                (e[0] - s2[0]).abs() + (e[1] - s2[1]).abs() < 1e-9,
+                "{}: loop open between curves {k} and {}",
+                s.name,
+                (k + 1) % 4
+            );
+        }
+    }
+    let again = vericad::model::json::from_str(&vericad::model::json::to_string(&m), "rt").unwrap();
+    assert_eq!(
+        again
+            .surfaces
+            .iter()
+            .map(|s| s.trim_loops.clone())
+            .collect::<Vec<_>>(),
+        m.surfaces
+            .iter()
+            .map(|s| s.trim_loops.clone())
+            .collect::<Vec<_>>()
+    );
+}

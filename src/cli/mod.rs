@@ -164,7 +164,10 @@ pub fn run(cli: Cli) -> i32 {
                 Err(e) => return bad(e),
             };
             match crate::io::write_model(&output, &m) {
-                Ok(()) => {
+                Ok(warnings) => {
+                    for w in warnings {
+                        eprintln!("warning: {w}");
+                    }
                     println!(
                         "wrote {} ({} surfaces, {} curves)",
                         output.display(),

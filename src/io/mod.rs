@@ -75,8 +75,31 @@ pub enum WriteError {
     Io(String, std::io::Error),
 }
 
-/// Write a model in the format named by the path's extension.
-pub fn write_model(path: &std::path::Path, m: &crate::model::Model) -> Result<(), WriteError> {
+/// Write a model in the format named by the path's extension. Returns what the format
+/// could not hold (e.g. trim loops in IGES 128 / STEP geometric sets), so nothing is lost
+/// silently.
+pub fn write_model(
+    path: &std::path::Path,
+    m: &crate::model::Model,
+) -> Result<Vec<String>, WriteError> {
+    let mut warnings = Vec::new();
+    let trimmed = m
+        .surfaces
+        .iter()
+        .filter(|s| !s.trim_loops.is_empty())
+        .count();
+    let fmt = format_of(path);
+    if trimmed > 0 && fmt != Some(Format::Json) {
+        warnings.push(format!("{trimmed} surface(s) have trim loops, which this writer does not store: written untrimmed"));
+    }
+    if !m.triangulations.is_empty()
+        && matches!(fmt, Some(Format::Json | Format::Step | Format::Iges))
+    {
+        warnings.push(format!(
+            "{} triangulation(s) not written (the format holds NURBS only)",
+            m.triangulations.len()
+        ));
+    }
     let name = path.display().to_string();
     let stem = path
         .file_name()
@@ -102,5 +125,6 @@ pub fn write_model(path: &std::path::Path, m: &crate::model::Model) -> Result<()
             _ => return Err(WriteError::UnknownFormat(name)),
         },
     };
-    std::fs::write(path, text).map_err(|e| WriteError::Io(name, e))
+    std::fs::write(path, text).map_err(|e| WriteError::Io(name, e))?;
+    Ok(warnings)
 }

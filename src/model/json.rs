@@ -64,6 +64,17 @@ struct RawSurface {
     control_points: Vec<Vec<Vec<f64>>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     weights: Option<Vec<Vec<f64>>>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    trim_loops: Vec<RawTrimLoop>,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    reversed: bool,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTrimLoop {
+    outer: bool,
+    curves: Vec<RawCurve>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -172,7 +183,10 @@ fn degree_ok(ctx: &Ctx, path: String, d: usize) -> Result<(), ModelError> {
 }
 
 fn curve(ctx: &Ctx, i: usize, c: RawCurve) -> Result<Curve, ModelError> {
-    let base = format!("curves[{i}]");
+    curve_at(ctx, format!("curves[{i}]"), c)
+}
+
+fn curve_at(ctx: &Ctx, base: String, c: RawCurve) -> Result<Curve, ModelError> {
     degree_ok(ctx, format!("{base}.degree"), c.degree)?;
     let n = c.control_points.len();
     if n == 0 {
@@ -268,7 +282,31 @@ fn surface(ctx: &Ctx, i: usize, s: RawSurface) -> Result<Surface, ModelError> {
     };
     let nurbs = NurbsSurface::new(ku, s.degree_u, kv, s.degree_v, nu, nv, pts, w)
         .map_err(|e| spline_err(ctx, &base, e))?;
-    Ok(Surface::new(s.name, nurbs))
+    let mut trim_loops = Vec::with_capacity(s.trim_loops.len());
+    for (l, tl) in s.trim_loops.into_iter().enumerate() {
+        let mut curves = Vec::with_capacity(tl.curves.len());
+        for (k, c) in tl.curves.into_iter().enumerate() {
+            let path = format!("{base}.trim_loops[{l}].curves[{k}]");
+            match curve_at(ctx, path.clone(), c)?.geometry {
+                CurveGeometry::Domain(d) => curves.push(d),
+                CurveGeometry::Space(_) => {
+                    return Err(ctx.err(
+                        path,
+                        "a trim curve lies in the parameter plane: 2 coordinates (u, v)",
+                    ));
+                }
+            }
+        }
+        trim_loops.push(crate::model::TrimLoop {
+            outer: tl.outer,
+            curves,
+        });
+    }
+    Ok(Surface {
+        trim_loops,
+        reversed: s.reversed,
+        ..Surface::new(s.name, nurbs)
+    })
 }
 
 /// Parse and validate model text. `file` names the source in error messages.
@@ -395,6 +433,15 @@ pub fn to_string(m: &Model) -> String {
                         .iter()
                         .any(|x| *x != 1.0)
                         .then(|| w.chunks(nv).map(|r| r.to_vec()).collect()),
+                    trim_loops: s
+                        .trim_loops
+                        .iter()
+                        .map(|l| RawTrimLoop {
+                            outer: l.outer,
+                            curves: l.curves.iter().map(|c| raw_curve("", c)).collect(),
+                        })
+                        .collect(),
+                    reversed: s.reversed,
                 }
             })
             .collect(),

@@ -46,6 +46,14 @@ impl SurfaceKind {
     }
 }
 
+/// A trimming loop in a surface's parameter space: curve segments `(u, v)` in order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrimLoop {
+    /// The outer boundary (otherwise a hole).
+    pub outer: bool,
+    pub curves: Vec<NurbsCurve<f64, 2>>,
+}
+
 /// A named surface (a face or patch of the model).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Surface {
@@ -54,6 +62,10 @@ pub struct Surface {
     /// Where it came from: `"#123"` (STEP instance), `"DE 45"` (IGES directory entry).
     pub source: Option<String>,
     pub kind: SurfaceKind,
+    /// Trimming loops (empty: the whole parameter domain is the face).
+    pub trim_loops: Vec<TrimLoop>,
+    /// The face's normal is opposite to `S_u × S_v` (STEP `same_sense = .F.`).
+    pub reversed: bool,
 }
 
 impl Surface {
@@ -64,6 +76,8 @@ impl Surface {
             nurbs,
             source: None,
             kind: SurfaceKind::BSpline,
+            trim_loops: vec![],
+            reversed: false,
         }
     }
 }

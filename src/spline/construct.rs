@@ -109,6 +109,35 @@ pub fn revolve_curve(
     )
 }
 
+/// Circular arc of radius `r` in the frame's `(x, y)` plane, counter-clockwise from angle
+/// `a0` to `a1` (radians, `a1 > a0`, at most a full turn): rational quadratic pieces of at
+/// most 90°, middle weights `cos(Δ/2)` (The NURBS Book A7.1).
+pub fn arc(f: &Frame, r: f64, a0: f64, a1: f64) -> Result<NurbsCurve<f64, 3>, SplineError> {
+    let sweep = (a1 - a0).clamp(1e-300, std::f64::consts::TAU);
+    let n = (sweep / std::f64::consts::FRAC_PI_2 - 1e-12)
+        .ceil()
+        .max(1.0) as usize;
+    let d = sweep / n as f64;
+    let w1 = (d / 2.0).cos();
+    let at = |a: f64| f.at(r * a.cos(), r * a.sin(), 0.0);
+    let mut pts = vec![at(a0)];
+    let mut ws = vec![1.0];
+    let mut knots = vec![0.0; 3];
+    for k in 0..n {
+        let (s, e) = (a0 + k as f64 * d, a0 + (k + 1) as f64 * d);
+        let m = (s + e) / 2.0;
+        pts.push(f.at(r / w1 * m.cos(), r / w1 * m.sin(), 0.0));
+        ws.push(w1);
+        pts.push(at(e));
+        ws.push(1.0);
+        if k + 1 < n {
+            knots.extend([(k + 1) as f64 / n as f64; 2]);
+        }
+    }
+    knots.extend([1.0; 3]);
+    NurbsCurve::new(knots, 2, pts, ws)
+}
+
 /// Extrude a NURBS curve along `d`: `S(u, v) = C(u) + v d`, `v ∈ [0, 1]`.
 pub fn extrude(c: &NurbsCurve<f64, 3>, d: &[f64; 3]) -> Result<NurbsSurface<f64, 3>, SplineError> {
     let (cp, cw) = c.points_weights();

@@ -10,7 +10,7 @@
 pub mod write;
 
 use crate::geom::Point;
-use crate::model::{Curve, CurveGeometry, Model, Surface, SurfaceKind};
+use crate::model::{Curve, CurveGeometry, Model, Surface, SurfaceKind, TrimLoop};
 use crate::spline::{NurbsCurve, NurbsSurface, construct};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -388,9 +388,144 @@ impl Reader<'_> {
                 NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, pts, vec![1.0, 1.0])
                     .or_else(|e| self.err(de, e.to_string()))?
             }
+            100 => {
+                let v = self.nums(de, 1, 7)?;
+                let (zt, c, st, en) = (v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]]);
+                let r = ((st[0] - c[0]).powi(2) + (st[1] - c[1]).powi(2)).sqrt();
+                if !(r > 0.0) {
+                    return self.err(de, "arc of zero radius");
+                }
+                let a0 = (st[1] - c[1]).atan2(st[0] - c[0]);
+                let mut a1 = (en[1] - c[1]).atan2(en[0] - c[0]);
+                while a1 <= a0 + 1e-15 {
+                    a1 += std::f64::consts::TAU;
+                }
+                let f = construct::Frame {
+                    o: [c[0], c[1], zt],
+                    x: [1.0, 0.0, 0.0],
+                    y: [0.0, 1.0, 0.0],
+                    z: [0.0, 0.0, 1.0],
+                };
+                let mut arc =
+                    construct::arc(&f, r, a0, a1).or_else(|e| self.err(de, e.to_string()))?;
+                let (mut pts, w) = arc.points_weights();
+                self.apply(de, &mut pts)?;
+                arc = NurbsCurve::new(arc.hom.knots.knots().to_vec(), 2, pts, w)
+                    .or_else(|e| self.err(de, e.to_string()))?;
+                arc
+            }
             _ => return Ok(None),
         };
         Ok(Some(c))
+    }
+    /// A curve or composite curve (102) as its list of segments; `None` for unsupported
+    /// members.
+    fn segments(&self, de: usize, depth: usize) -> R<Option<Vec<NurbsCurve<f64, 3>>>> {
+        if depth > 16 {
+            return self.err(de, "composite curves nested too deeply");
+        }
+        if self.e[&de].etype == 102 {
+            let n = self.nums(de, 1, 1)?[0] as usize;
+            let mut out = Vec::new();
+            for k in 0..n.min(100_000) {
+                match self.segments(self.ptr(de, 2 + k)?, depth + 1)? {
+                    Some(v) => out.extend(v),
+                    None => return Ok(None),
+                }
+            }
+            return Ok(Some(out));
+        }
+        Ok(self.curve(de)?.map(|c| vec![c]))
+    }
+    /// A parameter-space loop from a curve entity (x, y are u, v).
+    fn loop_2d(&self, de: usize, outer: bool) -> R<Option<TrimLoop>> {
+        let Some(segs) = self.segments(de, 0)? else {
+            return Ok(None);
+        };
+        let curves = segs
+            .iter()
+            .map(|c| {
+                let (p, w) = c.points_weights();
+                NurbsCurve::new(
+                    c.hom.knots.knots().to_vec(),
+                    c.hom.degree(),
+                    p.iter().map(|q| [q[0], q[1]]).collect(),
+                    w,
+                )
+                .or_else(|e| self.err(de, e.to_string()))
+            })
+            .collect::<R<Vec<_>>>()?;
+        Ok(Some(TrimLoop { outer, curves }))
+    }
+    /// Trim loops of a face entity (144 via 142 curves on surface, 143 via 141 boundaries);
+    /// the number of boundaries given only in model space is returned too.
+    fn trims(&self, face: usize) -> R<(Vec<TrimLoop>, usize)> {
+        let x = &self.e[&face];
+        let mut loops = Vec::new();
+        let mut missing = 0;
+        match x.etype {
+            144 => {
+                let h = self.nums(face, 2, 3)?;
+                let (n1, n2) = (h[0] as usize, h[1] as usize);
+                let mut bounds = Vec::new();
+                if n1 != 0 {
+                    bounds.push((self.ptr(face, 4)?, true));
+                }
+                for k in 0..n2.min(100_000) {
+                    bounds.push((self.ptr(face, 5 + k)?, false));
+                }
+                for (b, outer) in bounds {
+                    // 142: CRTN, SPTR, BPTR (parameter space), CPTR, PREF.
+                    let bp = self.nums(b, 3, 1)?[0];
+                    if bp >= 1.0 && self.e.contains_key(&(bp as usize)) {
+                        match self.loop_2d(bp as usize, outer)? {
+                            Some(l) => loops.push(l),
+                            None => missing += 1,
+                        }
+                    } else {
+                        missing += 1;
+                    }
+                }
+            }
+            143 => {
+                let n = self.nums(face, 3, 1)?[0] as usize;
+                for k in 0..n.min(100_000) {
+                    let b = self.ptr(face, 4 + k)?;
+                    // 141: TYPE, PREF, SPTR, N, then (CRVPT, SENSE, K, PSCPT x K) per curve.
+                    let nc = self.nums(b, 4, 1)?[0] as usize;
+                    let mut at = 5;
+                    let mut curves = Vec::new();
+                    let mut ok = true;
+                    for _ in 0..nc.min(100_000) {
+                        let v = self.nums(b, at, 3)?;
+                        // SENSE (v[1]) orients the shared model-space curve; the parameter-space
+                        // curves of a face are already oriented along its loop (checked on
+                        // real files: reversing them by SENSE opens the loops).
+                        let kk = v[2] as usize;
+                        if kk == 0 {
+                            ok = false;
+                        }
+                        for j in 0..kk {
+                            match self.loop_2d(self.ptr(b, at + 3 + j)?, k == 0)? {
+                                Some(l) => curves.extend(l.curves),
+                                None => ok = false,
+                            }
+                        }
+                        at += 3 + kk;
+                    }
+                    if ok {
+                        loops.push(TrimLoop {
+                            outer: k == 0,
+                            curves,
+                        });
+                    } else {
+                        missing += 1;
+                    }
+                }
+            }
+            _ => {}
+        }
+        Ok((loops, missing))
     }
     fn surface(&self, de: usize) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
         match self.e[&de].etype {
@@ -465,12 +600,19 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     let mut skipped: BTreeMap<i64, usize> = BTreeMap::new();
     for (face, s) in faces {
         match r.surface(s)? {
-            Some((nurbs, kind)) => model.surfaces.push(Surface {
-                name: format!("DE {face}"),
-                nurbs,
-                source: Some(format!("DE {face}")),
-                kind,
-            }),
+            Some((nurbs, kind)) => {
+                let (trim_loops, missing) = r.trims(face)?;
+                if missing > 0 {
+                    warnings.push(format!("DE {face}: {missing} boundary(ies) without a parameter-space curve, not kept as trims"));
+                }
+                model.surfaces.push(Surface {
+                    name: format!("DE {face}"),
+                    source: Some(format!("DE {face}")),
+                    kind,
+                    trim_loops,
+                    ..Surface::new("", nurbs)
+                })
+            }
             None => *skipped.entry(e[&s].etype).or_insert(0) += 1,
         }
     }

@@ -570,12 +570,21 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     let mut skipped: BTreeMap<String, usize> = BTreeMap::new();
     for (face, sid) in targets {
         match r.surface(sid, face)? {
-            Some((nurbs, kind)) => model.surfaces.push(Surface {
-                name: face.map_or(format!("#{sid}"), |f| format!("face #{f}")),
-                nurbs,
-                source: Some(format!("#{}", face.unwrap_or(sid))),
-                kind,
-            }),
+            Some((nurbs, kind)) => {
+                let reversed = face
+                    .and_then(|f| p.entities.get(&f))
+                    .and_then(|e| e.part("ADVANCED_FACE").or_else(|| e.part("FACE_SURFACE")))
+                    .and_then(|a| a.get(3))
+                    .and_then(|v| v.enumeration())
+                    == Some("F");
+                model.surfaces.push(Surface {
+                    name: face.map_or(format!("#{sid}"), |f| format!("face #{f}")),
+                    source: Some(format!("#{}", face.unwrap_or(sid))),
+                    kind,
+                    reversed,
+                    ..Surface::new("", nurbs)
+                })
+            }
             None => *skipped.entry(r.get(sid)?.name().to_string()).or_insert(0) += 1,
         }
     }
