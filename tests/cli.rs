@@ -144,6 +144,32 @@ fn curve_on_surface_writes_result_and_svg() {
     }
     assert!(r["certificate"]["hausdorff_bound"].as_f64().unwrap() <= 1e-2);
     assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // IGES and VTK outputs: the curve reads back as one 126 of the reported degree; the VTK
+    // has one polyline and one proven bound per segment.
+    let (igs, vtp) = (d.join("c.igs"), d.join("c.vtp"));
+    let (code, _, stderr) = vericad(&[
+        "curve-on-surface",
+        "--surface",
+        m.to_str().unwrap(),
+        "--curve",
+        m.to_str().unwrap(),
+        "--tol",
+        "1e-2",
+        "--iges",
+        igs.to_str().unwrap(),
+        "--vtk",
+        vtp.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let back = vericad::io::read_model(&igs).unwrap();
+    let vericad::model::CurveGeometry::Space(c) = &back.curves[0].geometry else {
+        panic!("space curve expected")
+    };
+    assert_eq!(c.hom.degree(), 4);
+    let n = r["num_segments"].as_u64().unwrap();
+    let v = std::fs::read_to_string(&vtp).unwrap();
+    assert!(v.contains(&format!("NumberOfLines=\"{n}\"")));
+    assert!(v.contains("Name=\"certified\""));
     // Bad input: a surface index that does not exist, a tolerance that is not positive.
     let (code, _, stderr) = vericad(&[
         "curve-on-surface",

@@ -67,6 +67,13 @@ pub enum Command {
         /// Write an SVG plot of the parameter domain here.
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// Write the result curve (126) and the surface (128) as IGES here.
+        #[arg(long)]
+        iges: Option<PathBuf>,
+        /// Write the segments (with per-segment bound and certified flag) and the surface as
+        /// VTK PolyData (.vtp) here.
+        #[arg(long)]
+        vtk: Option<PathBuf>,
         #[arg(long)]
         json: bool,
     },
@@ -132,6 +139,8 @@ pub fn run(cli: Cli) -> i32 {
             bound,
             out,
             svg,
+            iges,
+            vtk,
             json,
         } => {
             use crate::curve_on_surface::{Bound, Params, job};
@@ -146,7 +155,13 @@ pub fn run(cli: Cli) -> i32 {
                 bound,
                 ..Params::default()
             };
-            match job::run(&surface, &curve, &params, out.as_deref(), svg.as_deref()) {
+            let outputs = job::Outputs {
+                json: out.as_deref(),
+                svg: svg.as_deref(),
+                iges: iges.as_deref(),
+                vtk: vtk.as_deref(),
+            };
+            match job::run(&surface, &curve, &params, outputs) {
                 Ok(r) => {
                     print(&r, json);
                     0

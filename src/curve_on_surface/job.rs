@@ -43,14 +43,26 @@ pub fn file_and_index(spec: &str) -> (String, usize) {
     (spec.to_string(), 0)
 }
 
+/// Optional output files of the job.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    pub json: Option<&'a std::path::Path>,
+    pub svg: Option<&'a std::path::Path>,
+    /// The B-spline form as an IGES 126 curve (with the surface as 128).
+    pub iges: Option<&'a std::path::Path>,
+    /// The segments as polylines with per-cell `segment`, `bound` and `certified` arrays,
+    /// and the surface, in a `.vtp`.
+    pub vtk: Option<&'a std::path::Path>,
+}
+
 /// Run the job.
 pub fn run(
     surface_spec: &str,
     curve_spec: &str,
     params: &Params,
-    out: Option<&std::path::Path>,
-    svg: Option<&std::path::Path>,
+    outputs: Outputs,
 ) -> Result<CurveOnSurface, JobError> {
+    let (out, svg) = (outputs.json, outputs.svg);
     let (sf, si) = file_and_index(surface_spec);
     let sm = crate::io::read_model(std::path::Path::new(&sf))?;
     let surf = sm.surfaces.get(si).ok_or_else(|| {
@@ -117,6 +129,61 @@ pub fn run(
             ),
         });
         std::fs::write(p, doc).map_err(|e| JobError::Write(p.display().to_string(), e))?;
+    }
+    if let Some(p) = outputs.iges {
+        let b = &r.bspline;
+        let curve = crate::spline::NurbsCurve::new(
+            b.knots.clone(),
+            b.degree,
+            b.control_points.clone(),
+            vec![1.0; b.control_points.len()],
+        )
+        .map_err(|e| JobError::Compute(CosError::Internal(e.to_string())))?;
+        let m = crate::model::Model {
+            surfaces: vec![surf.clone()],
+            curves: vec![crate::model::Curve {
+                name: "curve-on-surface".into(),
+                geometry: CurveGeometry::Space(curve),
+            }],
+            unit: sm.unit.clone(),
+            ..Default::default()
+        };
+        std::fs::write(p, crate::io::iges::write::to_string(&m, "curve-on-surface"))
+            .map_err(|e| JobError::Write(p.display().to_string(), e))?;
+    }
+    if let Some(p) = outputs.vtk {
+        let mut pd = crate::io::vtk::PolyData::default();
+        let quads = pd.add_surface(&surf.nurbs, 32);
+        let (mut seg, mut bound, mut cert) =
+            (vec![-1.0; quads], vec![0.0; quads], vec![0.0; quads]);
+        for (k, sg) in r.segments.iter().enumerate() {
+            let bz = crate::spline::BezierCurve {
+                control: sg.control_points.clone(),
+            };
+            let pts: Vec<[f64; 3]> = (0..=16).map(|i| bz.eval(&(i as f64 / 16.0))).collect();
+            pd.add_polyline(&pts);
+            seg.push(k as f64);
+            bound.push(sg.bound);
+            cert.push(if sg.bound <= r.certificate.eps_d {
+                1.0
+            } else {
+                0.0
+            });
+        }
+        pd.cell_data.push(crate::io::vtk::Array {
+            name: "segment".into(),
+            values: seg,
+        });
+        pd.cell_data.push(crate::io::vtk::Array {
+            name: "bound".into(),
+            values: bound,
+        });
+        pd.cell_data.push(crate::io::vtk::Array {
+            name: "certified".into(),
+            values: cert,
+        });
+        std::fs::write(p, crate::io::vtk::render(&pd))
+            .map_err(|e| JobError::Write(p.display().to_string(), e))?;
     }
     Ok(r)
 }

@@ -93,6 +93,8 @@ pub struct Segment {
     pub control_points: Vec<[f64; 3]>,
     /// Chord end points `[[u, v], [u, v]]` in the surface's parameter domain.
     pub domain: [[f64; 2]; 2],
+    /// This segment's proven Hausdorff bound `K · h` to its piece of `S(D)`.
+    pub bound: f64,
 }
 
 /// What is proven.
@@ -277,10 +279,12 @@ pub fn approximate(
         num_control_points: bs_cps.len(),
         segments: mapped
             .iter()
-            .map(|m| Segment {
+            .zip(&segs)
+            .map(|(m, s)| Segment {
                 degree: deg,
                 control_points: m.control_points.clone(),
                 domain: m.domain,
+                bound: (s.k * s.h).next_up(),
             })
             .collect(),
         domain_polyline: polyline,

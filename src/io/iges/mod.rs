@@ -392,7 +392,7 @@ impl Reader<'_> {
                 let v = self.nums(de, 1, 7)?;
                 let (zt, c, st, en) = (v[0], [v[1], v[2]], [v[3], v[4]], [v[5], v[6]]);
                 let r = ((st[0] - c[0]).powi(2) + (st[1] - c[1]).powi(2)).sqrt();
-                if !(r > 0.0) {
+                if r.is_nan() || r <= 0.0 {
                     return self.err(de, "arc of zero radius");
                 }
                 let a0 = (st[1] - c[1]).atan2(st[0] - c[0]);
