@@ -43,6 +43,20 @@ def occt_faces(path):
     return out
 
 
+def occt_area(path):
+    """Trimmed surface area as Open CASCADE computes it (trims included)."""
+    if path.endswith((".igs", ".iges")):
+        o.IGESControl.IGESControl_Controller.Init_s()
+        rd = o.IGESControl.IGESControl_Reader()
+    else:
+        rd = o.STEPControl.STEPControl_Reader()
+    rd.ReadFile(path)
+    rd.TransferRoots()
+    props = o.GProp.GProp_GProps()
+    o.BRepGProp.BRepGProp.SurfaceProperties_s(rd.OneShape(), props)
+    return props.Mass()
+
+
 def main(files):
     worst, checked, failures = 0.0, 0, []
     tmp = tempfile.mkdtemp()
@@ -60,6 +74,11 @@ def main(files):
             except Exception as e:  # noqa: BLE001 - report and continue
                 failures.append(f"{out}: {e}")
                 continue
+            if ext == "igs" and src.endswith((".igs", ".iges")):
+                # Trim loops survive: OCCT's trimmed area of the written file equals the original's.
+                a0, a1 = occt_area(src), occt_area(out)
+                if abs(a0 - a1) > 1e-9 * max(1.0, abs(a0)):
+                    failures.append(f"{out}: OCCT trimmed area {a1} differs from the original's {a0}")
             if len(theirs) != len(mine):
                 failures.append(f"{out}: OCCT reads {len(theirs)} faces, vericad wrote {len(mine)}")
                 continue

@@ -89,7 +89,7 @@ pub fn write_model(
         .filter(|s| !s.trim_loops.is_empty())
         .count();
     let fmt = format_of(path);
-    if trimmed > 0 && fmt != Some(Format::Json) {
+    if trimmed > 0 && !matches!(fmt, Some(Format::Json | Format::Iges)) {
         warnings.push(format!("{trimmed} surface(s) have trim loops, which this writer does not store: written untrimmed"));
     }
     if !m.triangulations.is_empty()

@@ -38,9 +38,51 @@ fn hol(s: &str) -> String {
     format!("{}H{s}", s.len())
 }
 
-/// Write the model's surfaces (128) and 3D curves (126).
+/// Parameter text of a 126 entity.
+fn curve_126(g: &crate::spline::NurbsCurve<f64, 3>) -> String {
+    let (pts, w) = g.points_weights();
+    let k = pts.len() - 1;
+    let mut t = format!(
+        "126,{k},{},0,0,{},0,",
+        g.hom.degree(),
+        if w.iter().all(|x| *x == w[0]) { 1 } else { 0 }
+    );
+    for x in g.hom.knots.knots() {
+        t += &format!("{},", real(*x));
+    }
+    for x in &w {
+        t += &format!("{},", real(*x));
+    }
+    for p in &pts {
+        t += &format!("{},{},{},", real(p[0]), real(p[1]), real(p[2]));
+    }
+    let (a, b) = g.hom.domain();
+    t += &format!("{},{},0.,0.,1.;", real(a), real(b));
+    t
+}
+
+/// A parameter-space curve as a 3D curve with z = 0.
+fn lift_2d(d: &crate::spline::NurbsCurve<f64, 2>) -> Option<crate::spline::NurbsCurve<f64, 3>> {
+    let (p, w) = d.points_weights();
+    crate::spline::NurbsCurve::new(
+        d.hom.knots.knots().to_vec(),
+        d.hom.degree(),
+        p.iter().map(|q| [q[0], q[1], 0.0]).collect(),
+        w,
+    )
+    .ok()
+}
+
+/// Status of independent entities and of entities used by others (physically dependent,
+/// parametric use).
+const INDEPENDENT: &str = "00000000";
+const DEPENDENT: &str = "00010500";
+
+/// Write the model's surfaces (128, and 144 with 142/102/126 when they have trim loops) and
+/// 3D curves (126).
 pub fn to_string(m: &Model, name: &str) -> String {
-    let mut params: Vec<(i64, String)> = Vec::new();
+    let mut params: Vec<(i64, String, &str)> = Vec::new();
+    let de_next = |params: &Vec<(i64, String, &str)>| 2 * params.len() + 1;
     for s in &m.surfaces {
         let h = &s.nurbs.hom;
         let (pts, w) = s.nurbs.points_weights();
@@ -69,7 +111,51 @@ pub fn to_string(m: &Model, name: &str) -> String {
         }
         let (u0, u1, v0, v1) = h.domain();
         t += &format!("{},{},{},{};", real(u0), real(u1), real(v0), real(v1));
-        params.push((128, t));
+        let trimmed = !s.trim_loops.is_empty();
+        let sde = de_next(&params);
+        params.push((128, t, if trimmed { "00010000" } else { INDEPENDENT }));
+        if trimmed {
+            let (mut outer, mut holes) = (None, Vec::new());
+            for l in &s.trim_loops {
+                let mut des = Vec::new();
+                for c in &l.curves {
+                    if let Some(g) = lift_2d(c) {
+                        des.push(de_next(&params));
+                        params.push((126, curve_126(&g), DEPENDENT));
+                    }
+                }
+                let bde = if des.len() == 1 {
+                    des[0]
+                } else {
+                    let d = de_next(&params);
+                    let list: Vec<String> = des.iter().map(|x| x.to_string()).collect();
+                    params.push((
+                        102,
+                        format!("102,{},{};", des.len(), list.join(",")),
+                        DEPENDENT,
+                    ));
+                    d
+                };
+                let cde = de_next(&params);
+                params.push((142, format!("142,1,{sde},{bde},0,1;"), DEPENDENT));
+                if l.outer && outer.is_none() {
+                    outer = Some(cde);
+                } else {
+                    holes.push(cde);
+                }
+            }
+            let hs: String = holes.iter().map(|h| format!(",{h}")).collect();
+            params.push((
+                144,
+                format!(
+                    "144,{sde},{},{},{}{hs};",
+                    usize::from(outer.is_some()),
+                    holes.len(),
+                    outer.unwrap_or(0)
+                ),
+                INDEPENDENT,
+            ));
+        }
     }
     for c in &m.curves {
         // Domain curves are written as 3D curves with z = 0 (the IGES convention for curves
@@ -94,36 +180,18 @@ pub fn to_string(m: &Model, name: &str) -> String {
                 }
             }
         };
-        let (pts, w) = g.points_weights();
-        let k = pts.len() - 1;
-        let mut t = format!(
-            "126,{k},{},0,0,{},0,",
-            g.hom.degree(),
-            if w.iter().all(|x| *x == w[0]) { 1 } else { 0 }
-        );
-        for x in g.hom.knots.knots() {
-            t += &format!("{},", real(*x));
-        }
-        for x in &w {
-            t += &format!("{},", real(*x));
-        }
-        for p in &pts {
-            t += &format!("{},{},{},", real(p[0]), real(p[1]), real(p[2]));
-        }
-        let (a, b) = g.hom.domain();
-        t += &format!("{},{},0.,0.,0.;", real(a), real(b));
-        params.push((126, t));
+        params.push((126, curve_126(g), INDEPENDENT));
     }
     let mut d = Vec::new();
     let mut p = Vec::new();
     let mut pseq = 1;
-    for (i, (ty, t)) in params.iter().enumerate() {
+    for (i, (ty, t, status)) in params.iter().enumerate() {
         let de = 2 * i + 1;
         let start = pseq;
         let n = p_lines(t, de, &mut pseq, &mut p);
         d.push(format!(
             "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
-            0, 0, 0, 0, 0, 0, "00000000", de
+            0, 0, 0, 0, 0, 0, status, de
         ));
         d.push(format!(
             "{ty:>8}{:>8}{:>8}{n:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
