@@ -295,3 +295,19 @@ fn iges_trim_loops_are_kept_and_closed() {
             .collect::<Vec<_>>()
     );
 }
+
+/// occt-bad_header.igs has the invalid units flag 0: read as the IGES default, inch (as Open
+/// CASCADE reads it), with a warning; written back with flag 1.
+#[test]
+fn invalid_iges_units_flag_falls_back_to_inch_with_a_warning() {
+    let m = read_model(&data("occt-bad_header.igs")).unwrap();
+    assert_eq!(m.unit.as_deref(), Some("inch"));
+    assert!(
+        m.warnings.iter().any(|w| w.contains("units flag")),
+        "{:?}",
+        m.warnings
+    );
+    let again = iges::from_str(&iges::write::to_string(&m, "x"), "x.igs").unwrap();
+    assert_eq!(again.unit.as_deref(), Some("inch"));
+    assert!(again.warnings.is_empty(), "{:?}", again.warnings);
+}

@@ -200,20 +200,36 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
     match split_params(g, pd, rd) {
         Ok(gp) => {
             let flag = gp.get(13).and_then(|p| p.num());
-            unit = match (flag, gp.get(14)) {
-                (_, Some(Param::Str(n))) if !n.is_empty() => Some(crate::model::normalize_unit(n)),
-                (Some(f), _) => Some(
-                    match f as i64 {
-                        1 => "inch",
-                        2 => "mm",
-                        4 => "ft",
-                        6 => "m",
-                        10 => "cm",
-                        _ => "other",
-                    }
-                    .to_string(),
-                ),
+            // Units flag (Global 14): 1 inch (the IGES default), 2 mm, 3 named in Global 15,
+            // 4 ft, 5 mi, 6 m, 7 km, 8 mil, 9 micron, 10 cm, 11 microinch.
+            let by_flag = |f: i64| -> Option<&'static str> {
+                Some(match f {
+                    1 => "inch",
+                    2 => "mm",
+                    4 => "foot",
+                    5 => "mile",
+                    6 => "m",
+                    7 => "km",
+                    8 => "mil",
+                    9 => "um",
+                    10 => "cm",
+                    11 => "microinch",
+                    _ => return None,
+                })
+            };
+            let name = match gp.get(14) {
+                Some(Param::Str(n)) if !n.is_empty() => Some(crate::model::normalize_unit(n)),
                 _ => None,
+            };
+            unit = match flag.map(|f| f as i64) {
+                Some(3) => name.or(Some("inch".into())),
+                Some(f) if by_flag(f).is_some() => by_flag(f).map(String::from),
+                f => {
+                    warnings.push(format!(
+                        "units flag {f:?} is not valid; the IGES default (inch) is used"
+                    ));
+                    Some("inch".into())
+                }
             };
         }
         Err(e) => warnings.push(format!("global section unreadable ({e}); defaults used")),

@@ -210,9 +210,15 @@ pub fn to_string(m: &Model, name: &str) -> String {
         "inch" | "in" => 1,
         "mm" => 2,
         "ft" | "foot" => 4,
+        "mile" => 5,
         "m" => 6,
+        "km" => 7,
+        "mil" => 8,
+        "um" => 9,
         "cm" => 10,
-        _ => 2,
+        "microinch" => 11,
+        // Any other unit: flag 3, named in Global parameter 15.
+        _ => 3,
     };
     let g = format!(
         "1H,,1H;,{},{},{},{},32,38,6,308,15,{},1.0,{flag},{},1,0.0,15H20260101.000000,1.0E-9,0.0,0H,0H,11,0,15H20260101.000000;",
