@@ -260,3 +260,44 @@ fn viewing_formats_are_consistent() {
     let info: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert_eq!(info["surfaces"][0]["degree"], serde_json::json!([1, 1]));
 }
+
+#[test]
+fn convert_format_override_and_binary_stl() {
+    let d = tmp("fmt");
+    let src =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/gmsh-surface1.stl");
+    let ascii = vericad::io::read_model(&src).unwrap();
+    let bin = d.join("b.stl");
+    let (code, _, stderr) = vericad(&[
+        "convert",
+        src.to_str().unwrap(),
+        bin.to_str().unwrap(),
+        "--format",
+        "stl-binary",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let back = vericad::io::read_model(&bin).unwrap();
+    let (a, b) = (&ascii.triangulations[0], &back.triangulations[0]);
+    assert_eq!(
+        (a.vertices.len(), a.triangles.len()),
+        (b.vertices.len(), b.triangles.len())
+    );
+    // Binary STL stores f32: coordinates agree to f32 rounding.
+    for (p, q) in a.vertices.iter().zip(&b.vertices) {
+        for k in 0..3 {
+            assert!((p[k] - q[k]).abs() <= p[k].abs() * 1e-7 + 1e-30);
+        }
+    }
+    let out = d.join("noext");
+    let igs =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/occt-BUC50025.igs");
+    let (code, _, _) = vericad(&[
+        "convert",
+        igs.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--format",
+        "step",
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(vericad::io::step::read(&out).unwrap().surfaces.len(), 7);
+}

@@ -42,7 +42,13 @@ pub enum Command {
     },
     /// Convert a model between formats (from the extensions: .json, .step/.stp, .igs/.iges,
     /// .stl). Analytic surfaces are written as their exact NURBS forms.
-    Convert { input: PathBuf, output: PathBuf },
+    Convert {
+        input: PathBuf,
+        output: PathBuf,
+        /// Output format, overriding the extension: json, step, iges, stl, stl-binary, vtp, obj.
+        #[arg(long)]
+        format: Option<String>,
+    },
     /// Approximate the image of a domain curve on a B-spline surface by Bézier curves of degree
     /// p+q lying exactly on it, with a proven Hausdorff bound (Yang et al. 2008).
     CurveOnSurface {
@@ -173,12 +179,16 @@ pub fn run(cli: Cli) -> i32 {
                 }
             }
         }
-        Command::Convert { input, output } => {
+        Command::Convert {
+            input,
+            output,
+            format,
+        } => {
             let m = match crate::io::read_model(&input) {
                 Ok(m) => m,
                 Err(e) => return bad(e),
             };
-            match crate::io::write_model(&output, &m) {
+            match crate::io::write_model_as(&output, &m, format.as_deref()) {
                 Ok(warnings) => {
                     for w in warnings {
                         eprintln!("warning: {w}");

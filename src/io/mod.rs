@@ -75,20 +75,51 @@ pub enum WriteError {
     Io(String, std::io::Error),
 }
 
-/// Write a model in the format named by the path's extension. Returns what the format
-/// could not hold (e.g. trim loops in IGES 128 / STEP geometric sets), so nothing is lost
-/// silently.
+/// Write a model in the format named by the path's extension.
 pub fn write_model(
     path: &std::path::Path,
     m: &crate::model::Model,
 ) -> Result<Vec<String>, WriteError> {
+    write_model_as(path, m, None)
+}
+
+/// Format names accepted by `--format`.
+pub const FORMAT_NAMES: &str = "json, step, iges, stl, stl-binary, vtp, obj";
+
+/// Write a model in the format named by `format` (see [`FORMAT_NAMES`]) or, when `None`, by
+/// the path's extension. Returns what the format could not hold (e.g. trim loops in IGES 128 / STEP geometric sets), so nothing is lost
+/// silently.
+pub fn write_model_as(
+    path: &std::path::Path,
+    m: &crate::model::Model,
+    format: Option<&str>,
+) -> Result<Vec<String>, WriteError> {
     let mut warnings = Vec::new();
+    let ext = match format {
+        Some(f) => f.to_ascii_lowercase(),
+        None => path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase(),
+    };
+    let name0 = path.display().to_string();
+    if ext == "stl-binary" {
+        let t = m
+            .triangulations
+            .first()
+            .ok_or_else(|| WriteError::NoTriangulation(name0.clone()))?;
+        std::fs::write(path, stl::to_binary(t)).map_err(|e| WriteError::Io(name0, e))?;
+        return Ok(warnings);
+    }
+    let for_format = std::path::PathBuf::from(format!("x.{ext}"));
+    let path_fmt = for_format.as_path();
     let trimmed = m
         .surfaces
         .iter()
         .filter(|s| !s.trim_loops.is_empty())
         .count();
-    let fmt = format_of(path);
+    let fmt = format_of(path_fmt);
     if trimmed > 0 && !matches!(fmt, Some(Format::Json | Format::Iges)) {
         warnings.push(format!("{trimmed} surface(s) have trim loops, which this writer does not store: written untrimmed"));
     }
@@ -105,7 +136,7 @@ pub fn write_model(
         .file_name()
         .and_then(|s| s.to_str())
         .unwrap_or("vericad");
-    let text = match format_of(path) {
+    let text = match format_of(path_fmt) {
         Some(Format::Json) => crate::model::json::to_string(m),
         Some(Format::Step) => step::write::to_string(m, stem),
         Some(Format::Iges) => iges::write::to_string(m, stem),
@@ -114,12 +145,7 @@ pub fn write_model(
             Some(t) => stl::to_string(t),
             None => return Err(WriteError::NoTriangulation(name)),
         },
-        None => match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase())
-            .as_deref()
-        {
+        None => match Some(ext.as_str()) {
             Some("vtp") => vtk::model_to_vtp(m, 16),
             Some("obj") => obj::model_to_obj(m, 16),
             _ => return Err(WriteError::UnknownFormat(name)),

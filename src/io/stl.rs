@@ -146,3 +146,29 @@ pub fn to_string(t: &Triangulation) -> String {
     s += &format!("endsolid {}\n", t.name);
     s
 }
+
+/// Binary STL of a triangulation (normals from the vertices, single precision as the format
+/// prescribes: coordinates are rounded to f32).
+pub fn to_binary(t: &Triangulation) -> Vec<u8> {
+    let mut b = vec![0u8; 80];
+    let name = t.name.as_bytes();
+    b[..name.len().min(80)].copy_from_slice(&name[..name.len().min(80)]);
+    b.extend((t.triangles.len() as u32).to_le_bytes());
+    for tri in &t.triangles {
+        let p = tri.map(|v| t.vertices[v as usize]);
+        let e1 = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+        let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+        let n = crate::geom::cross(&e1, &e2);
+        let l = crate::geom::norm(&n);
+        let n = if l > 0.0 {
+            [n[0] / l, n[1] / l, n[2] / l]
+        } else {
+            [0.0; 3]
+        };
+        for x in n.iter().chain(p.iter().flatten()) {
+            b.extend((*x as f32).to_le_bytes());
+        }
+        b.extend([0u8, 0u8]);
+    }
+    b
+}

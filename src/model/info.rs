@@ -43,6 +43,8 @@ pub struct ModelInfo {
     pub bbox: Option<[[f64; 3]; 2]>,
     /// Faces/surfaces by source kind (B-spline, plane, sphere, ...).
     pub surfaces_by_kind: std::collections::BTreeMap<String, usize>,
+    /// Surfaces by degree `"p x q"`.
+    pub surfaces_by_degree: std::collections::BTreeMap<String, usize>,
     pub bspline_rational: usize,
     pub bspline_polynomial: usize,
     pub analytic: usize,
@@ -127,8 +129,14 @@ pub fn summarize(m: &Model) -> ModelInfo {
             .filter(|s| !s.kind.is_analytic() && s.nurbs.is_polynomial() != rational)
             .count()
     };
+    let mut by_degree = std::collections::BTreeMap::new();
+    for s in &m.surfaces {
+        let (p, q) = s.nurbs.hom.degrees();
+        *by_degree.entry(format!("{p}x{q}")).or_insert(0) += 1;
+    }
     ModelInfo {
         unit: m.unit.clone(),
+        surfaces_by_degree: by_degree,
         bspline_rational: bs(true),
         bspline_polynomial: bs(false),
         analytic: m.surfaces.iter().filter(|s| s.kind.is_analytic()).count(),
@@ -187,6 +195,9 @@ impl std::fmt::Display for ModelInfo {
                 f,
                 "  triangulation '{n}': {v} vertices (welded), {t} triangles"
             )?;
+        }
+        if !self.surfaces_by_degree.is_empty() {
+            writeln!(f, "  surfaces by degree: {:?}", self.surfaces_by_degree)?;
         }
         for w in &self.warnings {
             writeln!(f, "  warning: {w}")?;

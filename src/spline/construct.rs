@@ -79,30 +79,51 @@ pub fn revolve_curve(
     z: &[f64; 3],
     c: &NurbsCurve<f64, 3>,
 ) -> Result<NurbsSurface<f64, 3>, SplineError> {
-    let (cp, cw) = c.points_weights();
-    let n = cp.len();
-    let mut pts = Vec::with_capacity(9 * n);
-    let mut ws = Vec::with_capacity(9 * n);
-    for (circ, wc) in UNIT_CIRCLE {
-        for (p, wp) in cp.iter().zip(&cw) {
+    revolve_curve_range(o, z, c, 0.0, std::f64::consts::TAU)
+}
+
+/// Revolve a 3D NURBS profile about the axis through `o` with unit direction `z` from angle
+/// `a0` to `a1` (radians; the profile's position is angle 0): the u direction is the arc of
+/// [`arc`] (pieces of at most 90°, weights `cos(Δ/2)`), v the profile.
+pub fn revolve_curve_range(
+    o: &[f64; 3],
+    z: &[f64; 3],
+    c: &NurbsCurve<f64, 3>,
+    a0: f64,
+    a1: f64,
+) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let unit = Frame {
+        o: [0.0; 3],
+        x: [1.0, 0.0, 0.0],
+        y: [0.0, 1.0, 0.0],
+        z: [0.0, 0.0, 1.0],
+    };
+    let circle = arc(&unit, 1.0, a0, a1)?;
+    let (cpts, cws) = circle.points_weights();
+    let (pp, pw) = c.points_weights();
+    let n = pp.len();
+    let mut pts = Vec::with_capacity(cpts.len() * n);
+    let mut ws = Vec::with_capacity(cpts.len() * n);
+    for (cp, wc) in cpts.iter().zip(&cws) {
+        for (p, wp) in pp.iter().zip(&pw) {
             let rel = p.sub(o);
             let h = crate::geom::dot(&rel, z);
             let radial = rel.sub(&z.scale(&h));
             let y = crate::geom::cross(z, &radial);
             pts.push(
                 o.add(&z.scale(&h))
-                    .add(&radial.scale(&circ[0]))
-                    .add(&y.scale(&circ[1])),
+                    .add(&radial.scale(&cp[0]))
+                    .add(&y.scale(&cp[1])),
             );
             ws.push(wc * wp);
         }
     }
     NurbsSurface::new(
-        CIRCLE_KNOTS.to_vec(),
+        circle.hom.knots.knots().to_vec(),
         2,
         c.hom.knots.knots().to_vec(),
         c.hom.degree(),
-        9,
+        cpts.len(),
         n,
         pts,
         ws,
@@ -244,6 +265,32 @@ mod tests {
             z,
         }
     }
+    #[test]
+    fn partial_revolution_is_exact() {
+        // A line parallel to the axis at distance 2, revolved over 30°..200°: a cylinder piece.
+        let prof = NurbsCurve::new(
+            vec![0.0, 0.0, 1.0, 1.0],
+            1,
+            vec![[2.0, 0.0, -1.0], [2.0, 0.0, 3.0]],
+            vec![1.0, 1.0],
+        )
+        .unwrap();
+        let (a0, a1) = (30f64.to_radians(), 200f64.to_radians());
+        let s = revolve_curve_range(&[0.0; 3], &[0.0, 0.0, 1.0], &prof, a0, a1).unwrap();
+        for i in 0..=30 {
+            for j in 0..=4 {
+                let p = s.eval(&(i as f64 / 30.0), &(j as f64 / 4.0));
+                assert!(((p[0] * p[0] + p[1] * p[1]).sqrt() - 2.0).abs() < 1e-14);
+                let ang = p[1].atan2(p[0]).rem_euclid(std::f64::consts::TAU);
+                assert!(ang >= a0 - 1e-12 && ang <= a1 + 1e-12, "{ang}");
+            }
+        }
+        let start = s.eval(&0.0, &0.0);
+        assert!(
+            (start[0] - 2.0 * a0.cos()).abs() < 1e-14 && (start[1] - 2.0 * a0.sin()).abs() < 1e-14
+        );
+    }
+
     #[test]
     fn closed_forms_hold_at_many_parameters() {
         let f = frame();

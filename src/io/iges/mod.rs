@@ -558,7 +558,17 @@ impl Reader<'_> {
                 if l == 0.0 {
                     return self.err(de, "degenerate axis");
                 }
-                let s = construct::revolve_curve(&ap[0], &d.scale(&(1.0 / l)), &g)
+                // SA, TA (parameters 3, 4 of the 120): the angular range, radians.
+                let sa = self.nums(de, 3, 2)?;
+                let (sa, ta) = (
+                    sa[0],
+                    if sa[1] > sa[0] {
+                        sa[1]
+                    } else {
+                        sa[0] + std::f64::consts::TAU
+                    },
+                );
+                let s = construct::revolve_curve_range(&ap[0], &d.scale(&(1.0 / l)), &g, sa, ta)
                     .or_else(|e| self.err(de, e.to_string()))?;
                 Ok(Some((s, SurfaceKind::Revolution)))
             }
