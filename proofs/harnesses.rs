@@ -102,6 +102,65 @@ pub fn prop_find_span_brackets(inner: [i8; 3], t2: i8) {
     }
 }
 
+// ---------------------------------------------------------------- point-to-segment distance
+
+/// The exact squared distance from `p` to segment `[a, b]` used by the curve-on-surface
+/// Hausdorff bound is the minimum of `f(t) = |p - a - t (b - a)|²` on `[0, 1]`, certified by
+/// optimality (KKT) conditions of this convex quadratic, checked in exact integer arithmetic:
+/// the value is attained at some `t* ∈ [0, 1]`, and `f'(t*) = 0` (interior), `f'(0) >= 0`
+/// (at `a`) or `f'(1) <= 0` (at `b`).
+pub fn prop_segment_distance_is_the_minimum(p: [i8; 2], a: [i8; 2], b: [i8; 2]) {
+    use num_rational::BigRational as Q;
+    use vericad::curve_on_surface::hausdorff::dist2_point_segment;
+    let q = |x: [i8; 2]| {
+        [
+            Q::from_integer((x[0] as i64).into()),
+            Q::from_integer((x[1] as i64).into()),
+        ]
+    };
+    let d2 = dist2_point_segment(&q(p), &q(a), &q(b));
+    let (px, py, ax, ay, bx, by) = (
+        p[0] as i64,
+        p[1] as i64,
+        a[0] as i64,
+        a[1] as i64,
+        b[0] as i64,
+        b[1] as i64,
+    );
+    let (ex, ey) = (bx - ax, by - ay);
+    let len2 = ex * ex + ey * ey;
+    // f(t) = |p-a|² - 2 t (p-a)·e + t² |e|²; f'(t) = 2 (t |e|² - (p-a)·e).
+    let pa2 = (px - ax).pow(2) + (py - ay).pow(2);
+    let dot = (px - ax) * ex + (py - ay) * ey;
+    let f = |t: Q| -> Q {
+        Q::from_integer(pa2.into()) - Q::from_integer((2 * dot).into()) * t.clone()
+            + Q::from_integer(len2.into()) * t.clone() * t
+    };
+    if len2 == 0 {
+        assert_eq!(d2, Q::from_integer(pa2.into()));
+        return;
+    }
+    let t_star = if dot <= 0 {
+        Q::from_integer(0.into())
+    } else if dot >= len2 {
+        Q::from_integer(1.into())
+    } else {
+        Q::new(dot.into(), len2.into())
+    };
+    // Attained at t*, with the optimality conditions.
+    assert_eq!(d2, f(t_star.clone()), "{p:?} {a:?} {b:?}");
+    let fp = |t: &Q| Q::from_integer(len2.into()) * t.clone() - Q::from_integer(dot.into());
+    let zero = Q::from_integer(0.into());
+    let one = Q::from_integer(1.into());
+    if t_star == zero {
+        assert!(fp(&zero) >= zero);
+    } else if t_star == one {
+        assert!(fp(&one) <= zero);
+    } else {
+        assert_eq!(fp(&t_star), zero);
+    }
+}
+
 // ---------------------------------------------------------------- Kani drivers
 
 #[cfg(kani)]
@@ -127,6 +186,13 @@ mod kani_drivers {
         let t2: i8 = kani::any();
         kani::assume(inner.iter().all(|x| (0..=8).contains(x)));
         prop_find_span_brackets(inner, t2);
+    }
+    #[kani::proof]
+    #[kani::unwind(8)]
+    fn segment_distance_is_the_minimum() {
+        let (p, a, b): ([i8; 2], [i8; 2], [i8; 2]) = (kani::any(), kani::any(), kani::any());
+        kani::assume(p.iter().chain(&a).chain(&b).all(|x| (-4..=4).contains(x)));
+        prop_segment_distance_is_the_minimum(p, a, b);
     }
     #[kani::proof]
     #[kani::unwind(8)]
@@ -206,6 +272,25 @@ fn single_sided_cubic_closed_form_exhaustive() {
                     [d(2), d(3)],
                     [d(1), d(0)],
                 ]);
+            }
+        }
+    }
+}
+
+/// Exhaustive over `p, a, b ∈ [-2, 2]²` (5^6 = 15,625 triples).
+#[test]
+fn segment_distance_is_the_minimum_exhaustive() {
+    let r = -2i8..=2;
+    for px in r.clone() {
+        for py in r.clone() {
+            for ax in r.clone() {
+                for ay in r.clone() {
+                    for bx in r.clone() {
+                        for by in r.clone() {
+                            prop_segment_distance_is_the_minimum([px, py], [ax, ay], [bx, by]);
+                        }
+                    }
+                }
             }
         }
     }

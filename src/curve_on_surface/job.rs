@@ -1,7 +1,7 @@
 //! The `curve-on-surface` job: pick the surface and domain curve from model files, run the
 //! algorithm, write the JSON result and an optional SVG plot of the domain.
 
-use super::{CosError, CurveOnSurface, Params, approximate};
+use super::{CosError, CurveOnSurface, Params, approximate_with_progress};
 use crate::model::{CurveGeometry, ModelError};
 use crate::spline::NurbsCurve;
 
@@ -105,7 +105,19 @@ pub fn run(
             ),
         )
     })?;
-    let r = approximate(&surf.nurbs, curve, params)?;
+    let r = {
+        // Progress on stderr once a run takes longer than a second.
+        let start = std::time::Instant::now();
+        let mut report = |stage: &str, n: usize| {
+            if start.elapsed().as_secs_f64() > 1.0 {
+                eprintln!(
+                    "[{:>7.1} s] {stage}: {n} segments",
+                    start.elapsed().as_secs_f64()
+                );
+            }
+        };
+        approximate_with_progress(&surf.nurbs, curve, params, &mut report)?
+    };
     if let Some(o) = out {
         std::fs::write(o, serde_json::to_string_pretty(&r).unwrap_or_default())
             .map_err(|e| JobError::Write(o.display().to_string(), e))?;

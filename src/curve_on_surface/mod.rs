@@ -178,6 +178,16 @@ pub fn approximate(
     curve: &NurbsCurve<f64, 2>,
     params: &Params,
 ) -> Result<CurveOnSurface, CosError> {
+    approximate_with_progress(surface, curve, params, &mut |_, _| {})
+}
+
+/// [`approximate`], reporting each step's name and segment count to `progress`.
+pub fn approximate_with_progress(
+    surface: &NurbsSurface<f64, 3>,
+    curve: &NurbsCurve<f64, 2>,
+    params: &Params,
+    progress: &mut dyn FnMut(&str, usize),
+) -> Result<CurveOnSurface, CosError> {
     let start = std::time::Instant::now();
     if !(params.eps_d > 0.0
         && params.eps_d.is_finite()
@@ -207,6 +217,7 @@ pub fn approximate(
 
     let cells = cells::Cells::new(&s, params.eps_d);
     let (pieces, segs) = split::split(&d, &cells)?;
+    progress("split at knots and knot lines", segs.len());
     let n_pieces = pieces.len();
     let after_split = segs.len();
     let (segs, side) = sidedness::make_single_sided(segs, &pieces, &cells);
@@ -219,6 +230,7 @@ pub fn approximate(
         params.max_segments,
     )?;
     let after_distance = segs.len();
+    progress("distance bound", segs.len());
     let closed = segs.first().map(|f| f.a) == segs.last().map(|l| l.b)
         && segs.len() > 1
         && d.eval(&d.domain().0) == d.eval(&d.domain().1);
@@ -238,7 +250,9 @@ pub fn approximate(
         params.bound,
         params.max_segments,
     )?;
+    progress("eps_T pass", segs.len());
     let (mapped, rounding) = map::map_segments(&segs, &cells)?;
+    progress("mapped exactly", mapped.len());
 
     let bound = segs
         .iter()
