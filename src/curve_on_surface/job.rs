@@ -78,23 +78,7 @@ pub fn run(
     let domain_curves: Vec<NurbsCurve<f64, 2>> = cm
         .curves
         .iter()
-        .filter_map(|c| match &c.geometry {
-            CurveGeometry::Domain(d) => Some(d.clone()),
-            CurveGeometry::Space(s) => {
-                let (p, w) = s.points_weights();
-                if p.iter().all(|q| q[2] == 0.0) {
-                    NurbsCurve::new(
-                        s.hom.knots.knots().to_vec(),
-                        s.hom.degree(),
-                        p.iter().map(|q| [q[0], q[1]]).collect(),
-                        w,
-                    )
-                    .ok()
-                } else {
-                    None
-                }
-            }
-        })
+        .filter_map(|c| c.geometry.to_domain())
         .collect();
     let curve = domain_curves.get(ci).ok_or_else(|| {
         JobError::Select(

@@ -18,6 +18,47 @@ pub enum CurveGeometry {
     Space(NurbsCurve<f64, 3>),
 }
 
+impl CurveGeometry {
+    /// The curve in space; a domain curve `(u, v)` is lifted to `(u, v, 0)` (the IGES
+    /// convention for curves in a parameter plane). Exact: control points and weights kept.
+    pub fn to_space(&self) -> NurbsCurve<f64, 3> {
+        match self {
+            CurveGeometry::Space(s) => s.clone(),
+            CurveGeometry::Domain(d) => NurbsCurve {
+                hom: d.hom.map(
+                    |k| *k,
+                    |h| crate::geom::Hom {
+                        wp: [h.wp[0], h.wp[1], 0.0],
+                        w: h.w,
+                    },
+                ),
+            },
+        }
+    }
+    /// The curve as a domain curve `(u, v)`: a space curve qualifies when every control point
+    /// has `z = 0` (the inverse of [`Self::to_space`]).
+    pub fn to_domain(&self) -> Option<NurbsCurve<f64, 2>> {
+        match self {
+            CurveGeometry::Domain(d) => Some(d.clone()),
+            CurveGeometry::Space(s) => {
+                s.hom
+                    .control
+                    .iter()
+                    .all(|h| h.wp[2] == 0.0)
+                    .then(|| NurbsCurve {
+                        hom: s.hom.map(
+                            |k| *k,
+                            |h| crate::geom::Hom {
+                                wp: [h.wp[0], h.wp[1]],
+                                w: h.w,
+                            },
+                        ),
+                    })
+            }
+        }
+    }
+}
+
 /// A named curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {

@@ -458,19 +458,19 @@ impl Reader<'_> {
         let Some(segs) = self.segments(de, 0)? else {
             return Ok(None);
         };
-        let curves = segs
-            .iter()
-            .map(|c| {
-                let (p, w) = c.points_weights();
-                NurbsCurve::new(
-                    c.hom.knots.knots().to_vec(),
-                    c.hom.degree(),
-                    p.iter().map(|q| [q[0], q[1]]).collect(),
-                    w,
-                )
-                .or_else(|e| self.err(de, e.to_string()))
+        // Parameter-space curves: x, y are u, v (z, normally 0, is dropped as IGES prescribes).
+        let curves: Vec<NurbsCurve<f64, 2>> = segs
+            .into_iter()
+            .map(|c| NurbsCurve {
+                hom: c.hom.map(
+                    |k| *k,
+                    |h| crate::geom::Hom {
+                        wp: [h.wp[0], h.wp[1]],
+                        w: h.w,
+                    },
+                ),
             })
-            .collect::<R<Vec<_>>>()?;
+            .collect();
         Ok(Some(TrimLoop { outer, curves }))
     }
     /// Trim loops of a face entity (144 via 142 curves on surface, 143 via 141 boundaries);

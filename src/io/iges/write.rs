@@ -61,18 +61,6 @@ fn curve_126(g: &crate::spline::NurbsCurve<f64, 3>) -> String {
     t
 }
 
-/// A parameter-space curve as a 3D curve with z = 0.
-fn lift_2d(d: &crate::spline::NurbsCurve<f64, 2>) -> Option<crate::spline::NurbsCurve<f64, 3>> {
-    let (p, w) = d.points_weights();
-    crate::spline::NurbsCurve::new(
-        d.hom.knots.knots().to_vec(),
-        d.hom.degree(),
-        p.iter().map(|q| [q[0], q[1], 0.0]).collect(),
-        w,
-    )
-    .ok()
-}
-
 /// Status of independent entities and of entities used by others (physically dependent,
 /// parametric use).
 const INDEPENDENT: &str = "00000000";
@@ -119,10 +107,12 @@ pub fn to_string(m: &Model, name: &str) -> String {
             for l in &s.trim_loops {
                 let mut des = Vec::new();
                 for c in &l.curves {
-                    if let Some(g) = lift_2d(c) {
-                        des.push(de_next(&params));
-                        params.push((126, curve_126(&g), DEPENDENT));
-                    }
+                    des.push(de_next(&params));
+                    params.push((
+                        126,
+                        curve_126(&CurveGeometry::Domain(c.clone()).to_space()),
+                        DEPENDENT,
+                    ));
                 }
                 let bde = if des.len() == 1 {
                     des[0]
@@ -160,26 +150,8 @@ pub fn to_string(m: &Model, name: &str) -> String {
     for c in &m.curves {
         // Domain curves are written as 3D curves with z = 0 (the IGES convention for curves
         // in a surface's parameter space).
-        let lifted;
-        let g = match &c.geometry {
-            CurveGeometry::Space(g) => g,
-            CurveGeometry::Domain(d) => {
-                let (p, w) = d.points_weights();
-                let pts = p.iter().map(|q| [q[0], q[1], 0.0]).collect();
-                match crate::spline::NurbsCurve::new(
-                    d.hom.knots.knots().to_vec(),
-                    d.hom.degree(),
-                    pts,
-                    w,
-                ) {
-                    Ok(c) => {
-                        lifted = c;
-                        &lifted
-                    }
-                    Err(_) => continue,
-                }
-            }
-        };
+        let lifted = c.geometry.to_space();
+        let g = &lifted;
         params.push((126, curve_126(g), INDEPENDENT));
     }
     let mut d = Vec::new();

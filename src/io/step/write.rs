@@ -2,7 +2,7 @@
 //! ones as complex instances). Reals are written with the shortest decimal that reads back
 //! to the same double, so a write/read round trip keeps every bit.
 
-use crate::model::{CurveGeometry, Model};
+use crate::model::Model;
 use std::fmt::Write;
 
 /// A real in Part 21 syntax (always with a decimal point).
@@ -96,26 +96,8 @@ pub fn to_string(m: &Model, name: &str) -> String {
     for c in &m.curves {
         // Domain curves are written as 3D curves with z = 0 (the IGES convention for curves
         // in a surface's parameter space).
-        let lifted;
-        let g = match &c.geometry {
-            CurveGeometry::Space(g) => g,
-            CurveGeometry::Domain(d) => {
-                let (p, w) = d.points_weights();
-                let pts = p.iter().map(|q| [q[0], q[1], 0.0]).collect();
-                match crate::spline::NurbsCurve::new(
-                    d.hom.knots.knots().to_vec(),
-                    d.hom.degree(),
-                    pts,
-                    w,
-                ) {
-                    Ok(c) => {
-                        lifted = c;
-                        &lifted
-                    }
-                    Err(_) => continue,
-                }
-            }
-        };
+        let lifted = c.geometry.to_space();
+        let g = &lifted;
         let (pts, w) = g.points_weights();
         let ids: Vec<u64> = pts.iter().map(|p| point(&mut data, p, &mut next)).collect();
         let (mu, ku) = knots_mults(g.hom.knots.knots());
