@@ -10,6 +10,7 @@
 //! * [`single_sided`] — a planar Bézier curve against its chord (Yang et al. §3);
 //! * [`poly`] — exact polynomials, Sturm sequences, root isolation.
 
+pub mod descartes;
 pub mod orient;
 pub mod point_in_triangle;
 pub mod poly;
