@@ -296,3 +296,61 @@ fn bad_inputs_get_typed_errors() {
         ));
     }
 }
+
+/// Degenerate positions relative to knot lines of the 17 × 17 surface (knots at i/14):
+/// a curve running exactly along the knot line u = 1/2, and a parabola touching it
+/// tangentially at t = 1/2 (a double root of u(t) - 1/2: no crossing, Sturm path).
+#[test]
+fn curves_along_and_tangent_to_knot_lines() {
+    let s = face();
+    let along = NurbsCurve::new(
+        vec![0., 0., 1., 1.],
+        1,
+        vec![[0.5, 0.1], [0.5, 0.9]],
+        vec![1.0; 2],
+    )
+    .unwrap();
+    // u(t) = 0.3 (1-t)² + 1.4 t (1-t) + 0.3 t² reaches 0.5 exactly at t = 1/2 (tangent).
+    let touch = NurbsCurve::new(
+        vec![0., 0., 0., 1., 1., 1.],
+        2,
+        vec![[0.3, 0.2], [0.7, 0.5], [0.3, 0.8]],
+        vec![1.0; 3],
+    )
+    .unwrap();
+    for (name, c) in [("along", along), ("tangent", touch)] {
+        let r = approximate(
+            &s,
+            &c,
+            &Params {
+                eps_d: 1e-3,
+                ..Params::default()
+            },
+        )
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(r.certificate.hausdorff_bound <= 1e-3, "{name}");
+        // Evidence is f64 sampling: allow its own rounding noise above an exact bound of ~0.
+        assert!(
+            r.evidence.max_distance_sampled <= r.certificate.hausdorff_bound + 1e-14,
+            "{name}: {} > {}",
+            r.evidence.max_distance_sampled,
+            r.certificate.hausdorff_bound
+        );
+        assert!(r.bspline.joints_exact, "{name}");
+        println!(
+            "{name}: {} segments, proven {:.3e}, measured {:.3e}",
+            r.num_segments, r.certificate.hausdorff_bound, r.evidence.max_distance_sampled
+        );
+        // Every chord stays inside one patch: both ends in the same knot rectangle.
+        let cell = |x: f64| (x * 14.0).floor().min(13.0);
+        for seg in &r.segments {
+            let [a, b] = seg.domain;
+            let (ca, cb) = ((cell(a[0]), cell(a[1])), (cell(b[0]), cell(b[1])));
+            let on_line = |x: f64| (x * 14.0).fract() == 0.0;
+            assert!(
+                ca == cb || on_line(a[0]) || on_line(a[1]) || on_line(b[0]) || on_line(b[1]),
+                "{name}: {a:?} -> {b:?}"
+            );
+        }
+    }
+}

@@ -83,15 +83,26 @@ pub fn measure(
                 (best.1 as f64 - 1.0) / k as f64,
                 (best.1 as f64 + 1.0) / k as f64,
             );
-            for _ in 0..40 {
-                let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
-                if dist(&image(m1), &x) < dist(&image(m2), &x) {
+            // Golden-section search to f64 resolution (the distance is V-shaped where the
+            // curves meet, so a coarse bracket would show up directly as distance).
+            let g = (5f64.sqrt() - 1.0) / 2.0;
+            let (mut m1, mut m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            let (mut f1, mut f2) = (dist(&image(m1), &x), dist(&image(m2), &x));
+            for _ in 0..90 {
+                if f1 < f2 {
                     hi = m2;
+                    (m2, f2) = (m1, f1);
+                    m1 = hi - g * (hi - lo);
+                    f1 = dist(&image(m1), &x);
                 } else {
                     lo = m1;
+                    (m1, f1) = (m2, f2);
+                    m2 = lo + g * (hi - lo);
+                    f2 = dist(&image(m2), &x);
                 }
             }
-            worst = worst.max(best.0.min(dist(&image((lo + hi) / 2.0), &x)));
+            let best = best.0.min(f1).min(f2);
+            worst = worst.max(best.min(dist(&image((lo + hi) / 2.0), &x)));
             n += 1;
         }
     }
