@@ -34,6 +34,9 @@ pub struct Cell {
 pub struct Cells {
     pub u_breaks: Vec<f64>,
     pub v_breaks: Vec<f64>,
+    /// The same breaks, lifted exactly once (for exact point location).
+    u_breaks_q: Vec<Q>,
+    v_breaks_q: Vec<Q>,
     /// Row-major: `cells[i * (v_breaks.len() - 1) + j]` covers `[u_i, u_{i+1}] × [v_j, v_{j+1}]`.
     pub cells: Vec<Cell>,
 }
@@ -69,7 +72,10 @@ impl Cells {
                 }
             })
             .collect();
+        let lifted = |b: &[f64]| b.iter().map(|x| lift::<Q>(*x)).collect();
         Cells {
+            u_breaks_q: lifted(&u_breaks),
+            v_breaks_q: lifted(&v_breaks),
             u_breaks,
             v_breaks,
             cells,
@@ -79,12 +85,11 @@ impl Cells {
     /// The cell whose closed rectangle contains `p` (exact comparisons); `None` outside the
     /// surface's domain.
     pub fn locate(&self, p: &[Q; 2]) -> Option<usize> {
-        let find = |br: &[f64], x: &Q| -> Option<usize> {
-            let n = br.len() - 1;
-            (0..n).find(|&i| lift::<Q>(br[i]) <= *x && *x <= lift::<Q>(br[i + 1]))
+        let find = |br: &[Q], x: &Q| -> Option<usize> {
+            (0..br.len() - 1).find(|&i| br[i] <= *x && *x <= br[i + 1])
         };
-        let i = find(&self.u_breaks, &p[0])?;
-        let j = find(&self.v_breaks, &p[1])?;
+        let i = find(&self.u_breaks_q, &p[0])?;
+        let j = find(&self.v_breaks_q, &p[1])?;
         Some(i * (self.v_breaks.len() - 1) + j)
     }
 

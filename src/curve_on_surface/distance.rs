@@ -79,17 +79,19 @@ pub fn enforce_distance(
         let mut out = Vec::with_capacity(segs.len());
         let mut changed = false;
         for mut s in segs {
+            // The exact sub-curve is built at most once per segment and pass.
+            let mut curve = None;
             if s.h.is_infinite() {
-                let c = s.curve(pieces);
-                s.k = lipschitz(&s, &c, cells, bound);
+                let c = curve.insert(s.curve(pieces));
+                s.k = lipschitz(&s, c, cells, bound);
                 let d = super::tolerance::tolerance_2d(eps_d, s.k);
-                s.h = hausdorff_bound(&c, &s.a, &s.b, s.ea.max(s.eb), d);
+                s.h = hausdorff_bound(c, &s.a, &s.b, s.ea.max(s.eb), d);
             }
             if (s.k * s.h).next_up() <= eps_d {
                 out.push(s);
             } else {
                 changed = true;
-                let c = s.curve(pieces);
+                let c = curve.unwrap_or_else(|| s.curve(pieces));
                 let (l, r) = s.split(&farthest_parameter(&c), pieces, cells);
                 out.push(l);
                 out.push(r);
