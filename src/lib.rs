@@ -17,5 +17,6 @@ pub mod model;
 pub mod predicates;
 pub mod scalar;
 pub mod spline;
+pub mod ssi;
 
 pub use scalar::{RealScalar, Scalar, Sign};

@@ -70,7 +70,12 @@ fn sides_of_coplanar_vertex<S: Scalar>(
 
 /// Sides for the point where segment `ab` crosses `t`'s plane; `sb` is the sign of `b`
 /// against that plane (non-zero).
-fn sides_of_crossing<S: Scalar>(t: &[[S; 3]; 3], a: &[S; 3], b: &[S; 3], sb: Sign) -> [Sign; 3] {
+pub(crate) fn sides_of_crossing<S: Scalar>(
+    t: &[[S; 3]; 3],
+    a: &[S; 3],
+    b: &[S; 3],
+    sb: Sign,
+) -> [Sign; 3] {
     std::array::from_fn(|e| orient3d(&t[e], &t[(e + 1) % 3], a, b).times(sb))
 }
 

@@ -1,0 +1,266 @@
+//! Steps 8–9 applied to one traced curve: refine its sample points onto the true surfaces,
+//! insert points where the polyline strays from the true curve by more than `tol`, certify
+//! every point, classify the ends, fit splines.
+
+use super::certify::ExactSurface;
+use super::fit::{fit_cubic, max_deviation_at_points};
+use super::refine::{RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain};
+use super::report::{BranchOut, EndKind, FitOut, TouchOut};
+use super::topology::Topology;
+use super::trace::Branch;
+use super::tri_tri::Feature;
+use super::triangulate::SurfaceMesh;
+use crate::spline::NurbsSurface;
+
+/// The two surfaces of a pair with their meshes and exact forms.
+pub struct PairGeometry<'a> {
+    pub sa: &'a NurbsSurface<f64, 3>,
+    pub sb: &'a NurbsSurface<f64, 3>,
+    pub ma: &'a SurfaceMesh,
+    pub mb: &'a SurfaceMesh,
+    pub ea: &'a ExactSurface,
+    pub eb: &'a ExactSurface,
+}
+
+/// A refined branch, or a touching point when the branch has zero length.
+pub enum BranchResult {
+    Curve(BranchOut),
+    Touch(TouchOut),
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Distance from `x` to the segment `pq`.
+fn dist_to_segment(x: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
+    let d: [f64; 3] = std::array::from_fn(|k| q[k] - p[k]);
+    let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if l2 > 0.0 {
+        (((x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1] + (x[2] - p[2]) * d[2]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    dist(x, &std::array::from_fn(|k| p[k] + t * d[k]))
+}
+
+fn average_uv(a: &[f64; 2], b: &[f64; 2], dom: &[f64; 4]) -> Option<[f64; 2]> {
+    // Across a periodic seam the average would land on the far side: refuse.
+    let close = (a[0] - b[0]).abs() <= 0.25 * (dom[1] - dom[0])
+        && (a[1] - b[1]).abs() <= 0.25 * (dom[3] - dom[2]);
+    close.then(|| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
+}
+
+struct Inserter<'a, 'g> {
+    g: &'a PairGeometry<'g>,
+    prm: &'a RefineParams,
+    max_depth: u32,
+    inserted: usize,
+    max_dev: f64,
+    refused: usize,
+}
+
+impl Inserter<'_, '_> {
+    /// Points strictly between `p` and `q` (in order) so that every chord's midpoint lies within
+    /// `tol` of the true curve point found from it.
+    fn between(
+        &mut self,
+        p: &Refined,
+        q: &Refined,
+        seg: (u32, u32),
+        depth: u32,
+        out: &mut Vec<Refined>,
+    ) {
+        let (da, db) = (domain(self.g.sa), domain(self.g.sb));
+        let (ga, gb) = match (
+            average_uv(&p.uv_a, &q.uv_a, &da),
+            average_uv(&p.uv_b, &q.uv_b, &db),
+        ) {
+            (Some(a), Some(b)) => (a, b),
+            _ => {
+                let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (p.xyz[k] + q.xyz[k]));
+                (
+                    barycentric_uv(self.g.ma, seg.0, &mid),
+                    barycentric_uv(self.g.mb, seg.1, &mid),
+                )
+            }
+        };
+        let m = auxiliary_plane(self.g.sa, self.g.sb, ga, gb, self.prm);
+        let chord = dist(&p.xyz, &q.xyz);
+        let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (p.xyz[k] + q.xyz[k]));
+        if m.status != RefineStatus::Converged || dist(&m.xyz, &mid) > chord.max(self.prm.tol) {
+            // The iteration went elsewhere (or broke down): keep the chord, say so.
+            self.refused += 1;
+            return;
+        }
+        let dev = dist_to_segment(&m.xyz, &p.xyz, &q.xyz);
+        if dev > self.prm.tol && depth < self.max_depth {
+            self.between(p, &m, seg, depth + 1, out);
+            out.push(m);
+            self.inserted += 1;
+            self.between(&m, q, seg, depth + 1, out);
+        } else {
+            self.max_dev = self.max_dev.max(dev);
+        }
+    }
+}
+
+fn on_border(uv: &[f64; 2], d: &[f64; 4]) -> bool {
+    let eu = 1e-9 * (d[1] - d[0]);
+    let ev = 1e-9 * (d[3] - d[2]);
+    (uv[0] - d[0]).abs() <= eu
+        || (uv[0] - d[1]).abs() <= eu
+        || (uv[1] - d[2]).abs() <= ev
+        || (uv[1] - d[3]).abs() <= ev
+}
+
+/// Refine, certify and fit one traced branch.
+pub fn refine_branch(
+    t: &Topology,
+    b: &Branch,
+    g: &PairGeometry,
+    prm: &RefineParams,
+    max_insert_depth: u32,
+    singular: &[Refined],
+) -> BranchResult {
+    let raw: Vec<[f64; 3]> = b.points.iter().map(|&p| t.points[p as usize].xyz).collect();
+    let mut pts_in_order = b.points.clone();
+    if b.closed {
+        pts_in_order.pop();
+    }
+    // Triangles of the segment each point is refined from.
+    let seg_of = |k: usize| -> (u32, u32) {
+        let s = &t.segments[b.segments[k.min(b.segments.len() - 1)] as usize];
+        (s.ta, s.tb)
+    };
+    let singular_of = |k: usize| match t.points[b.points[k] as usize].id.a {
+        Feature::Singular(s) => singular.get(s as usize).copied(),
+        _ => None,
+    };
+    let refine_at = |k: usize| -> Refined {
+        if let Some(r) = singular_of(k) {
+            return r;
+        }
+        let (ta, tb) = seg_of(k);
+        let x = raw[k];
+        auxiliary_plane(
+            g.sa,
+            g.sb,
+            barycentric_uv(g.ma, ta, &x),
+            barycentric_uv(g.mb, tb, &x),
+            prm,
+        )
+    };
+    if raw.iter().all(|x| *x == raw[0]) {
+        let r = refine_at(0);
+        return BranchResult::Touch(TouchOut {
+            point: r.xyz,
+            uv_a: Some(r.uv_a),
+            uv_b: Some(r.uv_b),
+            status: Some(r.status),
+            dist_a: g.ea.distance_bound(&r.xyz, &r.uv_a),
+            dist_b: g.eb.distance_bound(&r.xyz, &r.uv_b),
+            branch_ends: 0,
+        });
+    }
+    let refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
+    let mut ins = Inserter {
+        g,
+        prm,
+        max_depth: max_insert_depth,
+        inserted: 0,
+        max_dev: 0.0,
+        refused: 0,
+    };
+    let mut all: Vec<Refined> = Vec::with_capacity(refined.len() * 2);
+    let n = refined.len();
+    let spans = if b.closed { n } else { n - 1 };
+    for k in 0..n {
+        all.push(refined[k]);
+        if k < spans {
+            let q = refined[(k + 1) % n];
+            ins.between(&refined[k], &q, seg_of(k), 0, &mut all);
+        }
+    }
+    let tangential = all
+        .iter()
+        .filter(|r| r.status == RefineStatus::Tangential)
+        .count();
+    let unconverged = all
+        .iter()
+        .filter(|r| {
+            matches!(
+                r.status,
+                RefineStatus::NotConverged | RefineStatus::AtBoundary
+            )
+        })
+        .count();
+    let mut da_max = 0.0f64;
+    let mut db_max = 0.0f64;
+    for r in &all {
+        da_max = da_max.max(
+            g.ea.distance_bound(&r.xyz, &r.uv_a)
+                .unwrap_or(f64::INFINITY),
+        );
+        db_max = db_max.max(
+            g.eb.distance_bound(&r.xyz, &r.uv_b)
+                .unwrap_or(f64::INFINITY),
+        );
+    }
+    let ends = if b.closed {
+        Vec::new()
+    } else {
+        let (dom_a, dom_b) = (domain(g.sa), domain(g.sb));
+        [
+            (b.points[0], &all[0]),
+            (b.points[b.points.len() - 1], &all[all.len() - 1]),
+        ]
+        .iter()
+        .map(|(p, r)| {
+            let pt = &t.points[*p as usize];
+            if pt.uses.len() > 2 {
+                EndKind::BranchPoint
+            } else if matches!(pt.id.a, Feature::Singular(_)) {
+                EndKind::Tangential
+            } else if on_border(&r.uv_a, &dom_a) || on_border(&r.uv_b, &dom_b) {
+                EndKind::Boundary
+            } else if r.status == RefineStatus::Tangential {
+                EndKind::Tangential
+            } else {
+                EndKind::Unexplained
+            }
+        })
+        .collect()
+    };
+    let packed: Vec<[f64; 7]> = all
+        .iter()
+        .map(|r| {
+            [
+                r.xyz[0], r.xyz[1], r.xyz[2], r.uv_a[0], r.uv_a[1], r.uv_b[0], r.uv_b[1],
+            ]
+        })
+        .collect();
+    let fit = fit_cubic(&packed, b.closed, 3).map(|(c, used)| FitOut {
+        degree: 3,
+        knots: c.knots.knots().to_vec(),
+        control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
+        control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
+        control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
+        max_deviation_at_points: max_deviation_at_points(&c, &used, 3),
+    });
+    BranchResult::Curve(BranchOut {
+        closed: b.closed,
+        points: all.iter().map(|r| r.xyz).collect(),
+        uv_a: all.iter().map(|r| r.uv_a).collect(),
+        uv_b: all.iter().map(|r| r.uv_b).collect(),
+        dist_a_max: da_max,
+        dist_b_max: db_max,
+        ends,
+        tangential_points: tangential,
+        unconverged_points: unconverged,
+        refused_insertions: ins.refused,
+        inserted_points: ins.inserted,
+        max_chord_deviation: ins.max_dev,
+        fit,
+    })
+}

@@ -1,0 +1,110 @@
+//! Surface–surface intersection (paper: "CAGD techniques for surface grid generation", §4;
+//! EQUATIONS.md §A), one file per step:
+//!
+//! | step | file |
+//! |---|---|
+//! | 1 adaptive triangulation | [`triangulate`] |
+//! | 2–3 trees and culling | [`cull`] |
+//! | 4 triangle intersection (exact, perturbed, named points) | [`tri_tri`] |
+//! | 5 Point / PointUse / Segment topology | [`topology`] |
+//! | 6–7 loop detection and tracing | [`trace`] |
+//! | 8 refinement (barycentric, Auxiliary Plane Method) | [`refine`], [`branch`] |
+//! | 9 spline fitting | [`fit`] |
+//! | certificate of every point | [`certify`] |
+//! | tangential contacts | [`touch`] |
+//! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
+
+pub mod branch;
+pub mod certify;
+pub mod cull;
+pub mod driver;
+pub mod fit;
+pub mod mesh;
+pub mod pair;
+pub mod refine;
+pub mod report;
+pub mod topology;
+pub mod touch;
+pub mod trace;
+pub mod tri_tri;
+pub mod triangulate;
+
+pub use driver::{intersect_models, intersect_pair_canonical};
+pub use report::{BranchOut, EndKind, PairOut, SsiResult, Summary};
+
+/// What can go wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum SsiError {
+    #[error("tolerance must be a positive finite number, got {0}")]
+    Tolerance(f64),
+    #[error("{0} must be a positive finite number, got {1}")]
+    Parameter(&'static str, f64),
+    #[error("face index {index} out of range: the model has {count} faces")]
+    FaceIndex { index: usize, count: usize },
+    #[error("the model has no faces or triangulations to intersect")]
+    Empty,
+    #[error("internal topology check failed: {0}")]
+    Topology(String),
+}
+
+/// Parameters of an intersection run.
+#[derive(Clone, Debug)]
+pub struct SsiParams {
+    /// Requested tolerance: refined points agree on both surfaces within it, and chords are
+    /// split until their midpoints are within it of the true curve.
+    pub tol: f64,
+    /// Flatness of the triangulation (default: 0.2% of the control-net diagonal).
+    pub flatness: Option<f64>,
+    /// Cells per net diagonal at least (bounds the triangle size).
+    pub min_cells_per_diagonal: u32,
+    pub max_depth: u32,
+    /// Normals closer than this angle count as near-tangent (refinement and touch search).
+    pub tangent_angle_deg: f64,
+    pub tangency_rounds: u32,
+    /// `sin` of the normal angle below which the Auxiliary Plane Method is said to break down.
+    pub refine_tangent_sin: f64,
+    pub max_insert_depth: u32,
+    /// Stop starting new work after this many seconds; the result is marked partial.
+    pub time_limit: Option<f64>,
+}
+
+impl Default for SsiParams {
+    fn default() -> Self {
+        SsiParams {
+            tol: 1e-6,
+            flatness: None,
+            min_cells_per_diagonal: 16,
+            max_depth: 12,
+            tangent_angle_deg: 10.0,
+            tangency_rounds: 2,
+            refine_tangent_sin: 1e-6,
+            max_insert_depth: 12,
+            time_limit: None,
+        }
+    }
+}
+
+impl SsiParams {
+    pub fn validate(&self) -> Result<(), SsiError> {
+        if !(self.tol > 0.0 && self.tol.is_finite()) {
+            return Err(SsiError::Tolerance(self.tol));
+        }
+        if let Some(f) = self.flatness
+            && !(f > 0.0 && f.is_finite())
+        {
+            return Err(SsiError::Parameter("flatness", f));
+        }
+        if !(self.tangent_angle_deg > 0.0 && self.tangent_angle_deg < 90.0) {
+            return Err(SsiError::Parameter(
+                "tangent angle (degrees, below 90)",
+                self.tangent_angle_deg,
+            ));
+        }
+        if let Some(t) = self.time_limit
+            && !(t > 0.0 && t.is_finite())
+        {
+            return Err(SsiError::Parameter("time limit", t));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,291 @@
+//! The intersection of two parametric surfaces (paper §4, steps 1–9 for one pair).
+
+use super::branch::{BranchResult, PairGeometry, refine_branch};
+use super::certify::ExactSurface;
+use super::cull::{TriTree, triangle_box};
+use super::refine::RefineParams;
+use super::refine::Refined;
+use super::report::{ContactOut, PairOut, PairStats};
+use super::topology::Topology;
+use super::touch::{region, tangential_points, touch_out};
+use super::trace::{check_invariants, trace};
+use super::tri_tri::intersect_pair;
+use super::tri_tri::{Feature, PointId};
+use super::triangulate::{CellKey, SurfaceMesh, TriangulateParams, triangulate};
+use super::{SsiError, SsiParams};
+use crate::predicates::tri_tri::ConstructedPoint;
+use crate::spline::NurbsSurface;
+use std::collections::HashMap;
+use std::collections::HashSet;
+use std::time::Instant;
+
+fn tri(m: &SurfaceMesh, t: u32) -> [[f64; 3]; 3] {
+    let v = m.triangles[t as usize];
+    std::array::from_fn(|k| m.vertices[v[k] as usize])
+}
+
+/// Triangle-box tree of a mesh.
+pub fn tree(m: &SurfaceMesh) -> TriTree {
+    let boxes: Vec<_> = (0..m.triangles.len() as u32)
+        .map(|t| triangle_box(&tri(m, t)))
+        .collect();
+    TriTree::build(&boxes)
+}
+
+fn unit_normal(t: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
+    let a: [f64; 3] = std::array::from_fn(|k| t[1][k] - t[0][k]);
+    let b: [f64; 3] = std::array::from_fn(|k| t[2][k] - t[0][k]);
+    let n = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (l > 0.0).then(|| n.map(|c| c / l))
+}
+
+/// Size of a model-space box around both surfaces' control nets.
+pub fn net_diagonal(ss: &[&NurbsSurface<f64, 3>]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for s in ss {
+        for p in s.points_weights().0 {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+    }
+    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Triangulate both surfaces, refining cells where the meshes come close at a small angle
+/// (near tangency), up to `rounds` times.
+fn meshes(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    prm: &SsiParams,
+    stats: &mut PairStats,
+) -> (SurfaceMesh, SurfaceMesh) {
+    let diag = net_diagonal(&[sa, sb]).max(f64::MIN_POSITIVE);
+    let tp = TriangulateParams {
+        flatness: prm.flatness.unwrap_or(diag * 2e-3),
+        max_edge: diag / prm.min_cells_per_diagonal.max(1) as f64,
+        max_depth: prm.max_depth,
+    };
+    let (mut fa, mut fb) = (HashSet::<CellKey>::new(), HashSet::<CellKey>::new());
+    let cos_t = prm.tangent_angle_deg.to_radians().cos();
+    let mut ma = triangulate(sa, &tp, &fa);
+    let mut mb = triangulate(sb, &tp, &fb);
+    for _ in 0..prm.tangency_rounds {
+        let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
+        let (na, nb) = (fa.len(), fb.len());
+        for (ta, tb) in pairs {
+            if let (Some(x), Some(y)) = (unit_normal(&tri(&ma, ta)), unit_normal(&tri(&mb, tb))) {
+                let c = (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs();
+                if c > cos_t {
+                    fa.insert(ma.cells[ma.tri_cell[ta as usize] as usize]);
+                    fb.insert(mb.cells[mb.tri_cell[tb as usize] as usize]);
+                }
+            }
+        }
+        if fa.len() == na && fb.len() == nb {
+            break;
+        }
+        stats.tangency_refinement_rounds += 1;
+        ma = triangulate(sa, &tp, &fa);
+        mb = triangulate(sb, &tp, &fb);
+    }
+    (ma, mb)
+}
+
+/// Intersect surfaces `sa` (face `a`) and `sb` (face `b`).
+pub fn intersect_surfaces(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    ids: (usize, usize),
+    prm: &SsiParams,
+    deadline: Option<Instant>,
+) -> Result<PairOut, SsiError> {
+    let t0 = Instant::now();
+    let mut stats = PairStats::default();
+    let (ma, mb) = meshes(sa, sb, prm, &mut stats);
+    stats.triangles_a = ma.triangles.len();
+    stats.triangles_b = mb.triangles.len();
+    stats.unresolved_cells_a = ma.unresolved_cells;
+    stats.unresolved_cells_b = mb.unresolved_cells;
+    let ea = ExactSurface::new(sa);
+    let eb = ExactSurface::new(sb);
+    let g = PairGeometry {
+        sa,
+        sb,
+        ma: &ma,
+        mb: &mb,
+        ea: &ea,
+        eb: &eb,
+    };
+    let rp = RefineParams {
+        tol: prm.tol,
+        max_iter: 60,
+        tangent_sin: prm.refine_tangent_sin,
+    };
+    let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
+    let singular = tangential_points(&g, flat, prm.tangent_angle_deg, &rp);
+    let regions = SingularRegions::new(&ma, &mb, &singular, flat);
+    let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
+    stats.candidate_pairs = pairs.len();
+    let mut topo = Topology::new();
+    let mut contacts = Vec::new();
+    for (ta, tb) in pairs {
+        let o = intersect_pair(
+            &tri(&ma, ta),
+            &ma.topo_triangle(ta),
+            ta,
+            &tri(&mb, tb),
+            &mb.topo_triangle(tb),
+            tb,
+        );
+        stats.degenerate_triangle_pairs += o.degenerate as usize;
+        stats.inconsistent_triangle_pairs += o.inconsistent as usize;
+        if let Some(kind) = o.contact {
+            stats.contacts += 1;
+            if contacts.len() < 100 {
+                contacts.push(ContactOut {
+                    kind,
+                    triangle_a: ta,
+                    triangle_b: tb,
+                });
+            }
+        }
+        if let Some(s) = o.segment {
+            let [p, q] = s.ends.map(|e| regions.merge(e, &singular));
+            topo.add_segment(p, q, s.ta, s.tb);
+        }
+    }
+    stats.segments = topo.segments.len();
+    stats.points = topo.points.len();
+    stats.duplicate_segments = topo.duplicate_segments;
+    let branches = trace(&mut topo);
+    check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
+    let mut out = PairOut {
+        a: ids.0,
+        b: ids.1,
+        branches: Vec::new(),
+        touch_points: Vec::new(),
+        contacts,
+        stats,
+        complete: true,
+    };
+    for (k, r) in singular.iter().enumerate() {
+        out.touch_points.push(touch_out(
+            &g,
+            r,
+            topo.uses_of(&SingularRegions::id(k as u32)),
+        ));
+    }
+    for b in &branches {
+        if deadline.is_some_and(|d| Instant::now() > d) {
+            out.complete = false;
+            break;
+        }
+        match refine_branch(&topo, b, &g, &rp, prm.max_insert_depth, &singular) {
+            BranchResult::Curve(c) => out.branches.push(c),
+            BranchResult::Touch(t) => out.touch_points.push(t),
+        }
+    }
+    out.stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Triangles of each mesh in the singular region of a tangential point, and the merge of
+/// crossing points named by their features (see [`super::touch`]).
+struct SingularRegions {
+    tri_a: HashMap<u32, u32>,
+    tri_b: HashMap<u32, u32>,
+    edges_a: HashMap<(u32, u32), Vec<u32>>,
+    edges_b: HashMap<(u32, u32), Vec<u32>>,
+}
+
+fn edge_map(m: &SurfaceMesh) -> HashMap<(u32, u32), Vec<u32>> {
+    let mut e: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+    for t in 0..m.triangles.len() as u32 {
+        let v = m.topo_triangle(t);
+        for k in 0..3 {
+            let (a, b) = (v[k], v[(k + 1) % 3]);
+            e.entry((a.min(b), a.max(b))).or_default().push(t);
+        }
+    }
+    e
+}
+
+impl SingularRegions {
+    fn new(ma: &SurfaceMesh, mb: &SurfaceMesh, singular: &[Refined], r: f64) -> Self {
+        let mut s = SingularRegions {
+            tri_a: HashMap::new(),
+            tri_b: HashMap::new(),
+            edges_a: HashMap::new(),
+            edges_b: HashMap::new(),
+        };
+        if singular.is_empty() {
+            return s;
+        }
+        for (k, p) in singular.iter().enumerate() {
+            for t in region(ma, &p.xyz, r) {
+                s.tri_a.entry(t).or_insert(k as u32);
+            }
+            for t in region(mb, &p.xyz, r) {
+                s.tri_b.entry(t).or_insert(k as u32);
+            }
+        }
+        s.edges_a = edge_map(ma);
+        s.edges_b = edge_map(mb);
+        s
+    }
+    fn id(k: u32) -> PointId {
+        PointId {
+            a: Feature::Singular(k),
+            b: Feature::Singular(k),
+        }
+    }
+    fn of(
+        f: Feature,
+        tris: &HashMap<u32, u32>,
+        edges: &HashMap<(u32, u32), Vec<u32>>,
+    ) -> Option<u32> {
+        match f {
+            Feature::Triangle(t) => tris.get(&t).copied(),
+            Feature::Edge(a, b) => edges
+                .get(&(a, b))
+                .and_then(|ts| ts.iter().filter_map(|t| tris.get(t).copied()).min()),
+            Feature::Singular(k) => Some(k),
+        }
+    }
+    /// The point itself, or the singular point whose region its features touch.
+    fn merge(
+        &self,
+        e: (PointId, ConstructedPoint),
+        singular: &[Refined],
+    ) -> (PointId, ConstructedPoint) {
+        if self.tri_a.is_empty() && self.tri_b.is_empty() {
+            return e;
+        }
+        let k = match (
+            Self::of(e.0.a, &self.tri_a, &self.edges_a),
+            Self::of(e.0.b, &self.tri_b, &self.edges_b),
+        ) {
+            (Some(x), Some(y)) => Some(x.min(y)),
+            (x, y) => x.or(y),
+        };
+        match k {
+            Some(k) => (
+                Self::id(k),
+                ConstructedPoint {
+                    p: singular[k as usize].xyz,
+                    err: 0.0,
+                    exact_fallback: false,
+                },
+            ),
+            None => e,
+        }
+    }
+}

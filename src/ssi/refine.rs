@@ -1,0 +1,411 @@
+//! Step 8 — refinement of the sample points onto the true surfaces (paper §4, "Refinement",
+//! Figs. 18–19): barycentric parameters from the triangle that holds the point, then the
+//! Auxiliary Plane Method (Hosaka '92), eqs. (18)–(26) in the consistent form of
+//! EQUATIONS.md §A (each tangent plane through its own surface's point).
+
+use super::triangulate::SurfaceMesh;
+use crate::spline::NurbsSurface;
+
+/// How a refinement ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RefineStatus {
+    /// `||s(u,v) - r(w,t)|| <= tol`.
+    Converged,
+    /// The normals became (nearly) parallel: `||n_p × n_q|| < sin(angle)`; the method breaks
+    /// down there (EQUATIONS.md §A). The best iterate is kept.
+    Tangential,
+    /// The iteration left the parameter domain of one surface and stayed on its border.
+    AtBoundary,
+    /// No convergence within the iteration limit.
+    NotConverged,
+}
+
+/// A point refined onto both surfaces.
+#[derive(Clone, Copy, Debug)]
+pub struct Refined {
+    /// Midpoint of `s(uv_a)` and `r(uv_b)`.
+    pub xyz: [f64; 3],
+    pub uv_a: [f64; 2],
+    pub uv_b: [f64; 2],
+    /// `||s(uv_a) - r(uv_b)||` in floating point (the certificate recomputes it exactly).
+    pub gap: f64,
+    pub status: RefineStatus,
+    pub iterations: u32,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct RefineParams {
+    pub tol: f64,
+    pub max_iter: u32,
+    /// `sin` of the angle between the normals below which the contact counts as tangential.
+    pub tangent_sin: f64,
+}
+
+type V3 = [f64; 3];
+fn sub(a: &V3, b: &V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn add(a: &V3, b: &V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn scale(a: &V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+fn dot(a: &V3, b: &V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: &V3, b: &V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn norm(a: &V3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// `S`, `S_u`, `S_v` of a NURBS surface (rational quotient rule on the homogeneous form).
+pub fn point_d1(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> (V3, V3, V3) {
+    let (h, hu, hv) = s.hom.eval_d1(&u, &v);
+    let p = scale(&h.wp, 1.0 / h.w);
+    let su = scale(&sub(&hu.wp, &scale(&p, hu.w)), 1.0 / h.w);
+    let sv = scale(&sub(&hv.wp, &scale(&p, hv.w)), 1.0 / h.w);
+    (p, su, sv)
+}
+
+/// Parameter domain `[u0, u1] × [v0, v1]`.
+pub fn domain(s: &NurbsSurface<f64, 3>) -> [f64; 4] {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    [u0, u1, v0, v1]
+}
+
+/// Barycentric parameters of `x` in triangle `t` of `m` (Fig. 18): the normalized
+/// sub-triangle areas, in the projection where the triangle is largest, clamped to the
+/// triangle.
+pub fn barycentric_uv(m: &SurfaceMesh, t: u32, x: &V3) -> [f64; 2] {
+    let tri = m.triangles[t as usize];
+    let p: [V3; 3] = std::array::from_fn(|k| m.vertices[tri[k] as usize]);
+    let n = cross(&sub(&p[1], &p[0]), &sub(&p[2], &p[0]));
+    let k = (0..3)
+        .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap_or(2);
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let area =
+        |a: &V3, b: &V3, c: &V3| (b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i]);
+    let total = area(&p[0], &p[1], &p[2]);
+    let mut w = [
+        area(x, &p[1], &p[2]) / total,
+        area(&p[0], x, &p[2]) / total,
+        area(&p[0], &p[1], x) / total,
+    ];
+    if !w.iter().all(|x| x.is_finite()) {
+        w = [1.0 / 3.0; 3];
+    }
+    for wk in &mut w {
+        *wk = wk.clamp(0.0, 1.0);
+    }
+    let s: f64 = w.iter().sum();
+    let uv: [[f64; 2]; 3] = std::array::from_fn(|k| m.uv[tri[k] as usize]);
+    std::array::from_fn(|c| (w[0] * uv[0][c] + w[1] * uv[1][c] + w[2] * uv[2][c]) / s)
+}
+
+fn clamp_uv(uv: [f64; 2], d: &[f64; 4]) -> ([f64; 2], bool) {
+    let c = [uv[0].clamp(d[0], d[1]), uv[1].clamp(d[2], d[3])];
+    (c, c != uv)
+}
+
+/// Parameter step moving `s(u, v)` by `delta` within its tangent plane (eqs. (23)–(24)):
+/// `s_u* = s_u × n`, `s_v* = s_v × n`, `δu = (s_v*·δ)/(s_v*·s_u)`, `δv = (s_u*·δ)/(s_u*·s_v)`.
+fn tangent_step(su: &V3, sv: &V3, n: &V3, delta: &V3) -> [f64; 2] {
+    let sus = cross(su, n);
+    let svs = cross(sv, n);
+    [
+        dot(&svs, delta) / dot(&svs, su),
+        dot(&sus, delta) / dot(&sus, sv),
+    ]
+}
+
+/// The Auxiliary Plane Method from `(uv_a, uv_b)`.
+pub fn auxiliary_plane(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    mut uv_a: [f64; 2],
+    mut uv_b: [f64; 2],
+    prm: &RefineParams,
+) -> Refined {
+    let (da, db) = (domain(sa), domain(sb));
+    let mut best: Option<Refined> = None;
+    let mut status = RefineStatus::NotConverged;
+    let mut boundary_hits = 0;
+    for it in 0..=prm.max_iter {
+        let (p0, su, sv) = point_d1(sa, uv_a[0], uv_a[1]);
+        let (q0, rw, rt) = point_d1(sb, uv_b[0], uv_b[1]);
+        let gap = norm(&sub(&p0, &q0));
+        let cand = Refined {
+            xyz: scale(&add(&p0, &q0), 0.5),
+            uv_a,
+            uv_b,
+            gap,
+            status,
+            iterations: it,
+        };
+        if best.is_none_or(|b| gap < b.gap || !b.gap.is_finite()) {
+            best = Some(cand);
+        }
+        if gap <= prm.tol {
+            return Refined {
+                status: RefineStatus::Converged,
+                ..cand
+            };
+        }
+        if it == prm.max_iter || !gap.is_finite() {
+            break;
+        }
+        let (na, nb) = (cross(&su, &sv), cross(&rw, &rt));
+        let (la, lb) = (norm(&na), norm(&nb));
+        if !(la > 0.0 && lb > 0.0) {
+            status = RefineStatus::NotConverged;
+            break;
+        }
+        let (np, nq) = (scale(&na, 1.0 / la), scale(&nb, 1.0 / lb));
+        let c = cross(&np, &nq);
+        let lc = norm(&c);
+        let x = if lc < prm.tangent_sin {
+            // Eq. (22) breaks down: move both points towards their midpoint instead.
+            status = RefineStatus::Tangential;
+            scale(&add(&p0, &q0), 0.5)
+        } else {
+            // Eqs. (18)–(22): intersection of the two tangent planes and the auxiliary
+            // plane through the midpoint, orthogonal to both.
+            let nn = scale(&c, 1.0 / lc);
+            let (dp, dq) = (dot(&np, &p0), dot(&nq, &q0));
+            let dn = dot(&nn, &scale(&add(&p0, &q0), 0.5));
+            let det = dot(&np, &cross(&nq, &nn));
+            let num = add(
+                &add(&scale(&cross(&nq, &nn), dp), &scale(&cross(&nn, &np), dq)),
+                &scale(&cross(&np, &nq), dn),
+            );
+            scale(&num, 1.0 / det)
+        };
+        let step_a = tangent_step(&su, &sv, &np, &sub(&x, &p0));
+        let step_b = tangent_step(&rw, &rt, &nq, &sub(&x, &q0));
+        let (na_uv, ca) = clamp_uv([uv_a[0] + step_a[0], uv_a[1] + step_a[1]], &da);
+        let (nb_uv, cb) = clamp_uv([uv_b[0] + step_b[0], uv_b[1] + step_b[1]], &db);
+        if !(na_uv.iter().chain(&nb_uv).all(|x| x.is_finite())) {
+            break;
+        }
+        if ca || cb {
+            boundary_hits += 1;
+            if boundary_hits >= 3 {
+                status = RefineStatus::AtBoundary;
+            }
+        }
+        uv_a = na_uv;
+        uv_b = nb_uv;
+    }
+    let b = best.unwrap_or(Refined {
+        xyz: [f64::NAN; 3],
+        uv_a,
+        uv_b,
+        gap: f64::INFINITY,
+        status,
+        iterations: prm.max_iter,
+    });
+    Refined { status, ..b }
+}
+
+/// Closest points of the two surfaces near `(uv_a, uv_b)`: both points repeatedly step
+/// within their tangent planes towards their midpoint (the fallback of the Auxiliary Plane
+/// Method where the normals are parallel). Used to decide tangential contacts: the result is
+/// `Converged` when the points meet within `tol`, `Tangential` when they meet within `tol`
+/// with parallel normals, `NotConverged` when the surfaces stay apart.
+pub fn closest_points(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    mut uv_a: [f64; 2],
+    mut uv_b: [f64; 2],
+    prm: &RefineParams,
+) -> Refined {
+    let (da, db) = (domain(sa), domain(sb));
+    let mut last = f64::INFINITY;
+    let mut it = 0;
+    loop {
+        let (p0, su, sv) = point_d1(sa, uv_a[0], uv_a[1]);
+        let (q0, rw, rt) = point_d1(sb, uv_b[0], uv_b[1]);
+        let gap = norm(&sub(&p0, &q0));
+        let (na, nb) = (cross(&su, &sv), cross(&rw, &rt));
+        let (la, lb) = (norm(&na), norm(&nb));
+        let done = it >= prm.max_iter || !(gap < last * (1.0 - 1e-9)) || !(la > 0.0 && lb > 0.0);
+        if done || gap <= prm.tol * 1e-3 {
+            let parallel = la > 0.0
+                && lb > 0.0
+                && norm(&cross(&scale(&na, 1.0 / la), &scale(&nb, 1.0 / lb))) < prm.tangent_sin;
+            let status = if gap <= prm.tol && parallel {
+                RefineStatus::Tangential
+            } else if gap <= prm.tol {
+                RefineStatus::Converged
+            } else {
+                RefineStatus::NotConverged
+            };
+            return Refined {
+                xyz: scale(&add(&p0, &q0), 0.5),
+                uv_a,
+                uv_b,
+                gap,
+                status,
+                iterations: it,
+            };
+        }
+        last = gap;
+        let x = scale(&add(&p0, &q0), 0.5);
+        let sa_ = tangent_step(&su, &sv, &scale(&na, 1.0 / la), &sub(&x, &p0));
+        let sb_ = tangent_step(&rw, &rt, &scale(&nb, 1.0 / lb), &sub(&x, &q0));
+        uv_a = clamp_uv([uv_a[0] + sa_[0], uv_a[1] + sa_[1]], &da).0;
+        uv_b = clamp_uv([uv_b[0] + sb_[0], uv_b[1] + sb_[1]], &db).0;
+        it += 1;
+    }
+}
+
+/// Solve for a tangential point of the two surfaces near `(uv_a, uv_b)`: `s(u,v) = r(w,t)` with
+/// `n_p · r_w = n_p · r_t = 0` (the normals parallel). Five equations in four unknowns, solved
+/// in the least-squares sense by damped Gauss–Newton (Levenberg–Marquardt) with a
+/// central-difference Jacobian. Such points are the touching points and the singular (branch)
+/// points of the intersection, where the Auxiliary Plane Method breaks down. Returns the point
+/// with status `Tangential` when both residuals vanish within `tol` and `tangent_sin`.
+pub fn tangential_point(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    uv_a: [f64; 2],
+    uv_b: [f64; 2],
+    prm: &RefineParams,
+) -> Refined {
+    let (da, db) = (domain(sa), domain(sb));
+    let residual = |x: &[f64; 4]| -> ([f64; 5], f64, f64, [f64; 3]) {
+        let (p, su, sv) = point_d1(sa, x[0], x[1]);
+        let (q, rw, rt) = point_d1(sb, x[2], x[3]);
+        let n = cross(&su, &sv);
+        let ln = norm(&n);
+        let n = if ln > 0.0 { scale(&n, 1.0 / ln) } else { n };
+        let (lw, lt) = (norm(&rw), norm(&rt));
+        let (cw, ct) = (dot(&n, &rw), dot(&n, &rt));
+        let d = sub(&p, &q);
+        let sin = (cw / lw.max(f64::MIN_POSITIVE))
+            .abs()
+            .max((ct / lt.max(f64::MIN_POSITIVE)).abs());
+        (
+            [d[0], d[1], d[2], cw, ct],
+            norm(&d),
+            sin,
+            scale(&add(&p, &q), 0.5),
+        )
+    };
+    let clamp = |x: [f64; 4]| -> [f64; 4] {
+        [
+            x[0].clamp(da[0], da[1]),
+            x[1].clamp(da[2], da[3]),
+            x[2].clamp(db[0], db[1]),
+            x[3].clamp(db[2], db[3]),
+        ]
+    };
+    let mut x = clamp([uv_a[0], uv_a[1], uv_b[0], uv_b[1]]);
+    let h = [
+        1e-7 * (da[1] - da[0]),
+        1e-7 * (da[3] - da[2]),
+        1e-7 * (db[1] - db[0]),
+        1e-7 * (db[3] - db[2]),
+    ];
+    let mut lambda = 1e-3;
+    let (mut r, mut gap, mut sin, mut mid) = residual(&x);
+    let sq = |r: &[f64; 5]| r.iter().map(|c| c * c).sum::<f64>();
+    let mut it = 0;
+    while it < prm.max_iter && !(gap <= prm.tol * 1e-2 && sin <= prm.tangent_sin * 1e-2) {
+        it += 1;
+        // Central-difference Jacobian J (5 × 4).
+        let mut j = [[0.0; 4]; 5];
+        for c in 0..4 {
+            let (mut xp, mut xm) = (x, x);
+            xp[c] += h[c];
+            xm[c] -= h[c];
+            let (rp, rm) = (residual(&clamp(xp)).0, residual(&clamp(xm)).0);
+            let w = clamp(xp)[c] - clamp(xm)[c];
+            if w == 0.0 {
+                continue;
+            }
+            for row in 0..5 {
+                j[row][c] = (rp[row] - rm[row]) / w;
+            }
+        }
+        // (JᵀJ + λ diag) δ = -Jᵀ r
+        let mut a = [[0.0; 4]; 4];
+        let mut g = [0.0; 4];
+        for p in 0..4 {
+            for q in 0..4 {
+                a[p][q] = (0..5).map(|k| j[k][p] * j[k][q]).sum();
+            }
+            g[p] = -(0..5).map(|k| j[k][p] * r[k]).sum::<f64>();
+        }
+        let mut improved = false;
+        for _ in 0..8 {
+            let mut m = a;
+            for p in 0..4 {
+                m[p][p] += lambda * a[p][p].max(1e-300);
+            }
+            let Some(d) = solve4(m, g) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let xn = clamp([x[0] + d[0], x[1] + d[1], x[2] + d[2], x[3] + d[3]]);
+            let (rn, gn, sn, mn) = residual(&xn);
+            if sq(&rn) < sq(&r) {
+                (x, r, gap, sin, mid) = (xn, rn, gn, sn, mn);
+                lambda = (lambda * 0.3).max(1e-12);
+                improved = true;
+                break;
+            }
+            lambda *= 10.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    let status = if gap <= prm.tol && sin <= prm.tangent_sin {
+        RefineStatus::Tangential
+    } else {
+        RefineStatus::NotConverged
+    };
+    Refined {
+        xyz: mid,
+        uv_a: [x[0], x[1]],
+        uv_b: [x[2], x[3]],
+        gap,
+        status,
+        iterations: it,
+    }
+}
+
+/// Gaussian elimination with partial pivoting for a 4 × 4 system.
+fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
+    for c in 0..4 {
+        let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
+        if !(a[p][c].abs() > 0.0) {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in c + 1..4 {
+            let f = a[r][c] / a[c][c];
+            for k in c..4 {
+                a[r][k] -= f * a[c][k];
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    let mut x = [0.0; 4];
+    for c in (0..4).rev() {
+        let s: f64 = (c + 1..4).map(|k| a[c][k] * x[k]).sum();
+        x[c] = (b[c] - s) / a[c][c];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}

@@ -1,0 +1,144 @@
+//! Result types of the intersection (the JSON schema of `vericad ssi`, see docs/ssi.md).
+
+use super::refine::RefineStatus;
+use serde::Serialize;
+
+/// Where an open branch ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EndKind {
+    /// On the border of surface A's or B's parameter domain (or the mesh's boundary).
+    Boundary,
+    /// At a singular point where three or more curves meet (PointUse count > 2).
+    BranchPoint,
+    /// Where the surfaces become tangent (refinement detected parallel normals).
+    Tangential,
+    /// None of the above: the mesh curve stops at a point with one use that is not on a
+    /// border (reported, never hidden).
+    Unexplained,
+}
+
+/// One intersection curve.
+#[derive(Clone, Debug, Serialize)]
+pub struct BranchOut {
+    pub closed: bool,
+    pub points: Vec<[f64; 3]>,
+    /// Parameters on each surface (empty in mesh mode).
+    pub uv_a: Vec<[f64; 2]>,
+    pub uv_b: Vec<[f64; 2]>,
+    /// Proven upper bounds on the distance of every point to surface A / B at its own
+    /// parameters (mesh mode: to the triangulation).
+    pub dist_a_max: f64,
+    pub dist_b_max: f64,
+    /// Ends of an open branch (empty for closed ones).
+    pub ends: Vec<EndKind>,
+    /// Points whose refinement met tangential surfaces / did not converge.
+    pub tangential_points: usize,
+    pub unconverged_points: usize,
+    /// Points inserted where the polyline deviated from the true curve by more than tol.
+    pub inserted_points: usize,
+    /// Chord midpoints whose refinement broke down or jumped away (chord kept as is).
+    pub refused_insertions: usize,
+    /// Largest measured deviation of a segment midpoint from the refined true curve point
+    /// after insertion (evidence; 0 in mesh mode).
+    pub max_chord_deviation: f64,
+    /// Cubic fits: control points and knots in 3D and in each domain (empty if too short).
+    pub fit: Option<FitOut>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct FitOut {
+    pub degree: usize,
+    pub knots: Vec<f64>,
+    pub control_points: Vec<[f64; 3]>,
+    pub control_points_uv_a: Vec<[f64; 2]>,
+    pub control_points_uv_b: Vec<[f64; 2]>,
+    /// Measured largest distance of the 3D fit from the points it interpolates.
+    pub max_deviation_at_points: f64,
+}
+
+/// A real contact of the triangulations that is not a transversal crossing.
+#[derive(Clone, Debug, Serialize)]
+pub struct ContactOut {
+    pub kind: super::tri_tri::ContactKind,
+    pub triangle_a: u32,
+    pub triangle_b: u32,
+}
+
+/// A touching point of the two surfaces (a branch of zero length, or a tangential contact
+/// refined onto both surfaces).
+#[derive(Clone, Debug, Serialize)]
+pub struct TouchOut {
+    pub point: [f64; 3],
+    pub uv_a: Option<[f64; 2]>,
+    pub uv_b: Option<[f64; 2]>,
+    pub status: Option<RefineStatus>,
+    pub dist_a: Option<f64>,
+    pub dist_b: Option<f64>,
+    /// Number of branch ends at this point: 0 for an isolated touching point, more than two
+    /// at a branch point of the intersection.
+    pub branch_ends: usize,
+}
+
+/// Counts and diagnostics of one pair.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct PairStats {
+    pub triangles_a: usize,
+    pub triangles_b: usize,
+    pub unresolved_cells_a: usize,
+    pub unresolved_cells_b: usize,
+    pub candidate_pairs: usize,
+    pub segments: usize,
+    pub points: usize,
+    pub degenerate_triangle_pairs: usize,
+    pub inconsistent_triangle_pairs: usize,
+    pub duplicate_segments: usize,
+    /// Triangle pairs in real (unperturbed) non-transversal contact.
+    pub contacts: usize,
+    pub tangency_refinement_rounds: usize,
+    pub seconds: f64,
+}
+
+/// Result for one pair of faces.
+#[derive(Clone, Debug, Serialize)]
+pub struct PairOut {
+    pub a: usize,
+    pub b: usize,
+    pub branches: Vec<BranchOut>,
+    pub touch_points: Vec<TouchOut>,
+    /// Up to 100 contacts listed; `stats.contacts` counts all.
+    pub contacts: Vec<ContactOut>,
+    pub stats: PairStats,
+    /// `false` when the time limit stopped this pair before it finished.
+    pub complete: bool,
+}
+
+/// What the whole run proves and what it does not.
+#[derive(Clone, Debug, Serialize)]
+pub struct Summary {
+    pub tol: f64,
+    pub faces_a: usize,
+    pub faces_b: usize,
+    pub pairs_considered: usize,
+    pub pairs_culled_by_bounds: usize,
+    pub pairs_intersected: usize,
+    pub pairs_with_branches: usize,
+    pub branches: usize,
+    pub closed_branches: usize,
+    pub points: usize,
+    /// Largest proven point-to-surface distance over all branches.
+    pub dist_max: f64,
+    /// Whether every point is proven within `tol` of both surfaces.
+    pub all_points_within_tol: bool,
+    pub pairs_not_run: usize,
+    pub partial: bool,
+    pub seconds: f64,
+    /// Plain words on what is proven (points) and what is not (completeness).
+    pub certificate: Vec<String>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SsiResult {
+    pub pairs: Vec<PairOut>,
+    pub summary: Summary,
+}

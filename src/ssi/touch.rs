@@ -1,0 +1,131 @@
+//! Tangential contacts: where the two surfaces touch without crossing, the triangulations may
+//! miss each other entirely (a convex surface's chords lie off the surface). Triangle pairs
+//! whose boxes, grown by the flatness tolerance, overlap and whose normals are within the
+//! tangent angle seed a search for tangential points on the true surfaces
+//! ([`tangential_point`]): touching points, and the singular points where intersection curves
+//! cross (the Steinmetz curve's branch points). Triangles around such a point form its
+//! *singular region*: every mesh crossing point named by a feature of a region triangle is
+//! merged into one Point for it, so the tracer ends curves there (a branch point when more
+//! than two curve ends meet) instead of following the perturbed mesh topology through it.
+
+use super::branch::PairGeometry;
+use super::cull::{TriTree, triangle_box};
+use super::refine::{RefineParams, RefineStatus, Refined, tangential_point};
+use super::report::TouchOut;
+use super::triangulate::SurfaceMesh;
+use std::collections::BTreeSet;
+
+/// Most seeds tried per pair.
+pub const MAX_SEEDS: usize = 256;
+
+fn tri(m: &SurfaceMesh, t: u32) -> [[f64; 3]; 3] {
+    let v = m.triangles[t as usize];
+    std::array::from_fn(|k| m.vertices[v[k] as usize])
+}
+
+fn grown_tree(m: &SurfaceMesh, d: f64) -> TriTree {
+    let boxes: Vec<_> = (0..m.triangles.len() as u32)
+        .map(|t| {
+            let (lo, hi) = triangle_box(&tri(m, t));
+            let g = |x: f32, s: f64| {
+                let y = (x as f64 + s) as f32;
+                if s < 0.0 { y.next_down() } else { y.next_up() }
+            };
+            (lo.map(|x| g(x, -d)), hi.map(|x| g(x, d)))
+        })
+        .collect();
+    TriTree::build(&boxes)
+}
+
+fn normal(t: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
+    let a: [f64; 3] = std::array::from_fn(|k| t[1][k] - t[0][k]);
+    let b: [f64; 3] = std::array::from_fn(|k| t[2][k] - t[0][k]);
+    let n = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (l > 0.0).then(|| n.map(|c| c / l))
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn centroid_uv(m: &SurfaceMesh, t: u32) -> [f64; 2] {
+    let v = m.triangles[t as usize];
+    std::array::from_fn(|c| {
+        (m.uv[v[0] as usize][c] + m.uv[v[1] as usize][c] + m.uv[v[2] as usize][c]) / 3.0
+    })
+}
+
+/// Tangential points of the pair (touching points and singular points of the intersection),
+/// one per `flatness` neighbourhood, found from every seed (up to [`MAX_SEEDS`], spread
+/// evenly) by [`tangential_point`].
+pub fn tangential_points(
+    g: &PairGeometry,
+    flatness: f64,
+    tangent_angle_deg: f64,
+    prm: &RefineParams,
+) -> Vec<Refined> {
+    let cos_t = tangent_angle_deg.to_radians().cos();
+    let pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
+    let mut seeds: BTreeSet<(u32, u32)> = BTreeSet::new();
+    let mut seed_tris = Vec::new();
+    for (ta, tb) in pairs {
+        if let (Some(x), Some(y)) = (normal(&tri(g.ma, ta)), normal(&tri(g.mb, tb))) {
+            if (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t {
+                let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);
+                if seeds.insert(key) {
+                    seed_tris.push((ta, tb));
+                }
+            }
+        }
+    }
+    let step = seed_tris.len().div_ceil(MAX_SEEDS).max(1);
+    let mut out: Vec<Refined> = Vec::new();
+    for &(ta, tb) in seed_tris.iter().step_by(step) {
+        let r = tangential_point(
+            g.sa,
+            g.sb,
+            centroid_uv(g.ma, ta),
+            centroid_uv(g.mb, tb),
+            prm,
+        );
+        if r.status == RefineStatus::Tangential
+            && !out.iter().any(|t| dist(&t.xyz, &r.xyz) <= flatness)
+        {
+            out.push(r);
+        }
+    }
+    out
+}
+
+/// Triangles of `m` whose box, grown by `r`, holds `x`: the singular region around a
+/// tangential point.
+pub fn region(m: &SurfaceMesh, x: &[f64; 3], r: f64) -> Vec<u32> {
+    (0..m.triangles.len() as u32)
+        .filter(|&t| {
+            let p = tri(m, t);
+            (0..3).all(|k| {
+                let lo = p.iter().map(|q| q[k]).fold(f64::INFINITY, f64::min);
+                let hi = p.iter().map(|q| q[k]).fold(f64::NEG_INFINITY, f64::max);
+                lo - r <= x[k] && x[k] <= hi + r
+            })
+        })
+        .collect()
+}
+
+/// The touching point record of a tangential point.
+pub fn touch_out(g: &PairGeometry, r: &Refined, branch_ends: usize) -> TouchOut {
+    TouchOut {
+        point: r.xyz,
+        uv_a: Some(r.uv_a),
+        uv_b: Some(r.uv_b),
+        status: Some(r.status),
+        dist_a: g.ea.distance_bound(&r.xyz, &r.uv_a),
+        dist_b: g.eb.distance_bound(&r.xyz, &r.uv_b),
+        branch_ends,
+    }
+}
