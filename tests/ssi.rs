@@ -114,34 +114,188 @@ fn unequal_cylinders_meet_in_two_closed_loops() {
 
 #[test]
 fn steinmetz_equal_cylinders_cross_at_branch_points() {
+    // Two ellipses in the planes z = x and z = -x, crossing at (0, ±1, 0), where the
+    // cylinders are tangent: four arcs, each from one branch point to the other.
     let tol = 1e-6;
     let (a, b) = cylinders(1.0, 1.0);
     let r = run(&a, &b, tol);
-    // Two ellipses in the planes z = ±x, crossing at (0, ±1, 0): four branch points-to-branch
-    // point arcs, or fewer arcs if the tracer's branch points coincide... every arc ends at a
-    // branch point or a tangential end, and every point lies on both cylinders.
-    assert!(!r.branches.is_empty());
-    let mut arcs = 0;
+    assert_eq!(r.branches.len(), 4, "{:?}", r.stats);
+    let singular: Vec<_> = r
+        .touch_points
+        .iter()
+        .filter(|t| t.branch_ends > 2)
+        .collect();
+    assert_eq!(singular.len(), 2, "two branch points");
+    for t in &singular {
+        assert_eq!(t.branch_ends, 4);
+        let p = t.point;
+        assert!(
+            p[0].abs() < 1e-6 && (p[1].abs() - 1.0).abs() < 1e-6 && p[2].abs() < 1e-6,
+            "{p:?}"
+        );
+    }
     for br in &r.branches {
+        assert!(!br.closed);
+        assert_eq!(br.ends, vec![EndKind::BranchPoint, EndKind::BranchPoint]);
+        let (first, last) = (br.points[0], br.points[br.points.len() - 1]);
+        assert!(
+            (first[1] * last[1]) < 0.0,
+            "an arc joins the two branch points"
+        );
         for p in &br.points {
             let e1 = ((p[0] * p[0] + p[1] * p[1]).sqrt() - 1.0).abs();
             let e2 = ((p[1] * p[1] + p[2] * p[2]).sqrt() - 1.0).abs();
-            assert!(e1.max(e2) <= 1e-5, "{p:?}: {e1} {e2}");
-            // On one of the two planes z = x or z = -x (up to the tangential stretch).
+            // On one of the planes z = ±x.
+            let e3 = (p[2].abs() - p[0].abs()).abs();
+            assert!(e1.max(e2).max(e3) <= 2.0 * tol, "{p:?}: {e1} {e2} {e3}");
         }
-        if !br.closed {
-            arcs += 1;
+        assert!(br.dist_a_max <= tol && br.dist_b_max <= tol);
+    }
+}
+
+/// `z = x² + y²` over `[-1, 1]²` as a biquadratic Bézier patch (exact).
+fn paraboloid() -> NurbsSurface<f64, 3> {
+    let c = [-1.0, 0.0, 1.0];
+    let z = [1.0, -1.0, 1.0];
+    let mut pts = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            pts.push([c[i], c[j], z[i] + z[j]]);
         }
     }
-    eprintln!(
-        "steinmetz: {} branches ({} open): {:?}",
-        r.branches.len(),
-        arcs,
+    let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    NurbsSurface::new(k.clone(), 2, k, 2, 3, 3, pts, vec![1.0; 9]).unwrap()
+}
+
+#[test]
+fn paraboloid_touching_a_plane_is_a_tangential_contact() {
+    let r = run(&paraboloid(), &plane_z(0.0, 2.0), 1e-7);
+    assert!(
+        r.branches.is_empty(),
+        "no curve: {:?}",
         r.branches
             .iter()
-            .map(|b| (b.closed, b.points.len(), b.ends.clone()))
+            .map(|b| b.points.len())
             .collect::<Vec<_>>()
     );
-    let _ = EndKind::BranchPoint;
-    let _ = norm;
+    assert_eq!(r.touch_points.len(), 1, "{:?}", r.touch_points);
+    let t = &r.touch_points[0];
+    assert_eq!(t.branch_ends, 0);
+    assert!(norm(&t.point) < 1e-6, "{:?}", t.point);
+    assert!(t.dist_a.unwrap() <= 1e-7 && t.dist_b.unwrap() <= 1e-7);
+    // Lowered, the plane misses; raised, it cuts a circle of radius sqrt(h).
+    let miss = run(&paraboloid(), &plane_z(-0.01, 2.0), 1e-7);
+    assert!(miss.branches.is_empty() && miss.touch_points.is_empty());
+    let cut = run(&paraboloid(), &plane_z(0.25, 2.0), 1e-7);
+    assert_eq!(cut.branches.len(), 1);
+    assert!(cut.branches[0].closed);
+    for p in &cut.branches[0].points {
+        assert!(((p[0] * p[0] + p[1] * p[1]).sqrt() - 0.5).abs() <= 2e-7);
+    }
+}
+
+/// A bicubic surface over `[0, 1]²` (10 × 10 net, z = -0.1) with four isolated bumps.
+fn bumpy() -> (NurbsSurface<f64, 3>, Vec<[f64; 2]>) {
+    let n = 10;
+    let bumps = [(2, 2), (2, 7), (7, 2), (7, 6)];
+    let mut pts = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let z = if bumps.contains(&(i, j)) { 0.3 } else { -0.1 };
+            pts.push([i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64, z]);
+        }
+    }
+    let mut k = vec![0.0; 4];
+    k.extend((1..n - 3).map(|i| i as f64 / (n - 3) as f64));
+    k.extend([1.0; 4]);
+    let s = NurbsSurface::new(k.clone(), 3, k, 3, n, n, pts, vec![1.0; n * n]).unwrap();
+    let centres = bumps
+        .iter()
+        .map(|&(i, j)| [i as f64 / 9.0, j as f64 / 9.0])
+        .collect();
+    (s, centres)
+}
+
+#[test]
+fn wavy_surface_meets_a_plane_in_several_small_loops() {
+    let tol = 1e-7;
+    let (s, centres) = bumpy();
+    // Lowest bump top (dense sampling of the test surface), minus a little: small loops.
+    let peak = |c: &[f64; 2]| {
+        let mut m = f64::NEG_INFINITY;
+        for i in 0..=100 {
+            for j in 0..=100 {
+                let (u, v) = (
+                    (c[0] - 0.1 + 0.002 * i as f64).clamp(0.0, 1.0),
+                    (c[1] - 0.1 + 0.002 * j as f64).clamp(0.0, 1.0),
+                );
+                m = m.max(s.eval(&u, &v)[2]);
+            }
+        }
+        m
+    };
+    let h = centres.iter().map(peak).fold(f64::INFINITY, f64::min) - 0.01;
+    assert!(h > 0.0);
+    let r = run(&s, &plane_z(h, 2.0), tol);
+    assert_eq!(r.branches.len(), 4, "{:?}", r.stats);
+    let mut hit = [false; 4];
+    for br in &r.branches {
+        assert!(br.closed);
+        assert!(br.dist_a_max <= tol && br.dist_b_max <= tol);
+        let n = br.points.len() as f64;
+        let c = [
+            br.points.iter().map(|p| p[0]).sum::<f64>() / n,
+            br.points.iter().map(|p| p[1]).sum::<f64>() / n,
+        ];
+        let radius = br
+            .points
+            .iter()
+            .map(|p| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2)).sqrt())
+            .fold(0.0, f64::max);
+        assert!(radius < 0.1, "small loop: radius {radius}");
+        for p in &br.points {
+            assert!((p[2] - h).abs() <= 2.0 * tol);
+        }
+        let k = centres
+            .iter()
+            .position(|q| ((q[0] - c[0]).powi(2) + (q[1] - c[1]).powi(2)).sqrt() < 0.1)
+            .expect("loop around a bump");
+        hit[k] = true;
+    }
+    assert!(hit.iter().all(|h| *h), "one loop per bump");
+}
+
+/// Same branches, bit for bit, for (A, B) and (B, A), and between runs.
+#[test]
+fn symmetric_and_deterministic() {
+    let (a, b) = cylinders(1.0, 0.6);
+    let ab = run(&a, &b, 1e-7);
+    let ba = run(&b, &a, 1e-7);
+    let again = run(&a, &b, 1e-7);
+    assert_eq!(ab.branches.len(), ba.branches.len());
+    for ((x, y), z) in ab.branches.iter().zip(&ba.branches).zip(&again.branches) {
+        assert_eq!(x.points, y.points);
+        assert_eq!(x.uv_a, y.uv_b);
+        assert_eq!(x.uv_b, y.uv_a);
+        assert_eq!(x.points, z.points);
+        assert_eq!(x.uv_a, z.uv_a);
+    }
+}
+
+#[test]
+fn bad_parameters_are_typed_errors() {
+    let (a, b) = cylinders(1.0, 0.6);
+    for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let prm = SsiParams {
+            tol,
+            ..Default::default()
+        };
+        assert!(prm.validate().is_err(), "{tol}");
+    }
+    let prm = SsiParams {
+        flatness: Some(f64::NAN),
+        ..Default::default()
+    };
+    assert!(prm.validate().is_err());
+    let _ = intersect_pair_canonical(&a, &b, (0, 1), &SsiParams::default(), None).unwrap();
 }

@@ -170,7 +170,7 @@ pub fn intersect_models(
         if meshes {
             "every point lies within the stated distance of both triangulations (rigorous bound on the constructed crossing point)".to_string()
         } else {
-            "every point's distance to each surface at its own parameters is bounded exactly (rational evaluation)".to_string()
+            "every point's distance to each surface at its own parameters is bounded rigorously (outward-rounded interval evaluation, exact rational fallback)".to_string()
         },
         "branch topology comes from exact signs with symbolic perturbation; every segment is used once (checked)".to_string(),
         "completeness is not certified: loops smaller than the triangulation's resolution can be missed; coverage proofs are not implemented".to_string(),

@@ -19,6 +19,7 @@ pub mod certify;
 pub mod cull;
 pub mod driver;
 pub mod fit;
+pub mod job;
 pub mod mesh;
 pub mod pair;
 pub mod refine;

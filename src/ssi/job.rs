@@ -1,0 +1,257 @@
+//! The `ssi` job: read one or two model files, intersect, write the JSON result and optional
+//! VTK / IGES outputs, report progress on long runs.
+
+use super::report::SsiResult;
+use super::{SsiError, SsiParams, intersect_models};
+use crate::io::vtk::{Array, PolyData, render};
+use crate::model::{Curve, CurveGeometry, Model};
+use crate::spline::NurbsCurve;
+use std::path::Path;
+use std::time::Instant;
+
+#[derive(Debug, thiserror::Error)]
+pub enum JobError {
+    #[error(transparent)]
+    Read(#[from] crate::io::ReadError),
+    #[error(transparent)]
+    Compute(#[from] SsiError),
+    #[error("cannot write {0}: {1}")]
+    Write(String, String),
+    #[error("thread pool: {0}")]
+    Threads(String),
+}
+
+impl JobError {
+    pub fn is_bad_input(&self) -> bool {
+        matches!(
+            self,
+            JobError::Read(_)
+                | JobError::Compute(
+                    SsiError::Tolerance(_)
+                        | SsiError::Parameter(..)
+                        | SsiError::Empty
+                        | SsiError::FaceIndex { .. }
+                )
+        )
+    }
+}
+
+/// Output files of the job.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    pub json: Option<&'a Path>,
+    /// Branches as polylines (cell arrays `pair`, `branch`, `closed`, `dist_max`), the
+    /// tangential points, and the intersected faces sampled on a grid.
+    pub vtk: Option<&'a Path>,
+    /// The fitted cubic of every branch as IGES 126 curves.
+    pub iges: Option<&'a Path>,
+}
+
+fn write(path: &Path, text: &str) -> Result<(), JobError> {
+    std::fs::write(path, text)
+        .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
+}
+
+/// The result as VTK PolyData.
+pub fn to_vtp(r: &SsiResult, a: &Model, b: Option<&Model>) -> String {
+    let mut p = PolyData::default();
+    let mut face = Vec::new();
+    let mut faces_done = std::collections::BTreeSet::new();
+    for pair in &r.pairs {
+        for (m, i, tag) in [(a, pair.a, 0usize), (b.unwrap_or(a), pair.b, 1usize)] {
+            let key = (if b.is_some() { tag } else { 0 }, i);
+            if faces_done.insert(key)
+                && let Some(s) = m.surfaces.get(i)
+            {
+                let n = p.add_surface(&s.nurbs, 24);
+                face.extend(std::iter::repeat_n(i as f64, n));
+            }
+        }
+    }
+    let polys = p.polys.len();
+    let (mut pair_id, mut branch_id, mut closed, mut dist) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (k, pair) in r.pairs.iter().enumerate() {
+        for (j, br) in pair.branches.iter().enumerate() {
+            let mut pts = br.points.clone();
+            if br.closed && !pts.is_empty() {
+                pts.push(pts[0]);
+            }
+            p.add_polyline(&pts);
+            pair_id.push(k as f64);
+            branch_id.push(j as f64);
+            closed.push(br.closed as u8 as f64);
+            dist.push(br.dist_a_max.max(br.dist_b_max));
+        }
+    }
+    let pad = |v: Vec<f64>, fill: f64| {
+        let mut w = vec![fill; polys];
+        w.extend(v);
+        w
+    };
+    let lines = pair_id.len();
+    face.extend(std::iter::repeat_n(-1.0, lines));
+    p.cell_data = vec![
+        Array {
+            name: "face".into(),
+            values: face,
+        },
+        Array {
+            name: "pair".into(),
+            values: pad(pair_id, -1.0),
+        },
+        Array {
+            name: "branch".into(),
+            values: pad(branch_id, -1.0),
+        },
+        Array {
+            name: "closed".into(),
+            values: pad(closed, -1.0),
+        },
+        Array {
+            name: "dist_max".into(),
+            values: pad(dist, -1.0),
+        },
+    ];
+    render(&p)
+}
+
+/// The fitted branches as a model of space curves.
+pub fn curves_model(r: &SsiResult) -> Model {
+    let mut m = Model::default();
+    for (k, pair) in r.pairs.iter().enumerate() {
+        for (j, br) in pair.branches.iter().enumerate() {
+            if let Some(f) = &br.fit
+                && let Ok(c) = NurbsCurve::new(
+                    f.knots.clone(),
+                    f.degree,
+                    f.control_points.clone(),
+                    vec![1.0; f.control_points.len()],
+                )
+            {
+                m.curves.push(Curve {
+                    name: format!("ssi pair {k} ({}, {}) branch {j}", pair.a, pair.b),
+                    geometry: CurveGeometry::Space(c),
+                });
+            }
+        }
+    }
+    m
+}
+
+/// Run the job.
+pub fn run(
+    file_a: &Path,
+    file_b: Option<&Path>,
+    prm: &SsiParams,
+    threads: Option<usize>,
+    outputs: Outputs,
+) -> Result<SsiResult, JobError> {
+    let a = crate::io::read_model(file_a)?;
+    let b = match file_b {
+        Some(f) => Some(crate::io::read_model(f)?),
+        None => None,
+    };
+    let t0 = Instant::now();
+    let last = std::sync::Mutex::new(0.0f64);
+    let progress = |done: usize, total: usize| {
+        let el = t0.elapsed().as_secs_f64();
+        if let Ok(mut l) = last.lock()
+            && el > 1.0
+            && (el - *l >= 1.0 || done == total)
+        {
+            *l = el;
+            eprintln!("ssi: {done}/{total} face pairs ({el:.1} s)");
+        }
+    };
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = threads {
+        builder = builder.num_threads(n);
+    }
+    let pool = builder
+        .build()
+        .map_err(|e| JobError::Threads(e.to_string()))?;
+    let r = pool.install(|| intersect_models(&a, b.as_ref(), prm, &progress))?;
+    if let Some(p) = outputs.json {
+        write(p, &serde_json::to_string_pretty(&r).unwrap_or_default())?;
+    }
+    if let Some(p) = outputs.vtk {
+        write(p, &to_vtp(&r, &a, b.as_ref()))?;
+    }
+    if let Some(p) = outputs.iges {
+        write(
+            p,
+            &crate::io::iges::write::to_string(&curves_model(&r), "vericad ssi"),
+        )?;
+    }
+    Ok(r)
+}
+
+impl std::fmt::Display for SsiResult {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let s = &self.summary;
+        writeln!(f, "surface-surface intersection, tol {:e}", s.tol)?;
+        writeln!(
+            f,
+            "  faces: {} x {}; pairs considered {}, culled by bounds {}, intersected {}, with curves {}",
+            s.faces_a,
+            s.faces_b,
+            s.pairs_considered,
+            s.pairs_culled_by_bounds,
+            s.pairs_intersected,
+            s.pairs_with_branches
+        )?;
+        writeln!(
+            f,
+            "  branches: {} ({} closed), {} points; largest proven distance to a surface {:.3e} ({})",
+            s.branches,
+            s.closed_branches,
+            s.points,
+            s.dist_max,
+            if s.all_points_within_tol {
+                "all within tol"
+            } else {
+                "NOT all within tol"
+            }
+        )?;
+        for p in self
+            .pairs
+            .iter()
+            .filter(|p| !p.branches.is_empty() || !p.touch_points.is_empty())
+        {
+            writeln!(
+                f,
+                "  faces ({}, {}): {} branches, {} tangential points, {} + {} triangles, {:.3} s",
+                p.a,
+                p.b,
+                p.branches.len(),
+                p.touch_points.len(),
+                p.stats.triangles_a,
+                p.stats.triangles_b,
+                p.stats.seconds
+            )?;
+            for (j, b) in p.branches.iter().enumerate() {
+                writeln!(
+                    f,
+                    "    branch {j}: {} , {} points, proven dist {:.2e} / {:.2e}, ends {:?}",
+                    if b.closed { "closed" } else { "open" },
+                    b.points.len(),
+                    b.dist_a_max,
+                    b.dist_b_max,
+                    b.ends
+                )?;
+            }
+        }
+        if s.partial {
+            writeln!(
+                f,
+                "  PARTIAL RESULT: time limit reached, {} pairs not run",
+                s.pairs_not_run
+            )?;
+        }
+        for c in &s.certificate {
+            writeln!(f, "  - {c}")?;
+        }
+        writeln!(f, "  time {:.3} s", s.seconds)
+    }
+}
