@@ -163,6 +163,33 @@ pub fn prop_segment_distance_is_the_minimum(p: [i8; 2], a: [i8; 2], b: [i8; 2]) 
 
 // ---------------------------------------------------------------- Kani drivers
 
+// ---------------------------------------------------------------- SSI loop topology
+
+/// Tracing any segment soup (pairs of point numbers) yields branches that satisfy the loop
+/// invariants (every segment used exactly once, consecutive points joined by their segment,
+/// closed loops through use-count-2 points only, open ends at use count != 2, simple paths),
+/// and the open branches are exactly half the ends at points of use count != 2.
+pub fn prop_trace_invariants(soup: &[(u8, u8)]) {
+    use vericad::ssi::topology::Topology;
+    use vericad::ssi::trace::{check_invariants, trace};
+    let pairs: Vec<(u32, u32)> = soup.iter().map(|&(a, b)| (a as u32, b as u32)).collect();
+    let mut t = Topology::from_soup(&pairs);
+    let branches = trace(&mut t);
+    if let Err(e) = check_invariants(&t, &branches) {
+        panic!("{soup:?}: {e}");
+    }
+    let ends: usize = t
+        .points
+        .iter()
+        .filter(|p| p.uses.len() != 2)
+        .map(|p| p.uses.len())
+        .sum();
+    let open = branches.iter().filter(|b| !b.closed).count();
+    assert_eq!(2 * open, ends, "{soup:?}");
+    let used: usize = branches.iter().map(|b| b.segments.len()).sum();
+    assert_eq!(used, t.segments.len());
+}
+
 #[cfg(kani)]
 mod kani_drivers {
     use super::*;
@@ -194,6 +221,15 @@ mod kani_drivers {
         kani::assume(p.iter().chain(&a).chain(&b).all(|x| (-4..=4).contains(x)));
         prop_segment_distance_is_the_minimum(p, a, b);
     }
+    #[kani::proof]
+    #[kani::unwind(10)]
+    fn trace_invariants() {
+        let soup: [(u8, u8); 4] = kani::any();
+        let n: usize = kani::any();
+        kani::assume(n <= 4 && soup.iter().all(|&(a, b)| a < 4 && b < 4));
+        super::prop_trace_invariants(&soup[..n]);
+    }
+
     #[kani::proof]
     #[kani::unwind(8)]
     fn single_sided_cubic_closed_form() {
@@ -294,4 +330,25 @@ fn segment_distance_is_the_minimum_exhaustive() {
             }
         }
     }
+}
+
+#[test]
+fn trace_invariants_exhaustive() {
+    // Every soup of up to 4 segments over 4 points (all 16^4 + 16^3 + … sequences).
+    let all: Vec<(u8, u8)> = (0..4u8)
+        .flat_map(|a| (0..4u8).map(move |b| (a, b)))
+        .collect();
+    let mut soup = Vec::new();
+    fn rec(all: &[(u8, u8)], soup: &mut Vec<(u8, u8)>, left: usize) {
+        prop_trace_invariants(soup);
+        if left == 0 {
+            return;
+        }
+        for &s in all {
+            soup.push(s);
+            rec(all, soup, left - 1);
+            soup.pop();
+        }
+    }
+    rec(&all, &mut soup, 4);
 }

@@ -142,3 +142,64 @@ pub fn readers(data: &[u8]) {
         assert!(!e.reason.is_empty());
     }
 }
+
+/// A small grid triangulation from bytes: `n × n` vertices on integer (x, y) with integer
+/// heights in `-2..=2` (so many exact coincidences and coplanarities), in the frame given by
+/// `axes` (a permutation of the coordinates).
+fn byte_grid(data: &[u8], n: usize, axes: [usize; 3], shift: f64) -> crate::model::Triangulation {
+    let mut vertices = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let h = data.get(i * n + j).map_or(0, |b| (*b % 5) as i32 - 2) as f64;
+            let local = [i as f64 - shift, j as f64 - shift, h * 0.5];
+            let mut p = [0.0; 3];
+            for k in 0..3 {
+                p[axes[k]] = local[k];
+            }
+            vertices.push(p);
+        }
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n - 1 {
+        for j in 0..n - 1 {
+            let v = |a: usize, b: usize| (a * n + b) as u32;
+            let flip = data.get(n * n + i * n + j).is_some_and(|b| b & 1 == 1);
+            if flip {
+                triangles.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+                triangles.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+            } else {
+                triangles.push([v(i, j), v(i + 1, j), v(i, j + 1)]);
+                triangles.push([v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
+            }
+        }
+    }
+    crate::model::Triangulation {
+        name: "fuzz".into(),
+        vertices,
+        triangles,
+    }
+}
+
+/// SSI topology on degenerate meshes: two byte-defined grids (integer coordinates, so
+/// vertices lie exactly in other triangles' planes and edges cross exactly) intersect in mesh
+/// mode without error; every triangle pair is consistent under the symbolic perturbation;
+/// the loop invariants hold (checked inside) and every segment is in exactly one branch.
+/// Returns the number of segments found.
+pub fn ssi_meshes(data: &[u8]) -> usize {
+    let n = 4;
+    let a = byte_grid(data, n, [0, 1, 2], 0.0);
+    let b = byte_grid(data.get(2 * n * n..).unwrap_or(&[]), n, [0, 2, 1], 0.5);
+    let r = crate::ssi::mesh::intersect_meshes(&a, &b, (0, 1));
+    let r = match r {
+        Ok(r) => r,
+        Err(e) => panic!("mesh intersection failed: {e}"),
+    };
+    assert_eq!(r.stats.inconsistent_triangle_pairs, 0, "{:?}", r.stats);
+    let in_branches: usize = r
+        .branches
+        .iter()
+        .map(|b| b.points.len() - usize::from(!b.closed))
+        .sum();
+    assert_eq!(in_branches, r.stats.segments, "{:?}", r.stats);
+    r.stats.segments
+}

@@ -111,3 +111,22 @@ fn readers_survive_mutated_real_files() {
         fuzz_entry::readers(&s);
     }
 }
+
+#[test]
+fn ssi_meshes_on_random_degenerate_grids() {
+    let mut r = Rng(29);
+    let (mut segments, mut with) = (0, 0);
+    for _ in 0..3_000 {
+        let data: Vec<u8> = (0..64).map(|_| r.below(256) as u8).collect();
+        let s = fuzz_entry::ssi_meshes(&data);
+        segments += s;
+        with += usize::from(s > 0);
+    }
+    // The grids do cross (the test exercises the tracer, not only the culling).
+    assert!(
+        with > 1_000 && segments > 10_000,
+        "{with} runs with segments, {segments} in all"
+    );
+    fuzz_entry::ssi_meshes(&[]);
+    fuzz_entry::ssi_meshes(&[2; 64]);
+}
