@@ -91,7 +91,7 @@ pub enum Command {
         file2: Option<PathBuf>,
         /// Tolerance: refined points agree on both surfaces, and chords follow the true curve,
         /// within it (model units).
-        #[arg(long, default_value_t = 1e-6)]
+        #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
         tol: f64,
         /// Triangulation flatness (default: 0.2% of the pair's control-net diagonal).
         #[arg(long)]

@@ -9,6 +9,9 @@
 
 use crate::spline::{BSplineCurve, KnotVector};
 
+/// A fitted curve and the points it interpolates, in parameter order.
+pub type Fitted<const D: usize> = (BSplineCurve<[f64; D]>, Vec<[f64; D]>);
+
 /// Cubic C1 B-spline through `pts` (consecutive duplicates removed), with the points it
 /// interpolates in parameter order. `None` for fewer than two distinct points.
 ///
@@ -18,7 +21,7 @@ pub fn fit_cubic<const D: usize>(
     pts: &[[f64; D]],
     closed: bool,
     metric: usize,
-) -> Option<(BSplineCurve<[f64; D]>, Vec<[f64; D]>)> {
+) -> Option<Fitted<D>> {
     let m = metric.min(D);
     let d = |a: &[f64; D], b: &[f64; D]| (0..m).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
     let mut p: Vec<[f64; D]> = Vec::with_capacity(pts.len());
@@ -37,7 +40,7 @@ pub fn fit_cubic<const D: usize>(
     // Chord lengths of the spans (closed: the closing span too).
     let spans = if closed && n > 2 { n } else { n - 1 };
     let h: Vec<f64> = (0..spans).map(|i| d(&p[i], &p[(i + 1) % n])).collect();
-    if h.iter().any(|x| !(*x > 0.0) || !x.is_finite()) {
+    if h.iter().any(|x| x.is_nan() || *x <= 0.0 || !x.is_finite()) {
         return None;
     }
     // Bessel tangent at i from the parabola through i-1, i, i+1.

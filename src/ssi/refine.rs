@@ -136,6 +136,8 @@ pub fn auxiliary_plane(
     prm: &RefineParams,
 ) -> Refined {
     let (da, db) = (domain(sa), domain(sb));
+    uv_a = clamp_uv(uv_a, &da).0;
+    uv_b = clamp_uv(uv_b, &db).0;
     let mut best: Option<Refined> = None;
     let mut status = RefineStatus::NotConverged;
     let mut boundary_hits = 0;
@@ -214,58 +216,6 @@ pub fn auxiliary_plane(
         iterations: prm.max_iter,
     });
     Refined { status, ..b }
-}
-
-/// Closest points of the two surfaces near `(uv_a, uv_b)`: both points repeatedly step
-/// within their tangent planes towards their midpoint (the fallback of the Auxiliary Plane
-/// Method where the normals are parallel). Used to decide tangential contacts: the result is
-/// `Converged` when the points meet within `tol`, `Tangential` when they meet within `tol`
-/// with parallel normals, `NotConverged` when the surfaces stay apart.
-pub fn closest_points(
-    sa: &NurbsSurface<f64, 3>,
-    sb: &NurbsSurface<f64, 3>,
-    mut uv_a: [f64; 2],
-    mut uv_b: [f64; 2],
-    prm: &RefineParams,
-) -> Refined {
-    let (da, db) = (domain(sa), domain(sb));
-    let mut last = f64::INFINITY;
-    let mut it = 0;
-    loop {
-        let (p0, su, sv) = point_d1(sa, uv_a[0], uv_a[1]);
-        let (q0, rw, rt) = point_d1(sb, uv_b[0], uv_b[1]);
-        let gap = norm(&sub(&p0, &q0));
-        let (na, nb) = (cross(&su, &sv), cross(&rw, &rt));
-        let (la, lb) = (norm(&na), norm(&nb));
-        let done = it >= prm.max_iter || !(gap < last * (1.0 - 1e-9)) || !(la > 0.0 && lb > 0.0);
-        if done || gap <= prm.tol * 1e-3 {
-            let parallel = la > 0.0
-                && lb > 0.0
-                && norm(&cross(&scale(&na, 1.0 / la), &scale(&nb, 1.0 / lb))) < prm.tangent_sin;
-            let status = if gap <= prm.tol && parallel {
-                RefineStatus::Tangential
-            } else if gap <= prm.tol {
-                RefineStatus::Converged
-            } else {
-                RefineStatus::NotConverged
-            };
-            return Refined {
-                xyz: scale(&add(&p0, &q0), 0.5),
-                uv_a,
-                uv_b,
-                gap,
-                status,
-                iterations: it,
-            };
-        }
-        last = gap;
-        let x = scale(&add(&p0, &q0), 0.5);
-        let sa_ = tangent_step(&su, &sv, &scale(&na, 1.0 / la), &sub(&x, &p0));
-        let sb_ = tangent_step(&rw, &rt, &scale(&nb, 1.0 / lb), &sub(&x, &q0));
-        uv_a = clamp_uv([uv_a[0] + sa_[0], uv_a[1] + sa_[1]], &da).0;
-        uv_b = clamp_uv([uv_b[0] + sb_[0], uv_b[1] + sb_[1]], &db).0;
-        it += 1;
-    }
 }
 
 /// Solve for a tangential point of the two surfaces near `(uv_a, uv_b)`: `s(u,v) = r(w,t)` with
@@ -389,7 +339,7 @@ pub fn tangential_point(
 fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
     for c in 0..4 {
         let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
-        if !(a[p][c].abs() > 0.0) {
+        if a[p][c].is_nan() || a[p][c] == 0.0 {
             return None;
         }
         a.swap(c, p);

@@ -74,12 +74,12 @@ pub fn tangential_points(
     let mut seeds: BTreeSet<(u32, u32)> = BTreeSet::new();
     let mut seed_tris = Vec::new();
     for (ta, tb) in pairs {
-        if let (Some(x), Some(y)) = (normal(&tri(g.ma, ta)), normal(&tri(g.mb, tb))) {
-            if (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t {
-                let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);
-                if seeds.insert(key) {
-                    seed_tris.push((ta, tb));
-                }
+        if let (Some(x), Some(y)) = (normal(&tri(g.ma, ta)), normal(&tri(g.mb, tb)))
+            && (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t
+        {
+            let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);
+            if seeds.insert(key) {
+                seed_tris.push((ta, tb));
             }
         }
     }

@@ -166,7 +166,10 @@ fn needs_split(ev: &mut Evaluator, c: &CellKey, prm: &TriangulateParams) -> bool
         (ev.at(c.u1, vm), mid(&p10, &p11)),
         (ev.at(um, vm), mid(&mid(&p00, &p11), &mid(&p10, &p01))),
     ];
-    checks.iter().any(|(s, l)| !(dist(s, l) <= prm.flatness))
+    checks.iter().any(|(s, l)| {
+        let d = dist(s, l);
+        d.is_nan() || d > prm.flatness
+    })
 }
 
 /// Leaf cells of the adaptive subdivision. `force` lists cells that must be split once more

@@ -1,0 +1,225 @@
+//! SSI on the public CAD files in ../shared/data and through the command line: runs complete
+//! without error, every point carries a proven bound within tol, results are the same for
+//! every thread count, the time limit yields a marked partial result.
+
+use std::path::{Path, PathBuf};
+use vericad::ssi::{SsiParams, intersect_models};
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/data")
+        .join(name)
+}
+
+fn no_progress(_: usize, _: usize) {}
+
+fn check_file(name: &str, min_branches: usize) {
+    let m = vericad::io::read_model(&data(name)).expect("readable");
+    let prm = SsiParams::default();
+    let r = intersect_models(&m, None, &prm, &no_progress).expect("intersection completes");
+    assert!(!r.summary.partial);
+    assert!(
+        r.summary.branches >= min_branches,
+        "{name}: {} branches",
+        r.summary.branches
+    );
+    assert!(
+        r.summary.all_points_within_tol,
+        "{name}: {}",
+        r.summary.dist_max
+    );
+    for p in &r.pairs {
+        assert_eq!(
+            p.stats.inconsistent_triangle_pairs,
+            0,
+            "{name} {:?}",
+            (p.a, p.b)
+        );
+    }
+    // VTK output renders every branch as a line.
+    let vtp = vericad::ssi::job::to_vtp(&r, &m, None);
+    assert!(vtp.contains(&format!("NumberOfLines=\"{}\"", r.summary.branches)));
+}
+
+#[test]
+fn fuselage_faces_intersect() {
+    check_file("occt-bug28366_fuselage.stp", 1);
+}
+
+#[test]
+fn t20_faces_intersect() {
+    check_file("gmsh-t20_data.step", 10);
+}
+
+fn branches_json(r: &vericad::ssi::SsiResult) -> String {
+    let b: Vec<_> = r
+        .pairs
+        .iter()
+        .map(|p| (&p.branches, &p.touch_points))
+        .collect();
+    serde_json::to_string(&b).unwrap()
+}
+
+#[test]
+fn same_result_for_every_thread_count() {
+    let m = vericad::io::read_model(&data("gmsh-t20_data.step")).unwrap();
+    let prm = SsiParams::default();
+    let run = |n: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .unwrap();
+        pool.install(|| intersect_models(&m, None, &prm, &no_progress).unwrap())
+    };
+    let one = branches_json(&run(1));
+    assert_eq!(one, branches_json(&run(2)));
+    assert_eq!(one, branches_json(&run(3)));
+}
+
+#[test]
+fn time_limit_gives_a_marked_partial_result() {
+    let m = vericad::io::read_model(&data("gmsh-t20_data.step")).unwrap();
+    let prm = SsiParams {
+        time_limit: Some(1e-9),
+        ..Default::default()
+    };
+    let r = intersect_models(&m, None, &prm, &no_progress).unwrap();
+    assert!(r.summary.partial);
+    assert!(r.summary.pairs_not_run > 0);
+    assert!(
+        r.summary
+            .certificate
+            .iter()
+            .any(|c| c.starts_with("PARTIAL"))
+    );
+}
+
+#[test]
+fn stl_meshes_intersect_in_mesh_mode() {
+    // The STL surface against a plane through the middle of its bounding box, both as meshes.
+    let a = vericad::io::read_model(&data("gmsh-surface1.stl")).unwrap();
+    let t = &a.triangulations[0];
+    let (lo, hi) =
+        t.vertices
+            .iter()
+            .fold(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |(l, h), p| {
+                (
+                    std::array::from_fn(|k| l[k].min(p[k])),
+                    std::array::from_fn(|k| h[k].max(p[k])),
+                )
+            });
+    let k = (0..3)
+        .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
+        .unwrap();
+    let c = 0.5 * (lo[k] + hi[k]) + 1e-3 * (hi[k] - lo[k]);
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let corner = |a: f64, b: f64| {
+        let mut p = [0.0; 3];
+        p[k] = c;
+        p[i] = a;
+        p[j] = b;
+        p
+    };
+    let pad = |x: usize| (hi[x] - lo[x]).max(1.0);
+    let plane = vericad::model::Triangulation {
+        name: "plane".into(),
+        vertices: vec![
+            corner(lo[i] - pad(i), lo[j] - pad(j)),
+            corner(hi[i] + pad(i), lo[j] - pad(j)),
+            corner(hi[i] + pad(i), hi[j] + pad(j)),
+            corner(lo[i] - pad(i), hi[j] + pad(j)),
+        ],
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+    };
+    let b = vericad::model::Model {
+        triangulations: vec![plane],
+        ..Default::default()
+    };
+    let r = intersect_models(&a, Some(&b), &SsiParams::default(), &no_progress).unwrap();
+    assert!(r.summary.branches >= 1);
+    for br in r.pairs.iter().flat_map(|p| &p.branches) {
+        for p in &br.points {
+            assert!(
+                (p[k] - c).abs() <= br.dist_b_max + 1e-12 * c.abs().max(1.0),
+                "{p:?} off the plane"
+            );
+        }
+        if !br.closed {
+            assert!(
+                br.ends
+                    .iter()
+                    .all(|e| *e != vericad::ssi::EndKind::Unexplained),
+                "{:?}",
+                br.ends
+            );
+        }
+    }
+}
+
+#[test]
+fn cli_writes_json_vtk_and_iges() {
+    let dir = std::env::temp_dir().join(format!("vericad-ssi-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (json, vtk, iges) = (dir.join("r.json"), dir.join("r.vtp"), dir.join("r.igs"));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
+        .args([
+            "ssi",
+            data("gmsh-t20_data.step").to_str().unwrap(),
+            "--tol",
+            "1e-6",
+            "--out",
+        ])
+        .arg(&json)
+        .arg("--vtk")
+        .arg(&vtk)
+        .arg("--iges")
+        .arg(&iges)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let pairs = v["pairs"].as_array().unwrap();
+    let b = pairs
+        .iter()
+        .find_map(|p| p["branches"].as_array().filter(|b| !b.is_empty()))
+        .unwrap();
+    for key in [
+        "closed",
+        "points",
+        "uv_a",
+        "uv_b",
+        "dist_a_max",
+        "dist_b_max",
+        "ends",
+    ] {
+        assert!(b[0].get(key).is_some(), "branch lacks {key}");
+    }
+    assert!(v["summary"]["branches"].as_u64().unwrap() > 0);
+    // The IGES curves read back as many curves as branches with a fit.
+    let m = vericad::io::read_model(&iges).unwrap();
+    let fitted = pairs
+        .iter()
+        .flat_map(|p| p["branches"].as_array().unwrap())
+        .filter(|b| !b["fit"].is_null())
+        .count();
+    assert_eq!(m.curves.len(), fitted);
+    assert!(std::fs::read_to_string(&vtk).unwrap().starts_with("<?xml"));
+    // Bad tolerance: exit code 2 with a message.
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
+        .args([
+            "ssi",
+            data("gmsh-t20_data.step").to_str().unwrap(),
+            "--tol",
+            "-1",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("tolerance"));
+    std::fs::remove_dir_all(&dir).ok();
+}
