@@ -299,3 +299,47 @@ fn bad_parameters_are_typed_errors() {
     assert!(prm.validate().is_err());
     let _ = intersect_pair_canonical(&a, &b, (0, 1), &SsiParams::default(), None).unwrap();
 }
+
+/// The coverage certificate proves that no closed loop was missed where the normal cones
+/// separate, and refuses where the surfaces touch.
+#[test]
+fn coverage_certificate_on_analytic_cases() {
+    let (a, b) = cylinders(1.0, 0.6);
+    for (name, r) in [
+        ("cylinders", run(&a, &b, 1e-6)),
+        (
+            "plane-sphere",
+            run(&sphere(&Z, 2.0).unwrap(), &plane_z(0.7, 3.0), 1e-6),
+        ),
+    ] {
+        let c = r.coverage.expect("coverage");
+        assert!(c.no_missed_loops, "{name}: {c:?}");
+        assert_eq!(c.free_pairs_with_branch_points, 0);
+        assert!(c.free > 0 && c.on_branch_loop_free > 0, "{name}: {c:?}");
+        assert_eq!(
+            c.free + c.loop_free + c.on_branch + c.on_branch_loop_free + c.uncertified,
+            c.pairs
+        );
+    }
+    // Touching: the normals are parallel at the contact, nothing can be proven loop-free there.
+    let c = run(&paraboloid(), &plane_z(0.0, 2.0), 1e-6)
+        .coverage
+        .unwrap();
+    assert!(!c.no_missed_loops && c.uncertified > 0);
+    assert!(
+        c.uncertified_regions
+            .iter()
+            .all(|r| r.uv_a[0] <= 0.5 && 0.5 <= r.uv_a[1] || r.uv_b[0] <= 0.5 && 0.5 <= r.uv_b[1]),
+        "uncertified boxes are those at the touching point: {:?}",
+        c.uncertified_regions
+    );
+    // Apart: everything free.
+    let far = Frame {
+        o: [5.0, 0.0, 0.0],
+        ..Z
+    };
+    let c = run(&sphere(&Z, 2.0).unwrap(), &sphere(&far, 2.0).unwrap(), 1e-6)
+        .coverage
+        .unwrap();
+    assert_eq!(c.free, c.pairs);
+}

@@ -146,6 +146,7 @@ pub fn intersect_meshes(
         touch_points: Vec::new(),
         contacts,
         stats,
+        coverage: None,
         complete: true,
     })
 }

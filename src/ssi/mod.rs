@@ -16,6 +16,7 @@
 
 pub mod branch;
 pub mod certify;
+pub mod coverage;
 pub mod cull;
 pub mod driver;
 pub mod fit;
@@ -67,6 +68,10 @@ pub struct SsiParams {
     pub max_insert_depth: u32,
     /// Stop starting new work after this many seconds; the result is marked partial.
     pub time_limit: Option<f64>,
+    /// Halvings of every Bézier patch for the coverage certificate (capped so that a surface
+    /// has at most `max_coverage_boxes` boxes); `None` turns the certificate off.
+    pub coverage_depth: Option<u32>,
+    pub max_coverage_boxes: usize,
 }
 
 impl Default for SsiParams {
@@ -81,6 +86,8 @@ impl Default for SsiParams {
             refine_tangent_sin: 1e-6,
             max_insert_depth: 12,
             time_limit: None,
+            coverage_depth: Some(2),
+            max_coverage_boxes: 256,
         }
     }
 }

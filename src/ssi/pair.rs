@@ -2,6 +2,7 @@
 
 use super::branch::{BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
+use super::coverage::coverage;
 use super::cull::{TriTree, triangle_box};
 use super::refine::RefineParams;
 use super::refine::Refined;
@@ -174,6 +175,7 @@ pub fn intersect_surfaces(
         touch_points: Vec::new(),
         contacts,
         stats,
+        coverage: None,
         complete: true,
     };
     for (k, r) in singular.iter().enumerate() {
@@ -192,6 +194,19 @@ pub fn intersect_surfaces(
             BranchResult::Curve(c) => out.branches.push(c),
             BranchResult::Touch(t) => out.touch_points.push(t),
         }
+    }
+    if out.complete
+        && let Some(d) = prm.coverage_depth
+    {
+        let patches = |s: &NurbsSurface<f64, 3>| {
+            (s.hom.ku.breakpoints().len().max(2) - 1) * (s.hom.kv.breakpoints().len().max(2) - 1)
+        };
+        let most = patches(sa).max(patches(sb)).max(1);
+        let mut depth = d;
+        while depth > 0 && most << (2 * depth) > prm.max_coverage_boxes {
+            depth -= 1;
+        }
+        out.coverage = Some(coverage(sa, sb, depth, &out.branches));
     }
     out.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(out)

@@ -109,6 +109,8 @@ pub struct PairOut {
     /// Up to 100 contacts listed; `stats.contacts` counts all.
     pub contacts: Vec<ContactOut>,
     pub stats: PairStats,
+    /// The coverage certificate (see [`super::coverage`]); absent in mesh mode or when off.
+    pub coverage: Option<super::coverage::CoverageOut>,
     /// `false` when the time limit stopped this pair before it finished.
     pub complete: bool,
 }
@@ -131,6 +133,10 @@ pub struct Summary {
     /// Whether every point is proven within `tol` of both surfaces.
     pub all_points_within_tol: bool,
     pub pairs_not_run: usize,
+    /// Whether the coverage certificate rules out a missed closed loop in every pair.
+    pub no_missed_loops: bool,
+    /// Box pairs (over all face pairs) neither proven free nor loop-free.
+    pub uncertified_box_pairs: usize,
     pub partial: bool,
     pub seconds: f64,
     /// Plain words on what is proven (points) and what is not (completeness).
