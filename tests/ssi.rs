@@ -53,6 +53,12 @@ fn plane_sphere(h: f64) {
     );
     assert!(b.max_chord_deviation <= tol);
     assert!(b.points.len() >= 8);
+    let fit = b.fit.as_ref().expect("every branch is fitted");
+    assert!(
+        fit.max_deviation_at_points <= 1e-12,
+        "{h}: {}",
+        fit.max_deviation_at_points
+    );
 }
 
 #[test]

@@ -207,6 +207,7 @@ fn cli_writes_json_vtk_and_iges() {
         .flat_map(|p| p["branches"].as_array().unwrap())
         .filter(|b| !b["fit"].is_null())
         .count();
+    assert!(fitted > 0, "branches carry fits");
     assert_eq!(m.curves.len(), fitted);
     assert!(std::fs::read_to_string(&vtk).unwrap().starts_with("<?xml"));
     // Bad tolerance: exit code 2 with a message.
@@ -221,5 +222,117 @@ fn cli_writes_json_vtk_and_iges() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("tolerance"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `certify-ssi` on vericad's own result (all within tol, nothing missing), on the result
+/// with one branch removed (that branch reported missing), and on the IGES fits.
+#[test]
+fn certify_foreign_results() {
+    use vericad::model::{Model, Surface};
+    use vericad::spline::construct::{Frame, cylinder};
+    let dir = std::env::temp_dir().join(format!("vericad-cert-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let z = Frame {
+        o: [0.0; 3],
+        x: [1.0, 0.0, 0.0],
+        y: [0.0, 1.0, 0.0],
+        z: [0.0, 0.0, 1.0],
+    };
+    let fx = Frame {
+        o: [-3.0, 0.0, 0.0],
+        x: [0.0, 1.0, 0.0],
+        y: [0.0, 0.0, 1.0],
+        z: [1.0, 0.0, 0.0],
+    };
+    let model = |s| Model {
+        surfaces: vec![Surface::new("cyl", s)],
+        ..Default::default()
+    };
+    let (fa, fb) = (dir.join("a.json"), dir.join("b.json"));
+    vericad::io::write_model(&fa, &model(cylinder(&z, 1.0, -3.0, 3.0).unwrap())).unwrap();
+    vericad::io::write_model(&fb, &model(cylinder(&fx, 0.6, 0.0, 6.0).unwrap())).unwrap();
+    let exe = env!("CARGO_BIN_EXE_vericad");
+    let (res, igs) = (dir.join("r.json"), dir.join("r.igs"));
+    let st = std::process::Command::new(exe)
+        .args([
+            "ssi",
+            fa.to_str().unwrap(),
+            fb.to_str().unwrap(),
+            "--tol",
+            "1e-7",
+            "--out",
+            res.to_str().unwrap(),
+            "--iges",
+            igs.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let certify = |curves: &Path| -> serde_json::Value {
+        let out = std::process::Command::new(exe)
+            .args([
+                "certify-ssi",
+                fa.to_str().unwrap(),
+                fb.to_str().unwrap(),
+                "--curves",
+                curves.to_str().unwrap(),
+                "--tol",
+                "1e-7",
+                "--json",
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let own = certify(&res);
+    assert_eq!(own["curves"].as_array().unwrap().len(), 2);
+    assert_eq!(own["curves_within_tol"], 2, "{own}");
+    assert_eq!(own["missing_branches"], 0);
+    // Drop the second branch.
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&res).unwrap()).unwrap();
+    v["pairs"][0]["branches"].as_array_mut().unwrap().pop();
+    let half = dir.join("half.json");
+    std::fs::write(&half, v.to_string()).unwrap();
+    let h = certify(&half);
+    assert_eq!(h["missing_branches"], 1, "{h}");
+    // The IGES fits: spline curves checked at samples, close to both cylinders.
+    let f = certify(&igs);
+    for c in f["curves"].as_array().unwrap() {
+        assert_eq!(c["kind"], "spline");
+        assert!(
+            c["dist_a_max"].as_f64().unwrap() < 1e-5 && c["dist_b_max"].as_f64().unwrap() < 1e-5,
+            "{c}"
+        );
+    }
+    // A malformed foreign file is bad input.
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, "[[[1, 2]]]").unwrap();
+    let out = std::process::Command::new(exe)
+        .args([
+            "certify-ssi",
+            fa.to_str().unwrap(),
+            fb.to_str().unwrap(),
+            "--curves",
+            bad.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -114,6 +114,27 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Check another system's intersection curves between the faces of A and B: a proven
+    /// distance bound of every curve point to each face set, and the branches vericad finds
+    /// that the foreign result lacks.
+    CertifySsi {
+        a: PathBuf,
+        b: PathBuf,
+        /// Foreign curves: IGES/STEP/JSON model curves (e.g. IGES 126), JSON polylines
+        /// (`[[[x,y,z],...],...]` or `{"curves": [...]}`), or a vericad `ssi` result.
+        #[arg(long)]
+        curves: PathBuf,
+        #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
+        tol: f64,
+        /// A vericad branch point counts as found within this distance of a foreign curve
+        /// (default 100 × tol).
+        #[arg(long = "match", allow_hyphen_values = true)]
+        match_distance: Option<f64>,
+        #[arg(long)]
+        out: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+    },
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file (native JSON).
@@ -235,6 +256,38 @@ pub fn run(cli: Cli) -> i32 {
                 iges: iges.as_deref(),
             };
             match job::run(&file, file2.as_deref(), &prm, threads, outputs) {
+                Ok(r) => {
+                    print(&r, json);
+                    0
+                }
+                Err(e) if e.is_bad_input() => bad(e),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    EXIT_FAILURE
+                }
+            }
+        }
+        Command::CertifySsi {
+            a,
+            b,
+            curves,
+            tol,
+            match_distance,
+            out,
+            json,
+        } => {
+            let prm = crate::ssi::SsiParams {
+                tol,
+                ..Default::default()
+            };
+            match crate::ssi::job::run_certify(
+                &a,
+                &b,
+                &curves,
+                &prm,
+                match_distance,
+                out.as_deref(),
+            ) {
                 Ok(r) => {
                     print(&r, json);
                     0

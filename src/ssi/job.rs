@@ -19,6 +19,8 @@ pub enum JobError {
     Write(String, String),
     #[error("thread pool: {0}")]
     Threads(String),
+    #[error("foreign curves: {0}")]
+    Foreign(String),
 }
 
 impl JobError {
@@ -26,6 +28,7 @@ impl JobError {
         matches!(
             self,
             JobError::Read(_)
+                | JobError::Foreign(_)
                 | JobError::Compute(
                     SsiError::Tolerance(_)
                         | SsiError::Parameter(..)
@@ -275,4 +278,29 @@ impl std::fmt::Display for SsiResult {
         }
         writeln!(f, "  time {:.3} s", s.seconds)
     }
+}
+
+/// The `certify-ssi` job: a foreign result checked against faces of `file_a` and `file_b`,
+/// and vericad's own branches of the same faces checked for presence in it.
+pub fn run_certify(
+    file_a: &Path,
+    file_b: &Path,
+    curves: &Path,
+    prm: &SsiParams,
+    match_distance: Option<f64>,
+    json_out: Option<&Path>,
+) -> Result<super::foreign::CertifyReport, JobError> {
+    let a = crate::io::read_model(file_a)?;
+    let b = crate::io::read_model(file_b)?;
+    let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
+    let r = intersect_models(&a, Some(&b), prm, &|_, _| {})?;
+    let m = match_distance.unwrap_or(100.0 * prm.tol);
+    if !(m > 0.0 && m.is_finite()) {
+        return Err(JobError::Compute(SsiError::Parameter("match distance", m)));
+    }
+    let rep = super::foreign::certify(&a, &b, &foreign, &r, prm.tol, m);
+    if let Some(p) = json_out {
+        write(p, &serde_json::to_string_pretty(&rep).unwrap_or_default())?;
+    }
+    Ok(rep)
 }

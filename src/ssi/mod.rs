@@ -20,6 +20,7 @@ pub mod coverage;
 pub mod cull;
 pub mod driver;
 pub mod fit;
+pub mod foreign;
 pub mod job;
 pub mod mesh;
 pub mod pair;
