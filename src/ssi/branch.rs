@@ -4,7 +4,9 @@
 
 use super::certify::ExactSurface;
 use super::fit::{fit_cubic, max_deviation_at_points};
-use super::refine::{RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain};
+use super::refine::{
+    RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
+};
 use super::report::{BranchOut, EndKind, FitOut, TouchOut};
 use super::topology::Topology;
 use super::trace::Branch;
@@ -114,6 +116,27 @@ fn on_border(uv: &[f64; 2], d: &[f64; 4]) -> bool {
         || (uv[1] - d[3]).abs() <= ev
 }
 
+/// The border line `(coordinate, value)` of the parameter domain that the mesh feature lies
+/// on, when it is an edge with both end vertices on the same border line: the crossing point
+/// is then on the surface's boundary.
+fn border_line(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> Option<(usize, f64)> {
+    let Feature::Edge(a, b) = f else {
+        return None;
+    };
+    let (p, q) = (m.uv[a as usize], m.uv[b as usize]);
+    if p[0] == q[0] && (p[0] == d[0] || p[0] == d[1]) {
+        Some((0, p[0]))
+    } else if p[1] == q[1] && (p[1] == d[2] || p[1] == d[3]) {
+        Some((1, p[1]))
+    } else {
+        None
+    }
+}
+
+fn border_edge(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> bool {
+    border_line(f, m, d).is_some()
+}
+
 /// Refine, certify and fit one traced branch.
 pub fn refine_branch(
     t: &Topology,
@@ -163,7 +186,22 @@ pub fn refine_branch(
             branch_ends: 0,
         });
     }
-    let refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
+    let mut refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
+    if !b.closed {
+        // Ends on a face boundary: put them on it.
+        let last = refined.len() - 1;
+        for (k, p) in [(0, b.points[0]), (last, b.points[b.points.len() - 1])] {
+            let id = t.points[p as usize].id;
+            let target = border_line(id.a, g.ma, &domain(g.sa))
+                .map(|(c, v)| (0, c, v))
+                .or_else(|| border_line(id.b, g.mb, &domain(g.sb)).map(|(c, v)| (1, c, v)));
+            if let Some((which, coord, value)) = target
+                && let Some(r) = refine_on_border(g.sa, g.sb, &refined[k], which, coord, value, prm)
+            {
+                refined[k] = r;
+            }
+        }
+    }
     let mut ins = Inserter {
         g,
         prm,
@@ -222,7 +260,11 @@ pub fn refine_branch(
                 EndKind::BranchPoint
             } else if matches!(pt.id.a, Feature::Singular(_)) {
                 EndKind::Tangential
-            } else if on_border(&r.uv_a, &dom_a) || on_border(&r.uv_b, &dom_b) {
+            } else if border_edge(pt.id.a, g.ma, &dom_a)
+                || border_edge(pt.id.b, g.mb, &dom_b)
+                || on_border(&r.uv_a, &dom_a)
+                || on_border(&r.uv_b, &dom_b)
+            {
                 EndKind::Boundary
             } else if r.status == RefineStatus::Tangential {
                 EndKind::Tangential

@@ -359,3 +359,60 @@ fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
     }
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
+
+/// Refine a point of the intersection curve onto a border line of one surface's domain:
+/// parameter `coord` (0 = u, 1 = v) of surface `which` (0 = A, 1 = B) held at `value`, and
+/// `s(u,v) = r(w,t)` solved for the other three parameters by Newton's method (3 × 3). Where
+/// a curve leaves a face, its end then lies on the face's boundary, not near it.
+pub fn refine_on_border(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    start: &Refined,
+    which: usize,
+    coord: usize,
+    value: f64,
+    prm: &RefineParams,
+) -> Option<Refined> {
+    let (da, db) = (domain(sa), domain(sb));
+    let mut x = [start.uv_a[0], start.uv_a[1], start.uv_b[0], start.uv_b[1]];
+    let fixed = 2 * which + coord;
+    x[fixed] = value;
+    let free: Vec<usize> = (0..4).filter(|&k| k != fixed).collect();
+    let lim = [da[0], da[1], da[2], da[3], db[0], db[1], db[2], db[3]];
+    for it in 0..prm.max_iter {
+        let (p, su, sv) = point_d1(sa, x[0], x[1]);
+        let (q, rw, rt) = point_d1(sb, x[2], x[3]);
+        let r = sub(&p, &q);
+        let gap = norm(&r);
+        if gap <= prm.tol {
+            return Some(Refined {
+                xyz: scale(&add(&p, &q), 0.5),
+                uv_a: [x[0], x[1]],
+                uv_b: [x[2], x[3]],
+                gap,
+                status: RefineStatus::Converged,
+                iterations: it,
+            });
+        }
+        let cols = [su, sv, scale(&rw, -1.0), scale(&rt, -1.0)];
+        let (c0, c1, c2) = (cols[free[0]], cols[free[1]], cols[free[2]]);
+        let det = dot(&c0, &cross(&c1, &c2));
+        if det.is_nan() || det == 0.0 {
+            return None;
+        }
+        // Cramer's rule for J δ = -r.
+        let nr = scale(&r, -1.0);
+        let d = [
+            dot(&nr, &cross(&c1, &c2)) / det,
+            dot(&c0, &cross(&nr, &c2)) / det,
+            dot(&c0, &cross(&c1, &nr)) / det,
+        ];
+        for (k, &f) in free.iter().enumerate() {
+            x[f] = (x[f] + d[k]).clamp(lim[2 * f], lim[2 * f + 1]);
+        }
+        if !x.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+    }
+    None
+}
