@@ -349,3 +349,76 @@ fn coverage_certificate_on_analytic_cases() {
         .unwrap();
     assert_eq!(c.free, c.pairs);
 }
+
+/// `--respect-trims`: a plane face with a rectangular hole (u in [0.45, 0.55]) cut by a
+/// sphere: the circle loses the two stretches over the hole and becomes two open arcs, ending
+/// at the trim boundary, with every point outside the hole.
+#[test]
+fn branches_are_clipped_to_trim_loops() {
+    use vericad::model::{Model, Surface, TrimLoop};
+    use vericad::spline::NurbsCurve;
+    let line = |a: [f64; 2], b: [f64; 2]| {
+        NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0, 1.0]).unwrap()
+    };
+    let rect = |u0: f64, u1: f64, v0: f64, v1: f64| {
+        vec![
+            line([u0, v0], [u1, v0]),
+            line([u1, v0], [u1, v1]),
+            line([u1, v1], [u0, v1]),
+            line([u0, v1], [u0, v0]),
+        ]
+    };
+    let mut plane = Surface::new("plane", plane_z(0.7, 3.0));
+    plane.trim_loops = vec![
+        TrimLoop {
+            outer: true,
+            curves: rect(0.0, 1.0, 0.0, 1.0),
+        },
+        TrimLoop {
+            outer: false,
+            curves: rect(0.45, 0.55, 0.05, 0.95),
+        },
+    ];
+    let a = Model {
+        surfaces: vec![Surface::new("sphere", sphere(&Z, 2.0).unwrap())],
+        ..Default::default()
+    };
+    let b = Model {
+        surfaces: vec![plane],
+        ..Default::default()
+    };
+    let no = |_: usize, _: usize| {};
+    let full = vericad::ssi::intersect_models(
+        &a,
+        Some(&b),
+        &SsiParams {
+            tol: 1e-7,
+            ..Default::default()
+        },
+        &no,
+    )
+    .unwrap();
+    assert_eq!(full.summary.branches, 1);
+    let prm = SsiParams {
+        tol: 1e-7,
+        respect_trims: true,
+        ..Default::default()
+    };
+    let r = vericad::ssi::intersect_models(&a, Some(&b), &prm, &no).unwrap();
+    let br = &r.pairs[0].branches;
+    assert_eq!(br.len(), 2, "two arcs");
+    for x in br {
+        assert!(!x.closed);
+        assert_eq!(x.ends, vec![EndKind::TrimBoundary, EndKind::TrimBoundary]);
+        assert!(x.fit.is_some());
+        for uv in &x.uv_b {
+            assert!(!(0.45 < uv[0] && uv[0] < 0.55), "{uv:?} is in the hole");
+        }
+    }
+    assert!(
+        r.summary
+            .certificate
+            .iter()
+            .any(|c| c.contains("trim loops"))
+    );
+}

@@ -99,6 +99,9 @@ pub enum Command {
         /// Stop starting new work after this many seconds (the result is marked partial).
         #[arg(long)]
         time_limit: Option<f64>,
+        /// Clip the curves to the faces' trimming loops (IGES 144/142, JSON trim loops).
+        #[arg(long)]
+        respect_trims: bool,
         /// Worker threads (default: all cores). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
@@ -237,6 +240,7 @@ pub fn run(cli: Cli) -> i32 {
             tol,
             flatness,
             time_limit,
+            respect_trims,
             threads,
             out,
             vtk,
@@ -248,6 +252,7 @@ pub fn run(cli: Cli) -> i32 {
                 tol,
                 flatness,
                 time_limit,
+                respect_trims,
                 ..Default::default()
             };
             let outputs = job::Outputs {

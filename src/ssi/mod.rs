@@ -31,6 +31,7 @@ pub mod touch;
 pub mod trace;
 pub mod tri_tri;
 pub mod triangulate;
+pub mod trims;
 
 pub use driver::{intersect_models, intersect_pair_canonical};
 pub use report::{BranchOut, EndKind, PairOut, SsiResult, Summary};
@@ -73,6 +74,8 @@ pub struct SsiParams {
     /// has at most `max_coverage_boxes` boxes); `None` turns the certificate off.
     pub coverage_depth: Option<u32>,
     pub max_coverage_boxes: usize,
+    /// Clip branches to the faces' trimming loops.
+    pub respect_trims: bool,
 }
 
 impl Default for SsiParams {
@@ -89,6 +92,7 @@ impl Default for SsiParams {
             time_limit: None,
             coverage_depth: Some(2),
             max_coverage_boxes: 256,
+            respect_trims: false,
         }
     }
 }

@@ -13,6 +13,8 @@ pub enum EndKind {
     BranchPoint,
     /// Where the surfaces become tangent (refinement detected parallel normals).
     Tangential,
+    /// Where the curve leaves a trimmed face (`--respect-trims`).
+    TrimBoundary,
     /// None of the above: the mesh curve stops at a point with one use that is not on a
     /// border (reported, never hidden).
     Unexplained,
