@@ -138,6 +138,35 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Repair a faulty patch set (Uva, Monno & Hamann): connectivity with T-junction splits,
+    /// edge verification, corner and boundary averaging, feature lines, and a report.
+    /// (Patch grouping and merging are not implemented yet; the report says so.)
+    Repair {
+        input: PathBuf,
+        /// Corner distance threshold (Algorithm 1).
+        #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
+        u1: f64,
+        /// Largest gap along a shared edge.
+        #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
+        u2: f64,
+        /// Normal angle above which a shared edge is a feature edge (degrees).
+        #[arg(long, default_value_t = 30.0, allow_hyphen_values = true)]
+        feature_angle: f64,
+        /// Feature overrides: `{"add": [[patch, edge], ...], "remove": [...]}`.
+        #[arg(long)]
+        features: Option<PathBuf>,
+        /// Repaired patches (format from the extension: .igs, .step, .json).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// JSON report.
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// VTK view: patches, feature edges, gaps left.
+        #[arg(long)]
+        vtk: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+    },
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file (native JSON).
@@ -293,6 +322,40 @@ pub fn run(cli: Cli) -> i32 {
                 match_distance,
                 out.as_deref(),
             ) {
+                Ok(r) => {
+                    print(&r, json);
+                    0
+                }
+                Err(e) if e.is_bad_input() => bad(e),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    EXIT_FAILURE
+                }
+            }
+        }
+        Command::Repair {
+            input,
+            u1,
+            u2,
+            feature_angle,
+            features,
+            out,
+            report,
+            vtk,
+            json,
+        } => {
+            let prm = crate::repair::RepairParams {
+                u1,
+                u2,
+                feature_angle_deg: feature_angle,
+                ..Default::default()
+            };
+            let outputs = crate::repair::job::Outputs {
+                model: out.as_deref(),
+                report: report.as_deref(),
+                vtk: vtk.as_deref(),
+            };
+            match crate::repair::job::run(&input, &prm, features.as_deref(), outputs) {
                 Ok(r) => {
                     print(&r, json);
                     0

@@ -1,0 +1,99 @@
+//! Step 4 — feature lines (paper §5.1, Fig. 9): along each connected edge pair, the largest
+//! angle between the two patches' unit normals at closest-point pairs of the samples. Above
+//! the feature angle the edge is a feature edge. A flipped neighbour (edges running the same
+//! way) has its normal reversed first. User overrides add or remove feature edges by
+//! `(patch, edge)`.
+
+use super::edges::{arc_length_samples, closest_on_curve, edge_curve, edge_uv};
+use super::verify::VerifiedEdge;
+use crate::spline::NurbsSurface;
+use serde::{Deserialize, Serialize};
+
+/// A connected edge pair with its normal-angle measurement.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct FeatureEdge {
+    pub p: usize,
+    pub ep: usize,
+    pub q: usize,
+    pub eq: usize,
+    /// Largest angle between the normals at the samples, degrees.
+    pub max_angle_deg: f64,
+    pub feature: bool,
+    /// Set or cleared by a user override.
+    pub overridden: bool,
+}
+
+/// Overrides: `{"add": [[patch, edge], ...], "remove": [[patch, edge], ...]}`.
+#[derive(Clone, Debug, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeatureOverrides {
+    #[serde(default)]
+    pub add: Vec<(usize, usize)>,
+    #[serde(default)]
+    pub remove: Vec<(usize, usize)>,
+}
+
+fn unit_normal(s: &NurbsSurface<f64, 3>, uv: [f64; 2]) -> Option<[f64; 3]> {
+    let (_, su, sv) = crate::ssi::refine::point_d1(s, uv[0], uv[1]);
+    let n = [
+        su[1] * sv[2] - su[2] * sv[1],
+        su[2] * sv[0] - su[0] * sv[2],
+        su[0] * sv[1] - su[1] * sv[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (l > 0.0 && l.is_finite()).then(|| n.map(|c| c / l))
+}
+
+/// Largest normal angle (degrees) along a connected edge pair, at `n` samples.
+pub fn max_normal_angle(patches: &[NurbsSurface<f64, 3>], v: &VerifiedEdge, n: usize) -> f64 {
+    let c = v.connection;
+    let (sp, sq) = (&patches[c.p], &patches[c.q]);
+    let (a, b) = (edge_curve(sp, c.ep), edge_curve(sq, c.eq));
+    let mut worst = 0.0f64;
+    for (t, x) in arc_length_samples(&a, n) {
+        let (s, _, _) = closest_on_curve(&b, &x);
+        let (Some(np), Some(nq)) = (
+            unit_normal(sp, edge_uv(sp, c.ep, t)),
+            unit_normal(sq, edge_uv(sq, c.eq, s)),
+        ) else {
+            continue; // degenerate normal (collapsed edge): no angle there
+        };
+        let sign = if c.same_direction { -1.0 } else { 1.0 };
+        let d = (sign * (np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2])).clamp(-1.0, 1.0);
+        worst = worst.max(d.acos().to_degrees());
+    }
+    worst
+}
+
+pub fn features(
+    patches: &[NurbsSurface<f64, 3>],
+    edges: &[VerifiedEdge],
+    angle_deg: f64,
+    n: usize,
+    overrides: &FeatureOverrides,
+) -> Vec<FeatureEdge> {
+    edges
+        .iter()
+        .filter(|v| v.connected)
+        .map(|v| {
+            let c = v.connection;
+            let a = max_normal_angle(patches, v, n);
+            let hit = |list: &[(usize, usize)]| {
+                list.iter()
+                    .any(|&(p, e)| (p, e) == (c.p, c.ep) || (p, e) == (c.q, c.eq))
+            };
+            let (add, remove) = (hit(&overrides.add), hit(&overrides.remove));
+            let auto = a > angle_deg;
+            let feature = if remove { false } else { add || auto };
+            FeatureEdge {
+                p: c.p,
+                ep: c.ep,
+                q: c.q,
+                eq: c.eq,
+                max_angle_deg: a,
+                feature,
+                overridden: feature != auto,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,185 @@
+//! The `repair` job: read a patch set, repair, write the patches, the report and a VTK view.
+
+use super::features::FeatureOverrides;
+use super::{RepairError, RepairParams, RepairReport, repair};
+use crate::io::vtk::{Array, PolyData, render};
+use crate::model::{Model, Surface};
+use std::path::Path;
+
+#[derive(Debug, thiserror::Error)]
+pub enum JobError {
+    #[error(transparent)]
+    Read(#[from] crate::io::ReadError),
+    #[error("{0}: {1}")]
+    Overrides(String, String),
+    #[error(transparent)]
+    Repair(#[from] RepairError),
+    #[error("cannot write {0}: {1}")]
+    Write(String, String),
+}
+
+impl JobError {
+    pub fn is_bad_input(&self) -> bool {
+        !matches!(self, JobError::Write(..))
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    pub model: Option<&'a Path>,
+    pub report: Option<&'a Path>,
+    /// Patches (cell array `patch`), feature edges and gaps left as lines (`feature`, `gap`).
+    pub vtk: Option<&'a Path>,
+}
+
+fn write(path: &Path, text: &str) -> Result<(), JobError> {
+    std::fs::write(path, text)
+        .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
+}
+
+pub fn run(
+    input: &Path,
+    prm: &RepairParams,
+    features: Option<&Path>,
+    out: Outputs,
+) -> Result<RepairReport, JobError> {
+    let m = crate::io::read_model(input)?;
+    let overrides: FeatureOverrides = match features {
+        Some(p) => {
+            let t = std::fs::read_to_string(p)
+                .map_err(|e| JobError::Overrides(p.display().to_string(), e.to_string()))?;
+            serde_json::from_str(&t)
+                .map_err(|e| JobError::Overrides(p.display().to_string(), e.to_string()))?
+        }
+        None => FeatureOverrides::default(),
+    };
+    let patches: Vec<_> = m.surfaces.iter().map(|s| s.nurbs.clone()).collect();
+    let t0 = std::time::Instant::now();
+    let progress = |step: &str| {
+        if t0.elapsed().as_secs_f64() > 1.0 {
+            eprintln!("repair: {step} ({:.1} s)", t0.elapsed().as_secs_f64());
+        }
+    };
+    let r = repair(patches, prm, &overrides, &progress)?;
+    if let Some(p) = out.model {
+        let mut om = Model {
+            unit: m.unit.clone(),
+            ..Default::default()
+        };
+        for (k, s) in r.patches.iter().enumerate() {
+            let src = &m.surfaces[r.report.patch_origin[k]];
+            let mut ns = Surface::new(format!("{} (repaired)", src.name), s.clone());
+            ns.source = src.source.clone();
+            om.surfaces.push(ns);
+        }
+        crate::io::write_model(p, &om)
+            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+    }
+    if let Some(p) = out.report {
+        write(
+            p,
+            &serde_json::to_string_pretty(&r.report).unwrap_or_default(),
+        )?;
+    }
+    if let Some(p) = out.vtk {
+        let mut pd = PolyData::default();
+        let mut patch = Vec::new();
+        for (k, s) in r.patches.iter().enumerate() {
+            let n = pd.add_surface(s, 8);
+            patch.extend(std::iter::repeat_n(k as f64, n));
+        }
+        let polys = pd.polys.len();
+        let (mut feature, mut gap) = (Vec::new(), Vec::new());
+        for e in &r.report.edges {
+            if e.feature {
+                let c = super::edges::edge_curve(&r.patches[e.p], e.ep);
+                let pts: Vec<[f64; 3]> = super::edges::arc_length_samples(&c, 16)
+                    .into_iter()
+                    .map(|x| x.1)
+                    .collect();
+                pd.add_polyline(&pts);
+                feature.push(1.0);
+                gap.push(0.0);
+            }
+        }
+        for g in &r.report.gaps_left {
+            let c = super::edges::edge_curve(&r.patches[g.connection.p], g.connection.ep);
+            let pts: Vec<[f64; 3]> = super::edges::arc_length_samples(&c, 16)
+                .into_iter()
+                .map(|x| x.1)
+                .collect();
+            pd.add_polyline(&pts);
+            feature.push(0.0);
+            gap.push(g.gap);
+        }
+        let lines = feature.len();
+        patch.extend(std::iter::repeat_n(-1.0, lines));
+        let pad = |v: Vec<f64>| {
+            let mut w = vec![-1.0; polys];
+            w.extend(v);
+            w
+        };
+        pd.cell_data = vec![
+            Array {
+                name: "patch".into(),
+                values: patch,
+            },
+            Array {
+                name: "feature".into(),
+                values: pad(feature),
+            },
+            Array {
+                name: "gap".into(),
+                values: pad(gap),
+            },
+        ];
+        write(p, &render(&pd))?;
+    }
+    Ok(r.report)
+}
+
+impl std::fmt::Display for RepairReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(f, "repair of a patch set")?;
+        writeln!(
+            f,
+            "  patches: {} in, {} out ({} T-junction splits)",
+            self.patches_in, self.patches_out, self.t_junctions
+        )?;
+        writeln!(
+            f,
+            "  edges: {} candidates, {} connected ({} flipped pairs), {} non-manifold, {} collapsed, {} gaps left above u2",
+            self.candidate_edges,
+            self.edges_connected,
+            self.flipped_pairs,
+            self.non_manifold.len(),
+            self.collapsed_edges,
+            self.gaps_left.len()
+        )?;
+        writeln!(
+            f,
+            "  gaps (measured at samples): max {:.3e}, mean {:.3e} before; max {:.3e} after averaging; {} shared edges identical",
+            self.gap_max_before,
+            self.gap_mean_before,
+            self.gap_max_after,
+            self.shared_edges_identical
+        )?;
+        writeln!(
+            f,
+            "  averaging: {} corner clusters (largest move {:.3e}), {} edges averaged, {} incompatible",
+            self.averaging.corner_clusters,
+            self.averaging.max_corner_move,
+            self.averaging.edges_averaged,
+            self.averaging.edges_incompatible.len()
+        )?;
+        writeln!(
+            f,
+            "  feature edges: {} ({} overridden)",
+            self.feature_edges, self.features_overridden
+        )?;
+        for n in &self.not_done {
+            writeln!(f, "  NOT DONE: {n}")?;
+        }
+        writeln!(f, "  time {:.3} s", self.seconds)
+    }
+}

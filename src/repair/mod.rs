@@ -1,0 +1,270 @@
+//! Repair of faulty CAD patch sets (Uva, Monno & Hamann; EQUATIONS.md §C), one file per step:
+//!
+//! | step | file |
+//! |---|---|
+//! | corners, edges, arc-length samples, closest points | [`edges`] |
+//! | 1 connectivity (Algorithm 1), T-connectivity | [`connectivity`], [`kdtree`] |
+//! | 2 edge verification | [`verify`] |
+//! | 3 boundary averaging | [`average`] |
+//! | 4 feature lines | [`features`] |
+//!
+//! Not yet implemented (reported as such in every run): group-of-patches growing
+//! (Algorithm 2) and merging of control information (§6).
+
+pub mod average;
+pub mod connectivity;
+pub mod edges;
+pub mod features;
+pub mod job;
+pub mod kdtree;
+pub mod verify;
+
+use connectivity::{Connection, TJunction, connect, split, t_junctions};
+use features::{FeatureEdge, FeatureOverrides, features};
+use serde::Serialize;
+use verify::{VerifiedEdge, verify};
+
+use crate::spline::NurbsSurface;
+
+#[derive(Debug, thiserror::Error)]
+pub enum RepairError {
+    #[error("{0} must be a positive finite number, got {1}")]
+    Parameter(&'static str, f64),
+    #[error("patch {0}: {1}")]
+    Patch(usize, String),
+    #[error("no patches to repair")]
+    Empty,
+}
+
+#[derive(Clone, Debug)]
+pub struct RepairParams {
+    /// Corner distance threshold of Algorithm 1.
+    pub u1: f64,
+    /// Largest gap along an edge for two edges to count as shared (§3.1).
+    pub u2: f64,
+    pub feature_angle_deg: f64,
+    /// Samples per edge for verification and feature detection.
+    pub samples: usize,
+    /// Rounds of T-junction splitting.
+    pub max_t_rounds: usize,
+}
+
+impl Default for RepairParams {
+    fn default() -> Self {
+        RepairParams {
+            u1: 1e-3,
+            u2: 1e-3,
+            feature_angle_deg: 30.0,
+            samples: 16,
+            max_t_rounds: 8,
+        }
+    }
+}
+
+/// The report (JSON and human).
+#[derive(Clone, Debug, Serialize)]
+pub struct RepairReport {
+    pub patches_in: usize,
+    pub patches_out: usize,
+    /// For every output patch, the input patch it comes from (T-junction splits keep their
+    /// origin): every input patch is accounted for.
+    pub patch_origin: Vec<usize>,
+    pub candidate_edges: usize,
+    pub edges_connected: usize,
+    pub t_junctions: usize,
+    pub t_junction_splits: Vec<TJunction>,
+    /// Edges with more than one partner `(patch, edge, partners)`: reported, not forced.
+    pub non_manifold: Vec<(usize, usize, usize)>,
+    /// Connected pairs whose edges run the same way (one patch flipped).
+    pub flipped_pairs: usize,
+    pub collapsed_edges: usize,
+    pub gap_max_before: f64,
+    pub gap_mean_before: f64,
+    /// `(upper bound of bin, count)`, bins by decades of u2.
+    pub gap_histogram: Vec<(f64, usize)>,
+    /// Candidate pairs with a gap of at least u2: left disconnected.
+    pub gaps_left: Vec<VerifiedEdge>,
+    /// Largest gap over connected pairs after averaging (measured at samples).
+    pub gap_max_after: f64,
+    pub shared_edges_identical: usize,
+    pub averaging: average::AveragingOutcome,
+    pub feature_edges: usize,
+    pub features_overridden: usize,
+    pub edges: Vec<FeatureEdge>,
+    /// Not yet implemented: `null`.
+    pub groups: Option<usize>,
+    pub max_merge_deviation: Option<f64>,
+    pub not_done: Vec<String>,
+    pub seconds: f64,
+}
+
+pub struct RepairResult {
+    pub patches: Vec<NurbsSurface<f64, 3>>,
+    pub report: RepairReport,
+}
+
+fn check(prm: &RepairParams, patches: &[NurbsSurface<f64, 3>]) -> Result<(), RepairError> {
+    for (name, v) in [("u1", prm.u1), ("u2", prm.u2)] {
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(RepairError::Parameter(name, v));
+        }
+    }
+    if !(prm.feature_angle_deg > 0.0 && prm.feature_angle_deg < 180.0) {
+        return Err(RepairError::Parameter(
+            "feature angle (degrees, in (0, 180))",
+            prm.feature_angle_deg,
+        ));
+    }
+    if patches.is_empty() {
+        return Err(RepairError::Empty);
+    }
+    for (i, s) in patches.iter().enumerate() {
+        let (pts, w) = s.points_weights();
+        if let Some(k) = pts.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
+            return Err(RepairError::Patch(
+                i,
+                format!("control point {k} is not finite"),
+            ));
+        }
+        if w.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
+            return Err(RepairError::Patch(
+                i,
+                "a weight is not a positive finite number".into(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Run steps 1–4 on `patches`.
+pub fn repair(
+    patches: Vec<NurbsSurface<f64, 3>>,
+    prm: &RepairParams,
+    overrides: &FeatureOverrides,
+    progress: &dyn Fn(&str),
+) -> Result<RepairResult, RepairError> {
+    let t0 = std::time::Instant::now();
+    check(prm, &patches)?;
+    let patches_in = patches.len();
+    let mut patches = patches;
+    let mut origin: Vec<usize> = (0..patches_in).collect();
+    let mut splits = Vec::new();
+    progress("connectivity and T-junctions");
+    for _ in 0..prm.max_t_rounds {
+        let tj = t_junctions(&patches, prm.u1);
+        if tj.is_empty() {
+            break;
+        }
+        // One split per patch per round (the others are found again on the halves).
+        let mut done = std::collections::BTreeSet::new();
+        for t in tj {
+            if !done.insert(t.patch) {
+                continue;
+            }
+            if let Some((a, b)) = split(&patches[t.patch], t.edge % 2 == 0, t.parameter) {
+                patches[t.patch] = a;
+                patches.push(b);
+                origin.push(origin[t.patch]);
+                splits.push(t);
+            }
+        }
+    }
+    let candidates = connect(&patches, prm.u1);
+    progress("edge verification");
+    let verified = verify(&patches, &candidates, prm.u2, prm.samples);
+    let connected: Vec<Connection> = verified
+        .iter()
+        .filter(|v| v.connected)
+        .map(|v| v.connection)
+        .collect();
+    let mut partners: std::collections::BTreeMap<(usize, usize), usize> =
+        std::collections::BTreeMap::new();
+    for c in &connected {
+        *partners.entry((c.p, c.ep)).or_default() += 1;
+        *partners.entry((c.q, c.eq)).or_default() += 1;
+    }
+    let non_manifold: Vec<(usize, usize, usize)> = partners
+        .iter()
+        .filter(|(_, n)| **n > 1)
+        .map(|(&(p, e), &n)| (p, e, n))
+        .collect();
+    let manifold: Vec<Connection> = connected
+        .iter()
+        .filter(|c| partners[&(c.p, c.ep)] == 1 && partners[&(c.q, c.eq)] == 1)
+        .copied()
+        .collect();
+    progress("feature lines");
+    let fe = features(
+        &patches,
+        &verified,
+        prm.feature_angle_deg,
+        prm.samples,
+        overrides,
+    );
+    progress("boundary averaging");
+    let averaging = average::average(&mut patches, &manifold);
+    let gap_max_after = manifold
+        .iter()
+        .map(|c| verify::edge_gap(&patches[c.p], c.ep, &patches[c.q], c.eq, prm.samples))
+        .fold(0.0, f64::max);
+    let shared_edges_identical = manifold
+        .iter()
+        .filter(|c| average::identical(&patches[c.p], c.ep, &patches[c.q], c.eq, c.same_direction))
+        .count();
+    let gaps: Vec<f64> = verified
+        .iter()
+        .filter(|v| v.connected)
+        .map(|v| v.gap)
+        .collect();
+    let mut hist = Vec::new();
+    let mut top = prm.u2;
+    for _ in 0..6 {
+        hist.push((
+            top,
+            gaps.iter()
+                .filter(|g| **g <= top && **g > top / 10.0)
+                .count(),
+        ));
+        top /= 10.0;
+    }
+    hist.push((top, gaps.iter().filter(|g| **g <= top).count()));
+    let collapsed_edges = patches
+        .iter()
+        .map(|s| {
+            (0..4)
+                .filter(|&k| edges::collapsed(&edges::edge_curve(s, k)))
+                .count()
+        })
+        .sum();
+    let report = RepairReport {
+        patches_in,
+        patches_out: patches.len(),
+        patch_origin: origin,
+        candidate_edges: candidates.len(),
+        edges_connected: connected.len(),
+        t_junctions: splits.len(),
+        t_junction_splits: splits,
+        non_manifold,
+        flipped_pairs: connected.iter().filter(|c| c.same_direction).count(),
+        collapsed_edges,
+        gap_max_before: gaps.iter().copied().fold(0.0, f64::max),
+        gap_mean_before: if gaps.is_empty() { 0.0 } else { gaps.iter().sum::<f64>() / gaps.len() as f64 },
+        gap_histogram: hist,
+        gaps_left: verified.iter().filter(|v| !v.connected).copied().collect(),
+        gap_max_after,
+        shared_edges_identical,
+        averaging,
+        feature_edges: fe.iter().filter(|f| f.feature).count(),
+        features_overridden: fe.iter().filter(|f| f.overridden).count(),
+        edges: fe,
+        groups: None,
+        max_merge_deviation: None,
+        not_done: vec![
+            "group-of-patches growing (Algorithm 2) is not implemented: no patches merged".into(),
+            "merging control information (section 6) is not implemented".into(),
+            "incompatible shared rows (different degree, count or knots) are not re-interpolated: listed in averaging.edges_incompatible".into(),
+        ],
+        seconds: t0.elapsed().as_secs_f64(),
+    };
+    Ok(RepairResult { patches, report })
+}

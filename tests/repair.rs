@@ -1,0 +1,284 @@
+//! Repair of faulty patch sets: the paper's cube (Plate 2) cut into 3×3 patches per face with
+//! gaps and perturbations below u1/u2, a T-junction, a flipped patch, and bad input.
+
+mod common;
+use common::Rng;
+use vericad::repair::features::FeatureOverrides;
+use vericad::repair::{RepairParams, repair};
+use vericad::spline::NurbsSurface;
+use vericad::spline::construct::bilinear;
+
+/// A biquadratic patch over a planar quad (so it has interior boundary control points), with
+/// its corners and edge midpoints moved by up to `noise`.
+fn patch(c: [[f64; 3]; 4], noise: f64, r: &mut Rng) -> NurbsSurface<f64, 3> {
+    let lerp = |a: [f64; 3], b: [f64; 3], t: f64| -> [f64; 3] {
+        std::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
+    };
+    let mut pts = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            let (s, t) = (i as f64 / 2.0, j as f64 / 2.0);
+            let p = lerp(lerp(c[0], c[1], s), lerp(c[3], c[2], s), t);
+            pts.push(std::array::from_fn(|k| {
+                p[k] + noise * (2.0 * r.unit() - 1.0)
+            }));
+        }
+    }
+    let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    NurbsSurface::new(k.clone(), 2, k, 2, 3, 3, pts, vec![1.0; 9]).unwrap()
+}
+
+/// The unit cube's six faces, each 3×3 patches, outward normals (S_u × S_v points out).
+fn cube(noise: f64, seed: u64) -> Vec<NurbsSurface<f64, 3>> {
+    let mut r = Rng(seed);
+    // Faces as (origin, du, dv) with du × dv outward.
+    let faces: [([f64; 3], [f64; 3], [f64; 3]); 6] = [
+        ([0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]), // z = 0, normal -z
+        ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), // z = 1, +z
+        ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), // y = 0, -y
+        ([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]), // y = 1, +y
+        ([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]), // x = 0, -x
+        ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]), // x = 1, +x
+    ];
+    let mut out = Vec::new();
+    for (o, du, dv) in faces {
+        for i in 0..3 {
+            for j in 0..3 {
+                let at = |a: f64, b: f64| -> [f64; 3] {
+                    std::array::from_fn(|k| o[k] + a / 3.0 * du[k] + b / 3.0 * dv[k])
+                };
+                let (a, b) = (i as f64, j as f64);
+                out.push(patch(
+                    [
+                        at(a, b),
+                        at(a + 1.0, b),
+                        at(a + 1.0, b + 1.0),
+                        at(a, b + 1.0),
+                    ],
+                    noise,
+                    &mut r,
+                ));
+            }
+        }
+    }
+    out
+}
+
+fn none(_: &str) {}
+
+#[test]
+fn cube_plate2_connectivity_features_and_averaging() {
+    let prm = RepairParams {
+        u1: 1e-2,
+        u2: 1e-2,
+        feature_angle_deg: 30.0,
+        ..Default::default()
+    };
+    let r = repair(cube(1e-4, 7), &prm, &FeatureOverrides::default(), &none).unwrap();
+    let rep = &r.report;
+    assert_eq!(rep.patches_in, 54);
+    assert_eq!(rep.patches_out, 54);
+    // 6 faces × 12 interior patch edges + 12 cube edges × 3 patch edges.
+    assert_eq!(rep.edges_connected, 6 * 12 + 12 * 3, "{rep}");
+    assert!(rep.non_manifold.is_empty() && rep.gaps_left.is_empty());
+    assert_eq!(rep.flipped_pairs, 0);
+    // The 12 cube edges (36 patch-edge pairs) are feature edges; nothing else.
+    assert_eq!(rep.feature_edges, 36, "{rep}");
+    for e in &rep.edges {
+        if e.feature {
+            assert!((e.max_angle_deg - 90.0).abs() < 1.0, "{e:?}");
+        } else {
+            assert!(e.max_angle_deg < 1.0, "{e:?}");
+        }
+    }
+    // Gaps before are the perturbation; after averaging every shared edge is identical.
+    assert!(rep.gap_max_before > 1e-5 && rep.gap_max_before < 1e-3);
+    assert_eq!(rep.shared_edges_identical, rep.edges_connected);
+    assert!(rep.gap_max_after < 1e-12, "{}", rep.gap_max_after);
+    assert!(rep.groups.is_none() && rep.not_done.iter().any(|s| s.contains("Algorithm 2")));
+}
+
+#[test]
+fn gaps_above_u2_are_reported_not_merged() {
+    let mut ps = cube(0.0, 1);
+    // Pull one patch's middle row away by 0.05 (corners stay): an interior gap (Fig. 6b).
+    let h = &mut ps[4].hom;
+    for j in 0..3 {
+        let nv = h.nv();
+        h.net[nv + j].wp[2] += 0.05;
+    }
+    let prm = RepairParams {
+        u1: 1e-3,
+        u2: 1e-3,
+        ..Default::default()
+    };
+    let rep = repair(ps, &prm, &FeatureOverrides::default(), &none)
+        .unwrap()
+        .report;
+    assert!(!rep.gaps_left.is_empty());
+    assert!(
+        rep.gaps_left
+            .iter()
+            .all(|g| g.gap >= 1e-3 && (g.connection.p == 4 || g.connection.q == 4))
+    );
+}
+
+#[test]
+fn t_junction_is_split_and_flipped_patch_found() {
+    let mut ps = cube(0.0, 2);
+    // Face z = 1 (patches 9..18, cells (i, j) at 9 + 3i + j): replace cells (0,0) and (1,0)
+    // by one patch spanning both: its edge then has a T at the corner of cell (0,1)/(1,1).
+    let big = bilinear(
+        [0.0, 0.0, 1.0],
+        [2.0 / 3.0, 0.0, 1.0],
+        [0.0, 1.0 / 3.0, 1.0],
+        [2.0 / 3.0, 1.0 / 3.0, 1.0],
+    )
+    .unwrap();
+    ps[9] = big;
+    ps.remove(12);
+    // Flip one patch of face y = 0 (reverse its u direction).
+    let f = &mut ps[18].hom;
+    let (nu, nv) = (f.nu(), f.nv());
+    let old = f.net.clone();
+    for i in 0..nu {
+        for j in 0..nv {
+            f.net[i * nv + j] = old[(nu - 1 - i) * nv + j].clone();
+        }
+    }
+    let n_in = ps.len();
+    let prm = RepairParams {
+        u1: 1e-3,
+        u2: 1e-3,
+        ..Default::default()
+    };
+    let rep = repair(ps, &prm, &FeatureOverrides::default(), &none)
+        .unwrap()
+        .report;
+    assert!(rep.t_junctions >= 1, "{rep}");
+    assert_eq!(rep.patches_out, n_in + rep.t_junctions);
+    // Every output patch comes from an input patch; every input patch is present.
+    let mut seen = vec![false; n_in];
+    for &o in &rep.patch_origin {
+        seen[o] = true;
+    }
+    assert!(seen.iter().all(|s| *s));
+    assert!(rep.flipped_pairs >= 2, "{rep}");
+    assert!(rep.non_manifold.is_empty());
+}
+
+#[test]
+fn feature_overrides_add_and_remove() {
+    let prm = RepairParams {
+        u1: 1e-3,
+        u2: 1e-3,
+        ..Default::default()
+    };
+    let base = repair(cube(0.0, 3), &prm, &FeatureOverrides::default(), &none)
+        .unwrap()
+        .report;
+    let f = base.edges.iter().find(|e| e.feature).unwrap();
+    let n = base.edges.iter().find(|e| !e.feature).unwrap();
+    let ov = FeatureOverrides {
+        add: vec![(n.p, n.ep)],
+        remove: vec![(f.p, f.ep)],
+    };
+    let r = repair(cube(0.0, 3), &prm, &ov, &none).unwrap().report;
+    assert_eq!(r.feature_edges, base.feature_edges);
+    assert_eq!(r.features_overridden, 2);
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    let mut ps = cube(0.0, 4);
+    ps[3].hom.net[4].wp[1] = f64::NAN;
+    let e = repair(
+        ps,
+        &RepairParams::default(),
+        &FeatureOverrides::default(),
+        &none,
+    )
+    .err()
+    .unwrap();
+    assert!(e.to_string().contains("patch 3"), "{e}");
+    for (u1, u2, a) in [
+        (0.0, 1e-3, 30.0),
+        (1e-3, f64::NAN, 30.0),
+        (1e-3, 1e-3, 0.0),
+        (1e-3, 1e-3, 180.0),
+    ] {
+        let prm = RepairParams {
+            u1,
+            u2,
+            feature_angle_deg: a,
+            ..Default::default()
+        };
+        assert!(repair(cube(0.0, 4), &prm, &FeatureOverrides::default(), &none).is_err());
+    }
+    assert!(
+        repair(
+            Vec::new(),
+            &RepairParams::default(),
+            &FeatureOverrides::default(),
+            &none
+        )
+        .is_err()
+    );
+    // A triangular patch (one collapsed edge) is handled.
+    let mut ps = cube(0.0, 5);
+    let t = bilinear(
+        [2.0, 2.0, 2.0],
+        [3.0, 2.0, 2.0],
+        [2.0, 2.0, 2.0],
+        [3.0, 3.0, 2.0],
+    )
+    .unwrap();
+    ps.push(t);
+    let rep = repair(
+        ps,
+        &RepairParams::default(),
+        &FeatureOverrides::default(),
+        &none,
+    )
+    .unwrap()
+    .report;
+    assert_eq!(rep.collapsed_edges, 1);
+}
+
+#[test]
+fn real_patch_sets_repair_without_error() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    for f in ["occt-bug28366_fuselage.stp", "gmsh-t20_data.step"] {
+        let out =
+            std::env::temp_dir().join(format!("vericad-repair-{}-{f}.json", std::process::id()));
+        let rep = vericad::repair::job::run(
+            &dir.join(f),
+            &RepairParams::default(),
+            None,
+            vericad::repair::job::Outputs {
+                report: Some(&out),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert!(rep.edges_connected > 0, "{f}");
+        assert_eq!(rep.patch_origin.len(), rep.patches_out);
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        for k in [
+            "patches_in",
+            "patches_out",
+            "edges_connected",
+            "t_junctions",
+            "gap_max_before",
+            "gap_max_after",
+            "gaps_left",
+            "feature_edges",
+            "groups",
+            "max_merge_deviation",
+        ] {
+            assert!(v.get(k).is_some(), "{f}: report lacks {k}");
+        }
+        std::fs::remove_file(&out).ok();
+    }
+}
