@@ -203,3 +203,42 @@ pub fn ssi_meshes(data: &[u8]) -> usize {
     assert_eq!(in_branches, r.stats.segments, "{:?}", r.stats);
     r.stats.segments
 }
+
+/// Repair on random patch soups: bilinear patches with small-integer corners from the bytes
+/// (so duplicates, shared corners, collapsed edges, many patches at a corner and T-junctions
+/// all occur). Never a panic; every input patch accounted for in the output.
+pub fn repair_soup(data: &[u8]) -> usize {
+    let mut patches = Vec::new();
+    for chunk in data.chunks(12).take(12) {
+        if chunk.len() < 12 {
+            break;
+        }
+        let c =
+            |k: usize| -> [f64; 3] { std::array::from_fn(|d| (chunk[3 * k + d] % 5) as f64 * 0.5) };
+        if let Ok(s) = crate::spline::construct::bilinear(c(0), c(1), c(3), c(2)) {
+            patches.push(s);
+        }
+    }
+    if patches.is_empty() {
+        return 0;
+    }
+    let n = patches.len();
+    let prm = crate::repair::RepairParams {
+        u1: 0.1,
+        u2: 0.1,
+        ..Default::default()
+    };
+    let none = |_: &str| {};
+    match crate::repair::repair(patches, &prm, &Default::default(), &none) {
+        Ok(r) => {
+            let mut seen = vec![false; n];
+            for &o in &r.report.patch_origin {
+                seen[o] = true;
+            }
+            assert!(seen.iter().all(|s| *s), "a patch was lost");
+            assert_eq!(r.patches.len(), r.report.patches_out);
+            r.report.edges_connected
+        }
+        Err(e) => panic!("repair refused valid patches: {e}"),
+    }
+}

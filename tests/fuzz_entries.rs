@@ -130,3 +130,15 @@ fn ssi_meshes_on_random_degenerate_grids() {
     fuzz_entry::ssi_meshes(&[]);
     fuzz_entry::ssi_meshes(&[2; 64]);
 }
+
+#[test]
+fn repair_on_random_patch_soups() {
+    let mut r = Rng(31);
+    let mut connected = 0;
+    for _ in 0..150 {
+        let len = r.below(150);
+        let data: Vec<u8> = (0..len).map(|_| r.below(256) as u8).collect();
+        connected += fuzz_entry::repair_soup(&data);
+    }
+    assert!(connected > 0, "the soups do connect somewhere");
+}

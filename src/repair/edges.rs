@@ -83,11 +83,11 @@ pub fn collapsed(c: &NurbsCurve<f64, 3>) -> bool {
     pts.windows(2).all(|w| w[0] == w[1])
 }
 
-/// `n` points on the curve, equally spaced in arc length (measured on a 64·n polyline), with
+/// `n` points on the curve, equally spaced in arc length (measured on a 16·n polyline), with
 /// their curve parameters.
 pub fn arc_length_samples(c: &NurbsCurve<f64, 3>, n: usize) -> Vec<(f64, [f64; 3])> {
     let (t0, t1) = c.hom.domain();
-    let m = 64 * n.max(2);
+    let m = 16 * n.max(2);
     let ts: Vec<f64> = (0..=m)
         .map(|i| t0 + (t1 - t0) * i as f64 / m as f64)
         .collect();
@@ -123,7 +123,7 @@ pub fn arc_length_samples(c: &NurbsCurve<f64, 3>, n: usize) -> Vec<(f64, [f64; 3
 /// Closest point of curve `c` to `x`: dense start, then Newton on `(C - x)·C' = 0`.
 pub fn closest_on_curve(c: &NurbsCurve<f64, 3>, x: &[f64; 3]) -> (f64, [f64; 3], f64) {
     let (t0, t1) = c.hom.domain();
-    let n = 64;
+    let n = 24;
     let d2 = |p: &[f64; 3]| (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2);
     let mut best = (t0, c.eval(&t0));
     for i in 1..=n {
