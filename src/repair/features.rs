@@ -72,8 +72,9 @@ pub fn features(
     n: usize,
     overrides: &FeatureOverrides,
 ) -> Vec<FeatureEdge> {
+    use rayon::prelude::*;
     edges
-        .iter()
+        .par_iter()
         .filter(|v| v.connected)
         .map(|v| {
             let c = v.connection;

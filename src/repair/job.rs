@@ -148,12 +148,13 @@ impl std::fmt::Display for RepairReport {
         )?;
         writeln!(
             f,
-            "  edges: {} candidates, {} connected ({} flipped pairs), {} non-manifold, {} collapsed, {} gaps left above u2",
+            "  edges: {} candidates, {} connected ({} flipped pairs), {} non-manifold, {} collapsed, {} free, {} gaps left above u2",
             self.candidate_edges,
             self.edges_connected,
             self.flipped_pairs,
             self.non_manifold.len(),
             self.collapsed_edges,
+            self.free_edges,
             self.gaps_left.len()
         )?;
         writeln!(

@@ -78,6 +78,9 @@ pub struct RepairReport {
     /// Connected pairs whose edges run the same way (one patch flipped).
     pub flipped_pairs: usize,
     pub collapsed_edges: usize,
+    /// Patch edges without a connected partner and not collapsed (boundary of the set, or
+    /// gaps left).
+    pub free_edges: usize,
     pub gap_max_before: f64,
     pub gap_mean_before: f64,
     /// `(upper bound of bin, count)`, bins by decades of u2.
@@ -203,10 +206,11 @@ pub fn repair(
     );
     progress("boundary averaging");
     let averaging = average::average(&mut patches, &manifold);
+    use rayon::prelude::*;
     let gap_max_after = manifold
-        .iter()
+        .par_iter()
         .map(|c| verify::edge_gap(&patches[c.p], c.ep, &patches[c.q], c.eq, prm.samples))
-        .fold(0.0, f64::max);
+        .reduce(|| 0.0, f64::max);
     let shared_edges_identical = manifold
         .iter()
         .filter(|c| average::identical(&patches[c.p], c.ep, &patches[c.q], c.eq, c.same_direction))
@@ -236,7 +240,9 @@ pub fn repair(
                 .count()
         })
         .sum();
+    let free_edges = 4 * patches.len() - collapsed_edges - partners.len();
     let report = RepairReport {
+        free_edges,
         patches_in,
         patches_out: patches.len(),
         patch_origin: origin,

@@ -41,8 +41,9 @@ pub fn verify(
     u2: f64,
     n: usize,
 ) -> Vec<VerifiedEdge> {
+    use rayon::prelude::*;
     candidates
-        .iter()
+        .par_iter()
         .map(|c| {
             let gap = edge_gap(&patches[c.p], c.ep, &patches[c.q], c.eq, n);
             VerifiedEdge {
