@@ -139,7 +139,12 @@ pub fn closest_on_curve(c: &NurbsCurve<f64, 3>, x: &[f64; 3]) -> (f64, [f64; 3],
             let (q, d1, dd) = c.derivatives2_at(&t);
             let r = [q[0] - x[0], q[1] - x[1], q[2] - x[2]];
             let f = r[0] * d1[0] + r[1] * d1[1] + r[2] * d1[2];
-            let fp = d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2] + r[0] * dd[0] + r[1] * dd[1] + r[2] * dd[2];
+            let fp = d1[0] * d1[0]
+                + d1[1] * d1[1]
+                + d1[2] * d1[2]
+                + r[0] * dd[0]
+                + r[1] * dd[1]
+                + r[2] * dd[2];
             if fp.is_nan() || fp <= 0.0 {
                 break;
             }
