@@ -208,6 +208,25 @@ fn bad(msg: impl std::fmt::Display) -> i32 {
     EXIT_BAD_INPUT
 }
 
+/// Print a job's report, or its error with the exit code for bad input or failure.
+fn finish<T: serde::Serialize + std::fmt::Display, E: std::fmt::Display>(
+    r: Result<T, E>,
+    json: bool,
+    is_bad: impl Fn(&E) -> bool,
+) -> i32 {
+    match r {
+        Ok(r) => {
+            print(&r, json);
+            0
+        }
+        Err(e) if is_bad(&e) => bad(e),
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_FAILURE
+        }
+    }
+}
+
 /// Run a parsed command; returns the process exit code.
 pub fn run(cli: Cli) -> i32 {
     match cli.command {
@@ -251,17 +270,9 @@ pub fn run(cli: Cli) -> i32 {
                 iges: iges.as_deref(),
                 vtk: vtk.as_deref(),
             };
-            match job::run(&surface, &curve, &params, outputs) {
-                Ok(r) => {
-                    print(&r, json);
-                    0
-                }
-                Err(e) if e.is_bad_input() => bad(e),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-            }
+            finish(job::run(&surface, &curve, &params, outputs), json, |e| {
+                e.is_bad_input()
+            })
         }
         Command::Ssi {
             file,
@@ -289,17 +300,11 @@ pub fn run(cli: Cli) -> i32 {
                 vtk: vtk.as_deref(),
                 iges: iges.as_deref(),
             };
-            match job::run(&file, file2.as_deref(), &prm, threads, outputs) {
-                Ok(r) => {
-                    print(&r, json);
-                    0
-                }
-                Err(e) if e.is_bad_input() => bad(e),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-            }
+            finish(
+                job::run(&file, file2.as_deref(), &prm, threads, outputs),
+                json,
+                |e| e.is_bad_input(),
+            )
         }
         Command::CertifySsi {
             a,
@@ -355,17 +360,11 @@ pub fn run(cli: Cli) -> i32 {
                 report: report.as_deref(),
                 vtk: vtk.as_deref(),
             };
-            match crate::repair::job::run(&input, &prm, features.as_deref(), outputs) {
-                Ok(r) => {
-                    print(&r, json);
-                    0
-                }
-                Err(e) if e.is_bad_input() => bad(e),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-            }
+            finish(
+                crate::repair::job::run(&input, &prm, features.as_deref(), outputs),
+                json,
+                |e| e.is_bad_input(),
+            )
         }
         Command::Convert {
             input,

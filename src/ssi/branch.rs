@@ -3,12 +3,13 @@
 //! every point, classify the ends, fit splines.
 
 use super::certify::ExactSurface;
-use super::fit::{fit_cubic, max_deviation_at_points};
+use super::fit::fit_branch;
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
 };
-use super::report::{BranchOut, EndKind, FitOut, TouchOut};
+use super::report::{BranchOut, EndKind, TouchOut};
 use super::topology::Topology;
+use super::touch::touch_out;
 use super::trace::Branch;
 use super::tri_tri::Feature;
 use super::triangulate::SurfaceMesh;
@@ -175,16 +176,7 @@ pub fn refine_branch(
         )
     };
     if raw.iter().all(|x| *x == raw[0]) {
-        let r = refine_at(0);
-        return BranchResult::Touch(TouchOut {
-            point: r.xyz,
-            uv_a: Some(r.uv_a),
-            uv_b: Some(r.uv_b),
-            status: Some(r.status),
-            dist_a: g.ea.distance_bound(&r.xyz, &r.uv_a),
-            dist_b: g.eb.distance_bound(&r.xyz, &r.uv_b),
-            branch_ends: 0,
-        });
+        return BranchResult::Touch(touch_out(g, &refine_at(0), 0));
     }
     let mut refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
     if !b.closed {
@@ -274,27 +266,15 @@ pub fn refine_branch(
         })
         .collect()
     };
-    let packed: Vec<[f64; 7]> = all
-        .iter()
-        .map(|r| {
-            [
-                r.xyz[0], r.xyz[1], r.xyz[2], r.uv_a[0], r.uv_a[1], r.uv_b[0], r.uv_b[1],
-            ]
-        })
-        .collect();
-    let fit = fit_cubic(&packed, b.closed, 3).map(|(c, used)| FitOut {
-        degree: 3,
-        knots: c.knots.knots().to_vec(),
-        control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
-        control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
-        control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
-        max_deviation_at_points: max_deviation_at_points(&c, &used, 3),
-    });
+    let points: Vec<[f64; 3]> = all.iter().map(|r| r.xyz).collect();
+    let uv_a: Vec<[f64; 2]> = all.iter().map(|r| r.uv_a).collect();
+    let uv_b: Vec<[f64; 2]> = all.iter().map(|r| r.uv_b).collect();
+    let fit = fit_branch(&points, &uv_a, &uv_b, b.closed);
     BranchResult::Curve(BranchOut {
         closed: b.closed,
-        points: all.iter().map(|r| r.xyz).collect(),
-        uv_a: all.iter().map(|r| r.uv_a).collect(),
-        uv_b: all.iter().map(|r| r.uv_b).collect(),
+        points,
+        uv_a,
+        uv_b,
         dist_a_max: da_max,
         dist_b_max: db_max,
         ends,

@@ -8,6 +8,7 @@
 //! tolerance of them), costs O(n) without a linear system, and a change to one point moves
 //! only the neighbouring spans.
 
+use super::report::FitOut;
 use crate::spline::{BSplineCurve, KnotVector};
 
 /// A fitted curve and the points it interpolates, in parameter order.
@@ -112,6 +113,30 @@ pub fn fit_cubic<const D: usize>(
         },
         p,
     ))
+}
+
+/// The fit of a branch: 3D points with their parameters on both surfaces, one
+/// parametrization (3D chord length) for all three curves.
+pub fn fit_branch(
+    points: &[[f64; 3]],
+    uv_a: &[[f64; 2]],
+    uv_b: &[[f64; 2]],
+    closed: bool,
+) -> Option<FitOut> {
+    let packed: Vec<[f64; 7]> = (0..points.len().min(uv_a.len()).min(uv_b.len()))
+        .map(|i| {
+            let (p, a, b) = (points[i], uv_a[i], uv_b[i]);
+            [p[0], p[1], p[2], a[0], a[1], b[0], b[1]]
+        })
+        .collect();
+    fit_cubic(&packed, closed, 3).map(|(c, used)| FitOut {
+        degree: 3,
+        knots: c.knots.knots().to_vec(),
+        control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
+        control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
+        control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
+        max_deviation_at_points: max_deviation_at_points(&c, &used, 3),
+    })
 }
 
 /// Largest distance between the fit and the points at the fit's own knots (evidence of the

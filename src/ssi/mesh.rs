@@ -5,10 +5,10 @@
 
 use super::SsiError;
 use super::cull::{TriTree, triangle_box};
-use super::report::{BranchOut, ContactOut, EndKind, PairOut, PairStats};
-use super::topology::Topology;
+use super::pair::build_topology;
+use super::report::{BranchOut, EndKind, PairOut, PairStats};
 use super::trace::{check_invariants, trace};
-use super::tri_tri::{Feature, intersect_pair};
+use super::tri_tri::Feature;
 use crate::model::Triangulation;
 use std::collections::HashMap;
 use std::time::Instant;
@@ -61,36 +61,13 @@ pub fn intersect_meshes(
         candidate_pairs: pairs.len(),
         ..Default::default()
     };
-    let mut topo = Topology::new();
-    let mut contacts = Vec::new();
-    for (ta, tb) in pairs {
-        let o = intersect_pair(
-            &tri(a, ta),
-            &a.triangles[ta as usize],
-            ta,
-            &tri(b, tb),
-            &b.triangles[tb as usize],
-            tb,
-        );
-        stats.degenerate_triangle_pairs += o.degenerate as usize;
-        stats.inconsistent_triangle_pairs += o.inconsistent as usize;
-        if let Some(kind) = o.contact {
-            stats.contacts += 1;
-            if contacts.len() < 100 {
-                contacts.push(ContactOut {
-                    kind,
-                    triangle_a: ta,
-                    triangle_b: tb,
-                });
-            }
-        }
-        if let Some(s) = o.segment {
-            topo.add_segment(s.ends[0], s.ends[1], s.ta, s.tb);
-        }
-    }
-    stats.segments = topo.segments.len();
-    stats.points = topo.points.len();
-    stats.duplicate_segments = topo.duplicate_segments;
+    let (mut topo, contacts) = build_topology(
+        &pairs,
+        &|t| (tri(a, t), a.triangles[t as usize]),
+        &|t| (tri(b, t), b.triangles[t as usize]),
+        &mut stats,
+        &|e| e,
+    );
     let branches = trace(&mut topo);
     check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
     let (ea, eb) = (edge_use(a), edge_use(b));

@@ -20,7 +20,8 @@ use std::collections::HashMap;
 use std::collections::HashSet;
 use std::time::Instant;
 
-fn tri(m: &SurfaceMesh, t: u32) -> [[f64; 3]; 3] {
+/// Triangle `t` of `m` as three points.
+pub(crate) fn tri(m: &SurfaceMesh, t: u32) -> [[f64; 3]; 3] {
     let v = m.triangles[t as usize];
     std::array::from_fn(|k| m.vertices[v[k] as usize])
 }
@@ -33,7 +34,8 @@ pub fn tree(m: &SurfaceMesh) -> TriTree {
     TriTree::build(&boxes)
 }
 
-fn unit_normal(t: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
+/// Unit normal of a triangle (`None` when degenerate).
+pub(crate) fn unit_normal(t: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
     let a: [f64; 3] = std::array::from_fn(|k| t[1][k] - t[0][k]);
     let b: [f64; 3] = std::array::from_fn(|k| t[2][k] - t[0][k]);
     let n = [
@@ -135,37 +137,13 @@ pub fn intersect_surfaces(
     let regions = SingularRegions::new(&ma, &mb, &singular, flat);
     let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
     stats.candidate_pairs = pairs.len();
-    let mut topo = Topology::new();
-    let mut contacts = Vec::new();
-    for (ta, tb) in pairs {
-        let o = intersect_pair(
-            &tri(&ma, ta),
-            &ma.topo_triangle(ta),
-            ta,
-            &tri(&mb, tb),
-            &mb.topo_triangle(tb),
-            tb,
-        );
-        stats.degenerate_triangle_pairs += o.degenerate as usize;
-        stats.inconsistent_triangle_pairs += o.inconsistent as usize;
-        if let Some(kind) = o.contact {
-            stats.contacts += 1;
-            if contacts.len() < 100 {
-                contacts.push(ContactOut {
-                    kind,
-                    triangle_a: ta,
-                    triangle_b: tb,
-                });
-            }
-        }
-        if let Some(s) = o.segment {
-            let [p, q] = s.ends.map(|e| regions.merge(e, &singular));
-            topo.add_segment(p, q, s.ta, s.tb);
-        }
-    }
-    stats.segments = topo.segments.len();
-    stats.points = topo.points.len();
-    stats.duplicate_segments = topo.duplicate_segments;
+    let (mut topo, contacts) = build_topology(
+        &pairs,
+        &|t| (tri(&ma, t), ma.topo_triangle(t)),
+        &|t| (tri(&mb, t), mb.topo_triangle(t)),
+        &mut stats,
+        &|e| regions.merge(e, &singular),
+    );
     let branches = trace(&mut topo);
     check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
     let mut out = PairOut {
@@ -303,4 +281,45 @@ impl SingularRegions {
             None => e,
         }
     }
+}
+
+/// A triangle as points and (topological) vertex numbers.
+pub(crate) type TriangleOf<'a> = &'a dyn Fn(u32) -> ([[f64; 3]; 3], [u32; 3]);
+
+/// Steps 4–5 over the candidate pairs: exact triangle intersections into the Point / PointUse /
+/// Segment structure (each end passed through `merge`), counting into `stats`; the first 100
+/// non-transversal contacts are listed.
+pub(crate) fn build_topology(
+    pairs: &[(u32, u32)],
+    a: TriangleOf,
+    b: TriangleOf,
+    stats: &mut PairStats,
+    merge: &dyn Fn((PointId, ConstructedPoint)) -> (PointId, ConstructedPoint),
+) -> (Topology, Vec<ContactOut>) {
+    let mut topo = Topology::new();
+    let mut contacts = Vec::new();
+    for &(ta, tb) in pairs {
+        let ((pa, va), (pb, vb)) = (a(ta), b(tb));
+        let o = intersect_pair(&pa, &va, ta, &pb, &vb, tb);
+        stats.degenerate_triangle_pairs += o.degenerate as usize;
+        stats.inconsistent_triangle_pairs += o.inconsistent as usize;
+        if let Some(kind) = o.contact {
+            stats.contacts += 1;
+            if contacts.len() < 100 {
+                contacts.push(ContactOut {
+                    kind,
+                    triangle_a: ta,
+                    triangle_b: tb,
+                });
+            }
+        }
+        if let Some(s) = o.segment {
+            let [p, q] = s.ends.map(merge);
+            topo.add_segment(p, q, s.ta, s.tb);
+        }
+    }
+    stats.segments = topo.segments.len();
+    stats.points = topo.points.len();
+    stats.duplicate_segments = topo.duplicate_segments;
+    (topo, contacts)
 }

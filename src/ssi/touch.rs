@@ -10,6 +10,7 @@
 
 use super::branch::PairGeometry;
 use super::cull::{TriTree, triangle_box};
+use super::pair::{tri, unit_normal};
 use super::refine::{RefineParams, RefineStatus, Refined, tangential_point};
 use super::report::TouchOut;
 use super::triangulate::SurfaceMesh;
@@ -17,11 +18,6 @@ use std::collections::BTreeSet;
 
 /// Most seeds tried per pair.
 pub const MAX_SEEDS: usize = 256;
-
-fn tri(m: &SurfaceMesh, t: u32) -> [[f64; 3]; 3] {
-    let v = m.triangles[t as usize];
-    std::array::from_fn(|k| m.vertices[v[k] as usize])
-}
 
 fn grown_tree(m: &SurfaceMesh, d: f64) -> TriTree {
     let boxes: Vec<_> = (0..m.triangles.len() as u32)
@@ -35,18 +31,6 @@ fn grown_tree(m: &SurfaceMesh, d: f64) -> TriTree {
         })
         .collect();
     TriTree::build(&boxes)
-}
-
-fn normal(t: &[[f64; 3]; 3]) -> Option<[f64; 3]> {
-    let a: [f64; 3] = std::array::from_fn(|k| t[1][k] - t[0][k]);
-    let b: [f64; 3] = std::array::from_fn(|k| t[2][k] - t[0][k]);
-    let n = [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ];
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    (l > 0.0).then(|| n.map(|c| c / l))
 }
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -74,7 +58,7 @@ pub fn tangential_points(
     let mut seeds: BTreeSet<(u32, u32)> = BTreeSet::new();
     let mut seed_tris = Vec::new();
     for (ta, tb) in pairs {
-        if let (Some(x), Some(y)) = (normal(&tri(g.ma, ta)), normal(&tri(g.mb, tb)))
+        if let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb)))
             && (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t
         {
             let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);

@@ -8,8 +8,8 @@
 //! polygon is exact. A branch is cut where it leaves either face; the cut ends are marked
 //! [`EndKind::TrimBoundary`].
 
-use super::fit::{fit_cubic, max_deviation_at_points};
-use super::report::{BranchOut, EndKind, FitOut};
+use super::fit::fit_branch;
+use super::report::{BranchOut, EndKind};
 use crate::model::Surface;
 use crate::predicates::orient2d;
 use crate::scalar::Sign;
@@ -70,20 +70,7 @@ impl TrimRegion {
 }
 
 fn refit(b: &mut BranchOut) {
-    let packed: Vec<[f64; 7]> = (0..b.points.len())
-        .map(|i| {
-            let (p, a, c) = (b.points[i], b.uv_a[i], b.uv_b[i]);
-            [p[0], p[1], p[2], a[0], a[1], c[0], c[1]]
-        })
-        .collect();
-    b.fit = fit_cubic(&packed, b.closed, 3).map(|(c, used)| FitOut {
-        degree: 3,
-        knots: c.knots.knots().to_vec(),
-        control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
-        control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
-        control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
-        max_deviation_at_points: max_deviation_at_points(&c, &used, 3),
-    });
+    b.fit = fit_branch(&b.points, &b.uv_a, &b.uv_b, b.closed);
 }
 
 /// The parts of `b` inside both trimmed faces (`None`: untrimmed face).
