@@ -67,8 +67,14 @@ pub fn run(
             ..Default::default()
         };
         for (k, s) in r.patches.iter().enumerate() {
-            let src = &m.surfaces[r.report.patch_origin[k]];
-            let mut ns = Surface::new(format!("{} (repaired)", src.name), s.clone());
+            let from = &r.report.patch_origin[k];
+            let src = &m.surfaces[from[0]];
+            let name = if from.len() > 1 {
+                format!("merged from {} patches ({}, ...)", from.len(), src.name)
+            } else {
+                format!("{} (repaired)", src.name)
+            };
+            let mut ns = Surface::new(name, s.clone());
             ns.source = src.source.clone();
             om.surfaces.push(ns);
         }
@@ -92,7 +98,7 @@ pub fn run(
         let (mut feature, mut gap) = (Vec::new(), Vec::new());
         for e in &r.report.edges {
             if e.feature {
-                let c = super::edges::edge_curve(&r.patches[e.p], e.ep);
+                let c = super::edges::edge_curve(&r.connected_patches[e.p], e.ep);
                 let pts: Vec<[f64; 3]> = super::edges::arc_length_samples(&c, 16)
                     .into_iter()
                     .map(|x| x.1)
@@ -103,7 +109,7 @@ pub fn run(
             }
         }
         for g in &r.report.gaps_left {
-            let c = super::edges::edge_curve(&r.patches[g.connection.p], g.connection.ep);
+            let c = super::edges::edge_curve(&r.connected_patches[g.connection.p], g.connection.ep);
             let pts: Vec<[f64; 3]> = super::edges::arc_length_samples(&c, 16)
                 .into_iter()
                 .map(|x| x.1)

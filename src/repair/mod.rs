@@ -7,16 +7,17 @@
 //! | 2 edge verification | [`verify`] |
 //! | 3 boundary averaging | [`average`] |
 //! | 4 feature lines | [`features`] |
-//!
-//! Not yet implemented (reported as such in every run): group-of-patches growing
-//! (Algorithm 2) and merging of control information (§6).
+//! | 5 group-of-patches growing (Algorithm 2) | [`group`] |
+//! | 6 merging control information | [`merge`] |
 
 pub mod average;
 pub mod connectivity;
 pub mod edges;
 pub mod features;
+pub mod group;
 pub mod job;
 pub mod kdtree;
+pub mod merge;
 pub mod verify;
 
 use connectivity::{Connection, TJunction, connect, split, t_junctions};
@@ -66,9 +67,9 @@ impl Default for RepairParams {
 pub struct RepairReport {
     pub patches_in: usize,
     pub patches_out: usize,
-    /// For every output patch, the input patch it comes from (T-junction splits keep their
-    /// origin): every input patch is accounted for.
-    pub patch_origin: Vec<usize>,
+    /// For every output patch, the input patches it is made of (a T-junction split keeps its
+    /// origin; a merged group lists all): every input patch is accounted for.
+    pub patch_origin: Vec<Vec<usize>>,
     pub candidate_edges: usize,
     pub edges_connected: usize,
     pub t_junctions: usize,
@@ -94,15 +95,23 @@ pub struct RepairReport {
     pub feature_edges: usize,
     pub features_overridden: usize,
     pub edges: Vec<FeatureEdge>,
-    /// Not yet implemented: `null`.
+    /// Number of groups of patches (Algorithm 2), and their sizes `(columns, rows)`.
     pub groups: Option<usize>,
+    pub group_sizes: Vec<(usize, usize)>,
+    /// Groups whose nets could not be merged (kept as their patches).
+    pub groups_not_merged: usize,
+    /// Largest measured deviation of a merged surface from one of its patches (7 × 7 samples).
     pub max_merge_deviation: Option<f64>,
     pub not_done: Vec<String>,
     pub seconds: f64,
 }
 
 pub struct RepairResult {
+    /// The output patches (merged groups, and patches left alone).
     pub patches: Vec<NurbsSurface<f64, 3>>,
+    /// The patches after T-junction splitting and averaging, before merging: the indices in
+    /// the report's edges, gaps and groups refer to these.
+    pub connected_patches: Vec<NurbsSurface<f64, 3>>,
     pub report: RepairReport,
 }
 
@@ -215,6 +224,36 @@ pub fn repair(
         .iter()
         .filter(|c| average::identical(&patches[c.p], c.ep, &patches[c.q], c.eq, c.same_direction))
         .count();
+    progress("grouping and merging");
+    let feature_set: std::collections::HashSet<(usize, usize)> = fe
+        .iter()
+        .filter(|f| f.feature)
+        .flat_map(|f| [(f.p, f.ep), (f.q, f.eq)])
+        .collect();
+    let gs = group::groups(&patches, &manifold, &feature_set);
+    let mut out_patches = Vec::new();
+    let mut out_origin: Vec<Vec<usize>> = Vec::new();
+    let mut max_dev: f64 = 0.0;
+    let mut not_merged = 0;
+    for g in &gs {
+        let members: Vec<usize> = g.cells.iter().flatten().copied().collect();
+        if members.len() > 1
+            && let Some((m, d)) = merge::merge(&patches, g)
+        {
+            max_dev = max_dev.max(d);
+            out_patches.push(m);
+            let mut o: Vec<usize> = members.iter().map(|&k| origin[k]).collect();
+            o.sort_unstable();
+            o.dedup();
+            out_origin.push(o);
+            continue;
+        }
+        not_merged += usize::from(members.len() > 1);
+        for k in members {
+            out_patches.push(patches[k].clone());
+            out_origin.push(vec![origin[k]]);
+        }
+    }
     let gaps: Vec<f64> = verified
         .iter()
         .filter(|v| v.connected)
@@ -244,8 +283,8 @@ pub fn repair(
     let report = RepairReport {
         free_edges,
         patches_in,
-        patches_out: patches.len(),
-        patch_origin: origin,
+        patches_out: out_patches.len(),
+        patch_origin: out_origin,
         candidate_edges: candidates.len(),
         edges_connected: connected.len(),
         t_junctions: splits.len(),
@@ -263,14 +302,19 @@ pub fn repair(
         feature_edges: fe.iter().filter(|f| f.feature).count(),
         features_overridden: fe.iter().filter(|f| f.overridden).count(),
         edges: fe,
-        groups: None,
-        max_merge_deviation: None,
+        groups: Some(gs.len()),
+        group_sizes: gs.iter().map(|g| (g.columns(), g.rows())).collect(),
+        groups_not_merged: not_merged,
+        max_merge_deviation: Some(max_dev),
         not_done: vec![
-            "group-of-patches growing (Algorithm 2) is not implemented: no patches merged".into(),
-            "merging control information (section 6) is not implemented".into(),
             "incompatible shared rows (different degree, count or knots) are not re-interpolated: listed in averaging.edges_incompatible".into(),
+            "groups grow only across aligned, consistently oriented neighbours (east-west, north-south); rotated or flipped neighbours bound a group".into(),
         ],
         seconds: t0.elapsed().as_secs_f64(),
     };
-    Ok(RepairResult { patches, report })
+    Ok(RepairResult {
+        patches: out_patches,
+        connected_patches: patches,
+        report,
+    })
 }
