@@ -145,7 +145,28 @@ pub fn t_junctions(patches: &[NurbsSurface<f64, 3>], u1: f64) -> Vec<TJunction> 
         let (t, _, d) = closest_on_curve(&curves[ei as usize], &v);
         if d < u1 {
             let uv = edge_uv(&patches[q], e, t);
-            let parameter = if e % 2 == 0 { uv[0] } else { uv[1] };
+            let mut parameter = if e % 2 == 0 { uv[0] } else { uv[1] };
+            // Prefer an interior knot of the patch whose edge point is also within u1 of the
+            // corner: the split then falls on the patch's own break, leaving no sliver.
+            let h = &patches[q].hom;
+            let kv = if e % 2 == 0 { &h.ku } else { &h.kv };
+            let (lo, hi) = kv.domain();
+            let mut best = f64::INFINITY;
+            for k in kv.breakpoints() {
+                if k <= lo || k >= hi {
+                    continue;
+                }
+                let at = if e % 2 == 0 {
+                    patches[q].eval(&k, &uv[1])
+                } else {
+                    patches[q].eval(&uv[0], &k)
+                };
+                let dk = dist(&at, &v);
+                if dk < u1 && dk < best {
+                    best = dk;
+                    parameter = k;
+                }
+            }
             // One split per patch edge location (several corners may sit at one T).
             if !out.iter().any(|o| {
                 o.patch == q

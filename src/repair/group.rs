@@ -117,7 +117,11 @@ fn strip(g: &Group, grid: &Grid, used: &HashSet<usize>, d: usize) -> Option<Vec<
         return None;
     }
     // The new cells must be neighbours of each other along the strip.
-    let along = if d.is_multiple_of(2) { &grid.east } else { &grid.north };
+    let along = if d.is_multiple_of(2) {
+        &grid.east
+    } else {
+        &grid.north
+    };
     if new.windows(2).any(|w| along.get(&w[0]) != Some(&w[1])) {
         return None;
     }
