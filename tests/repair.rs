@@ -66,6 +66,18 @@ fn cube(noise: f64, seed: u64) -> Vec<NurbsSurface<f64, 3>> {
 
 fn none(_: &str) {}
 
+/// Reverse a patch's u direction (a flipped patch).
+fn flip_u(s: &mut NurbsSurface<f64, 3>) {
+    let f = &mut s.hom;
+    let (nu, nv) = (f.nu(), f.nv());
+    let old = f.net.clone();
+    for i in 0..nu {
+        for j in 0..nv {
+            f.net[i * nv + j] = old[(nu - 1 - i) * nv + j].clone();
+        }
+    }
+}
+
 #[test]
 fn cube_plate2_connectivity_features_and_averaging() {
     let prm = RepairParams {
@@ -168,14 +180,7 @@ fn t_junction_is_split_and_flipped_patch_found() {
     ps[9] = big;
     ps.remove(12);
     // Flip one patch of face y = 0 (reverse its u direction).
-    let f = &mut ps[18].hom;
-    let (nu, nv) = (f.nu(), f.nv());
-    let old = f.net.clone();
-    for i in 0..nu {
-        for j in 0..nv {
-            f.net[i * nv + j] = old[(nu - 1 - i) * nv + j].clone();
-        }
-    }
+    flip_u(&mut ps[18]);
     let n_in = ps.len();
     let prm = RepairParams {
         u1: 1e-3,
@@ -349,14 +354,7 @@ fn smooth_body_with_gaps_t_junction_and_flip() {
     ps[9] = NurbsSurface::new(ku, 2, kv, 2, 5, 3, pts, vec![1.0; 15]).unwrap();
     ps.remove(12);
     // Flip one patch (reverse u) on face x = 1.
-    let f = &mut ps[50].hom;
-    let (nu, nv) = (f.nu(), f.nv());
-    let old = f.net.clone();
-    for i in 0..nu {
-        for j in 0..nv {
-            f.net[i * nv + j] = old[(nu - 1 - i) * nv + j].clone();
-        }
-    }
+    flip_u(&mut ps[50]);
     assert_eq!(ps.len(), 53);
     let prm = RepairParams {
         u1: 5e-2,
