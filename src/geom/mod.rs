@@ -151,6 +151,25 @@ pub fn dist<S: RealScalar, const D: usize>(a: &[S; D], b: &[S; D]) -> S {
     norm(&a.sub(b))
 }
 
+/// Distance from `x` to the segment `pq` (to `p` when the segment is a point).
+pub fn dist_to_segment<S: RealScalar, const D: usize>(x: &[S; D], p: &[S; D], q: &[S; D]) -> S {
+    let d = q.sub(p);
+    let l2 = norm2(&d);
+    let t = if l2.sign() == crate::scalar::Sign::Positive {
+        let t = dot(&x.sub(p), &d) / l2;
+        if t < S::zero() {
+            S::zero()
+        } else if t > S::one() {
+            S::one()
+        } else {
+            t
+        }
+    } else {
+        S::zero()
+    };
+    dist(x, &p.add(&d.scale(&t)))
+}
+
 /// Lift an `f64` point exactly into another backend.
 pub fn lift_point<S: Scalar, const D: usize>(p: &[f64; D]) -> [S; D] {
     std::array::from_fn(|i| crate::scalar::lift(p[i]))

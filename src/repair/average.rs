@@ -26,7 +26,8 @@ pub fn edge_indices(s: &NurbsSurface<f64, 3>, k: usize) -> Vec<(usize, usize)> {
     }
 }
 
-fn normalized(k: &[f64]) -> Vec<f64> {
+/// Knots mapped affinely onto `[0, 1]`.
+pub(crate) fn normalized(k: &[f64]) -> Vec<f64> {
     let (a, b) = (k[0], k[k.len() - 1]);
     k.iter().map(|x| (x - a) / (b - a)).collect()
 }

@@ -15,6 +15,7 @@
 
 use super::edges::{closest_on_curve, collapsed, corners, edge_curve, edge_uv};
 use super::kdtree::KdTree;
+use crate::geom::dist;
 use crate::spline::NurbsSurface;
 use crate::ssi::cull::TriTree;
 use serde::Serialize;
@@ -28,10 +29,6 @@ pub struct Connection {
     pub eq: usize,
     /// Both edges run the same way: one of the two patches is flipped.
     pub same_direction: bool,
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// Algorithm 1 on the patches' corners.

@@ -10,14 +10,10 @@
 //! averaging). Each original patch is the merged surface over its cell, reparametrized
 //! affinely; the largest deviation at 7 × 7 samples per patch is measured and reported.
 
+use super::average::normalized;
 use super::group::Group;
 use crate::geom::Hom;
 use crate::spline::{BSplineSurface, KnotVector, NurbsSurface};
-
-fn normalized(k: &[f64]) -> Vec<f64> {
-    let (a, b) = (k[0], k[k.len() - 1]);
-    k.iter().map(|x| (x - a) / (b - a)).collect()
-}
 
 fn union_knots(parts: &[Vec<f64>], p: usize) -> Vec<f64> {
     let n = parts.len();

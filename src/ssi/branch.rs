@@ -13,6 +13,7 @@ use super::touch::touch_out;
 use super::trace::Branch;
 use super::tri_tri::Feature;
 use super::triangulate::SurfaceMesh;
+use crate::geom::{dist, dist_to_segment};
 use crate::spline::NurbsSurface;
 
 /// The two surfaces of a pair with their meshes and exact forms.
@@ -29,22 +30,6 @@ pub struct PairGeometry<'a> {
 pub enum BranchResult {
     Curve(BranchOut),
     Touch(TouchOut),
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// Distance from `x` to the segment `pq`.
-fn dist_to_segment(x: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
-    let d: [f64; 3] = std::array::from_fn(|k| q[k] - p[k]);
-    let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let t = if l2 > 0.0 {
-        (((x[0] - p[0]) * d[0] + (x[1] - p[1]) * d[1] + (x[2] - p[2]) * d[2]) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    dist(x, &std::array::from_fn(|k| p[k] + t * d[k]))
 }
 
 fn average_uv(a: &[f64; 2], b: &[f64; 2], dom: &[f64; 4]) -> Option<[f64; 2]> {

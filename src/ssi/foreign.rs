@@ -12,6 +12,7 @@
 use super::certify::ExactSurface;
 use super::refine::{domain, point_d1};
 use super::report::SsiResult;
+use crate::geom::{Point, dist_to_segment, dot};
 use crate::model::Model;
 use crate::spline::NurbsSurface;
 use serde::Serialize;
@@ -86,10 +87,7 @@ fn faces(m: &Model) -> Vec<Face> {
 }
 
 fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    a.sub(b)
 }
 
 /// Damped Gauss–Newton from `uv` towards the closest point of `s` to `x`.
@@ -177,18 +175,6 @@ fn distance_to(fs: &[Face], x: &[f64; 3]) -> f64 {
         }
     }
     best
-}
-
-fn seg_dist(x: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
-    let d = sub(q, p);
-    let l2 = dot(&d, &d);
-    let t = if l2 > 0.0 {
-        (dot(&sub(x, p), &d) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let c = [p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]];
-    dot(&sub(x, &c), &sub(x, &c)).sqrt()
 }
 
 /// A foreign curve as points: `(name, kind, points)`.
@@ -284,10 +270,10 @@ pub fn certify(
                 .filter(|x| {
                     foreign.iter().any(|(_, _, f)| {
                         if f.len() == 1 {
-                            seg_dist(x, &f[0], &f[0]) <= match_distance
+                            dist_to_segment(x, &f[0], &f[0]) <= match_distance
                         } else {
                             f.windows(2)
-                                .any(|w| seg_dist(x, &w[0], &w[1]) <= match_distance)
+                                .any(|w| dist_to_segment(x, &w[0], &w[1]) <= match_distance)
                         }
                     })
                 })

@@ -4,6 +4,7 @@
 //! EQUATIONS.md §A (each tangent plane through its own surface's point).
 
 use super::triangulate::SurfaceMesh;
+use crate::geom::{Point, cross, dot, norm};
 use crate::spline::NurbsSurface;
 
 /// How a refinement ended.
@@ -43,27 +44,15 @@ pub struct RefineParams {
 }
 
 type V3 = [f64; 3];
+// Short forms of the `Point` operations for the dense formulas below.
 fn sub(a: &V3, b: &V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    a.sub(b)
 }
 fn add(a: &V3, b: &V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+    a.add(b)
 }
 fn scale(a: &V3, s: f64) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-fn dot(a: &V3, b: &V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: &V3, b: &V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn norm(a: &V3) -> f64 {
-    dot(a, a).sqrt()
+    a.scale(&s)
 }
 
 /// `S`, `S_u`, `S_v` of a NURBS surface (rational quotient rule on the homogeneous form).

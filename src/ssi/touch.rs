@@ -14,6 +14,7 @@ use super::pair::{tri, unit_normal};
 use super::refine::{RefineParams, RefineStatus, Refined, tangential_point};
 use super::report::TouchOut;
 use super::triangulate::SurfaceMesh;
+use crate::geom::dist;
 use std::collections::BTreeSet;
 
 /// Most seeds tried per pair.
@@ -31,10 +32,6 @@ fn grown_tree(m: &SurfaceMesh, d: f64) -> TriTree {
         })
         .collect();
     TriTree::build(&boxes)
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 fn centroid_uv(m: &SurfaceMesh, t: u32) -> [f64; 2] {

@@ -12,6 +12,7 @@
 //! leaf around its centre through every vertex on its boundary, including the hanging
 //! corners of finer neighbours. Each vertex keeps its `(u, v)`.
 
+use crate::geom::dist;
 use crate::spline::NurbsSurface;
 use std::collections::{BTreeSet, HashMap, HashSet};
 
@@ -87,22 +88,11 @@ pub struct Lattice {
     pub knots_v: Vec<f64>,
 }
 
-fn distinct_knots(k: &[f64], p: usize, n: usize) -> Vec<f64> {
-    let mut out: Vec<f64> = Vec::new();
-    for &x in &k[p..=n] {
-        if out.last() != Some(&x) {
-            out.push(x);
-        }
-    }
-    out
-}
-
 impl Lattice {
     pub fn of(s: &NurbsSurface<f64, 3>) -> Lattice {
-        let (ku, kv) = (&s.hom.ku, &s.hom.kv);
         Lattice {
-            knots_u: distinct_knots(ku.knots(), ku.degree(), ku.n_ctrl()),
-            knots_v: distinct_knots(kv.knots(), kv.degree(), kv.n_ctrl()),
+            knots_u: s.hom.ku.breakpoints(),
+            knots_v: s.hom.kv.breakpoints(),
         }
     }
     fn coord(knots: &[f64], i: u64) -> f64 {
@@ -139,10 +129,6 @@ impl Evaluator<'_> {
         self.cache.insert((i, j), p);
         p
     }
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 fn mid(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
