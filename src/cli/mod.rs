@@ -67,6 +67,10 @@ pub enum Command {
         /// Lipschitz bound: `local` (tighter, proven) or `paper` (eq. 12 per patch).
         #[arg(long, default_value = "local")]
         bound: String,
+        /// Run every step in exact rational arithmetic (the reference; slower) instead of
+        /// f64 with interval enclosures (which reruns exactly by itself when undecided).
+        #[arg(long)]
+        exact: bool,
         /// Write the JSON result here.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -246,13 +250,14 @@ pub fn run(cli: Cli) -> i32 {
             tol,
             angle,
             bound,
+            exact,
             out,
             svg,
             iges,
             vtk,
             json,
         } => {
-            use crate::curve_on_surface::{Bound, Params, job};
+            use crate::curve_on_surface::{Arithmetic, Bound, Params, job};
             let bound = match bound.as_str() {
                 "local" => Bound::Local,
                 "paper" => Bound::PaperEq12,
@@ -262,6 +267,11 @@ pub fn run(cli: Cli) -> i32 {
                 eps_d: tol,
                 eps_t_deg: angle,
                 bound,
+                arithmetic: if exact {
+                    Arithmetic::Exact
+                } else {
+                    Arithmetic::Float
+                },
                 ..Params::default()
             };
             let outputs = job::Outputs {

@@ -2,13 +2,8 @@
 //! `S(D(t))` at dense samples, in both directions, with the nearest point found by sampling
 //! and Newton refinement.
 
-use super::map::MappedSegment;
-use super::segments::Seg;
 use crate::geom::{Point, dist};
 use crate::spline::{BSplineSurface, BezierCurve};
-use num_rational::BigRational;
-
-type Q = BigRational;
 
 fn nearest_on(curve: &BezierCurve<[f64; 3]>, x: &[f64; 3]) -> f64 {
     let k = 32;
@@ -40,18 +35,19 @@ fn nearest_on(curve: &BezierCurve<[f64; 3]>, x: &[f64; 3]) -> f64 {
     best.0.min(dist(&curve.eval(&t), x))
 }
 
-/// Max sampled distance and number of samples.
+/// Max sampled distance and number of samples (`per_segment == 0`: none measured).
 pub fn measure(
     surface: &BSplineSurface<[f64; 3]>,
-    segs: &[Seg],
-    mapped: &[MappedSegment],
-    pieces: &[BezierCurve<[Q; 2]>],
+    segments: &[super::ChainSegment],
     per_segment: usize,
 ) -> (f64, usize) {
+    if per_segment == 0 {
+        return (0.0, 0);
+    }
     let mut worst = 0.0f64;
     let mut n = 0;
-    for (s, m) in segs.iter().zip(mapped) {
-        let c = s.curve(pieces).map(crate::geom::to_f64_point);
+    for m in segments {
+        let c = &m.domain_curve;
         let out = BezierCurve {
             control: m.control_points.clone(),
         };

@@ -12,7 +12,7 @@ use super::cells::Cells;
 use super::hausdorff::farthest_parameter;
 use super::segments::Seg;
 use crate::geom::{dot, norm};
-use crate::spline::BezierCurve;
+use crate::spline::{BezierCurve, BezierSurface};
 use num_rational::BigRational;
 
 type Q = BigRational;
@@ -20,38 +20,75 @@ type Q = BigRational;
 /// Smallest parameter length (relative to the piece) a segment is split down to for ε_T.
 const MIN_PARAM_LEN: f64 = 1e-10;
 
-fn tangent(cells: &Cells, s: &Seg, at_end: bool) -> [f64; 3] {
-    let c = &cells.cells[s.cell];
-    let p = if at_end { s.b } else { s.a };
-    let (lu, lv) = ((p[0] - c.u0) / (c.u1 - c.u0), (p[1] - c.v0) / (c.v1 - c.v0));
-    let su = c
-        .patch_f64
-        .hodograph_u()
+/// End tangent (`at_end`) or start tangent of the image of the chord `a → b` on a patch
+/// over `rect = [u0, u1, v0, v1]`: `(Δu / (u1 - u0)) S_s + (Δv / (v1 - v0)) S_r` (eq. 20).
+pub fn mapped_tangent(
+    patch: &BezierSurface<[f64; 3]>,
+    rect: [f64; 4],
+    a: &[f64; 2],
+    b: &[f64; 2],
+    at_end: bool,
+) -> [f64; 3] {
+    let hodographs = (patch.hodograph_u(), patch.hodograph_v());
+    mapped_tangent_with(&hodographs, rect, a, b, at_end)
+}
+
+/// [`mapped_tangent`] with the patch's hodographs `(S_s, S_r)` given.
+pub fn mapped_tangent_with(
+    hodographs: &Hodographs,
+    rect: [f64; 4],
+    a: &[f64; 2],
+    b: &[f64; 2],
+    at_end: bool,
+) -> [f64; 3] {
+    let p = if at_end { b } else { a };
+    let (lu, lv) = (
+        (p[0] - rect[0]) / (rect[1] - rect[0]),
+        (p[1] - rect[2]) / (rect[3] - rect[2]),
+    );
+    let su = hodographs
+        .0
+        .as_ref()
         .map(|h| h.eval(&lu, &lv))
         .unwrap_or([0.0; 3]);
-    let sv = c
-        .patch_f64
-        .hodograph_v()
+    let sv = hodographs
+        .1
+        .as_ref()
         .map(|h| h.eval(&lu, &lv))
         .unwrap_or([0.0; 3]);
-    let du = (s.b[0] - s.a[0]) / (c.u1 - c.u0);
-    let dv = (s.b[1] - s.a[1]) / (c.v1 - c.v0);
+    let du = (b[0] - a[0]) / (rect[1] - rect[0]);
+    let dv = (b[1] - a[1]) / (rect[3] - rect[2]);
     std::array::from_fn(|i| du * su[i] + dv * sv[i])
 }
 
-/// Angle in degrees between the end tangent of `x` and the start tangent of `y`.
-pub fn junction_angle(cells: &Cells, x: &Seg, y: &Seg) -> Option<f64> {
-    let (t0, t1) = (tangent(cells, x, true), tangent(cells, y, false));
-    let (n0, n1) = (norm(&t0), norm(&t1));
+/// The hodographs `(S_s, S_r)` of a patch in local coordinates (`None`: degree 0).
+pub type Hodographs = (
+    Option<BezierSurface<[f64; 3]>>,
+    Option<BezierSurface<[f64; 3]>>,
+);
+
+/// Angle in degrees between two tangents; `None` when one vanishes.
+pub fn angle_deg(t0: &[f64; 3], t1: &[f64; 3]) -> Option<f64> {
+    let (n0, n1) = (norm(t0), norm(t1));
     if n0 == 0.0 || n1 == 0.0 {
         return None;
     }
     Some(
-        (dot(&t0, &t1) / (n0 * n1))
+        (dot(t0, t1) / (n0 * n1))
             .clamp(-1.0, 1.0)
             .acos()
             .to_degrees(),
     )
+}
+
+fn tangent(cells: &Cells, s: &Seg, at_end: bool) -> [f64; 3] {
+    let c = &cells.cells[s.cell];
+    mapped_tangent(&c.patch_f64, [c.u0, c.u1, c.v0, c.v1], &s.a, &s.b, at_end)
+}
+
+/// Angle in degrees between the end tangent of `x` and the start tangent of `y`.
+pub fn junction_angle(cells: &Cells, x: &Seg, y: &Seg) -> Option<f64> {
+    angle_deg(&tangent(cells, x, true), &tangent(cells, y, false))
 }
 
 /// Result of the pass.
@@ -66,34 +103,84 @@ pub struct G1Stats {
 /// Split until every junction is within `eps_t_deg` (or cannot be improved). `closed`: the
 /// polyline is a loop and the last segment joins the first.
 pub fn enforce_g1(
-    mut segs: Vec<Seg>,
+    segs: Vec<Seg>,
     pieces: &[BezierCurve<[Q; 2]>],
     cells: &Cells,
     eps_t_deg: f64,
     closed: bool,
     max_segments: usize,
 ) -> (Vec<Seg>, G1Stats) {
+    enforce_g1_with(
+        segs,
+        eps_t_deg,
+        closed,
+        max_segments,
+        &G1Ops {
+            angle: |x: &Seg, y: &Seg| junction_angle(cells, x, y),
+            deviation: |s: &Seg| s.h,
+            param_len: |s: &Seg| crate::Scalar::to_f64(&(s.t1.clone() - s.t0.clone())),
+            split: |s: &Seg| {
+                let c = s.curve(pieces);
+                // Theorem 1: sub-pieces of a single-sided piece stay within d; the bound is
+                // recomputed anyway (split resets it).
+                Some(s.split(&farthest_parameter(&c), pieces, cells))
+            },
+        },
+    )
+}
+
+/// What the ε_T pass needs of a segment type.
+pub struct G1Ops<A, D, L, P> {
+    /// Angle between the end tangent of the first and the start tangent of the second.
+    pub angle: A,
+    /// The segment's current 2D deviation `h` (the one with the greater is split).
+    pub deviation: D,
+    /// Parameter length relative to its piece.
+    pub param_len: L,
+    /// Split at the farthest point (`None`: cannot).
+    pub split: P,
+}
+
+/// The ε_T pass over any segment type.
+pub fn enforce_g1_with<S, A, D, L, P>(
+    mut segs: Vec<S>,
+    eps_t_deg: f64,
+    closed: bool,
+    max_segments: usize,
+    ops: &G1Ops<A, D, L, P>,
+) -> (Vec<S>, G1Stats)
+where
+    A: Fn(&S, &S) -> Option<f64>,
+    D: Fn(&S) -> f64,
+    L: Fn(&S) -> f64,
+    P: Fn(&S) -> Option<(S, S)>,
+{
     let mut stats = G1Stats::default();
-    let plen = |s: &Seg| crate::Scalar::to_f64(&(s.t1.clone() - s.t0.clone()));
+    let pairs = |n: usize| {
+        if closed && n > 1 {
+            n
+        } else {
+            n.saturating_sub(1)
+        }
+    };
     loop {
         let n = segs.len();
         let mut split = vec![false; n];
         let mut unresolved = 0;
-        let pairs = if closed && n > 1 {
-            n
-        } else {
-            n.saturating_sub(1)
-        };
-        for i in 0..pairs {
+        for i in 0..pairs(n) {
             let j = (i + 1) % n;
-            if let Some(a) = junction_angle(cells, &segs[i], &segs[j])
+            if let Some(a) = (ops.angle)(&segs[i], &segs[j])
                 && a > eps_t_deg
             {
-                let k = if segs[i].h >= segs[j].h { i } else { j };
+                let k = if (ops.deviation)(&segs[i]) >= (ops.deviation)(&segs[j]) {
+                    i
+                } else {
+                    j
+                };
                 let other = if k == i { j } else { i };
-                if plen(&segs[k]) > MIN_PARAM_LEN {
+                if (ops.param_len)(&segs[k]) > MIN_PARAM_LEN {
                     split[k] = true;
-                } else if plen(&segs[other]) > MIN_PARAM_LEN {
+                } else if (ops.param_len)(&segs[other]) > MIN_PARAM_LEN {
                     split[other] = true;
                 } else {
                     unresolved += 1;
@@ -105,32 +192,30 @@ pub fn enforce_g1(
             break;
         }
         let mut out = Vec::with_capacity(n * 2);
+        let mut failed = 0;
         for (s, sp) in segs.into_iter().zip(split) {
-            if sp {
-                stats.splits += 1;
-                let c = s.curve(pieces);
-                let (mut l, mut r) = s.split(&farthest_parameter(&c), pieces, cells);
-                // Theorem 1: sub-pieces of a single-sided piece stay within d; recompute anyway.
-                l.h = f64::INFINITY;
-                r.h = f64::INFINITY;
-                l.k = f64::INFINITY;
-                r.k = f64::INFINITY;
-                out.push(l);
-                out.push(r);
-            } else {
-                out.push(s);
+            match if sp { (ops.split)(&s) } else { None } {
+                Some((l, r)) => {
+                    stats.splits += 1;
+                    out.push(l);
+                    out.push(r);
+                }
+                None => {
+                    failed += usize::from(sp);
+                    out.push(s);
+                }
             }
         }
         segs = out;
+        if segs.len() == n {
+            // No split was possible: those junctions stay.
+            stats.unresolved_junctions = unresolved + failed;
+            break;
+        }
     }
     let n = segs.len();
-    let pairs = if closed && n > 1 {
-        n
-    } else {
-        n.saturating_sub(1)
-    };
-    stats.max_angle_deg = (0..pairs)
-        .filter_map(|i| junction_angle(cells, &segs[i], &segs[(i + 1) % n]))
+    stats.max_angle_deg = (0..pairs(n))
+        .filter_map(|i| (ops.angle)(&segs[i], &segs[(i + 1) % n]))
         .fold(0.0, f64::max);
     (segs, stats)
 }

@@ -13,10 +13,18 @@
 //! 5. [`g1`] — the ε_T pass (eqs. 18–22);
 //! 6. [`map`] — chords mapped by blossoming, exact;
 //! 7. [`evidence`] — dense-sample distances, reported as evidence.
+//!
+//! Two arithmetics run these steps ([`Arithmetic`]): [`float`] — f64 with every certified
+//! quantity enclosed in interval arithmetic and the sign decisions made by exact predicates,
+//! falling back to the exact path whenever an enclosure cannot decide — and the exact path
+//! (BigRational throughout), the reference. Both certify the same object: the exact curve on
+//! S given by blossoming S on each chord of the f64 domain polyline.
 
 pub mod cells;
 pub mod distance;
 pub mod evidence;
+pub mod examples;
+pub mod float;
 pub mod g1;
 pub mod hausdorff;
 pub mod job;
@@ -60,9 +68,20 @@ pub enum Bound {
     Local,
 }
 
+/// Which arithmetic runs the steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Arithmetic {
+    /// f64 with interval enclosures for every certified quantity and exact predicates for
+    /// the decisions; reruns exactly when an enclosure cannot decide.
+    Float,
+    /// BigRational throughout (the reference; control points are the exact blossoms).
+    Exact,
+}
+
 /// User parameters.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Params {
+    pub arithmetic: Arithmetic,
     /// Distance tolerance `ε_D` in model units.
     pub eps_d: f64,
     /// Angle tolerance `ε_T` in degrees.
@@ -77,6 +96,7 @@ pub struct Params {
 impl Default for Params {
     fn default() -> Self {
         Params {
+            arithmetic: Arithmetic::Float,
             eps_d: 1e-3,
             eps_t_deg: 10.0,
             max_segments: 200_000,
@@ -114,8 +134,10 @@ pub struct Certificate {
     /// Exact distance from the exact output curve to S: 0 by construction (blossoming).
     pub distance_to_surface: f64,
     /// Largest coordinate difference between the printed f64 control points and the exact
-    /// ones (exact, rounded up).
+    /// ones (proven upper bound).
     pub control_point_rounding: f64,
+    /// The arithmetic that produced the result (and why the exact rerun happened, if it did).
+    pub arithmetic: String,
 }
 
 /// Measured, not proven.
@@ -143,6 +165,35 @@ pub struct Steps {
     pub after_distance: usize,
     pub g1: g1::G1Stats,
     pub min_2d_tolerance: f64,
+    /// Bézier patches actually built (the f64 path builds only those the curve visits).
+    pub patches_built: usize,
+}
+
+/// One segment as either path delivers it.
+#[derive(Clone, Debug)]
+pub struct ChainSegment {
+    pub control_points: Vec<[f64; 3]>,
+    pub domain: [[f64; 2]; 2],
+    pub bound: f64,
+    /// The domain curve piece this segment stands for, in f64 (for the evidence).
+    pub domain_curve: crate::spline::BezierCurve<[f64; 2]>,
+}
+
+/// What either path delivers before the result is assembled.
+#[derive(Clone, Debug)]
+pub struct Chain {
+    pub segments: Vec<ChainSegment>,
+    pub rounding: f64,
+    pub joints_exact: bool,
+    pub side: sidedness::SidednessStats,
+    pub g1: g1::G1Stats,
+    pub bezier_patches: usize,
+    pub patches_built: usize,
+    pub domain_bezier_pieces: usize,
+    pub after_split: usize,
+    pub after_distance: usize,
+    pub min_2d_tolerance: f64,
+    pub arithmetic: String,
 }
 
 /// The result of [`approximate`].
@@ -214,9 +265,109 @@ pub fn approximate_with_progress(
         knots: curve.hom.knots.clone(),
         control: cpts,
     };
+    let chain = match params.arithmetic {
+        Arithmetic::Exact => exact_chain(&s, &d, params, progress)?,
+        Arithmetic::Float => match float::run(&s, &d, params, progress) {
+            Ok(c) => c,
+            Err(float::FloatError::Cos(e)) => return Err(e),
+            Err(float::FloatError::Undecided(why)) => {
+                progress(&format!("f64 enclosures undecided ({why}): exact rerun"), 0);
+                let mut c = exact_chain(&s, &d, params, progress)?;
+                c.arithmetic = format!("exact (rerun: the f64 enclosures could not decide {why})");
+                c
+            }
+        },
+    };
+    let bound = chain.segments.iter().map(|x| x.bound).fold(0.0, f64::max);
+    if bound > params.eps_d {
+        return Err(CosError::Internal(format!(
+            "certified bound {bound} exceeds eps_d"
+        )));
+    }
+    let (pdeg, qdeg) = s.degrees();
+    let deg = pdeg + qdeg;
+    // B-spline form: the segments joined at their shared end points.
+    let mut bs_cps: Vec<[f64; 3]> = Vec::new();
+    for (i, m) in chain.segments.iter().enumerate() {
+        let skip = usize::from(i > 0);
+        bs_cps.extend(m.control_points.iter().skip(skip).cloned());
+    }
+    let nseg = chain.segments.len();
+    let mut knots = vec![0.0; deg + 1];
+    for k in 1..nseg {
+        knots.extend(std::iter::repeat_n(k as f64, deg));
+    }
+    knots.extend(std::iter::repeat_n(nseg as f64, deg + 1));
+    let (ev, samples) = evidence::measure(&s, &chain.segments, params.evidence_samples);
+    let mut polyline: Vec<[f64; 2]> = chain.segments.iter().map(|x| x.domain[0]).collect();
+    if let Some(l) = chain.segments.last() {
+        polyline.push(l.domain[1]);
+    }
+    let cdeg = d.degree();
+    let after_split = chain.after_split;
+    Ok(CurveOnSurface {
+        num_segments: nseg,
+        num_control_points: bs_cps.len(),
+        segments: chain
+            .segments
+            .iter()
+            .map(|m| Segment {
+                degree: deg,
+                control_points: m.control_points.clone(),
+                domain: m.domain,
+                bound: m.bound,
+            })
+            .collect(),
+        domain_polyline: polyline,
+        bspline: BSplineForm {
+            degree: deg,
+            knots,
+            control_points: bs_cps,
+            joints_exact: chain.joints_exact,
+        },
+        certificate: Certificate {
+            eps_d: params.eps_d,
+            eps_t_deg: params.eps_t_deg,
+            hausdorff_bound: bound,
+            bound: params.bound,
+            max_angle_deg: chain.g1.max_angle_deg,
+            unresolved_junctions: chain.g1.unresolved_junctions,
+            distance_to_surface: 0.0,
+            control_point_rounding: chain.rounding,
+            arithmetic: chain.arithmetic.clone(),
+        },
+        evidence: Evidence {
+            max_distance_sampled: ev,
+            samples,
+        },
+        exact_reference: ExactReference {
+            degree: deg * cdeg,
+            segments: after_split,
+            control_points: after_split * deg * cdeg + 1,
+        },
+        steps: Steps {
+            bezier_patches: chain.bezier_patches,
+            domain_bezier_pieces: chain.domain_bezier_pieces,
+            after_knot_line_split: after_split,
+            sidedness: chain.side,
+            after_distance: chain.after_distance,
+            g1: chain.g1,
+            min_2d_tolerance: chain.min_2d_tolerance,
+            patches_built: chain.patches_built,
+        },
+        elapsed_ms: start.elapsed().as_secs_f64() * 1e3,
+    })
+}
 
-    let cells = cells::Cells::new(&s, params.eps_d);
-    let (pieces, segs) = split::split(&d, &cells)?;
+/// The steps in exact arithmetic (BigRational throughout).
+fn exact_chain(
+    s: &BSplineSurface<[f64; 3]>,
+    d: &BSplineCurve<[f64; 2]>,
+    params: &Params,
+    progress: &mut dyn FnMut(&str, usize),
+) -> Result<Chain, CosError> {
+    let cells = cells::Cells::new(s, params.eps_d);
+    let (pieces, segs) = split::split(d, &cells)?;
     progress("split at knots and knot lines", segs.len());
     let n_pieces = pieces.len();
     let after_split = segs.len();
@@ -253,94 +404,35 @@ pub fn approximate_with_progress(
     progress("eps_T pass", segs.len());
     let (mapped, rounding) = map::map_segments(&segs, &cells)?;
     progress("mapped exactly", mapped.len());
-
-    let bound = segs
-        .iter()
-        .map(|s| (s.k * s.h).next_up())
-        .fold(0.0, f64::max);
-    if bound > params.eps_d {
-        return Err(CosError::Internal(format!(
-            "certified bound {bound} exceeds eps_d"
-        )));
-    }
-    let (pdeg, qdeg) = s.degrees();
-    let deg = pdeg + qdeg;
-    // B-spline form.
-    let mut bs_cps: Vec<[f64; 3]> = Vec::new();
-    let mut joints_exact = true;
-    for (i, m) in mapped.iter().enumerate() {
-        if i == 0 {
-            bs_cps.extend(m.control_points.iter().cloned());
-        } else {
-            joints_exact &= mapped[i - 1].exact.control.last() == m.exact.control.first();
-            bs_cps.extend(m.control_points.iter().skip(1).cloned());
-        }
-    }
-    let nseg = mapped.len();
-    let mut knots = vec![0.0; deg + 1];
-    for k in 1..nseg {
-        knots.extend(std::iter::repeat_n(k as f64, deg));
-    }
-    knots.extend(std::iter::repeat_n(nseg as f64, deg + 1));
-    let (ev, samples) = evidence::measure(&s, &segs, &mapped, &pieces, params.evidence_samples);
-    let mut polyline: Vec<[f64; 2]> = segs.iter().map(|s| s.a).collect();
-    if let Some(l) = segs.last() {
-        polyline.push(l.b);
-    }
-    let cdeg = d.degree();
-    Ok(CurveOnSurface {
-        num_segments: nseg,
-        num_control_points: bs_cps.len(),
+    let joints_exact = mapped
+        .windows(2)
+        .all(|w| w[0].exact.control.last() == w[1].exact.control.first());
+    Ok(Chain {
         segments: mapped
-            .iter()
+            .into_iter()
             .zip(&segs)
-            .map(|(m, s)| Segment {
-                degree: deg,
-                control_points: m.control_points.clone(),
+            .map(|(m, x)| ChainSegment {
+                control_points: m.control_points,
                 domain: m.domain,
-                bound: (s.k * s.h).next_up(),
+                bound: (x.k * x.h).next_up(),
+                domain_curve: x.curve(&pieces).map(crate::geom::to_f64_point),
             })
             .collect(),
-        domain_polyline: polyline,
-        bspline: BSplineForm {
-            degree: deg,
-            knots,
-            control_points: bs_cps,
-            joints_exact,
-        },
-        certificate: Certificate {
-            eps_d: params.eps_d,
-            eps_t_deg: params.eps_t_deg,
-            hausdorff_bound: bound,
-            bound: params.bound,
-            max_angle_deg: g1s.max_angle_deg,
-            unresolved_junctions: g1s.unresolved_junctions,
-            distance_to_surface: 0.0,
-            control_point_rounding: rounding,
-        },
-        evidence: Evidence {
-            max_distance_sampled: ev,
-            samples,
-        },
-        exact_reference: ExactReference {
-            degree: deg * cdeg,
-            segments: after_split,
-            control_points: after_split * deg * cdeg + 1,
-        },
-        steps: Steps {
-            bezier_patches: cells.cells.len(),
-            domain_bezier_pieces: n_pieces,
-            after_knot_line_split: after_split,
-            sidedness: side,
-            after_distance,
-            g1: g1s,
-            min_2d_tolerance: cells
-                .cells
-                .iter()
-                .map(|c| c.d)
-                .fold(f64::INFINITY, f64::min),
-        },
-        elapsed_ms: start.elapsed().as_secs_f64() * 1e3,
+        rounding,
+        joints_exact,
+        side,
+        g1: g1s,
+        bezier_patches: cells.cells.len(),
+        patches_built: cells.cells.len(),
+        domain_bezier_pieces: n_pieces,
+        after_split,
+        after_distance,
+        min_2d_tolerance: cells
+            .cells
+            .iter()
+            .map(|c| c.d)
+            .fold(f64::INFINITY, f64::min),
+        arithmetic: "exact (BigRational)".into(),
     })
 }
 
@@ -354,7 +446,7 @@ impl std::fmt::Display for CurveOnSurface {
         )?;
         writeln!(
             f,
-            "  certified: Hausdorff distance to S(D) <= {:.3e} (eps_D = {:.1e}); exactly on S (blossoming, exact arithmetic)",
+            "  certified: Hausdorff distance to S(D) <= {:.3e} (eps_D = {:.1e}); the certified curve (S blossomed on each chord) lies exactly on S",
             c.hausdorff_bound, c.eps_d
         )?;
         writeln!(
@@ -397,6 +489,7 @@ impl std::fmt::Display for CurveOnSurface {
             self.exact_reference.segments,
             self.exact_reference.control_points
         )?;
-        writeln!(f, "  time {:.2} ms", self.elapsed_ms)
+        writeln!(f, "  arithmetic: {}", c.arithmetic)?;
+        writeln!(f, "  time {:.3} ms", self.elapsed_ms)
     }
 }

@@ -172,18 +172,23 @@ pub fn split(curve: &BSplineCurve<[f64; 2]>, cells: &Cells) -> Result<Split, Cos
         }
         pieces.push(c);
     }
-    // Consecutive segments must share their vertex exactly (a clamp in one may have moved it).
+    // Consecutive segments must share their vertex exactly (a clamp in one may have moved
+    // it): keep the nearer one, clamped into both cells (adjacent cells meet on an edge, where
+    // the clamps agree), with its exact offsets from both curve points it stands for.
     for i in 1..segs.len() {
         if segs[i].a != segs[i - 1].b {
-            let (v, e) = if segs[i - 1].eb <= segs[i].ea {
-                (segs[i - 1].b, segs[i - 1].eb)
+            let v = if segs[i - 1].eb <= segs[i].ea {
+                segs[i - 1].b
             } else {
-                (segs[i].a, segs[i].ea)
+                segs[i].a
             };
+            let v = cells.clamp(segs[i].cell, &cells.clamp(segs[i - 1].cell, &v));
+            let end = pieces[segs[i - 1].piece].eval(&segs[i - 1].t1);
+            let start = pieces[segs[i].piece].eval(&segs[i].t0);
             segs[i - 1].b = v;
-            segs[i - 1].eb = segs[i - 1].eb.max(e);
+            segs[i - 1].eb = offset(&v, &end);
             segs[i].a = v;
-            segs[i].ea = segs[i].ea.max(e);
+            segs[i].ea = offset(&v, &start);
         }
     }
     Ok((pieces, segs))

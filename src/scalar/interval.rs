@@ -1,10 +1,15 @@
 //! Outward-rounded interval arithmetic on `f64`.
 //!
-//! Every operation computes the round-to-nearest result and then widens it by one ulp in
-//! each direction (`next_down` / `next_up`). Round-to-nearest is within half an ulp of the
-//! exact value, so the widened interval contains the exact result of the operation applied
-//! to any reals inside the operands: a rigorous enclosure, used for the error bounds that
-//! accompany constructed points (e.g. triangle–triangle crossing endpoints).
+//! Operations on two points compute the round-to-nearest result together with its exact
+//! rounding error (TwoSum; Dekker's TwoProduct) and move each end point one ulp outward only
+//! when the error points outward: an exact result stays a point (so `0 · x`, `1 · x`, `x + 0`
+//! and sums of representable values are not widened). Multiplying by a point that is 0 or
+//! ± a power of two is exact. Everything else is rounded to nearest and widened one ulp each
+//! way. Where the error-free transformations are not valid (overflow, near underflow)
+//! the end points are widened by one ulp, which round-to-nearest always justifies. Quotients
+//! are widened by one ulp. The result contains the exact result of the operation applied to
+//! any reals inside the operands: a rigorous enclosure, used for the error bounds that
+//! accompany constructed points (triangle–triangle crossings, curve-on-surface certificates).
 
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -43,10 +48,57 @@ impl Interval {
     pub fn is_finite(&self) -> bool {
         self.lo.is_finite() && self.hi.is_finite()
     }
+    /// The interval `[lo, hi]` (caller guarantees `lo <= hi`).
+    pub fn new(lo: f64, hi: f64) -> Interval {
+        Interval { lo, hi }
+    }
+    /// The smallest interval holding both.
+    pub fn hull(self, o: Interval) -> Interval {
+        Interval {
+            lo: self.lo.min(o.lo),
+            hi: self.hi.max(o.hi),
+        }
+    }
+    /// `max |x|` over the interval.
+    pub fn mag(&self) -> f64 {
+        self.lo.abs().max(self.hi.abs())
+    }
+    /// Enclosure of `x²` (non-negative even when the interval holds 0).
+    pub fn sqr(self) -> Interval {
+        let m = self * self;
+        if self.contains_zero() {
+            Interval { lo: 0.0, hi: m.hi }
+        } else {
+            Interval {
+                lo: m.lo.max(0.0),
+                hi: m.hi,
+            }
+        }
+    }
+    /// Whether every point is strictly positive / strictly negative.
+    pub fn is_pos(&self) -> bool {
+        self.lo > 0.0
+    }
+    pub fn is_neg(&self) -> bool {
+        self.hi < 0.0
+    }
     /// Quotient; `None` when the divisor interval contains zero.
     pub fn checked_div(self, o: Interval) -> Option<Interval> {
         if o.contains_zero() {
             return None;
+        }
+        if self.lo == 0.0 && self.hi == 0.0 {
+            return Some(Interval::point(0.0));
+        }
+        if self.lo == self.hi && o.lo == o.hi {
+            // Exact when the residual a - q·b vanishes (a, b, q in the normal range).
+            let q = self.lo / o.lo;
+            if q.is_finite() && q.abs() >= 1e-280 && o.lo.abs() < 1e290 && q.abs() < 1e290 {
+                let (p, e) = two_product(q, o.lo);
+                if p == self.lo && e == 0.0 {
+                    return Some(Interval::point(q));
+                }
+            }
         }
         let c = [
             self.lo / o.lo,
@@ -60,16 +112,78 @@ impl Interval {
     }
 }
 
+/// Knuth's TwoSum: `a + b = s + e` exactly, `s` the rounded sum.
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    (s, e)
+}
+
+/// Dekker's TwoProduct (Veltkamp splitting): `a · b = p + e` exactly, `p` the rounded
+/// product (valid without overflow/underflow; callers widen when that may have happened).
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    let split = |x: f64| {
+        let c = 134217729.0 * x; // 2^27 + 1
+        let hi = c - (c - x);
+        (hi, x - hi)
+    };
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    let e = al * bl - (((p - ah * bh) - al * bh) - ah * bl);
+    (p, e)
+}
+
+/// Lower and upper bound of a rounded result `r` whose exact value is `r + e`, with `e`
+/// from an error-free transformation: exact results stay points. When the transformation
+/// is not trustworthy (non-finite, or magnitudes where underflow may spoil it), one ulp
+/// each way, as round-to-nearest guarantees.
+fn bounds(r: f64, e: f64) -> (f64, f64) {
+    if !r.is_finite() || !e.is_finite() || (r != 0.0 && r.abs() < 1e-280) {
+        return (r.next_down(), r.next_up());
+    }
+    if e > 0.0 {
+        (r, r.next_up())
+    } else if e < 0.0 {
+        (r.next_down(), r)
+    } else {
+        (r, r)
+    }
+}
+
+fn lo_sum(a: f64, b: f64) -> f64 {
+    let (s, e) = two_sum(a, b);
+    bounds(s, e).0
+}
+fn hi_sum(a: f64, b: f64) -> f64 {
+    let (s, e) = two_sum(a, b);
+    bounds(s, e).1
+}
+
 impl Add for Interval {
     type Output = Interval;
     fn add(self, o: Interval) -> Interval {
-        Interval::widen(self.lo + o.lo, self.hi + o.hi)
+        if self.lo != self.hi || o.lo != o.hi {
+            // Not points: one ulp outward (round-to-nearest is within half an ulp).
+            return Interval::widen(self.lo + o.lo, self.hi + o.hi);
+        }
+        Interval {
+            lo: lo_sum(self.lo, o.lo),
+            hi: hi_sum(self.hi, o.hi),
+        }
     }
 }
 impl Sub for Interval {
     type Output = Interval;
     fn sub(self, o: Interval) -> Interval {
-        Interval::widen(self.lo - o.hi, self.hi - o.lo)
+        if self.lo != self.hi || o.lo != o.hi {
+            return Interval::widen(self.lo - o.hi, self.hi - o.lo);
+        }
+        Interval {
+            lo: lo_sum(self.lo, -o.hi),
+            hi: hi_sum(self.hi, -o.lo),
+        }
     }
 }
 impl Neg for Interval {
@@ -81,17 +195,59 @@ impl Neg for Interval {
         }
     }
 }
+/// Bounds of the exact product `a · b`.
+fn product_bounds(a: f64, b: f64) -> (f64, f64) {
+    if a == 0.0 || b == 0.0 {
+        return (0.0, 0.0);
+    }
+    let (p, e) = two_product(a, b);
+    if !(a.abs() < 1e290 && b.abs() < 1e290) || p.abs() < 1e-280 {
+        // Outside the range where the splitting is error-free (or underflow).
+        return (p.next_down(), p.next_up());
+    }
+    bounds(p, e)
+}
+
+/// Whether multiplying by `x` is exact for every finite operand away from the extremes of
+/// the exponent range: a point that is 0, or ± a power of two.
+fn exact_multiplier(x: Interval) -> bool {
+    x.lo == x.hi && (x.lo == 0.0 || (x.lo.abs().to_bits() & ((1u64 << 52) - 1)) == 0)
+}
+
 impl Mul for Interval {
     type Output = Interval;
     fn mul(self, o: Interval) -> Interval {
-        let c = [
-            self.lo * o.lo,
-            self.lo * o.hi,
-            self.hi * o.lo,
-            self.hi * o.hi,
-        ];
-        let lo = c.iter().cloned().fold(f64::INFINITY, f64::min);
-        let hi = c.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        if self.lo == self.hi && o.lo == o.hi {
+            let (lo, hi) = product_bounds(self.lo, o.lo);
+            return Interval { lo, hi };
+        }
+        let (x, y) = if self.lo == self.hi {
+            (o, self)
+        } else {
+            (self, o)
+        };
+        if exact_multiplier(y) {
+            let c = y.lo;
+            if c == 0.0 {
+                return Interval::point(0.0);
+            }
+            let (a, b) = (x.lo * c, x.hi * c);
+            let (lo, hi) = if c > 0.0 { (a, b) } else { (b, a) };
+            // Exact unless the result is tiny (underflow) or not finite.
+            if lo.abs() >= 1e-290 && hi.abs() >= 1e-290 && lo.is_finite() && hi.is_finite() {
+                return Interval { lo, hi };
+            }
+            return Interval::widen(lo, hi);
+        }
+        if y.lo == y.hi {
+            let (a, b) = (x.lo * y.lo, x.hi * y.lo);
+            return Interval::widen(a.min(b), a.max(b));
+        }
+        // Round-to-nearest products, one ulp outward (rigorous; cheaper than the error-free
+        // transformation for intervals that are not points anyway).
+        let c = [x.lo * y.lo, x.lo * y.hi, x.hi * y.lo, x.hi * y.hi];
+        let lo = c[0].min(c[1]).min(c[2].min(c[3]));
+        let hi = c[0].max(c[1]).max(c[2].max(c[3]));
         Interval::widen(lo, hi)
     }
 }
@@ -128,5 +284,49 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn random_operands_are_enclosed_and_exact_results_stay_points() {
+        // xorshift, so the test needs no dependency and is reproducible.
+        let mut state = 0x9e3779b97f4a7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let m = (state >> 11) as f64 / (1u64 << 53) as f64;
+            let e = ((state & 63) as i32) - 40;
+            (m - 0.5) * 2f64.powi(e)
+        };
+        for _ in 0..20_000 {
+            let (a, b, c, d) = (next(), next(), next(), next());
+            let x = Interval::new(a.min(b), a.max(b));
+            let y = Interval::new(c.min(d), c.max(d));
+            for (iv, xs) in [
+                (x + y, [r(x.lo) + r(y.lo), r(x.hi) + r(y.hi)]),
+                (x - y, [r(x.lo) - r(y.hi), r(x.hi) - r(y.lo)]),
+            ] {
+                assert!(r(iv.lo) <= xs[0] && xs[1] <= r(iv.hi), "{x:?} {y:?} {iv:?}");
+            }
+            let m = x * y;
+            for (p, q) in [(x.lo, y.lo), (x.lo, y.hi), (x.hi, y.lo), (x.hi, y.hi)] {
+                let e = r(p) * r(q);
+                assert!(r(m.lo) <= e && e <= r(m.hi), "{x:?} {y:?} {m:?}");
+            }
+            // Exact operations give points.
+            let p = Interval::point(a);
+            assert_eq!(p * Interval::point(1.0), p);
+            assert_eq!(p * Interval::point(0.0), Interval::point(0.0));
+            assert_eq!(p + Interval::point(0.0), p);
+            assert_eq!(p * Interval::point(2.0), Interval::point(2.0 * a));
+        }
+        let third = Interval::point(1.0)
+            .checked_div(Interval::point(3.0))
+            .unwrap();
+        assert!(third.lo < third.hi);
+        assert_eq!(
+            Interval::point(0.5) + Interval::point(0.25),
+            Interval::point(0.75)
+        );
     }
 }

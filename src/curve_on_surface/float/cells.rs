@@ -1,0 +1,283 @@
+//! Step 1a, f64 path — the Bézier patches of S, enclosed in interval arithmetic and built
+//! only for the cells the curve visits, with the Lipschitz bounds of step 3: eq. (12) per
+//! patch scaled to its spans (derivation in [`crate::curve_on_surface::tolerance`]), and the
+//! local refinement on a sub-rectangle (hodograph hulls, Cauchy–Schwarz). Every bound is
+//! computed upward from enclosures of the exact patch, so it holds for the exact surface.
+
+use super::ibez::{I, IP, IPatch, bspline_blossom, ip, norm_hi};
+use crate::spline::{BSplineSurface, BezierSurface};
+use std::cell::OnceCell;
+
+/// One Bézier patch of S.
+#[derive(Clone, Debug)]
+pub struct FCell {
+    pub u0: f64,
+    pub u1: f64,
+    pub v0: f64,
+    pub v1: f64,
+    /// Enclosures of the exact patch control points.
+    pub patch: IPatch,
+    /// The hodographs of their midpoints (for tangents in the ε_T pass, computed in f64).
+    pub hodo_f64: crate::curve_on_surface::g1::Hodographs,
+    pub hodo_u: Option<IPatch>,
+    pub hodo_v: Option<IPatch>,
+    /// Lower bounds of the span widths.
+    pub du_lo: f64,
+    pub dv_lo: f64,
+    /// Eq. (12) Lipschitz bound in global parameters, rounded up.
+    pub eq12: f64,
+}
+
+/// The patch grid of S, built lazily.
+pub struct FCells<'a> {
+    s: &'a BSplineSurface<[f64; 3]>,
+    ku: Vec<f64>,
+    kv: Vec<f64>,
+    net: Vec<IP<3>>,
+    pub u_breaks: Vec<f64>,
+    pub v_breaks: Vec<f64>,
+    cells: Vec<OnceCell<FCell>>,
+}
+
+/// Why a cell could not be built (an invalid knot vector would be the only cause).
+#[derive(Debug)]
+pub struct CellError(pub String);
+
+impl<'a> FCells<'a> {
+    pub fn new(s: &'a BSplineSurface<[f64; 3]>) -> FCells<'a> {
+        let u_breaks = s.ku.breakpoints();
+        let v_breaks = s.kv.breakpoints();
+        let n = (u_breaks.len() - 1) * (v_breaks.len() - 1);
+        FCells {
+            ku: s.ku.knots().to_vec(),
+            kv: s.kv.knots().to_vec(),
+            net: s.net.iter().map(ip).collect(),
+            s,
+            u_breaks,
+            v_breaks,
+            cells: (0..n).map(|_| OnceCell::new()).collect(),
+        }
+    }
+
+    pub fn count(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Number of cells built so far.
+    pub fn built(&self) -> usize {
+        self.cells.iter().filter(|c| c.get().is_some()).count()
+    }
+
+    fn nv_cells(&self) -> usize {
+        self.v_breaks.len() - 1
+    }
+
+    /// Cell `c` (row-major over `u_breaks × v_breaks`), built on first use.
+    pub fn get(&self, c: usize) -> Result<&FCell, CellError> {
+        if let Some(x) = self.cells[c].get() {
+            return Ok(x);
+        }
+        let built = self.build(c)?;
+        let _ = self.cells[c].set(built);
+        Ok(self.cells[c].get().expect("just set"))
+    }
+
+    fn build(&self, c: usize) -> Result<FCell, CellError> {
+        let (i, j) = (c / self.nv_cells(), c % self.nv_cells());
+        let (u0, u1) = (self.u_breaks[i], self.u_breaks[i + 1]);
+        let (v0, v1) = (self.v_breaks[j], self.v_breaks[j + 1]);
+        let (p, q) = self.s.degrees();
+        let su = self.s.ku.find_span(&u0);
+        let sv = self.s.kv.find_span(&v0);
+        let nv = self.s.nv();
+        let err = || {
+            CellError(format!(
+                "invalid knots near cell [{u0}, {u1}] x [{v0}, {v1}]"
+            ))
+        };
+        let args = |a: f64, b: f64, deg: usize, k: usize| -> Vec<I> {
+            let mut xs = vec![I::point(a); deg - k];
+            xs.extend(std::iter::repeat_n(I::point(b), k));
+            xs
+        };
+        // Rows (fixed u index) → Bézier in v; then columns → Bézier in u.
+        let mut rows: Vec<Vec<IP<3>>> = Vec::with_capacity(p + 1);
+        for r in su - p..=su {
+            let row = &self.net[r * nv..(r + 1) * nv];
+            let pts: Option<Vec<IP<3>>> = (0..=q)
+                .map(|l| bspline_blossom(&self.kv, q, row, sv, &args(v0, v1, q, l)))
+                .collect();
+            rows.push(pts.ok_or_else(err)?);
+        }
+        let mut net = vec![[I::point(0.0); 3]; (p + 1) * (q + 1)];
+        for l in 0..=q {
+            // The column as a B-spline "control polygon" indexed like the surface's rows.
+            let mut col = vec![[I::point(0.0); 3]; su + 1];
+            for (k, r) in (su - p..=su).enumerate() {
+                col[r] = rows[k][l];
+            }
+            for k in 0..=p {
+                net[k * (q + 1) + l] =
+                    bspline_blossom(&self.ku, p, &col, su, &args(u0, u1, p, k)).ok_or_else(err)?;
+            }
+        }
+        let patch = IPatch { p, q, net };
+        let du_lo = (I::point(u1) - I::point(u0)).lo;
+        let dv_lo = (I::point(v1) - I::point(v0)).lo;
+        let eq12 = eq12_bound(&patch, du_lo, dv_lo);
+        Ok(FCell {
+            u0,
+            u1,
+            v0,
+            v1,
+            hodo_f64: {
+                let m = BezierSurface {
+                    p,
+                    q,
+                    net: patch.net.iter().map(super::ibez::mid).collect(),
+                };
+                (m.hodograph_u(), m.hodograph_v())
+            },
+            hodo_u: patch.hodograph_u(),
+            hodo_v: patch.hodograph_v(),
+            patch,
+            du_lo,
+            dv_lo,
+            eq12,
+        })
+    }
+
+    /// The cell whose closed rectangle holds `p` (first match), `None` outside the domain.
+    pub fn locate(&self, p: &[f64; 2]) -> Option<usize> {
+        let find = |br: &[f64], x: f64| (0..br.len() - 1).find(|&i| br[i] <= x && x <= br[i + 1]);
+        Some(find(&self.u_breaks, p[0])? * self.nv_cells() + find(&self.v_breaks, p[1])?)
+    }
+
+    /// Clamp `p` into cell `c`'s rectangle.
+    pub fn clamp(&self, c: usize, p: &[f64; 2]) -> [f64; 2] {
+        let (i, j) = (c / self.nv_cells(), c % self.nv_cells());
+        [
+            p[0].clamp(self.u_breaks[i], self.u_breaks[i + 1]),
+            p[1].clamp(self.v_breaks[j], self.v_breaks[j + 1]),
+        ]
+    }
+
+    /// The domain rectangle `[u_min, u_max] × [v_min, v_max]`.
+    pub fn domain(&self) -> [f64; 4] {
+        [
+            self.u_breaks[0],
+            *self.u_breaks.last().expect("two breaks"),
+            self.v_breaks[0],
+            *self.v_breaks.last().expect("two breaks"),
+        ]
+    }
+
+    /// Upper bound `K` of the Lipschitz constant of S on the rectangle `r = [u0,u1]×[v0,v1]`
+    /// (inside the domain): the largest over the cells `r` meets of the bound on their
+    /// common part — eq. (12) of the cell, or (`local`) the smaller of it and the local
+    /// common part (S is continuous and piecewise C¹, and `r` is convex, so the segment between
+    /// two points crosses finitely many cells and the bounds chain).
+    pub fn lipschitz_on(&self, r: [f64; 4], local: bool) -> Result<f64, CellError> {
+        let range = |br: &[f64], lo: f64, hi: f64| {
+            let first = (0..br.len() - 1).find(|&i| br[i + 1] >= lo).unwrap_or(0);
+            let last = (0..br.len() - 1)
+                .rev()
+                .find(|&i| br[i] <= hi)
+                .unwrap_or(br.len() - 2);
+            first..=last.max(first)
+        };
+        let mut k = 0.0f64;
+        for i in range(&self.u_breaks, r[0], r[1]) {
+            for j in range(&self.v_breaks, r[2], r[3]) {
+                let c = self.get(i * self.nv_cells() + j)?;
+                let to_local = |x: f64, a: f64, b: f64, up: bool| {
+                    let y = (I::point(x.clamp(a, b)) - I::point(a))
+                        .checked_div(I::point(b) - I::point(a));
+                    match y {
+                        Some(y) if up => y.hi.min(1.0),
+                        Some(y) => y.lo.max(0.0),
+                        None => {
+                            if up {
+                                1.0
+                            } else {
+                                0.0
+                            }
+                        }
+                    }
+                };
+                let rect = [
+                    to_local(r[0], c.u0, c.u1, false),
+                    to_local(r[1], c.u0, c.u1, true),
+                    to_local(r[2], c.v0, c.v1, false),
+                    to_local(r[3], c.v0, c.v1, true),
+                ];
+                k = k.max(if local {
+                    local_bound(c, rect).min(c.eq12)
+                } else {
+                    c.eq12
+                });
+            }
+        }
+        Ok(k)
+    }
+}
+
+/// Eq. (12), scaled: `n · A_v / (e - c) + m · A_u / (b - a)`, upward.
+fn eq12_bound(s: &IPatch, du_lo: f64, dv_lo: f64) -> f64 {
+    let (m, n) = (s.p, s.q);
+    let mut au = 0.0f64;
+    for i in 0..m {
+        for h in 0..=n {
+            for k in 0..=n {
+                let (a, b) = (s.at(i + 1, h), s.at(i, k));
+                au = au.max(norm_hi::<3>(&std::array::from_fn(|c| a[c] - b[c])));
+            }
+        }
+    }
+    let mut av = 0.0f64;
+    for i in 0..n {
+        for h in 0..=m {
+            for k in 0..=m {
+                let (a, b) = (s.at(h, i + 1), s.at(k, i));
+                av = av.max(norm_hi::<3>(&std::array::from_fn(|c| a[c] - b[c])));
+            }
+        }
+    }
+    let ku = if m == 0 {
+        0.0
+    } else {
+        ((m as f64 * au).next_up() / du_lo).next_up()
+    };
+    let kv = if n == 0 {
+        0.0
+    } else {
+        ((n as f64 * av).next_up() / dv_lo).next_up()
+    };
+    (ku + kv).next_up()
+}
+
+/// The local bound on the local sub-rectangle `rect = [s0,s1]×[r0,r1]` of a cell:
+/// `sqrt(L_u² + L_v²)` with `L_u`, `L_v` bounded by the hodographs' control points
+/// restricted to `rect` (convex hull property), scaled to global parameters.
+fn local_bound(c: &FCell, rect: [f64; 4]) -> f64 {
+    let sup = |h: Option<&IPatch>| -> f64 {
+        h.map(|h| {
+            h.polar_net(
+                I::point(rect[0]),
+                I::point(rect[1]),
+                I::point(rect[2]),
+                I::point(rect[3]),
+            )
+            .iter()
+            .map(norm_hi)
+            .fold(0.0, f64::max)
+        })
+        .unwrap_or(0.0)
+    };
+    let lu = (sup(c.hodo_u.as_ref()) / c.du_lo).next_up();
+    let lv = (sup(c.hodo_v.as_ref()) / c.dv_lo).next_up();
+    ((lu * lu).next_up() + (lv * lv).next_up())
+        .next_up()
+        .sqrt()
+        .next_up()
+}

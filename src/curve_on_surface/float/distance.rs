@@ -1,0 +1,315 @@
+//! Steps 3–4, f64 path — the certified Hausdorff bound of each segment and the subdivision
+//! at the farthest point until `K · h ≤ ε_D`.
+//!
+//! For segment `i` (chord `[a, b]`, curve piece `D[t_0, t_1]`, f64 parameters):
+//! * `h ≤ max_j dist(Q_j, [a, b]) + max(e_a, e_b)`, where `Q_j` are enclosures of the exact
+//!   control points of `D[t_0, t_1]` (blossoms; subdivided up to `2^HULL_LEVELS` times to
+//!   tighten) — distance to a segment is convex, so the curve is within the largest control
+//!   point distance of the chord (convex hull property); the curve's clamped projection onto
+//!   the chord runs continuously from within `e_a` of `a` to within `e_b` of `b` (`e` = proven
+//!   distance of a vertex from the curve point `D(t)` it stands for), so every chord point is
+//!   within `max_j dist + max(e)` of the curve;
+//! * `K` bounds the Lipschitz constant of S on the rectangle `R` that holds the enclosures
+//!   and the chord (intersected with the domain, which holds the exact curve and chord):
+//!   eq. (12) or the local hodograph bound, on every cell `R` meets;
+//! * then `|S(x) - S(y)| ≤ K |x - y|` on the convex `R` gives Hausdorff
+//!   `(S(chord), S(D[t_0, t_1])) ≤ K · h` (eq. 11).
+//!
+//! The union over segments covers `S(D)` and the output curve, so the largest `K · h` bounds
+//! the Hausdorff distance of the whole curve.
+
+use super::cells::FCells;
+use super::ibez::{I, IP, dist_to_segment_hi, halves, mid, polar_values};
+use super::{FSeg, FloatError, Piece};
+use crate::curve_on_surface::{Bound, CosError};
+
+/// Subdivision levels used to tighten the hull bound.
+pub const HULL_LEVELS: u32 = 3;
+
+/// Enclosed control points of `D[t_0, t_1]` of a segment.
+pub fn sub_curve(s: &FSeg, pieces: &[Piece]) -> Vec<IP<2>> {
+    polar_values(&pieces[s.piece].ctrl, I::point(s.t0), I::point(s.t1)).to_vec()
+}
+
+/// Certified `h` (stopping once `≤ target`) for the enclosed curve piece `c` and the chord.
+fn hull_bound(c: &[IP<2>], a: &[f64; 2], b: &[f64; 2], e: f64, target: f64) -> f64 {
+    let mut parts = vec![c.to_vec()];
+    let mut best = f64::INFINITY;
+    for level in 0..=HULL_LEVELS {
+        let m = parts
+            .iter()
+            .flatten()
+            .map(|q| dist_to_segment_hi(q, a, b))
+            .fold(0.0, f64::max);
+        best = best.min((m + e).next_up());
+        if best <= target || level == HULL_LEVELS {
+            break;
+        }
+        parts = parts
+            .iter()
+            .flat_map(|p| {
+                let (l, r) = halves(p);
+                [l, r]
+            })
+            .collect();
+    }
+    best
+}
+
+/// The rectangle holding the enclosures and the chord, within the domain.
+fn region(c: &[IP<2>], s: &FSeg, dom: [f64; 4]) -> [f64; 4] {
+    let mut r = [
+        s.a[0].min(s.b[0]),
+        s.a[0].max(s.b[0]),
+        s.a[1].min(s.b[1]),
+        s.a[1].max(s.b[1]),
+    ];
+    for q in c {
+        r[0] = r[0].min(q[0].lo);
+        r[1] = r[1].max(q[0].hi);
+        r[2] = r[2].min(q[1].lo);
+        r[3] = r[3].max(q[1].hi);
+    }
+    [
+        r[0].max(dom[0]),
+        r[1].min(dom[1]),
+        r[2].max(dom[2]),
+        r[3].min(dom[3]),
+    ]
+}
+
+/// `K` on the rectangle `r`.
+fn lipschitz(r: [f64; 4], cells: &FCells, bound: Bound) -> Result<f64, FloatError> {
+    cells
+        .lipschitz_on(r, bound == Bound::Local)
+        .map_err(|e| FloatError::Cos(CosError::Internal(e.0)))
+}
+
+/// Whether rectangle `inner` lies in `outer`.
+fn within(inner: &[f64; 4], outer: &[f64; 4]) -> bool {
+    outer[0] <= inner[0] && inner[1] <= outer[1] && outer[2] <= inner[2] && inner[3] <= outer[3]
+}
+
+/// Certify segment `s` (its `h`, and a `K` valid on a rectangle holding its curve piece and
+/// chord): the inherited `K` is used when its region holds the segment's and it suffices;
+/// otherwise the segment's own (tighter) `K` is computed.
+/// Returns `false` without certifying when the f64 estimate `h_est` (from below) already
+/// shows that `K · h > ε_D` with the segment's own `K`: the segment must be split.
+fn certify(
+    s: &mut FSeg,
+    c: &[IP<2>],
+    h_est: f64,
+    cells: &FCells,
+    eps_d: f64,
+    bound: Bound,
+) -> Result<bool, FloatError> {
+    let r = region(c, s, cells.domain());
+    if !(s.k.is_finite() && within(&r, &s.k_region)) {
+        s.k = lipschitz(r, cells, bound)?;
+        s.k_region = r;
+        s.k_own = true;
+    }
+    let hopeless = |k: f64| k * h_est > eps_d * (1.0 + 1e-9);
+    if hopeless(s.k) && !s.k_own {
+        s.k = lipschitz(r, cells, bound)?;
+        s.k_region = r;
+        s.k_own = true;
+    }
+    if hopeless(s.k) {
+        return Ok(false);
+    }
+    let d = crate::curve_on_surface::tolerance::tolerance_2d(eps_d, s.k);
+    s.h = hull_bound(c, &s.a, &s.b, s.ea.max(s.eb), d);
+    if (s.k * s.h).next_up() > eps_d && !s.k_own {
+        s.k = lipschitz(r, cells, bound)?;
+        s.k_region = r;
+        s.k_own = true;
+        // `hull_bound` stopped at a smaller target or ran all its levels: its value stands.
+    }
+    Ok(true)
+}
+
+/// The parameter in `(0, 1)` of the point of the piece (f64 control points) farthest from
+/// its chord's line: roots of `f'(t)` (eq. 15: tangent parallel to the chord), bracketed on
+/// 64 samples and bisected in f64, the one with the largest `|f|`; `1/2` when none. A choice
+/// of where to split, not a claim.
+pub fn farthest_parameter(c: &[[f64; 2]]) -> f64 {
+    farthest(c).0
+}
+
+/// [`farthest_parameter`] and the distance of that point from the chord's line (f64, an
+/// estimate from below of the piece's distance from its chord: used only to decide that a
+/// segment must be split, never to certify one).
+pub fn farthest(c: &[[f64; 2]]) -> (f64, f64) {
+    let n = c.len() - 1;
+    if n < 2 {
+        return (0.5, 0.0);
+    }
+    let chord = [c[n][0] - c[0][0], c[n][1] - c[0][1]];
+    let b: Vec<f64> = c
+        .iter()
+        .map(|p| (p[0] - c[0][0]) * chord[1] - (p[1] - c[0][1]) * chord[0])
+        .collect();
+    let db: Vec<f64> = b.windows(2).map(|w| w[1] - w[0]).collect();
+    let bern = |coef: &[f64], t: f64| {
+        let mut w: arrayvec::ArrayVec<f64, 32> = coef.iter().copied().collect();
+        for r in 1..w.len() {
+            for i in 0..w.len() - r {
+                w[i] = (1.0 - t) * w[i] + t * w[i + 1];
+            }
+        }
+        w[0]
+    };
+    let mut best = (-1.0, 0.5);
+    if n == 2 || n == 3 {
+        // f' has degree ≤ 2: its roots in closed form (power basis from Bernstein).
+        let (c0, c1, c2) = if n == 2 {
+            (db[0], db[1] - db[0], 0.0)
+        } else {
+            (db[0], 2.0 * (db[1] - db[0]), db[0] - 2.0 * db[1] + db[2])
+        };
+        let mut roots: arrayvec::ArrayVec<f64, 2> = arrayvec::ArrayVec::new();
+        if c2 == 0.0 {
+            if c1 != 0.0 {
+                roots.push(-c0 / c1);
+            }
+        } else {
+            let disc = c1 * c1 - 4.0 * c2 * c0;
+            if disc >= 0.0 {
+                let sq = disc.sqrt();
+                let q = -0.5 * (c1 + c1.signum() * sq);
+                roots.push(q / c2);
+                if q != 0.0 {
+                    roots.push(c0 / q);
+                }
+            }
+        }
+        for t in roots {
+            if t > 0.0 && t < 1.0 {
+                let f = bern(&b, t).abs();
+                if f > best.0 {
+                    best = (f, t);
+                }
+            }
+        }
+        let len = (chord[0] * chord[0] + chord[1] * chord[1]).sqrt();
+        let dist = if len > 0.0 {
+            best.0.max(0.0) / len
+        } else {
+            0.0
+        };
+        return (best.1.clamp(1.0 / 64.0, 63.0 / 64.0), dist);
+    }
+    let k = 64;
+    let mut prev = bern(&db, 0.0);
+    for i in 1..=k {
+        let t1 = i as f64 / k as f64;
+        let cur = bern(&db, t1);
+        if prev == 0.0 || prev.signum() != cur.signum() {
+            let (mut lo, mut hi) = ((i - 1) as f64 / k as f64, t1);
+            let slo = prev.signum();
+            for _ in 0..60 {
+                let m = 0.5 * (lo + hi);
+                if bern(&db, m).signum() == slo {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            let f = bern(&b, t).abs();
+            if t > 0.0 && t < 1.0 && f > best.0 {
+                best = (f, t);
+            }
+        }
+        prev = cur;
+    }
+    let len = (chord[0] * chord[0] + chord[1] * chord[1]).sqrt();
+    let dist = if len > 0.0 {
+        best.0.max(0.0) / len
+    } else {
+        0.0
+    };
+    (best.1.clamp(1.0 / 64.0, 63.0 / 64.0), dist)
+}
+
+/// Split a segment at local parameter `s`; the new vertex is the midpoint of the enclosure
+/// of the curve point, kept in the segment's cell, with its proven offset.
+pub fn split_at(seg: &FSeg, s: f64, pieces: &[Piece], cells: &FCells) -> Option<(FSeg, FSeg)> {
+    let t = seg.t0 + (seg.t1 - seg.t0) * s;
+    if !(t > seg.t0 && t < seg.t1) {
+        return None;
+    }
+    let e = super::ibez::eval(&pieces[seg.piece].ctrl, I::point(t));
+    let v = cells.clamp(seg.cell, &mid(&e));
+    let off = super::ibez::dist_hi(&e, &v);
+    // The children keep the parent's `K` (and the region it holds on) until they need a
+    // tighter one of their own.
+    let left = FSeg {
+        t1: t,
+        b: v,
+        eb: off,
+        h: f64::INFINITY,
+        k_own: false,
+        ..*seg
+    };
+    let right = FSeg {
+        t0: t,
+        a: v,
+        ea: off,
+        h: f64::INFINITY,
+        k_own: false,
+        ..*seg
+    };
+    Some((left, right))
+}
+
+/// Compute `h`, `K` for every segment whose bound is unknown; split those with
+/// `K · h > ε_D` at their farthest point.
+pub fn enforce_distance(
+    mut segs: Vec<FSeg>,
+    pieces: &[Piece],
+    cells: &FCells,
+    eps_d: f64,
+    bound: Bound,
+    max_segments: usize,
+) -> Result<Vec<FSeg>, FloatError> {
+    loop {
+        let mut out = Vec::with_capacity(segs.len() * 2);
+        let mut changed = false;
+        for mut s in segs {
+            if !s.h.is_infinite() && (s.k * s.h).next_up() <= eps_d {
+                out.push(s);
+                continue;
+            }
+            let c = sub_curve(&s, pieces);
+            let c64: Vec<[f64; 2]> = c.iter().map(mid).collect();
+            let (t_far, h_est) = farthest(&c64);
+            if s.h.is_infinite() && !certify(&mut s, &c, h_est, cells, eps_d, bound)? {
+                s.h = f64::INFINITY;
+            }
+            if (s.k * s.h).next_up() <= eps_d {
+                out.push(s);
+                continue;
+            }
+            changed = true;
+            let (l, r) = split_at(&s, t_far, pieces, cells).ok_or_else(|| {
+                FloatError::Cos(CosError::Internal(format!(
+                    "segment t in [{}, {}] cannot be split further (bound {:.3e} > eps_d)",
+                    s.t0,
+                    s.t1,
+                    s.k * s.h
+                )))
+            })?;
+            out.push(l);
+            out.push(r);
+        }
+        if out.len() > max_segments {
+            return Err(FloatError::Cos(CosError::TooManySegments(max_segments)));
+        }
+        segs = out;
+        if !changed {
+            return Ok(segs);
+        }
+    }
+}
