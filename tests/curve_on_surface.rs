@@ -41,6 +41,22 @@ fn table2_reproduction() {
     )
     .unwrap();
     println!("with the local bound:\n{r}");
+    let dr = vericad::curve_on_surface::renner::degree_reduction(&s, &c, 1e-3).unwrap();
+    println!(
+        "degree reduction baseline (paper: degree 3, 7 segments, 16 control points, 0.63e-4 from S): \
+         degree {}, {} segments, {} control points, {:.2e} from S, {:.2e} from the exact image (sampled)",
+        dr.degree,
+        dr.segments,
+        dr.control_points,
+        dr.max_distance_to_surface_sampled,
+        dr.max_deviation_sampled
+    );
+    // The baseline meets its tolerance at its samples and, unlike the blossomed segments,
+    // does not lie on S (its distance to S is measured, and not negligible).
+    assert_eq!(dr.exact_degree, 8);
+    assert!(dr.max_deviation_sampled <= 1e-3);
+    assert!(dr.max_distance_to_surface_sampled > 1e-6);
+    assert!(dr.segments >= 1 && dr.segments < r.num_segments);
     println!("                 paper (Yang et al. Table 2)   vericad");
     println!(
         "degree           4                            {}",
