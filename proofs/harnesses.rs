@@ -161,6 +161,153 @@ pub fn prop_segment_distance_is_the_minimum(p: [i8; 2], a: [i8; 2], b: [i8; 2]) 
     }
 }
 
+// ---------------------------------------------------------------- Theorem 1 (Yang et al.)
+
+/// Exact squared distance from `x` to the segment `[a, b]`, as a fraction `(num, den)`.
+fn dist2_seg_i128(x: [i128; 2], a: [i128; 2], b: [i128; 2]) -> (i128, i128) {
+    let (ab, ax) = ([b[0] - a[0], b[1] - a[1]], [x[0] - a[0], x[1] - a[1]]);
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let n2 = |v: [i128; 2]| v[0] * v[0] + v[1] * v[1];
+    let dot = ax[0] * ab[0] + ax[1] * ab[1];
+    if l2 == 0 || dot <= 0 {
+        return (n2(ax), 1);
+    }
+    if dot >= l2 {
+        return (n2([x[0] - b[0], x[1] - b[1]]), 1);
+    }
+    let c = ax[0] * ab[1] - ax[1] * ab[0];
+    (c * c, l2)
+}
+
+fn frac_max(x: (i128, i128), y: (i128, i128)) -> (i128, i128) {
+    if x.0 * y.1 >= y.0 * x.1 { x } else { y }
+}
+
+/// De Casteljau halves of an integer cubic, scaled by 8 (stays integer).
+fn halves_i128(c: &[[i128; 2]; 4]) -> ([[i128; 2]; 4], [[i128; 2]; 4]) {
+    let l = |i: usize| c[i];
+    let m = |x: [i128; 2], y: [i128; 2]| [x[0] + y[0], x[1] + y[1]];
+    let k = |x: [i128; 2], f: i128| [x[0] * f, x[1] * f];
+    // Levels at t = 1/2, scaled by 2 per level, all brought to scale 8.
+    let (p01, p12, p23) = (m(l(0), l(1)), m(l(1), l(2)), m(l(2), l(3)));
+    let (p012, p123) = (m(p01, p12), m(p12, p23));
+    let mid = m(p012, p123);
+    (
+        [k(l(0), 8), k(p01, 4), k(p012, 2), mid],
+        [mid, k(p123, 2), k(p23, 4), k(l(3), 8)],
+    )
+}
+
+/// Certified upper bound (squared, as a fraction over the curve's own scale squared) of the
+/// distance of an integer cubic from its chord: convex hull of `2^levels` sub-pieces.
+fn hull_bound2(c: [[i128; 2]; 4], levels: u32) -> (i128, i128) {
+    let mut parts = vec![c];
+    let mut scale = 1i128;
+    for _ in 0..levels {
+        parts = parts
+            .iter()
+            .flat_map(|p| {
+                let (a, b) = halves_i128(p);
+                [a, b]
+            })
+            .collect();
+        scale *= 8;
+    }
+    let (a, b) = (
+        [c[0][0] * scale, c[0][1] * scale],
+        [c[3][0] * scale, c[3][1] * scale],
+    );
+    let mut best = (0, 1);
+    for p in &parts {
+        for q in p {
+            best = frac_max(best, dist2_seg_i128(*q, a, b));
+        }
+    }
+    (best.0, best.1 * scale * scale)
+}
+
+/// Outcome of one Theorem 1 case.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Theorem1 {
+    /// Proven: an upper bound of the polyline's Hausdorff distance is at most a lower bound
+    /// of the piece's distance `H` to its chord.
+    Proven,
+    /// The bounds overlap (typically a tie: the farthest point is the same chord end before
+    /// and after the split); no counterexample either.
+    Undecided,
+    /// Proven violation: a lower bound of the polyline's distance exceeds an upper bound of `H`.
+    Counterexample,
+}
+
+/// Theorem 1 of Yang et al.: splitting a single-sided Bézier piece into a finer polyline
+/// (vertices on the curve) keeps the Hausdorff distance within the piece's distance `H` to its
+/// chord. Each case is decided with exact integer bounds:
+/// * the polyline–curve Hausdorff distance is at most the largest distance of a sub-arc from
+///   its own sub-chord (curve → polyline: a sub-arc point is that close to its sub-chord;
+///   polyline → curve: the sub-arc's clamped projection covers the sub-chord), bounded
+///   **from above** by the convex hull of 8 sub-pieces of each sub-arc; `H` is bounded **from
+///   below** by the distance of 65 curve points from the chord: upper ≤ lower proves the case;
+/// * a counterexample would be proven by 65 curve points farther from the polyline than an
+///   upper bound of `H` (hull of 32 sub-pieces).
+///
+/// `None` for double-sided pieces (outside the theorem).
+pub fn prop_theorem1(p: [[i8; 2]; 4], k: u8) -> Option<Theorem1> {
+    let c: [[i128; 2]; 4] = p.map(|q| [q[0] as i128, q[1] as i128]);
+    let ctrl: Vec<[f64; 2]> = p.iter().map(|q| [q[0] as f64, q[1] as f64]).collect();
+    if !matches!(single_sided(&ctrl), Sidedness::SingleSided { .. }) {
+        return None;
+    }
+    // Sub-arcs at s = k/4, by de Casteljau, scaled by 64 (integers).
+    let (s, r) = (k as i128, 4 - k as i128);
+    let lerp = |x: [i128; 2], y: [i128; 2]| [r * x[0] + s * y[0], r * x[1] + s * y[1]];
+    let k4 = |x: [i128; 2], f: i128| [x[0] * f, x[1] * f];
+    let (a1, a2, a3) = (lerp(c[0], c[1]), lerp(c[1], c[2]), lerp(c[2], c[3]));
+    let (b1, b2) = (lerp(a1, a2), lerp(a2, a3));
+    let m = lerp(b1, b2);
+    let left = [k4(c[0], 64), k4(a1, 16), k4(b1, 4), m];
+    let right = [m, k4(b2, 4), k4(a3, 16), k4(c[3], 64)];
+    let big = |x: i128| num_bigint::BigInt::from(x);
+    let le = |x: (i128, i128), y: (i128, i128)| big(x.0) * big(y.1) <= big(y.0) * big(x.1);
+    // Curve points at t = j/64, scaled by 64³.
+    const S3: i128 = 262_144;
+    let samples: Vec<[i128; 2]> = (0..=64i128)
+        .map(|j| {
+            let (t, u) = (j, 64 - j);
+            let w = [u * u * u, 3 * t * u * u, 3 * t * t * u, t * t * t];
+            [
+                (0..4).map(|i| w[i] * c[i][0]).sum::<i128>(),
+                (0..4).map(|i| w[i] * c[i][1]).sum::<i128>(),
+            ]
+        })
+        .collect();
+    // Upper bound for the polyline (scale 64 → squared fraction over 64²).
+    let up_p = frac_max(hull_bound2(left, 3), hull_bound2(right, 3));
+    let up_p = (up_p.0, up_p.1 * 64 * 64);
+    // Lower bound of H.
+    let (a, b) = (k4(c[0], S3), k4(c[3], S3));
+    let low_h = samples
+        .iter()
+        .fold((0, 1), |acc, x| frac_max(acc, dist2_seg_i128(*x, a, b)));
+    let low_h = (low_h.0, low_h.1 * S3 * S3);
+    if le(up_p, low_h) {
+        return Some(Theorem1::Proven);
+    }
+    // Counterexample search: lower bound of the polyline's distance vs upper bound of H.
+    let mm = k4(m, 4096);
+    let low_p = samples.iter().fold((0, 1), |acc, x| {
+        let d1 = dist2_seg_i128(*x, a, mm);
+        let d2 = dist2_seg_i128(*x, mm, b);
+        frac_max(acc, if le(d1, d2) { d1 } else { d2 })
+    });
+    let low_p = (low_p.0, low_p.1 * S3 * S3);
+    let up_h = hull_bound2(c, 5);
+    if le(low_p, up_h) {
+        Some(Theorem1::Undecided)
+    } else {
+        Some(Theorem1::Counterexample)
+    }
+}
+
 // ---------------------------------------------------------------- Kani drivers
 
 // ---------------------------------------------------------------- SSI loop topology
@@ -228,6 +375,18 @@ mod kani_drivers {
         let n: usize = kani::any();
         kani::assume(n <= 4 && soup.iter().all(|&(a, b)| a < 4 && b < 4));
         super::prop_trace_invariants(&soup[..n]);
+    }
+
+    #[kani::proof]
+    #[kani::unwind(70)]
+    fn theorem1_no_counterexample() {
+        let p: [[i8; 2]; 4] = kani::any();
+        let k: u8 = kani::any();
+        kani::assume(p.iter().flatten().all(|x| (-2..=2).contains(x)) && (1..=3).contains(&k));
+        assert_ne!(
+            super::prop_theorem1(p, k),
+            Some(super::Theorem1::Counterexample)
+        );
     }
 
     #[kani::proof]
@@ -351,4 +510,48 @@ fn trace_invariants_exhaustive() {
         }
     }
     rec(&all, &mut soup, 4);
+}
+
+/// Theorem 1, exhaustively over single-sided cubics with `P_0 = (0,0)`,
+/// `P_1, P_2, P_3 ∈ [-2,2]²` and splits at `s = 1/4, 1/2, 3/4`: no case is a proven
+/// counterexample; the cases the bounds prove are counted, the undecided ones (ties) listed.
+#[test]
+fn theorem1_exhaustive() {
+    let r = -2i8..=2;
+    let (mut proven, mut undecided, mut counter) = (0usize, Vec::new(), Vec::new());
+    for x1 in r.clone() {
+        for y1 in r.clone() {
+            for x2 in r.clone() {
+                for y2 in r.clone() {
+                    for x3 in r.clone() {
+                        for y3 in r.clone() {
+                            for k in 1..=3u8 {
+                                let p = [[0, 0], [x1, y1], [x2, y2], [x3, y3]];
+                                match prop_theorem1(p, k) {
+                                    Some(Theorem1::Proven) => proven += 1,
+                                    Some(Theorem1::Undecided) => undecided.push((p, k)),
+                                    Some(Theorem1::Counterexample) => counter.push((p, k)),
+                                    None => {}
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!(
+        "Theorem 1: {proven} cases proven, {} undecided by the bounds, {} counterexamples",
+        undecided.len(),
+        counter.len()
+    );
+    for u in undecided.iter().take(5) {
+        println!("  undecided: {u:?}");
+    }
+    assert!(
+        counter.is_empty(),
+        "counterexamples: {:?}",
+        &counter[..counter.len().min(5)]
+    );
+    assert!(proven > 20_000);
 }

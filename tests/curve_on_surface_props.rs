@@ -141,7 +141,7 @@ fn check(s: &NurbsSurface<f64, 3>, r: &CurveOnSurface, prm: &Params) -> Result<(
     // Every control point is the exact blossom of S on the chord.
     let cells = Cells::new(&bs, prm.eps_d);
     let round = c.control_point_rounding;
-    if !(round < 1e-12) {
+    if round.is_nan() || round >= 1e-12 {
         return Err(format!("rounding bound {round}"));
     }
     for seg in &r.segments {
