@@ -49,16 +49,44 @@ pub fn mapped_tangent_with(
     let su = hodographs
         .0
         .as_ref()
-        .map(|h| h.eval(&lu, &lv))
+        .map(|h| eval_tensor(h, lu, lv))
         .unwrap_or([0.0; 3]);
     let sv = hodographs
         .1
         .as_ref()
-        .map(|h| h.eval(&lu, &lv))
+        .map(|h| eval_tensor(h, lu, lv))
         .unwrap_or([0.0; 3]);
     let du = (b[0] - a[0]) / (rect[1] - rect[0]);
     let dv = (b[1] - a[1]) / (rect[3] - rect[2]);
     std::array::from_fn(|i| du * su[i] + dv * sv[i])
+}
+
+/// Tensor-product de Casteljau in f64 without allocation (degrees below 16; larger ones use
+/// the general evaluator).
+fn eval_tensor(s: &BezierSurface<[f64; 3]>, u: f64, v: f64) -> [f64; 3] {
+    if s.p >= 16 || s.q >= 16 {
+        return s.eval(&u, &v);
+    }
+    let casteljau = |w: &mut arrayvec::ArrayVec<[f64; 3], 16>, t: f64| {
+        let n = w.len() - 1;
+        for r in 1..=n {
+            for i in 0..=n - r {
+                for c in 0..3 {
+                    w[i][c] = (1.0 - t) * w[i][c] + t * w[i + 1][c];
+                }
+            }
+        }
+        w[0]
+    };
+    let mut col: arrayvec::ArrayVec<[f64; 3], 16> = arrayvec::ArrayVec::new();
+    for i in 0..=s.p {
+        let mut row: arrayvec::ArrayVec<[f64; 3], 16> = s.net[i * (s.q + 1)..(i + 1) * (s.q + 1)]
+            .iter()
+            .copied()
+            .collect();
+        col.push(casteljau(&mut row, v));
+    }
+    casteljau(&mut col, u)
 }
 
 /// The hodographs `(S_s, S_r)` of a patch in local coordinates (`None`: degree 0).
@@ -167,9 +195,12 @@ where
         let n = segs.len();
         let mut split = vec![false; n];
         let mut unresolved = 0;
+        let mut pass_max = 0.0f64;
         for i in 0..pairs(n) {
             let j = (i + 1) % n;
-            if let Some(a) = (ops.angle)(&segs[i], &segs[j])
+            let angle = (ops.angle)(&segs[i], &segs[j]);
+            pass_max = pass_max.max(angle.unwrap_or(0.0));
+            if let Some(a) = angle
                 && a > eps_t_deg
             {
                 let k = if (ops.deviation)(&segs[i]) >= (ops.deviation)(&segs[j]) {
@@ -187,6 +218,8 @@ where
                 }
             }
         }
+        // Every exit below leaves the segments as this pass measured them.
+        stats.max_angle_deg = pass_max;
         if !split.contains(&true) || n >= max_segments {
             stats.unresolved_junctions = unresolved;
             break;
@@ -213,9 +246,5 @@ where
             break;
         }
     }
-    let n = segs.len();
-    stats.max_angle_deg = (0..pairs(n))
-        .filter_map(|i| (ops.angle)(&segs[i], &segs[(i + 1) % n]))
-        .fold(0.0, f64::max);
     (segs, stats)
 }

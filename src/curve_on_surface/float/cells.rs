@@ -4,7 +4,7 @@
 //! local refinement on a sub-rectangle (hodograph hulls, Cauchy–Schwarz). Every bound is
 //! computed upward from enclosures of the exact patch, so it holds for the exact surface.
 
-use super::ibez::{I, IP, IPatch, bspline_blossom, ip, norm_hi};
+use super::ibez::{I, IP, IPatch, MidPatch, bspline_span_bezier_f64};
 use crate::spline::{BSplineSurface, BezierSurface};
 use std::cell::OnceCell;
 
@@ -21,6 +21,10 @@ pub struct FCell {
     pub hodo_f64: crate::curve_on_surface::g1::Hodographs,
     pub hodo_u: Option<IPatch>,
     pub hodo_v: Option<IPatch>,
+    /// Midpoint–radius forms of the patch and its hodographs (the fast path).
+    pub mpatch: MidPatch,
+    pub mhodo_u: Option<MidPatch>,
+    pub mhodo_v: Option<MidPatch>,
     /// Lower bounds of the span widths.
     pub du_lo: f64,
     pub dv_lo: f64,
@@ -33,7 +37,6 @@ pub struct FCells<'a> {
     s: &'a BSplineSurface<[f64; 3]>,
     ku: Vec<f64>,
     kv: Vec<f64>,
-    net: Vec<IP<3>>,
     pub u_breaks: Vec<f64>,
     pub v_breaks: Vec<f64>,
     cells: Vec<OnceCell<FCell>>,
@@ -51,7 +54,6 @@ impl<'a> FCells<'a> {
         FCells {
             ku: s.ku.knots().to_vec(),
             kv: s.kv.knots().to_vec(),
-            net: s.net.iter().map(ip).collect(),
             s,
             u_breaks,
             v_breaks,
@@ -95,36 +97,43 @@ impl<'a> FCells<'a> {
                 "invalid knots near cell [{u0}, {u1}] x [{v0}, {v1}]"
             ))
         };
-        let args = |a: f64, b: f64, deg: usize, k: usize| -> Vec<I> {
-            let mut xs = vec![I::point(a); deg - k];
-            xs.extend(std::iter::repeat_n(I::point(b), k));
-            xs
-        };
-        // Rows (fixed u index) → Bézier in v; then columns → Bézier in u.
-        let mut rows: Vec<Vec<IP<3>>> = Vec::with_capacity(p + 1);
+        // Rows (fixed u index) → Bézier in v; then columns → Bézier in u (f64 with the
+        // error bound of `bspline_span_bezier_f64`, applied twice).
+        let mut rows: Vec<Vec<[f64; 3]>> = Vec::with_capacity(p + 1);
+        let mut e_rows = 0.0f64;
         for r in su - p..=su {
-            let row = &self.net[r * nv..(r + 1) * nv];
-            let pts: Option<Vec<IP<3>>> = (0..=q)
-                .map(|l| bspline_blossom(&self.kv, q, row, sv, &args(v0, v1, q, l)))
-                .collect();
-            rows.push(pts.ok_or_else(err)?);
+            let row = &self.s.net[r * nv..(r + 1) * nv];
+            let (pts, e) = bspline_span_bezier_f64(&self.kv, q, row, 0.0, sv).ok_or_else(err)?;
+            e_rows = e_rows.max(e);
+            rows.push(pts);
         }
-        let mut net = vec![[I::point(0.0); 3]; (p + 1) * (q + 1)];
+        let mut m = vec![[0.0; 3]; (p + 1) * (q + 1)];
+        let mut e_net = 0.0f64;
+        let mut col = vec![[0.0; 3]; su + 1];
         for l in 0..=q {
-            // The column as a B-spline "control polygon" indexed like the surface's rows.
-            let mut col = vec![[I::point(0.0); 3]; su + 1];
             for (k, r) in (su - p..=su).enumerate() {
                 col[r] = rows[k][l];
             }
-            for k in 0..=p {
-                net[k * (q + 1) + l] =
-                    bspline_blossom(&self.ku, p, &col, su, &args(u0, u1, p, k)).ok_or_else(err)?;
+            let (pts, e) =
+                bspline_span_bezier_f64(&self.ku, p, &col, e_rows, su).ok_or_else(err)?;
+            e_net = e_net.max(e);
+            for (k, x) in pts.into_iter().enumerate() {
+                m[k * (q + 1) + l] = x;
             }
         }
+        let net: Vec<IP<3>> = m
+            .iter()
+            .map(|x| {
+                std::array::from_fn(|c| {
+                    I::new((x[c] - e_net).next_down(), (x[c] + e_net).next_up())
+                })
+            })
+            .collect();
         let patch = IPatch { p, q, net };
         let du_lo = (I::point(u1) - I::point(u0)).lo;
         let dv_lo = (I::point(v1) - I::point(v0)).lo;
-        let eq12 = eq12_bound(&patch, du_lo, dv_lo);
+        let mpatch = MidPatch::new(&patch);
+        let eq12 = eq12_bound(&mpatch, du_lo, dv_lo);
         Ok(FCell {
             u0,
             u1,
@@ -140,6 +149,9 @@ impl<'a> FCells<'a> {
             },
             hodo_u: patch.hodograph_u(),
             hodo_v: patch.hodograph_v(),
+            mpatch,
+            mhodo_u: patch.hodograph_u().as_ref().map(MidPatch::new),
+            mhodo_v: patch.hodograph_v().as_ref().map(MidPatch::new),
             patch,
             du_lo,
             dv_lo,
@@ -222,15 +234,21 @@ impl<'a> FCells<'a> {
     }
 }
 
-/// Eq. (12), scaled: `n · A_v / (e - c) + m · A_u / (b - a)`, upward.
-fn eq12_bound(s: &IPatch, du_lo: f64, dv_lo: f64) -> f64 {
+/// Eq. (12), scaled: `n · A_v / (e - c) + m · A_u / (b - a)`, upward. The maxima are taken
+/// over the midpoints in f64 (a Euclidean norm of a difference rounds by a few ulps: `1e-15`
+/// relatively covers it) plus `2 √3 r` for the true points' offsets.
+fn eq12_bound(s: &MidPatch, du_lo: f64, dv_lo: f64) -> f64 {
     let (m, n) = (s.p, s.q);
+    let at = |i: usize, j: usize| &s.m[i * (n + 1) + j];
+    let norm = |a: &[f64; 3], b: &[f64; 3]| {
+        let d = [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    };
     let mut au = 0.0f64;
     for i in 0..m {
         for h in 0..=n {
             for k in 0..=n {
-                let (a, b) = (s.at(i + 1, h), s.at(i, k));
-                au = au.max(norm_hi::<3>(&std::array::from_fn(|c| a[c] - b[c])));
+                au = au.max(norm(at(i + 1, h), at(i, k)));
             }
         }
     }
@@ -238,11 +256,15 @@ fn eq12_bound(s: &IPatch, du_lo: f64, dv_lo: f64) -> f64 {
     for i in 0..n {
         for h in 0..=m {
             for k in 0..=m {
-                let (a, b) = (s.at(h, i + 1), s.at(k, i));
-                av = av.max(norm_hi::<3>(&std::array::from_fn(|c| a[c] - b[c])));
+                av = av.max(norm(at(h, i + 1), at(k, i)));
             }
         }
     }
+    let slack = 2.0 * 3f64.sqrt() * 1.000001 * s.r;
+    let (au, av) = (
+        (au * (1.0 + 1e-15) + slack) * (1.0 + 1e-15),
+        (av * (1.0 + 1e-15) + slack) * (1.0 + 1e-15),
+    );
     let ku = if m == 0 {
         0.0
     } else {
@@ -260,22 +282,9 @@ fn eq12_bound(s: &IPatch, du_lo: f64, dv_lo: f64) -> f64 {
 /// `sqrt(L_u² + L_v²)` with `L_u`, `L_v` bounded by the hodographs' control points
 /// restricted to `rect` (convex hull property), scaled to global parameters.
 fn local_bound(c: &FCell, rect: [f64; 4]) -> f64 {
-    let sup = |h: Option<&IPatch>| -> f64 {
-        h.map(|h| {
-            h.polar_net(
-                I::point(rect[0]),
-                I::point(rect[1]),
-                I::point(rect[2]),
-                I::point(rect[3]),
-            )
-            .iter()
-            .map(norm_hi)
-            .fold(0.0, f64::max)
-        })
-        .unwrap_or(0.0)
-    };
-    let lu = (sup(c.hodo_u.as_ref()) / c.du_lo).next_up();
-    let lv = (sup(c.hodo_v.as_ref()) / c.dv_lo).next_up();
+    let sup = |h: Option<&MidPatch>| h.map(|h| h.sup_norm_hi(rect)).unwrap_or(0.0);
+    let lu = (sup(c.mhodo_u.as_ref()) / c.du_lo).next_up();
+    let lv = (sup(c.mhodo_v.as_ref()) / c.dv_lo).next_up();
     ((lu * lu).next_up() + (lv * lv).next_up())
         .next_up()
         .sqrt()

@@ -28,7 +28,7 @@ pub const HULL_LEVELS: u32 = 3;
 
 /// Enclosed control points of `D[t_0, t_1]` of a segment.
 pub fn sub_curve(s: &FSeg, pieces: &[Piece]) -> Vec<IP<2>> {
-    polar_values(&pieces[s.piece].ctrl, I::point(s.t0), I::point(s.t1)).to_vec()
+    polar_values(&pieces[s.piece].ctrl, I::point(s.t0), I::point(s.t1))
 }
 
 /// Certified `h` (stopping once `≤ target`) for the enclosed curve piece `c` and the chord.

@@ -14,6 +14,10 @@ pub type IP<const D: usize> = [I; D];
 /// Largest degree handled without allocation.
 pub const MAX_DEGREE: usize = 31;
 
+/// Control points handled by the fast (midpoint–radius) path; longer lists take the
+/// interval recurrence.
+const FAST_CAP: usize = 12;
+
 pub fn ip<const D: usize>(p: &[f64; D]) -> IP<D> {
     std::array::from_fn(|i| I::point(p[i]))
 }
@@ -25,12 +29,103 @@ pub fn lerp<const D: usize>(a: &IP<D>, b: &IP<D>, t: I) -> IP<D> {
     std::array::from_fn(|i| s * a[i] + t * b[i])
 }
 
+/// Midpoint–radius form of a list of boxes, for the fast path of the Bézier blossoms:
+/// midpoints, the largest radius `r` (every coordinate of every true point lies within `r`
+/// of its midpoint), the largest midpoint magnitude `mx`, and an upper bound `dp` of
+/// `max_i |P_{i+1} - P_i|_∞` over the true points.
+struct MidRad<const D: usize> {
+    m: ArrayVec<[f64; D], FAST_CAP>,
+    r: f64,
+    mx: f64,
+    dp: f64,
+}
+
+fn mid_rad<const D: usize>(ctrl: &[IP<D>]) -> MidRad<D> {
+    let mut m: ArrayVec<[f64; D], FAST_CAP> = ArrayVec::new();
+    let (mut r, mut mx) = (0.0f64, 0.0f64);
+    for p in ctrl {
+        m.push(std::array::from_fn(|c| p[c].mid()));
+        for c in p {
+            r = r.max(c.radius_about_mid());
+            mx = mx.max(c.mid().abs());
+        }
+    }
+    let mut dp = 0.0f64;
+    for w in m.windows(2) {
+        for c in 0..D {
+            dp = dp.max((w[1][c] - w[0][c]).abs());
+        }
+    }
+    // Rounding of the differences (relative u) and the true points' offsets (2r).
+    let dp = (dp * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14);
+    MidRad { m, r, mx, dp }
+}
+
+/// Error bound of `levels` de Casteljau levels in f64 with parameters in `[0, 1]` whose
+/// exact values lie within `sum_dt` (sum over the parameters) of the ones used.
+///
+/// One level computes `fl(fl(fl(1 - t)·a) + fl(t·b))`; with unit roundoff `u = 2^-53` its
+/// distance to `(1 - t) a + t b` is at most `((1 + u)³ - 1) max(|a|, |b|) ≤ 3.0000001 u M`
+/// (plus `2^-1073` for underflow), `M` bounding the values of the level; the values are
+/// (rounded) convex combinations of the midpoints, so `M ≤ mx (1 + 1e-13)` for up to 32
+/// levels. Convex combinations do not grow the input radius `r`. The blossom is affine in
+/// each parameter with slope a blossom of the differences `P_{i+1} - P_i` (parameters in
+/// `[0, 1]`), so a parameter off by `δ` moves it by at most `δ · dp`. The sum is computed in
+/// f64 and enlarged by `1e-14` relatively, which dominates its own rounding (5 operations).
+fn mr_error<const D: usize>(mr: &MidRad<D>, levels: usize, sum_dt: f64) -> f64 {
+    (mr.r + sum_dt * mr.dp + levels as f64 * (3.4e-16 * mr.mx * (1.0 + 1e-13) + 1e-300))
+        * (1.0 + 1e-14)
+}
+
+/// The box `m ± r`, rounded outward.
+fn boxed<const D: usize>(m: &[f64; D], r: f64) -> IP<D> {
+    std::array::from_fn(|c| I::new((m[c] - r).next_down(), (m[c] + r).next_up()))
+}
+
+/// De Casteljau in f64 on midpoints.
+fn mr_blossom<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
+    let mut w: ArrayVec<[f64; D], FAST_CAP> = m.iter().copied().collect();
+    let n = m.len() - 1;
+    for (r, &t) in ts.iter().enumerate() {
+        let s = 1.0 - t;
+        for i in 0..n - r {
+            for c in 0..D {
+                w[i][c] = s * w[i][c] + t * w[i + 1][c];
+            }
+        }
+    }
+    w[0]
+}
+
+/// Parameters for the fast path: midpoints and the sum of radii, when every parameter lies
+/// in `[0, 1]`.
+fn fast_params(ts: &[I], n_ctrl: usize) -> Option<(ArrayVec<f64, FAST_CAP>, f64)> {
+    if n_ctrl <= FAST_CAP && ts.len() <= FAST_CAP && ts.iter().all(|t| t.lo >= 0.0 && t.hi <= 1.0) {
+        let mids = ts.iter().map(|t| t.mid().clamp(0.0, 1.0)).collect();
+        let dt = ts.iter().map(|t| t.radius_about_mid()).sum::<f64>() * (1.0 + 1e-14);
+        Some((mids, dt))
+    } else {
+        None
+    }
+}
+
 /// Blossom `b(t_1, …, t_n)` of the Bézier curve with control points `ctrl` (degree
-/// `n = ctrl.len() - 1 = ts.len()`).
+/// `n = ctrl.len() - 1 = ts.len()`), enclosed. Parameters inside `[0, 1]` take the fast
+/// path (f64 de Casteljau on midpoints with the error bound of [`mr_error`]); others the
+/// interval recurrence.
 pub fn blossom<const D: usize>(ctrl: &[IP<D>], ts: &[I]) -> IP<D> {
+    debug_assert_eq!(ts.len(), ctrl.len() - 1);
+    if let Some((t, dt)) = fast_params(ts, ctrl.len()) {
+        let mr = mid_rad(ctrl);
+        return boxed(&mr_blossom(&mr.m, &t), mr_error(&mr, ts.len(), dt));
+    }
+    blossom_interval(ctrl, ts)
+}
+
+/// The interval recurrence (any parameters).
+pub fn blossom_interval<const D: usize>(ctrl: &[IP<D>], ts: &[I]) -> IP<D> {
     let mut w: ArrayVec<IP<D>, 32> = ctrl.iter().copied().collect();
     let n = ctrl.len() - 1;
-    debug_assert_eq!(ts.len(), n);
     for (r, t) in ts.iter().enumerate() {
         for i in 0..n - r {
             w[i] = lerp(&w[i], &w[i + 1], *t);
@@ -41,15 +136,29 @@ pub fn blossom<const D: usize>(ctrl: &[IP<D>], ts: &[I]) -> IP<D> {
 
 /// Polar values `b(x^(n-j), y^j)`, `j = 0..=n`: the control points of the curve restricted
 /// to `[x, y]` (reparametrized to `[0, 1]`).
-pub fn polar_values<const D: usize>(ctrl: &[IP<D>], x: I, y: I) -> ArrayVec<IP<D>, 32> {
+pub fn polar_values<const D: usize>(ctrl: &[IP<D>], x: I, y: I) -> Vec<IP<D>> {
     let n = ctrl.len() - 1;
+    if let Some((t, dt)) = fast_params(&[x, y], ctrl.len()) {
+        // Each polar value uses `n` parameters, each within `dt` (the larger radius).
+        let mr = mid_rad(ctrl);
+        let err = mr_error(&mr, n, dt * n as f64);
+        let mut ts: ArrayVec<f64, FAST_CAP> = ArrayVec::new();
+        return (0..=n)
+            .map(|j| {
+                ts.clear();
+                ts.extend(std::iter::repeat_n(t[0], n - j));
+                ts.extend(std::iter::repeat_n(t[1], j));
+                boxed(&mr_blossom(&mr.m, &ts), err)
+            })
+            .collect();
+    }
     let mut ts: ArrayVec<I, 32> = ArrayVec::new();
     (0..=n)
         .map(|j| {
             ts.clear();
             ts.extend(std::iter::repeat_n(x, n - j));
             ts.extend(std::iter::repeat_n(y, j));
-            blossom(ctrl, &ts)
+            blossom_interval(ctrl, &ts)
         })
         .collect()
 }
@@ -58,7 +167,11 @@ pub fn polar_values<const D: usize>(ctrl: &[IP<D>], x: I, y: I) -> ArrayVec<IP<D
 pub fn eval<const D: usize>(ctrl: &[IP<D>], t: I) -> IP<D> {
     let n = ctrl.len() - 1;
     let ts: ArrayVec<I, 32> = std::iter::repeat_n(t, n).collect();
-    blossom(ctrl, &ts)
+    if t.lo == t.hi {
+        blossom(ctrl, &ts)
+    } else {
+        blossom_interval(ctrl, &ts)
+    }
 }
 
 /// De Casteljau halves at `t = 1/2`.
@@ -66,20 +179,40 @@ pub fn halves<const D: usize>(ctrl: &[IP<D>]) -> (Vec<IP<D>>, Vec<IP<D>>) {
     split_at(ctrl, 0.5)
 }
 
-/// De Casteljau split at the point parameter `t`: control points of `[0, t]` and `[t, 1]`.
+/// De Casteljau split at the point parameter `t ∈ [0, 1]`: control points of `[0, t]` and
+/// `[t, 1]` (f64 triangle on midpoints; every output is at most `n` levels deep).
 pub fn split_at<const D: usize>(ctrl: &[IP<D>], t: f64) -> (Vec<IP<D>>, Vec<IP<D>>) {
     let n = ctrl.len() - 1;
-    let t = I::point(t);
-    let mut w: Vec<IP<D>> = ctrl.to_vec();
+    if ctrl.len() > FAST_CAP {
+        let ti = I::point(t);
+        let mut w: Vec<IP<D>> = ctrl.to_vec();
+        let mut left = Vec::with_capacity(n + 1);
+        let mut right = vec![w[n]; n + 1];
+        left.push(w[0]);
+        for r in 1..=n {
+            for i in 0..=n - r {
+                w[i] = lerp(&w[i], &w[i + 1], ti);
+            }
+            left.push(w[0]);
+            right[n - r] = w[n - r];
+        }
+        return (left, right);
+    }
+    let mr = mid_rad(ctrl);
+    let err = mr_error(&mr, n, 0.0);
+    let mut w = mr.m;
     let mut left = Vec::with_capacity(n + 1);
-    let mut right = vec![w[n]; n + 1];
-    left.push(w[0]);
+    let mut right = vec![boxed(&w[n], err); n + 1];
+    left.push(boxed(&w[0], err));
+    let s = 1.0 - t;
     for r in 1..=n {
         for i in 0..=n - r {
-            w[i] = lerp(&w[i], &w[i + 1], t);
+            for c in 0..D {
+                w[i][c] = s * w[i][c] + t * w[i + 1][c];
+            }
         }
-        left.push(w[0]);
-        right[n - r] = w[n - r];
+        left.push(boxed(&w[0], err));
+        right[n - r] = boxed(&w[n - r], err);
     }
     (left, right)
 }
@@ -124,6 +257,52 @@ pub fn bspline_span_bezier<const D: usize>(
             bspline_blossom(knots, p, ctrl, s, &xs)
         })
         .collect()
+}
+
+/// [`bspline_span_bezier`] on exact f64 control points (or midpoints with radius `r`), in
+/// f64: the Bézier control points of span `s` and a bound on every coordinate's distance to
+/// the exact ones. Each de Boor level computes `fl((1 - α̂) d + α̂ d')` with
+/// `α̂ = fl(fl(x - u_j) / fl(u_e - u_j)) ∈ [0, 1]` (rounding is monotone), `|α̂ - α| ≤
+/// 3.0000001 u α`; so a level adds at most `3.0000001 u M` (the lerp lemma of [`mr_error`])
+/// plus `|α̂ - α| |d' - d| ≤ 6.7e-16 M`, i.e. below `1.1e-15 M`, `M` bounding the values
+/// (`≤ mx (1 + 1e-12)`). `None` when a knot difference is not positive, or so small that
+/// underflow could spoil the relative bounds.
+pub fn bspline_span_bezier_f64(
+    knots: &[f64],
+    p: usize,
+    ctrl: &[[f64; 3]],
+    r: f64,
+    s: usize,
+) -> Option<(Vec<[f64; 3]>, f64)> {
+    let (a, b) = (knots[s], knots[s + 1]);
+    let mx = ctrl[s - p..=s]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut out = Vec::with_capacity(p + 1);
+    let mut d: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
+    for k in 0..=p {
+        d.clear();
+        d.extend_from_slice(&ctrl[s - p..=s]);
+        for lvl in 1..=p {
+            let x = if lvl <= p - k { a } else { b };
+            for j in (s - p + lvl..=s).rev() {
+                let (uj, ue) = (knots[j], knots[j + p + 1 - lvl]);
+                let den = ue - uj;
+                if den.is_nan() || den < 1e-290 {
+                    return None;
+                }
+                let alpha = (x - uj) / den;
+                let i = j - (s - p);
+                for c in 0..3 {
+                    d[i][c] = (1.0 - alpha) * d[i - 1][c] + alpha * d[i][c];
+                }
+            }
+        }
+        out.push(d[p]);
+    }
+    let err = (r + p as f64 * (1.1e-15 * mx * (1.0 + 1e-12) + 1e-300)) * (1.0 + 1e-14);
+    Some((out, err))
 }
 
 /// A tensor-product Bézier patch with interval control points, `net[i * (q + 1) + j]`
@@ -184,11 +363,11 @@ impl IPatch {
     /// patch restricted to `[x_u, y_u] × [x_v, y_v]` (tensor-product blossom, rows first).
     pub fn polar_net(&self, xu: I, yu: I, xv: I, yv: I) -> Vec<IP<3>> {
         let (p, q) = (self.p, self.q);
-        let rows: Vec<ArrayVec<IP<3>, 32>> = (0..=p)
+        let rows: Vec<Vec<IP<3>>> = (0..=p)
             .map(|i| polar_values(&self.net[i * (q + 1)..(i + 1) * (q + 1)], xv, yv))
             .collect();
         let mut out = vec![[I::point(0.0); 3]; (p + 1) * (q + 1)];
-        let mut col: ArrayVec<IP<3>, 32> = ArrayVec::new();
+        let mut col: Vec<IP<3>> = Vec::with_capacity(p + 1);
         for j in 0..=q {
             col.clear();
             col.extend(rows.iter().map(|r| r[j]));
@@ -202,8 +381,13 @@ impl IPatch {
     /// Enclosure of the image `S(a + t (b - a))` of a local segment: the Bézier curve of
     /// degree `p + q` from the blossom (the interval counterpart of
     /// `spline::compose::compose_line`).
+    ///
+    /// The caller guarantees that the exact local coordinates lie in `[0, 1]` (the chord is in
+    /// the patch), so the enclosures are intersected with `[0, 1]`.
     pub fn compose_line(&self, a: &IP<2>, b: &IP<2>) -> Vec<IP<3>> {
         let (p, q) = (self.p, self.q);
+        let unit = |x: I| I::new(x.lo.max(0.0), x.hi.min(1.0));
+        let (a, b) = ([unit(a[0]), unit(a[1])], [unit(b[0]), unit(b[1])]);
         let h = self.polar_net(a[0], b[0], a[1], b[1]);
         let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
         (0..=p + q)
@@ -226,6 +410,157 @@ impl IPatch {
     }
 }
 
+/// A patch in midpoint–radius form, cached per cell for the two hot uses (the local
+/// Lipschitz bound and the mapping): midpoints, the largest coordinate radius `r`, the
+/// largest midpoint magnitude `mx`, and `a` ≥ the largest coordinate difference of
+/// neighbouring true control points along u or v.
+#[derive(Clone, Debug)]
+pub struct MidPatch {
+    pub p: usize,
+    pub q: usize,
+    pub m: Vec<[f64; 3]>,
+    pub r: f64,
+    pub mx: f64,
+    pub a: f64,
+}
+
+impl MidPatch {
+    pub fn new(s: &IPatch) -> MidPatch {
+        let (p, q) = (s.p, s.q);
+        let m: Vec<[f64; 3]> = s.net.iter().map(mid).collect();
+        let (mut r, mut mx) = (0.0f64, 0.0f64);
+        for x in &s.net {
+            for c in x {
+                r = r.max(c.radius_about_mid());
+                mx = mx.max(c.mid().abs());
+            }
+        }
+        let mut a = 0.0f64;
+        for i in 0..=p {
+            for j in 0..=q {
+                let x = &m[i * (q + 1) + j];
+                for (di, dj) in [(1, 0), (0, 1)] {
+                    if i + di <= p && j + dj <= q {
+                        let y = &m[(i + di) * (q + 1) + j + dj];
+                        for c in 0..3 {
+                            a = a.max((y[c] - x[c]).abs());
+                        }
+                    }
+                }
+            }
+        }
+        let a = (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14);
+        MidPatch { p, q, m, r, mx, a }
+    }
+
+    /// Polar net `f(x_u^(p-i) y_u^i ; x_v^(q-j) y_v^j)` in f64 on the midpoints, with a bound
+    /// on every coordinate's distance to the exact polar values of the exact patch at the
+    /// exact parameters, which lie within `dt` (each) of the given ones in `[0, 1]`:
+    /// the row stage is `q` de Casteljau levels and the column stage `p` (lemma of
+    /// [`mr_error`]), each parameter contributes `dt · a`.
+    pub fn polar_net(&self, xu: f64, yu: f64, xv: f64, yv: f64, dt: f64) -> (Vec<[f64; 3]>, f64) {
+        let (p, q) = (self.p, self.q);
+        let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));
+        let mut ts: ArrayVec<f64, 32> = ArrayVec::new();
+        for i in 0..=p {
+            let row = &self.m[i * (q + 1)..(i + 1) * (q + 1)];
+            for j in 0..=q {
+                ts.clear();
+                ts.extend(std::iter::repeat_n(xv, q - j));
+                ts.extend(std::iter::repeat_n(yv, j));
+                rows.push(mr_blossom_any(row, &ts));
+            }
+        }
+        let mut out = vec![[0.0; 3]; (p + 1) * (q + 1)];
+        let mut col: ArrayVec<[f64; 3], 32> = ArrayVec::new();
+        for j in 0..=q {
+            col.clear();
+            col.extend((0..=p).map(|i| rows[i * (q + 1) + j]));
+            for i in 0..=p {
+                ts.clear();
+                ts.extend(std::iter::repeat_n(xu, p - i));
+                ts.extend(std::iter::repeat_n(yu, i));
+                out[i * (q + 1) + j] = mr_blossom_any(&col, &ts);
+            }
+        }
+        let levels = (p + q) as f64;
+        let err =
+            (self.r + levels * dt * self.a + levels * (3.4e-16 * self.mx * (1.0 + 1e-12) + 1e-300))
+                * (1.0 + 1e-14);
+        (out, err)
+    }
+
+    /// Upper bound of `sup |S|` over the local rectangle `[x_u, y_u] × [x_v, y_v]` (this patch
+    /// being a hodograph): the largest norm of the restricted control points (convex hull),
+    /// each enlarged by the error bound in every coordinate.
+    pub fn sup_norm_hi(&self, rect: [f64; 4]) -> f64 {
+        let (net, err) = self.polar_net(rect[0], rect[1], rect[2], rect[3], 0.0);
+        let m2 = net
+            .iter()
+            .map(|x| {
+                let n = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+                // sqrt and the sum round by a few ulps: 1e-15 relatively covers them.
+                n * (1.0 + 1e-15)
+            })
+            .fold(0.0, f64::max);
+        ((m2 + 3f64.sqrt() * 1.000001 * err) * (1.0 + 1e-15)).next_up()
+    }
+
+    /// The image of the local segment `a → b` (exact local coordinates within `dt` of the
+    /// given ones, all in `[0, 1]`): the degree `p + q` Bézier control points in f64 and a
+    /// bound on every coordinate's distance to the exact ones. The binomial combination
+    /// `Σ C(p,i) C(q,j) / C(p+q,k) h_ij` has weights summing to 1; with at most 32 terms its
+    /// rounding (weights and sum) is within `(terms + 3) · 1.2e-16 · max |h|`.
+    pub fn compose_line(&self, a: [f64; 2], b: [f64; 2], dt: f64) -> (Vec<[f64; 3]>, f64) {
+        let (p, q) = (self.p, self.q);
+        let (h, eh) = self.polar_net(a[0], b[0], a[1], b[1], dt);
+        let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
+        let mut mh = 0.0f64;
+        for x in &h {
+            for c in x {
+                mh = mh.max(c.abs());
+            }
+        }
+        let out: Vec<[f64; 3]> = (0..=p + q)
+            .map(|k| {
+                let den = binom(p + q, k);
+                let mut acc = [0.0; 3];
+                for i in k.saturating_sub(q)..=k.min(p) {
+                    let j = k - i;
+                    let w = binom(p, i) * binom(q, j) / den;
+                    let v = &h[i * (q + 1) + j];
+                    for c in 0..3 {
+                        acc[c] += w * v[c];
+                    }
+                }
+                acc
+            })
+            .collect();
+        let terms = (p.min(q) + 1) as f64;
+        let err =
+            (eh + (terms + 3.0) * 1.2e-16 * (mh + eh) * (1.0 + 1e-14) + 1e-300) * (1.0 + 1e-14);
+        (out, err)
+    }
+}
+
+/// f64 de Casteljau on midpoints for any number of control points (no capacity limit).
+fn mr_blossom_any(m: &[[f64; 3]], ts: &[f64]) -> [f64; 3] {
+    if m.len() <= FAST_CAP {
+        return mr_blossom(m, ts);
+    }
+    let mut w: Vec<[f64; 3]> = m.to_vec();
+    let n = m.len() - 1;
+    for (r, &t) in ts.iter().enumerate() {
+        let s = 1.0 - t;
+        for i in 0..n - r {
+            for c in 0..3 {
+                w[i][c] = s * w[i][c] + t * w[i + 1][c];
+            }
+        }
+    }
+    w[0]
+}
+
 /// Upper bound of the Euclidean norm of every point of the box `x`.
 pub fn norm_hi<const D: usize>(x: &IP<D>) -> f64 {
     let mut s = I::point(0.0);
@@ -242,10 +577,15 @@ pub fn dist_hi<const D: usize>(x: &IP<D>, y: &[f64; D]) -> f64 {
 }
 
 /// Upper bound of the distance from every point of the box `x` to the segment `[a, b]`:
-/// the distance to one chosen point of the segment (the projection of the box's centre,
-/// computed in f64 — any point of the segment gives an upper bound), enclosed.
+/// the distance to one chosen point `y` of the segment (the projection of the box's centre,
+/// computed in f64 — any point of the segment gives an upper bound). With `c`, `ρ` the
+/// box's centre and largest coordinate radius and `ŷ = fl(a + t (b - a))` (within
+/// `3.0000001 u max|a|,|b|` per coordinate of `y`, the lerp lemma of [`mr_error`]), the
+/// distance is at most `‖c - ŷ‖ + √2 (ρ + 3.4e-16 max|a|,|b|)`; `‖c - ŷ‖` is computed in f64
+/// and enlarged by `1e-15` relatively (a few roundings), the sum likewise.
 pub fn dist_to_segment_hi(x: &IP<2>, a: &[f64; 2], b: &[f64; 2]) -> f64 {
     let c = [x[0].mid(), x[1].mid()];
+    let rho = x[0].radius_about_mid().max(x[1].radius_about_mid());
     let ab = [b[0] - a[0], b[1] - a[1]];
     let l2 = ab[0] * ab[0] + ab[1] * ab[1];
     let t = if l2 > 0.0 {
@@ -253,11 +593,13 @@ pub fn dist_to_segment_hi(x: &IP<2>, a: &[f64; 2], b: &[f64; 2]) -> f64 {
     } else {
         0.0
     };
-    // The chosen segment point a + t (b - a), enclosed.
-    let ti = I::point(t);
-    let y: IP<2> = lerp(&ip(a), &ip(b), ti);
-    let d: IP<2> = std::array::from_fn(|i| x[i] - y[i]);
-    norm_hi(&d)
+    let s = 1.0 - t;
+    let y = [s * a[0] + t * b[0], s * a[1] + t * b[1]];
+    let (dx, dy) = (c[0] - y[0], c[1] - y[1]);
+    let d = (dx * dx + dy * dy).sqrt() * (1.0 + 1e-15);
+    let mag = a[0].abs().max(a[1].abs()).max(b[0].abs()).max(b[1].abs());
+    ((d + std::f64::consts::SQRT_2 * 1.000001 * (rho + 3.4e-16 * mag + 1e-300)) * (1.0 + 1e-15))
+        .next_up()
 }
 
 /// Midpoints (the f64 representative) of a box.
@@ -268,6 +610,7 @@ pub fn mid<const D: usize>(x: &IP<D>) -> [f64; D] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::Scalar;
     use crate::spline::{BSplineCurve, BezierSurface, KnotVector};
     use num_rational::BigRational;
 
@@ -352,6 +695,154 @@ mod tests {
             let p = eval(&ctrl, I::point(t));
             for c in 0..2 {
                 assert!(box_[c].lo <= p[c].lo && p[c].hi <= box_[c].hi);
+            }
+        }
+    }
+
+    /// xorshift values with magnitudes over many binades (so rounding is exercised).
+    fn rng(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed | 1;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let m = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            m * 2f64.powi(((state >> 3) % 40) as i32 - 20)
+        }
+    }
+
+    #[test]
+    fn f64_span_extraction_is_within_its_bound() {
+        use crate::spline::BSplineSurface;
+        let mut r = rng(7);
+        for trial in 0..40 {
+            let (p, q) = (1 + trial % 3, 1 + (trial / 3) % 3);
+            let mut ku = vec![0.0; p + 1];
+            let mut kv = vec![0.0; q + 1];
+            for k in [0.1 + r().abs().min(0.2), 0.5, 0.7 + r().abs().min(0.2)] {
+                ku.push(k);
+                kv.push(k);
+            }
+            ku.extend(std::iter::repeat_n(1.0, p + 1));
+            kv.extend(std::iter::repeat_n(1.0, q + 1));
+            let (nu, nv) = (ku.len() - p - 1, kv.len() - q - 1);
+            let net: Vec<[f64; 3]> = (0..nu * nv).map(|_| [r(), r(), r()]).collect();
+            let s = BSplineSurface::new(ku.clone(), p, kv.clone(), q, nu, nv, net.clone()).unwrap();
+            let exact = s
+                .map(|k| q_(*k), crate::geom::lift_point::<BigRational, 3>)
+                .bezier_patches();
+            for bp in &exact {
+                let (u0, v0) = (bp.u0.to_f64(), bp.v0.to_f64());
+                let su = s.ku.find_span(&u0);
+                let sv = s.kv.find_span(&v0);
+                let mut rows = Vec::new();
+                let mut e_rows = 0.0f64;
+                for i in su - p..=su {
+                    let (pts, e) =
+                        bspline_span_bezier_f64(&kv, q, &net[i * nv..(i + 1) * nv], 0.0, sv)
+                            .unwrap();
+                    e_rows = e_rows.max(e);
+                    rows.push(pts);
+                }
+                for l in 0..=q {
+                    let mut col = vec![[0.0; 3]; su + 1];
+                    for (k, i) in (su - p..=su).enumerate() {
+                        col[i] = rows[k][l];
+                    }
+                    let (pts, e) = bspline_span_bezier_f64(&ku, p, &col, e_rows, su).unwrap();
+                    for (k, x) in pts.iter().enumerate() {
+                        let ex = bp.patch.at(k, l);
+                        for c in 0..3 {
+                            let d = (q_(x[c]) - ex[c].clone()).abs();
+                            assert!(d <= q_(e), "trial {trial}: off by {} > {e}", d.to_f64());
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn q_(x: f64) -> BigRational {
+        crate::scalar::lift(x)
+    }
+
+    #[test]
+    fn mid_patch_compose_and_sup_are_within_their_bounds() {
+        let mut r = rng(11);
+        for trial in 0..60 {
+            let (p, q) = (1 + trial % 4, 1 + (trial / 4) % 3);
+            let net: Vec<[f64; 3]> = (0..(p + 1) * (q + 1)).map(|_| [r(), r(), r()]).collect();
+            let exact = BezierSurface::new(
+                p,
+                q,
+                net.iter()
+                    .map(crate::geom::lift_point::<BigRational, 3>)
+                    .collect(),
+            )
+            .unwrap();
+            let ipatch = IPatch {
+                p,
+                q,
+                net: net.iter().map(ip).collect(),
+            };
+            let mp = MidPatch::new(&ipatch);
+            let (a, b) = (
+                [r().abs().min(1.0), r().abs().min(1.0)],
+                [r().abs().min(1.0), 1.0],
+            );
+            let want = crate::spline::compose::compose_line(
+                &exact,
+                &crate::geom::lift_point(&a),
+                &crate::geom::lift_point(&b),
+            );
+            let (got, err) = mp.compose_line(a, b, 0.0);
+            for (g, w) in got.iter().zip(&want.control) {
+                for c in 0..3 {
+                    assert!((q_(g[c]) - w[c].clone()).abs() <= q_(err), "trial {trial}");
+                }
+            }
+            // sup over a sub-rectangle: at least every exact point of the restricted net.
+            let rect = [0.25, 0.5, 0.0, 0.75];
+            let sup = mp.sup_norm_hi(rect);
+            let sub = exact.sub_patch(&q_(0.25), &q_(0.5), &q_(0.0), &q_(0.75));
+            for x in &sub.net {
+                let n2 = crate::geom::norm2(x);
+                assert!(n2 <= q_(sup) * q_(sup), "trial {trial}");
+            }
+        }
+    }
+
+    #[test]
+    fn midpoint_radius_blossoms_enclose_exact_values() {
+        let mut r = rng(3);
+        for trial in 0..200 {
+            let n = 1 + trial % 6;
+            let ctrl: Vec<[f64; 2]> = (0..=n).map(|_| [r(), r()]).collect();
+            let exact = crate::spline::BezierCurve::new(
+                ctrl.iter()
+                    .map(crate::geom::lift_point::<BigRational, 2>)
+                    .collect(),
+            )
+            .unwrap();
+            let ictrl: Vec<IP<2>> = ctrl.iter().map(ip).collect();
+            let (x, y) = (r().abs().min(1.0), r().abs().min(1.0));
+            let pv = polar_values(&ictrl, I::point(x), I::point(y));
+            for (j, v) in pv.iter().enumerate() {
+                let mut ts = vec![q_(x); n - j];
+                ts.extend(std::iter::repeat_n(q_(y), j));
+                let e = exact.blossom(&ts);
+                assert!(
+                    contains(&v[0], &e[0]) && contains(&v[1], &e[1]),
+                    "trial {trial}"
+                );
+            }
+            let (l, rr) = split_at(&ictrl, 0.5 - 1.0 / 2048.0);
+            let (el, er) = exact.subdivide(&q_(0.5 - 1.0 / 2048.0));
+            for (v, e) in l.iter().zip(&el.control).chain(rr.iter().zip(&er.control)) {
+                assert!(
+                    contains(&v[0], &e[0]) && contains(&v[1], &e[1]),
+                    "trial {trial}"
+                );
             }
         }
     }

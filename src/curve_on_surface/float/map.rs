@@ -4,7 +4,7 @@
 //! of the exact patch on the f64 chord (which lies on S exactly).
 
 use super::cells::FCells;
-use super::ibez::{I, IP, mid};
+use super::ibez::{I, IP};
 use super::{FSeg, FloatError};
 use crate::curve_on_surface::CosError;
 
@@ -27,25 +27,26 @@ pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError>
                 s.a, s.b
             ))));
         }
-        let local = |p: &[f64; 2]| -> Option<IP<2>> {
-            Some([
+        // Local coordinates, enclosed; the exact ones lie in [0, 1] (the chord is in the
+        // cell), so the clamped midpoint is within the radius of them.
+        let local = |p: &[f64; 2]| -> Option<(IP<2>, [f64; 2], f64)> {
+            let x: IP<2> = [
                 (I::point(p[0]) - I::point(c.u0)).checked_div(I::point(c.u1) - I::point(c.u0))?,
                 (I::point(p[1]) - I::point(c.v0)).checked_div(I::point(c.v1) - I::point(c.v0))?,
-            ])
+            ];
+            let m = [x[0].mid().clamp(0.0, 1.0), x[1].mid().clamp(0.0, 1.0)];
+            let dt = x[0].radius_about_mid().max(x[1].radius_about_mid());
+            Some((x, m, dt))
         };
-        let (Some(a), Some(b)) = (local(&s.a), local(&s.b)) else {
+        let (Some((_, a, da)), Some((_, b, db))) = (local(&s.a), local(&s.b)) else {
             return Err(FloatError::Undecided("a patch of zero width".into()));
         };
-        let enc = c.patch.compose_line(&a, &b);
-        for q in &enc {
-            for x in q {
-                if !x.is_finite() {
-                    return Err(FloatError::Undecided("overflow in the mapping".into()));
-                }
-                rounding = rounding.max(x.radius_about_mid());
-            }
+        let (cps, err) = c.mpatch.compose_line(a, b, da.max(db));
+        if !err.is_finite() || cps.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(FloatError::Undecided("overflow in the mapping".into()));
         }
-        out.push(enc.iter().map(mid).collect());
+        rounding = rounding.max(err);
+        out.push(cps);
     }
     Ok((out, rounding))
 }
