@@ -142,15 +142,9 @@ pub fn polar_values<const D: usize>(ctrl: &[IP<D>], x: I, y: I) -> Vec<IP<D>> {
         // Each polar value uses `n` parameters, each within `dt` (the larger radius).
         let mr = mid_rad(ctrl);
         let err = mr_error(&mr, n, dt * n as f64);
-        let mut ts: ArrayVec<f64, FAST_CAP> = ArrayVec::new();
-        return (0..=n)
-            .map(|j| {
-                ts.clear();
-                ts.extend(std::iter::repeat_n(t[0], n - j));
-                ts.extend(std::iter::repeat_n(t[1], j));
-                boxed(&mr_blossom(&mr.m, &ts), err)
-            })
-            .collect();
+        let mut vals: Vec<[f64; D]> = Vec::with_capacity(n + 1);
+        mr_polar_values(&mr.m, t[0], t[1], &mut vals);
+        return vals.iter().map(|v| boxed(v, err)).collect();
     }
     let mut ts: ArrayVec<I, 32> = ArrayVec::new();
     (0..=n)
@@ -461,26 +455,19 @@ impl MidPatch {
     pub fn polar_net(&self, xu: f64, yu: f64, xv: f64, yv: f64, dt: f64) -> (Vec<[f64; 3]>, f64) {
         let (p, q) = (self.p, self.q);
         let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));
-        let mut ts: ArrayVec<f64, 32> = ArrayVec::new();
         for i in 0..=p {
-            let row = &self.m[i * (q + 1)..(i + 1) * (q + 1)];
-            for j in 0..=q {
-                ts.clear();
-                ts.extend(std::iter::repeat_n(xv, q - j));
-                ts.extend(std::iter::repeat_n(yv, j));
-                rows.push(mr_blossom_any(row, &ts));
-            }
+            mr_polar_values(&self.m[i * (q + 1)..(i + 1) * (q + 1)], xv, yv, &mut rows);
         }
         let mut out = vec![[0.0; 3]; (p + 1) * (q + 1)];
-        let mut col: ArrayVec<[f64; 3], 32> = ArrayVec::new();
+        let mut col: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
+        let mut vals: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
         for j in 0..=q {
             col.clear();
             col.extend((0..=p).map(|i| rows[i * (q + 1) + j]));
-            for i in 0..=p {
-                ts.clear();
-                ts.extend(std::iter::repeat_n(xu, p - i));
-                ts.extend(std::iter::repeat_n(yu, i));
-                out[i * (q + 1) + j] = mr_blossom_any(&col, &ts);
+            vals.clear();
+            mr_polar_values(&col, xu, yu, &mut vals);
+            for (i, v) in vals.iter().enumerate() {
+                out[i * (q + 1) + j] = *v;
             }
         }
         let levels = (p + q) as f64;
@@ -543,17 +530,52 @@ impl MidPatch {
     }
 }
 
-/// f64 de Casteljau on midpoints for any number of control points (no capacity limit).
-fn mr_blossom_any(m: &[[f64; 3]], ts: &[f64]) -> [f64; 3] {
-    if m.len() <= FAST_CAP {
-        return mr_blossom(m, ts);
+/// All polar values `b(x^(n-j), y^j)`, `j = 0..=n`, in f64 on midpoints, sharing work: the
+/// de Casteljau levels at `y` are kept (level `j` holds the blossoms with `j` arguments `y`),
+/// and each polar value applies `x` to its level `n - j` times. Every value is `n` lerp
+/// levels deep with parameters in `[0, 1]` (the blossom is symmetric, so the order of the
+/// arguments does not matter): the error lemma of [`mr_error`] applies as for one blossom.
+/// `out` receives `n + 1` points.
+fn mr_polar_values<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut Vec<[f64; D]>) {
+    let n = m.len() - 1;
+    if n >= 16 {
+        for j in 0..=n {
+            let mut ts = vec![x; n - j];
+            ts.extend(std::iter::repeat_n(y, j));
+            out.push(mr_blossom_vec(m, &ts));
+        }
+        return;
     }
-    let mut w: Vec<[f64; 3]> = m.to_vec();
+    let (sx, sy) = (1.0 - x, 1.0 - y);
+    let mut ylev = [[0.0; D]; 16];
+    ylev[..=n].copy_from_slice(m);
+    let mut w = [[0.0; D]; 16];
+    for j in 0..=n {
+        let len = n + 1 - j;
+        w[..len].copy_from_slice(&ylev[..len]);
+        for r in 1..len {
+            for i in 0..len - r {
+                for c in 0..D {
+                    w[i][c] = sx * w[i][c] + x * w[i + 1][c];
+                }
+            }
+        }
+        out.push(w[0]);
+        for i in 0..len - 1 {
+            for c in 0..D {
+                ylev[i][c] = sy * ylev[i][c] + y * ylev[i + 1][c];
+            }
+        }
+    }
+}
+
+fn mr_blossom_vec<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
+    let mut w: Vec<[f64; D]> = m.to_vec();
     let n = m.len() - 1;
     for (r, &t) in ts.iter().enumerate() {
         let s = 1.0 - t;
         for i in 0..n - r {
-            for c in 0..3 {
+            for c in 0..D {
                 w[i][c] = s * w[i][c] + t * w[i + 1][c];
             }
         }

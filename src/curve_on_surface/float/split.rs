@@ -13,7 +13,7 @@
 //! [`super::distance`]): they only keep each chord in one patch.
 
 use super::cells::FCells;
-use super::ibez::{I, IP, bspline_span_bezier, dist_hi, eval, halves, ip, mid, split_at};
+use super::ibez::{I, IP, bspline_span_bezier, dist_hi, eval, ip, mid, split_at};
 use super::{FSeg, FloatError, Piece};
 use crate::curve_on_surface::CosError;
 use crate::spline::BSplineCurve;
@@ -77,21 +77,22 @@ fn isolate(
         return Ok(());
     }
     if simple_root(&b) {
+        // Bisection on the local parameter of this sub-interval: the sign of the enclosed
+        // value at the midpoint decides the side (an undecided sign stops the narrowing).
         let s0 = strict_sign(&b[0][0]);
-        let (mut b, mut lo, mut hi) = (b, lo, hi);
-        while hi - lo > ROOT_WIDTH {
-            let (l, r) = halves(&b);
-            let m = strict_sign(&l.last().expect("non-empty")[0]);
-            let c = lo + (hi - lo) / 2.0;
+        let (mut a, mut z) = (0.0f64, 1.0f64);
+        while (z - a) * (hi - lo) > ROOT_WIDTH {
+            let c = a + (z - a) / 2.0;
+            let m = strict_sign(&eval(&b, I::point(c))[0]);
             if m == s0 {
-                (b, lo) = (r, c);
+                a = c;
             } else if m == -s0 {
-                (b, hi) = (l, c);
+                z = c;
             } else {
                 break;
             }
         }
-        out.push(lo + (hi - lo) / 2.0);
+        out.push(lo + (hi - lo) * (a + (z - a) / 2.0));
         return Ok(());
     }
     if depth >= MAX_DEPTH {
