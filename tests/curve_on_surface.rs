@@ -297,7 +297,15 @@ fn bad_inputs_get_typed_errors() {
         CosError::RationalSurface
     );
     // Bad tolerances.
-    for (e, t) in [(0.0, 10.0), (f64::NAN, 10.0), (1e-3, -1.0)] {
+    for (e, t) in [
+        (0.0, 10.0),
+        (f64::NAN, 10.0),
+        (1e-3, -1.0),
+        (1e-3, 180.0),
+        (1e-3, 200.0),
+        (1e-3, f64::INFINITY),
+        (f64::INFINITY, 10.0),
+    ] {
         assert!(matches!(
             approximate(
                 &s,

@@ -51,8 +51,12 @@ pub enum CosError {
     RationalSurface,
     #[error("rational domain curves are not supported (the domain curve must be polynomial)")]
     RationalCurve,
-    #[error("tolerances must be finite and positive: eps_d = {0}, eps_t = {1} degrees")]
+    #[error(
+        "tolerances out of range: eps_d = {0} must be finite and positive, eps_t = {1} degrees must lie in (0, 180)"
+    )]
     Tolerance(f64, f64),
+    #[error("the degree-reduction tolerance must be finite and positive, not {0}")]
+    ReductionTolerance(f64),
     #[error("more than {0} segments would be needed: the tolerance is too small for this input")]
     TooManySegments(usize),
     #[error("internal consistency check failed: {0}")]
@@ -247,7 +251,7 @@ pub fn approximate_with_progress(
     if !(params.eps_d > 0.0
         && params.eps_d.is_finite()
         && params.eps_t_deg > 0.0
-        && params.eps_t_deg.is_finite())
+        && params.eps_t_deg < 180.0)
     {
         return Err(CosError::Tolerance(params.eps_d, params.eps_t_deg));
     }

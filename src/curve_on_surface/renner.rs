@@ -88,7 +88,7 @@ pub fn degree_reduction(
 ) -> Result<DegreeReduction, CosError> {
     let start = std::time::Instant::now();
     if !(tol > 0.0 && tol.is_finite()) {
-        return Err(CosError::Tolerance(tol, 0.0));
+        return Err(CosError::ReductionTolerance(tol));
     }
     if !surface.is_polynomial() {
         return Err(CosError::RationalSurface);
