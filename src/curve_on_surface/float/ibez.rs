@@ -453,35 +453,78 @@ impl MidPatch {
     /// the row stage is `q` de Casteljau levels and the column stage `p` (lemma of
     /// [`mr_error`]), each parameter contributes `dt · a`.
     pub fn polar_net(&self, xu: f64, yu: f64, xv: f64, yv: f64, dt: f64) -> (Vec<[f64; 3]>, f64) {
+        let mut out = vec![[0.0; 3]; (self.p + 1) * (self.q + 1)];
+        let err = self.polar_net_into(xu, yu, xv, yv, dt, &mut out);
+        (out, err)
+    }
+
+    /// [`MidPatch::polar_net`] into `out` (length `(p + 1)(q + 1)`), returning the bound;
+    /// no allocation for nets of up to 64 points of degrees below 16.
+    pub fn polar_net_into(
+        &self,
+        xu: f64,
+        yu: f64,
+        xv: f64,
+        yv: f64,
+        dt: f64,
+        out: &mut [[f64; 3]],
+    ) -> f64 {
         let (p, q) = (self.p, self.q);
-        let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));
-        for i in 0..=p {
-            mr_polar_values(&self.m[i * (q + 1)..(i + 1) * (q + 1)], xv, yv, &mut rows);
-        }
-        let mut out = vec![[0.0; 3]; (p + 1) * (q + 1)];
-        let mut col: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
-        let mut vals: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
-        for j in 0..=q {
-            col.clear();
-            col.extend((0..=p).map(|i| rows[i * (q + 1) + j]));
-            vals.clear();
-            mr_polar_values(&col, xu, yu, &mut vals);
-            for (i, v) in vals.iter().enumerate() {
-                out[i * (q + 1) + j] = *v;
+        if (p + 1) * (q + 1) > 64 || p >= 16 || q >= 16 {
+            let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));
+            for i in 0..=p {
+                mr_polar_values(&self.m[i * (q + 1)..(i + 1) * (q + 1)], xv, yv, &mut rows);
+            }
+            let mut vals: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
+            for j in 0..=q {
+                let col: Vec<[f64; 3]> = (0..=p).map(|i| rows[i * (q + 1) + j]).collect();
+                vals.clear();
+                mr_polar_values(&col, xu, yu, &mut vals);
+                for (i, v) in vals.iter().enumerate() {
+                    out[i * (q + 1) + j] = *v;
+                }
+            }
+        } else {
+            let mut rows = [[0.0; 3]; 64];
+            for i in 0..=p {
+                polar_values_into(
+                    &self.m[i * (q + 1)..(i + 1) * (q + 1)],
+                    xv,
+                    yv,
+                    &mut rows[i * (q + 1)..(i + 1) * (q + 1)],
+                );
+            }
+            let mut col = [[0.0; 3]; 16];
+            let mut vals = [[0.0; 3]; 16];
+            for j in 0..=q {
+                for i in 0..=p {
+                    col[i] = rows[i * (q + 1) + j];
+                }
+                polar_values_into(&col[..=p], xu, yu, &mut vals[..=p]);
+                for i in 0..=p {
+                    out[i * (q + 1) + j] = vals[i];
+                }
             }
         }
         let levels = (p + q) as f64;
-        let err =
-            (self.r + levels * dt * self.a + levels * (3.4e-16 * self.mx * (1.0 + 1e-12) + 1e-300))
-                * (1.0 + 1e-14);
-        (out, err)
+        (self.r + levels * dt * self.a + levels * (3.4e-16 * self.mx * (1.0 + 1e-12) + 1e-300))
+            * (1.0 + 1e-14)
     }
 
     /// Upper bound of `sup |S|` over the local rectangle `[x_u, y_u] × [x_v, y_v]` (this patch
     /// being a hodograph): the largest norm of the restricted control points (convex hull),
     /// each enlarged by the error bound in every coordinate.
     pub fn sup_norm_hi(&self, rect: [f64; 4]) -> f64 {
-        let (net, err) = self.polar_net(rect[0], rect[1], rect[2], rect[3], 0.0);
+        let mut buf = [[0.0; 3]; 64];
+        let mut heap = Vec::new();
+        let n = (self.p + 1) * (self.q + 1);
+        let net: &mut [[f64; 3]] = if n <= 64 {
+            &mut buf[..n]
+        } else {
+            heap.resize(n, [0.0; 3]);
+            &mut heap
+        };
+        let err = self.polar_net_into(rect[0], rect[1], rect[2], rect[3], 0.0, net);
         let m2 = net
             .iter()
             .map(|x| {
@@ -581,6 +624,32 @@ fn mr_blossom_vec<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
         }
     }
     w[0]
+}
+
+/// [`mr_polar_values`] into a slice of `n + 1` points (degree below 16).
+fn polar_values_into(m: &[[f64; 3]], x: f64, y: f64, out: &mut [[f64; 3]]) {
+    let n = m.len() - 1;
+    let (sx, sy) = (1.0 - x, 1.0 - y);
+    let mut ylev = [[0.0; 3]; 16];
+    ylev[..=n].copy_from_slice(m);
+    let mut w = [[0.0; 3]; 16];
+    for (j, o) in out.iter_mut().enumerate().take(n + 1) {
+        let len = n + 1 - j;
+        w[..len].copy_from_slice(&ylev[..len]);
+        for r in 1..len {
+            for i in 0..len - r {
+                for c in 0..3 {
+                    w[i][c] = sx * w[i][c] + x * w[i + 1][c];
+                }
+            }
+        }
+        *o = w[0];
+        for i in 0..len - 1 {
+            for c in 0..3 {
+                ylev[i][c] = sy * ylev[i][c] + y * ylev[i + 1][c];
+            }
+        }
+    }
 }
 
 /// Upper bound of the Euclidean norm of every point of the box `x`.
