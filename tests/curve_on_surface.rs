@@ -130,40 +130,7 @@ fn paper_segment_count_cannot_meet_its_tolerance() {
     assert!(worst > 5e-3, "{worst}");
 }
 
-/// A "face-like" bicubic surface with 17 × 17 control points on [0,1]², smooth bumps.
-fn face() -> NurbsSurface<f64, 3> {
-    let n = 17;
-    let mut k = vec![0.0; 4];
-    for i in 1..n - 3 {
-        k.push(i as f64 / (n - 3) as f64);
-    }
-    k.extend([1.0; 4]);
-    let mut pts = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            let (x, y) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
-            let z = 0.25 * (-((x - 0.5).powi(2) + (y - 0.45).powi(2)) * 6.0).exp()
-                + 0.06 * (7.0 * x).sin() * (5.0 * y).cos()
-                + 0.08 * (-((x - 0.5).powi(2) + (y - 0.7).powi(2)) * 80.0).exp();
-            pts.push([x, y, z]);
-        }
-    }
-    NurbsSurface::new(k.clone(), 3, k, 3, n, n, pts, vec![1.0; n * n]).unwrap()
-}
-
-/// A closed cubic B-spline with 10 control points (periodic: the first 3 repeated).
-fn closed_curve() -> NurbsCurve<f64, 2> {
-    let mut p: Vec<[f64; 2]> = (0..10)
-        .map(|i| {
-            let a = i as f64 / 10.0 * std::f64::consts::TAU;
-            let r = 0.3 + 0.06 * ((3.0 * a).cos());
-            [0.5 + r * a.cos(), 0.5 + 0.9 * r * a.sin()]
-        })
-        .collect();
-    p.extend_from_slice(&p.clone()[..3]);
-    let knots: Vec<f64> = (0..17).map(|i| i as f64).collect();
-    NurbsCurve::new(knots, 3, p, vec![1.0; 13]).unwrap()
-}
+use vericad::curve_on_surface::examples::{closed_curve, face_like as face};
 
 /// Table 1–style experiment: the measured error never exceeds the tolerance; the table of
 /// tolerance, proven bound, measured error and tightness is printed.

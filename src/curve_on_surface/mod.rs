@@ -384,14 +384,17 @@ fn exact_chain(
     let n_pieces = pieces.len();
     let after_split = segs.len();
     let (segs, side) = sidedness::make_single_sided(segs, &pieces, &cells);
-    let segs = distance::enforce_distance(
-        segs,
-        &pieces,
-        &cells,
-        params.eps_d,
-        params.bound,
-        params.max_segments,
-    )?;
+    let distance = |segs| {
+        distance::enforce_distance(
+            segs,
+            &pieces,
+            &cells,
+            params.eps_d,
+            params.bound,
+            params.max_segments,
+        )
+    };
+    let segs = distance(segs)?;
     let after_distance = segs.len();
     progress("distance bound", segs.len());
     let closed = segs.first().map(|f| f.a) == segs.last().map(|l| l.b)
@@ -405,14 +408,7 @@ fn exact_chain(
         closed,
         params.max_segments,
     );
-    let segs = distance::enforce_distance(
-        segs,
-        &pieces,
-        &cells,
-        params.eps_d,
-        params.bound,
-        params.max_segments,
-    )?;
+    let segs = distance(segs)?;
     progress("eps_T pass", segs.len());
     let (mapped, rounding) = map::map_segments(&segs, &cells)?;
     progress("mapped exactly", mapped.len());

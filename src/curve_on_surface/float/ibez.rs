@@ -589,11 +589,20 @@ fn mr_polar_values<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut Vec
         }
         return;
     }
+    let start = out.len();
+    out.resize(start + n + 1, [0.0; D]);
+    polar_values_into(m, x, y, &mut out[start..]);
+}
+
+/// [`mr_polar_values`] into a slice of `n + 1` points (degree below 16): the de Casteljau
+/// levels at `y` are kept, and each polar value applies `x` to its level.
+fn polar_values_into<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut [[f64; D]]) {
+    let n = m.len() - 1;
     let (sx, sy) = (1.0 - x, 1.0 - y);
     let mut ylev = [[0.0; D]; 16];
     ylev[..=n].copy_from_slice(m);
     let mut w = [[0.0; D]; 16];
-    for j in 0..=n {
+    for (j, o) in out.iter_mut().enumerate().take(n + 1) {
         let len = n + 1 - j;
         w[..len].copy_from_slice(&ylev[..len]);
         for r in 1..len {
@@ -603,7 +612,7 @@ fn mr_polar_values<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut Vec
                 }
             }
         }
-        out.push(w[0]);
+        *o = w[0];
         for i in 0..len - 1 {
             for c in 0..D {
                 ylev[i][c] = sy * ylev[i][c] + y * ylev[i + 1][c];
@@ -624,32 +633,6 @@ fn mr_blossom_vec<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
         }
     }
     w[0]
-}
-
-/// [`mr_polar_values`] into a slice of `n + 1` points (degree below 16).
-fn polar_values_into(m: &[[f64; 3]], x: f64, y: f64, out: &mut [[f64; 3]]) {
-    let n = m.len() - 1;
-    let (sx, sy) = (1.0 - x, 1.0 - y);
-    let mut ylev = [[0.0; 3]; 16];
-    ylev[..=n].copy_from_slice(m);
-    let mut w = [[0.0; 3]; 16];
-    for (j, o) in out.iter_mut().enumerate().take(n + 1) {
-        let len = n + 1 - j;
-        w[..len].copy_from_slice(&ylev[..len]);
-        for r in 1..len {
-            for i in 0..len - r {
-                for c in 0..3 {
-                    w[i][c] = sx * w[i][c] + x * w[i + 1][c];
-                }
-            }
-        }
-        *o = w[0];
-        for i in 0..len - 1 {
-            for c in 0..3 {
-                ylev[i][c] = sy * ylev[i][c] + y * ylev[i + 1][c];
-            }
-        }
-    }
 }
 
 /// Upper bound of the Euclidean norm of every point of the box `x`.

@@ -73,14 +73,17 @@ pub fn run(
     progress("split at knots and knot lines", segs.len());
     let after_split = segs.len();
     let (segs, side) = sides::make_single_sided(segs, &pieces, &cells);
-    let segs = distance::enforce_distance(
-        segs,
-        &pieces,
-        &cells,
-        params.eps_d,
-        params.bound,
-        params.max_segments,
-    )?;
+    let distance = |segs| {
+        distance::enforce_distance(
+            segs,
+            &pieces,
+            &cells,
+            params.eps_d,
+            params.bound,
+            params.max_segments,
+        )
+    };
+    let segs = distance(segs)?;
     let after_distance = segs.len();
     progress("distance bound", segs.len());
     let closed = segs.len() > 1
@@ -114,14 +117,7 @@ pub fn run(
             },
         },
     );
-    let segs = distance::enforce_distance(
-        segs,
-        &pieces,
-        &cells,
-        params.eps_d,
-        params.bound,
-        params.max_segments,
-    )?;
+    let segs = distance(segs)?;
     progress("eps_T pass", segs.len());
     let (mapped, rounding) = map::map_segments(&segs, &cells)?;
     progress("mapped (enclosed)", mapped.len());
