@@ -82,19 +82,26 @@ fn boxed<const D: usize>(m: &[f64; D], r: f64) -> IP<D> {
     std::array::from_fn(|c| I::new((m[c] - r).next_down(), (m[c] + r).next_up()))
 }
 
-/// De Casteljau in f64 on midpoints.
+/// De Casteljau in f64 on midpoints (any number of control points).
 fn mr_blossom<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
-    let mut w: ArrayVec<[f64; D], FAST_CAP> = m.iter().copied().collect();
-    let n = m.len() - 1;
-    for (r, &t) in ts.iter().enumerate() {
-        let s = 1.0 - t;
-        for i in 0..n - r {
-            for c in 0..D {
-                w[i][c] = s * w[i][c] + t * w[i + 1][c];
+    fn run<const D: usize>(w: &mut [[f64; D]], ts: &[f64]) -> [f64; D] {
+        let n = w.len() - 1;
+        for (r, &t) in ts.iter().enumerate() {
+            let s = 1.0 - t;
+            for i in 0..n - r {
+                for c in 0..D {
+                    w[i][c] = s * w[i][c] + t * w[i + 1][c];
+                }
             }
         }
+        w[0]
     }
-    w[0]
+    if m.len() <= FAST_CAP {
+        let mut w: ArrayVec<[f64; D], FAST_CAP> = m.iter().copied().collect();
+        run(&mut w, ts)
+    } else {
+        run(&mut m.to_vec(), ts)
+    }
 }
 
 /// Parameters for the fast path: midpoints and the sum of radii, when every parameter lies
@@ -585,7 +592,7 @@ fn mr_polar_values<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut Vec
         for j in 0..=n {
             let mut ts = vec![x; n - j];
             ts.extend(std::iter::repeat_n(y, j));
-            out.push(mr_blossom_vec(m, &ts));
+            out.push(mr_blossom(m, &ts));
         }
         return;
     }
@@ -619,20 +626,6 @@ fn polar_values_into<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut [
             }
         }
     }
-}
-
-fn mr_blossom_vec<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
-    let mut w: Vec<[f64; D]> = m.to_vec();
-    let n = m.len() - 1;
-    for (r, &t) in ts.iter().enumerate() {
-        let s = 1.0 - t;
-        for i in 0..n - r {
-            for c in 0..D {
-                w[i][c] = s * w[i][c] + t * w[i + 1][c];
-            }
-        }
-    }
-    w[0]
 }
 
 /// Upper bound of the Euclidean norm of every point of the box `x`.
