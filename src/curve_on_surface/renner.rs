@@ -121,9 +121,9 @@ pub fn degree_reduction(
         };
         // The domain piece in the patch's local coordinates.
         let local: Vec<[f64; 2]> = super::float::distance::sub_curve(seg, &pieces)
+            .m
             .iter()
-            .map(|p| {
-                let m = mid(p);
+            .map(|m| {
                 [
                     ((m[0] - cell.u0) / (cell.u1 - cell.u0)).clamp(0.0, 1.0),
                     ((m[1] - cell.v0) / (cell.v1 - cell.v0)).clamp(0.0, 1.0),

@@ -19,8 +19,6 @@ pub struct FCell {
     pub patch: IPatch,
     /// The hodographs of their midpoints (for tangents in the ε_T pass, computed in f64).
     pub hodo_f64: crate::curve_on_surface::g1::Hodographs,
-    pub hodo_u: Option<IPatch>,
-    pub hodo_v: Option<IPatch>,
     /// Midpoint–radius forms of the patch and its hodographs (the fast path).
     pub mpatch: MidPatch,
     pub mhodo_u: Option<MidPatch>,
@@ -147,11 +145,9 @@ impl<'a> FCells<'a> {
                 };
                 (m.hodograph_u(), m.hodograph_v())
             },
-            hodo_u: patch.hodograph_u(),
-            hodo_v: patch.hodograph_v(),
+            mhodo_u: mpatch.hodograph(true),
+            mhodo_v: mpatch.hodograph(false),
             mpatch,
-            mhodo_u: patch.hodograph_u().as_ref().map(MidPatch::new),
-            mhodo_v: patch.hodograph_v().as_ref().map(MidPatch::new),
             patch,
             du_lo,
             dv_lo,

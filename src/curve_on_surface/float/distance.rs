@@ -19,27 +19,69 @@
 //! the Hausdorff distance of the whole curve.
 
 use super::cells::FCells;
-use super::ibez::{I, IP, dist_to_segment_hi, halves, mid, polar_values};
+use super::ibez::{I, dist_to_segment_mr, mid, mr_levels_error, mr_polar_values};
 use super::{FSeg, FloatError, Piece};
 use crate::curve_on_surface::{Bound, CosError};
 
 /// Subdivision levels used to tighten the hull bound.
 pub const HULL_LEVELS: u32 = 3;
 
-/// Enclosed control points of `D[t_0, t_1]` of a segment.
-pub fn sub_curve(s: &FSeg, pieces: &[Piece]) -> Vec<IP<2>> {
-    polar_values(&pieces[s.piece].ctrl, I::point(s.t0), I::point(s.t1))
+/// The control points of `D[t_0, t_1]` of a segment in midpoint–radius form: every exact
+/// control point lies within `r` of its midpoint in every coordinate; `mx` bounds the
+/// midpoints' magnitude.
+#[derive(Clone, Debug)]
+pub struct SubCurve {
+    pub m: Vec<[f64; 2]>,
+    pub r: f64,
+    pub mx: f64,
 }
 
-/// Certified `h` (stopping once `≤ target`) for the enclosed curve piece `c` and the chord.
-fn hull_bound(c: &[IP<2>], a: &[f64; 2], b: &[f64; 2], e: f64, target: f64) -> f64 {
-    let mut parts = vec![c.to_vec()];
+/// [`SubCurve`] of a segment: polar values of its piece at `t_0`, `t_1` (exact f64 in
+/// `[0, 1]`), `n` de Casteljau levels on the piece's midpoints.
+pub fn sub_curve(s: &FSeg, pieces: &[Piece]) -> SubCurve {
+    let p = &pieces[s.piece];
+    let n = p.ctrl_f64.len() - 1;
+    let mut m = Vec::with_capacity(n + 1);
+    mr_polar_values(&p.ctrl_f64, s.t0, s.t1, &mut m);
+    SubCurve {
+        r: mr_levels_error(p.ctrl_r, n, p.ctrl_mx),
+        mx: p.ctrl_mx * (1.0 + 1e-13),
+        m,
+    }
+}
+
+/// De Casteljau halves at 1/2 in f64 (the caller adds `n` levels of error).
+fn halves_f64(c: &[[f64; 2]]) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    let n = c.len() - 1;
+    let mut w = c.to_vec();
+    let mut left = Vec::with_capacity(n + 1);
+    let mut right = vec![w[n]; n + 1];
+    left.push(w[0]);
+    for r in 1..=n {
+        for i in 0..=n - r {
+            for k in 0..2 {
+                w[i][k] = 0.5 * w[i][k] + 0.5 * w[i + 1][k];
+            }
+        }
+        left.push(w[0]);
+        right[n - r] = w[n - r];
+    }
+    (left, right)
+}
+
+/// Certified `h` (stopping once `≤ target`) for the curve piece `c` and the chord: the
+/// halving levels run in f64 on midpoints, each adding the error of `n` de Casteljau levels
+/// (values stay within the hull, so `mx` bounds them).
+fn hull_bound(c: &SubCurve, a: &[f64; 2], b: &[f64; 2], e: f64, target: f64) -> f64 {
+    let n = c.m.len() - 1;
+    let mut parts = vec![c.m.clone()];
+    let mut r = c.r;
     let mut best = f64::INFINITY;
     for level in 0..=HULL_LEVELS {
         let m = parts
             .iter()
             .flatten()
-            .map(|q| dist_to_segment_hi(q, a, b))
+            .map(|q| dist_to_segment_mr(q, r, a, b))
             .fold(0.0, f64::max);
         best = best.min((m + e).next_up());
         if best <= target || level == HULL_LEVELS {
@@ -48,27 +90,29 @@ fn hull_bound(c: &[IP<2>], a: &[f64; 2], b: &[f64; 2], e: f64, target: f64) -> f
         parts = parts
             .iter()
             .flat_map(|p| {
-                let (l, r) = halves(p);
+                let (l, r) = halves_f64(p);
                 [l, r]
             })
             .collect();
+        r = mr_levels_error(r, n, c.mx * (1.0 + 1e-12));
     }
     best
 }
 
-/// The rectangle holding the enclosures and the chord, within the domain.
-fn region(c: &[IP<2>], s: &FSeg, dom: [f64; 4]) -> [f64; 4] {
+/// The rectangle holding the curve piece (its control points' boxes) and the chord, within
+/// the domain.
+fn region(c: &SubCurve, s: &FSeg, dom: [f64; 4]) -> [f64; 4] {
     let mut r = [
         s.a[0].min(s.b[0]),
         s.a[0].max(s.b[0]),
         s.a[1].min(s.b[1]),
         s.a[1].max(s.b[1]),
     ];
-    for q in c {
-        r[0] = r[0].min(q[0].lo);
-        r[1] = r[1].max(q[0].hi);
-        r[2] = r[2].min(q[1].lo);
-        r[3] = r[3].max(q[1].hi);
+    for q in &c.m {
+        r[0] = r[0].min((q[0] - c.r).next_down());
+        r[1] = r[1].max((q[0] + c.r).next_up());
+        r[2] = r[2].min((q[1] - c.r).next_down());
+        r[3] = r[3].max((q[1] + c.r).next_up());
     }
     [
         r[0].max(dom[0]),
@@ -97,7 +141,7 @@ fn within(inner: &[f64; 4], outer: &[f64; 4]) -> bool {
 /// shows that `K · h > ε_D` with the segment's own `K`: the segment must be split.
 fn certify(
     s: &mut FSeg,
-    c: &[IP<2>],
+    c: &SubCurve,
     h_est: f64,
     cells: &FCells,
     eps_d: f64,
@@ -110,6 +154,12 @@ fn certify(
         s.k_own = true;
     }
     let hopeless = |k: f64| k * h_est > eps_d * (1.0 + 1e-9);
+    // An inherited bound far above what is needed: the segment's own bound (on a smaller
+    // region) is rarely less than half of it, so split without computing it (a choice of
+    // where to refine, never a certificate).
+    if !s.k_own && s.k * h_est > 2.0 * eps_d {
+        return Ok(false);
+    }
     if hopeless(s.k) && !s.k_own {
         s.k = lipschitz(r, cells, bound)?;
         s.k_region = r;
@@ -283,8 +333,7 @@ pub fn enforce_distance(
                 continue;
             }
             let c = sub_curve(&s, pieces);
-            let c64: Vec<[f64; 2]> = c.iter().map(mid).collect();
-            let (t_far, h_est) = farthest(&c64);
+            let (t_far, h_est) = farthest(&c.m);
             if s.h.is_infinite() && !certify(&mut s, &c, h_est, cells, eps_d, bound)? {
                 s.h = f64::INFINITY;
             }

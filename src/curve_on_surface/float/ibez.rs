@@ -77,13 +77,19 @@ fn mr_error<const D: usize>(mr: &MidRad<D>, levels: usize, sum_dt: f64) -> f64 {
         * (1.0 + 1e-14)
 }
 
+/// Bound added by `levels` de Casteljau levels with exact parameters in `[0, 1]` on values
+/// of magnitude at most `mx` (the lerp lemma of [`mr_error`]), to an input radius `r`.
+pub fn mr_levels_error(r: f64, levels: usize, mx: f64) -> f64 {
+    (r + levels as f64 * (3.4e-16 * mx * (1.0 + 1e-13) + 1e-300)) * (1.0 + 1e-14)
+}
+
 /// The box `m ± r`, rounded outward.
-fn boxed<const D: usize>(m: &[f64; D], r: f64) -> IP<D> {
+pub fn boxed<const D: usize>(m: &[f64; D], r: f64) -> IP<D> {
     std::array::from_fn(|c| I::new((m[c] - r).next_down(), (m[c] + r).next_up()))
 }
 
 /// De Casteljau in f64 on midpoints (any number of control points).
-fn mr_blossom<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
+pub(crate) fn mr_blossom<const D: usize>(m: &[[f64; D]], ts: &[f64]) -> [f64; D] {
     fn run<const D: usize>(w: &mut [[f64; D]], ts: &[f64]) -> [f64; D] {
         let n = w.len() - 1;
         for (r, &t) in ts.iter().enumerate() {
@@ -454,6 +460,59 @@ impl MidPatch {
         MidPatch { p, q, m, r, mx, a }
     }
 
+    /// The hodograph `∂/∂s` (`along_u`) or `∂/∂r` in local coordinates, in midpoint–radius
+    /// form: control points `p (P_{i+1,j} - P_{i,j})` computed in f64 from the midpoints; the
+    /// true ones differ by at most `2 p r` (the inputs) plus the rounding of one difference
+    /// and one product, `≤ 2.3e-16` of the result's magnitude. `None` for degree 0.
+    pub fn hodograph(&self, along_u: bool) -> Option<MidPatch> {
+        let (p, q) = (self.p, self.q);
+        let deg = if along_u { p } else { q };
+        if deg == 0 {
+            return None;
+        }
+        let k = deg as f64;
+        let (np, nq) = if along_u { (p - 1, q) } else { (p, q - 1) };
+        let mut m = Vec::with_capacity((np + 1) * (nq + 1));
+        for i in 0..=np {
+            for j in 0..=nq {
+                let (a, b) = if along_u {
+                    (self.m[i * (q + 1) + j], self.m[(i + 1) * (q + 1) + j])
+                } else {
+                    (self.m[i * (q + 1) + j], self.m[i * (q + 1) + j + 1])
+                };
+                m.push(std::array::from_fn(|c| k * (b[c] - a[c])));
+            }
+        }
+        let mx = m
+            .iter()
+            .flatten()
+            .fold(0.0f64, |acc: f64, x| acc.max(x.abs()));
+        let r = ((2.0 * k * self.r) * (1.0 + 1e-15) + 2.3e-16 * mx + 1e-300) * (1.0 + 1e-14);
+        let mut a = 0.0f64;
+        for i in 0..=np {
+            for j in 0..=nq {
+                let x = &m[i * (nq + 1) + j];
+                for (di, dj) in [(1, 0), (0, 1)] {
+                    if i + di <= np && j + dj <= nq {
+                        let y = &m[(i + di) * (nq + 1) + j + dj];
+                        for c in 0..3 {
+                            a = a.max((y[c] - x[c]).abs());
+                        }
+                    }
+                }
+            }
+        }
+        let a = (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14);
+        Some(MidPatch {
+            p: np,
+            q: nq,
+            m,
+            r,
+            mx,
+            a,
+        })
+    }
+
     /// Polar net `f(x_u^(p-i) y_u^i ; x_v^(q-j) y_v^j)` in f64 on the midpoints, with a bound
     /// on every coordinate's distance to the exact polar values of the exact patch at the
     /// exact parameters, which lie within `dt` (each) of the given ones in `[0, 1]`:
@@ -550,10 +609,19 @@ impl MidPatch {
     /// rounding (weights and sum) is within `(terms + 3) · 1.2e-16 · max |h|`.
     pub fn compose_line(&self, a: [f64; 2], b: [f64; 2], dt: f64) -> (Vec<[f64; 3]>, f64) {
         let (p, q) = (self.p, self.q);
-        let (h, eh) = self.polar_net(a[0], b[0], a[1], b[1], dt);
+        let mut buf = [[0.0; 3]; 64];
+        let mut heap = Vec::new();
+        let n = (p + 1) * (q + 1);
+        let h: &mut [[f64; 3]] = if n <= 64 {
+            &mut buf[..n]
+        } else {
+            heap.resize(n, [0.0; 3]);
+            &mut heap
+        };
+        let eh = self.polar_net_into(a[0], b[0], a[1], b[1], dt, h);
         let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
         let mut mh = 0.0f64;
-        for x in &h {
+        for x in h.iter() {
             for c in x {
                 mh = mh.max(c.abs());
             }
@@ -586,7 +654,12 @@ impl MidPatch {
 /// levels deep with parameters in `[0, 1]` (the blossom is symmetric, so the order of the
 /// arguments does not matter): the error lemma of [`mr_error`] applies as for one blossom.
 /// `out` receives `n + 1` points.
-fn mr_polar_values<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut Vec<[f64; D]>) {
+pub(crate) fn mr_polar_values<const D: usize>(
+    m: &[[f64; D]],
+    x: f64,
+    y: f64,
+    out: &mut Vec<[f64; D]>,
+) {
     let n = m.len() - 1;
     if n >= 16 {
         for j in 0..=n {
@@ -606,9 +679,8 @@ fn mr_polar_values<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut Vec
 fn polar_values_into<const D: usize>(m: &[[f64; D]], x: f64, y: f64, out: &mut [[f64; D]]) {
     let n = m.len() - 1;
     let (sx, sy) = (1.0 - x, 1.0 - y);
-    let mut ylev = [[0.0; D]; 16];
-    ylev[..=n].copy_from_slice(m);
-    let mut w = [[0.0; D]; 16];
+    let mut ylev: ArrayVec<[f64; D], 16> = m.iter().copied().collect();
+    let mut w: ArrayVec<[f64; D], 16> = ylev.clone();
     for (j, o) in out.iter_mut().enumerate().take(n + 1) {
         let len = n + 1 - j;
         w[..len].copy_from_slice(&ylev[..len]);
@@ -653,6 +725,11 @@ pub fn dist_hi<const D: usize>(x: &IP<D>, y: &[f64; D]) -> f64 {
 pub fn dist_to_segment_hi(x: &IP<2>, a: &[f64; 2], b: &[f64; 2]) -> f64 {
     let c = [x[0].mid(), x[1].mid()];
     let rho = x[0].radius_about_mid().max(x[1].radius_about_mid());
+    dist_to_segment_mr(&c, rho, a, b)
+}
+
+/// [`dist_to_segment_hi`] for the box `c ± rho` (every coordinate).
+pub fn dist_to_segment_mr(c: &[f64; 2], rho: f64, a: &[f64; 2], b: &[f64; 2]) -> f64 {
     let ab = [b[0] - a[0], b[1] - a[1]];
     let l2 = ab[0] * ab[0] + ab[1] * ab[1];
     let t = if l2 > 0.0 {
@@ -866,6 +943,16 @@ mod tests {
             for (g, w) in got.iter().zip(&want.control) {
                 for c in 0..3 {
                     assert!((q_(g[c]) - w[c].clone()).abs() <= q_(err), "trial {trial}");
+                }
+            }
+            // Hodographs in midpoint–radius form against the exact ones.
+            for (along_u, ex) in [(true, exact.hodograph_u()), (false, exact.hodograph_v())] {
+                if let (Some(h), Some(ex)) = (mp.hodograph(along_u), ex) {
+                    for (g, w) in h.m.iter().zip(&ex.net) {
+                        for c in 0..3 {
+                            assert!((q_(g[c]) - w[c].clone()).abs() <= q_(h.r), "trial {trial}");
+                        }
+                    }
                 }
             }
             // sup over a sub-rectangle: at least every exact point of the restricted net.

@@ -35,7 +35,10 @@ pub enum FloatError {
 #[derive(Clone, Debug)]
 pub struct Piece {
     pub ctrl: Vec<IP<2>>,
+    /// Midpoints of `ctrl`, their largest coordinate radius and magnitude.
     pub ctrl_f64: Vec<[f64; 2]>,
+    pub ctrl_r: f64,
+    pub ctrl_mx: f64,
     pub t_lo: f64,
     pub t_hi: f64,
 }
@@ -109,11 +112,8 @@ pub fn run(
             deviation: |x: &FSeg| x.h,
             param_len: |x: &FSeg| x.t1 - x.t0,
             split: |x: &FSeg| {
-                let c: Vec<[f64; 2]> = distance::sub_curve(x, &pieces)
-                    .iter()
-                    .map(ibez::mid)
-                    .collect();
-                distance::split_at(x, distance::farthest_parameter(&c), &pieces, &cells)
+                let c = distance::sub_curve(x, &pieces);
+                distance::split_at(x, distance::farthest_parameter(&c.m), &pieces, &cells)
             },
         },
     );
@@ -134,10 +134,7 @@ pub fn run(
             domain: [x.a, x.b],
             bound: (x.k * x.h).next_up(),
             domain_curve: BezierCurve {
-                control: distance::sub_curve(x, &pieces)
-                    .iter()
-                    .map(ibez::mid)
-                    .collect(),
+                control: distance::sub_curve(x, &pieces).m,
             },
         })
         .collect();

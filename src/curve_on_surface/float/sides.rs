@@ -7,7 +7,6 @@
 
 use super::cells::FCells;
 use super::distance::{split_at, sub_curve};
-use super::ibez::mid;
 use super::{FSeg, Piece};
 use crate::curve_on_surface::sidedness::SidednessStats;
 use crate::predicates::single_sided::{Sidedness, single_sided, split_parameters};
@@ -113,7 +112,7 @@ pub fn make_single_sided(
         let mut out = Vec::with_capacity(work.len());
         let mut changed = false;
         for s in work {
-            let c: Vec<[f64; 2]> = sub_curve(&s, pieces).iter().map(mid).collect();
+            let c: Vec<[f64; 2]> = sub_curve(&s, pieces).m;
             let fast = classify_fast(&c);
             let class = match &fast {
                 Some(r) if r.is_empty() => Sidedness::SingleSided {

@@ -13,7 +13,9 @@
 //! [`super::distance`]): they only keep each chord in one patch.
 
 use super::cells::FCells;
-use super::ibez::{I, IP, bspline_span_bezier, dist_hi, eval, ip, mid, split_at};
+use super::ibez::{
+    I, IP, bspline_span_bezier, dist_hi, eval, ip, mid, mr_blossom, mr_levels_error, split_at,
+};
 use super::{FSeg, FloatError, Piece};
 use crate::curve_on_surface::CosError;
 use crate::spline::BSplineCurve;
@@ -80,10 +82,25 @@ fn isolate(
         // Bisection on the local parameter of this sub-interval: the sign of the enclosed
         // value at the midpoint decides the side (an undecided sign stops the narrowing).
         let s0 = strict_sign(&b[0][0]);
+        let n = b.len() - 1;
+        let mids: Vec<[f64; 1]> = b.iter().map(|x| [x[0].mid()]).collect();
+        let r = b.iter().fold(0.0f64, |m, x| m.max(x[0].radius_about_mid()));
+        let mx = mids.iter().fold(0.0f64, |m, x| m.max(x[0].abs()));
+        // The value at a point parameter is within `err` of the f64 de Casteljau value.
+        let err = mr_levels_error(r, n, mx);
         let (mut a, mut z) = (0.0f64, 1.0f64);
+        let mut ts = vec![0.0; n];
         while (z - a) * (hi - lo) > ROOT_WIDTH {
             let c = a + (z - a) / 2.0;
-            let m = strict_sign(&eval(&b, I::point(c))[0]);
+            ts.fill(c);
+            let v = mr_blossom(&mids, &ts)[0];
+            let m = if v > err {
+                1
+            } else if v < -err {
+                -1
+            } else {
+                0
+            };
             if m == s0 {
                 a = c;
             } else if m == -s0 {
@@ -230,6 +247,14 @@ pub fn split(
             t_lo: w[0],
             t_hi: w[1],
             ctrl_f64: bz.iter().map(mid).collect(),
+            ctrl_r: bz
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, x| m.max(x.radius_about_mid())),
+            ctrl_mx: bz
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, x| m.max(x.mid().abs())),
             ctrl: bz,
         });
     }
