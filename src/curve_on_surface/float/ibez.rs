@@ -429,6 +429,21 @@ pub struct MidPatch {
     pub r: f64,
     pub mx: f64,
     pub a: f64,
+    /// `C(p,i) C(q,j) / C(p+q, i+j)` in f64 (row-major), the weights of the line
+    /// composition; each within `u` relatively of the exact one.
+    pub weights: Vec<f64>,
+}
+
+/// The weights of [`MidPatch::compose_line`].
+fn composition_weights(p: usize, q: usize) -> Vec<f64> {
+    let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
+    let mut w = Vec::with_capacity((p + 1) * (q + 1));
+    for i in 0..=p {
+        for j in 0..=q {
+            w.push(binom(p, i) * binom(q, j) / binom(p + q, i + j));
+        }
+    }
+    w
 }
 
 impl MidPatch {
@@ -457,7 +472,15 @@ impl MidPatch {
             }
         }
         let a = (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14);
-        MidPatch { p, q, m, r, mx, a }
+        MidPatch {
+            p,
+            q,
+            m,
+            r,
+            mx,
+            a,
+            weights: composition_weights(p, q),
+        }
     }
 
     /// The hodograph `∂/∂s` (`along_u`) or `∂/∂r` in local coordinates, in midpoint–radius
@@ -510,6 +533,7 @@ impl MidPatch {
             r,
             mx,
             a,
+            weights: composition_weights(np, nq),
         })
     }
 
@@ -619,7 +643,6 @@ impl MidPatch {
             &mut heap
         };
         let eh = self.polar_net_into(a[0], b[0], a[1], b[1], dt, h);
-        let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
         let mut mh = 0.0f64;
         for x in h.iter() {
             for c in x {
@@ -628,11 +651,10 @@ impl MidPatch {
         }
         let out: Vec<[f64; 3]> = (0..=p + q)
             .map(|k| {
-                let den = binom(p + q, k);
                 let mut acc = [0.0; 3];
                 for i in k.saturating_sub(q)..=k.min(p) {
                     let j = k - i;
-                    let w = binom(p, i) * binom(q, j) / den;
+                    let w = self.weights[i * (q + 1) + j];
                     let v = &h[i * (q + 1) + j];
                     for c in 0..3 {
                         acc[c] += w * v[c];

@@ -4,7 +4,6 @@
 //! of the exact patch on the f64 chord (which lies on S exactly).
 
 use super::cells::FCells;
-use super::ibez::{I, IP};
 use super::{FSeg, FloatError};
 use crate::curve_on_surface::CosError;
 
@@ -27,21 +26,24 @@ pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError>
                 s.a, s.b
             ))));
         }
-        // Local coordinates, enclosed; the exact ones lie in [0, 1] (the chord is in the
-        // cell), so the clamped midpoint is within the radius of them.
-        let local = |p: &[f64; 2]| -> Option<(IP<2>, [f64; 2], f64)> {
-            let x: IP<2> = [
-                (I::point(p[0]) - I::point(c.u0)).checked_div(I::point(c.u1) - I::point(c.u0))?,
-                (I::point(p[1]) - I::point(c.v0)).checked_div(I::point(c.v1) - I::point(c.v0))?,
-            ];
-            let m = [x[0].mid().clamp(0.0, 1.0), x[1].mid().clamp(0.0, 1.0)];
-            let dt = x[0].radius_about_mid().max(x[1].radius_about_mid());
-            Some((x, m, dt))
+        // Local coordinates `(x - u0) / (u1 - u0)` in f64: two roundings in the operands and
+        // one in the quotient give `|x̂ - x*| ≤ ((1 + u)² / (1 - u) - 1) x* ≤ 3.4e-16` for the
+        // exact `x* ∈ [0, 1]` (the chord is in the cell); clamping to [0, 1] keeps that.
+        let local = |x: f64, lo: f64, hi: f64| -> Option<f64> {
+            let d = hi - lo;
+            (d >= 1e-290).then(|| ((x - lo) / d).clamp(0.0, 1.0))
         };
-        let (Some((_, a, da)), Some((_, b, db))) = (local(&s.a), local(&s.b)) else {
-            return Err(FloatError::Undecided("a patch of zero width".into()));
+        let (Some(a0), Some(a1), Some(b0), Some(b1)) = (
+            local(s.a[0], c.u0, c.u1),
+            local(s.a[1], c.v0, c.v1),
+            local(s.b[0], c.u0, c.u1),
+            local(s.b[1], c.v0, c.v1),
+        ) else {
+            return Err(FloatError::Undecided(
+                "a patch of (nearly) zero width".into(),
+            ));
         };
-        let (cps, err) = c.mpatch.compose_line(a, b, da.max(db));
+        let (cps, err) = c.mpatch.compose_line([a0, a1], [b0, b1], 3.4e-16 + 1e-30);
         if !err.is_finite() || cps.iter().flatten().any(|x| !x.is_finite()) {
             return Err(FloatError::Undecided("overflow in the mapping".into()));
         }
