@@ -144,7 +144,7 @@ pub fn enforce_g1(
         closed,
         max_segments,
         &G1Ops {
-            angle: |x: &Seg, y: &Seg| junction_angle(cells, x, y),
+            tangents: |x: &Seg| Some((tangent(cells, x, false), tangent(cells, x, true))),
             deviation: |s: &Seg| s.h,
             param_len: |s: &Seg| crate::Scalar::to_f64(&(s.t1.clone() - s.t0.clone())),
             split: |s: &Seg| {
@@ -159,8 +159,8 @@ pub fn enforce_g1(
 
 /// What the ε_T pass needs of a segment type.
 pub struct G1Ops<A, D, L, P> {
-    /// Angle between the end tangent of the first and the start tangent of the second.
-    pub angle: A,
+    /// Start and end tangents of a segment's image (`None`: not available).
+    pub tangents: A,
     /// The segment's current 2D deviation `h` (the one with the greater is split).
     pub deviation: D,
     /// Parameter length relative to its piece.
@@ -178,7 +178,7 @@ pub fn enforce_g1_with<S, A, D, L, P>(
     ops: &G1Ops<A, D, L, P>,
 ) -> (Vec<S>, G1Stats)
 where
-    A: Fn(&S, &S) -> Option<f64>,
+    A: Fn(&S) -> Option<([f64; 3], [f64; 3])>,
     D: Fn(&S) -> f64,
     L: Fn(&S) -> f64,
     P: Fn(&S) -> Option<(S, S)>,
@@ -191,6 +191,8 @@ where
             n.saturating_sub(1)
         }
     };
+    // Tangents per segment, computed once per segment (splits replace them).
+    let mut tan: Vec<Option<([f64; 3], [f64; 3])>> = segs.iter().map(&ops.tangents).collect();
     loop {
         let n = segs.len();
         let mut split = vec![false; n];
@@ -198,7 +200,10 @@ where
         let mut pass_max = 0.0f64;
         for i in 0..pairs(n) {
             let j = (i + 1) % n;
-            let angle = (ops.angle)(&segs[i], &segs[j]);
+            let angle = match (&tan[i], &tan[j]) {
+                (Some(a), Some(b)) => angle_deg(&a.1, &b.0),
+                _ => None,
+            };
             pass_max = pass_max.max(angle.unwrap_or(0.0));
             if let Some(a) = angle
                 && a > eps_t_deg
@@ -225,21 +230,26 @@ where
             break;
         }
         let mut out = Vec::with_capacity(n * 2);
+        let mut out_tan = Vec::with_capacity(n * 2);
         let mut failed = 0;
-        for (s, sp) in segs.into_iter().zip(split) {
+        for ((s, sp), t) in segs.into_iter().zip(split).zip(tan) {
             match if sp { (ops.split)(&s) } else { None } {
                 Some((l, r)) => {
                     stats.splits += 1;
+                    out_tan.push((ops.tangents)(&l));
+                    out_tan.push((ops.tangents)(&r));
                     out.push(l);
                     out.push(r);
                 }
                 None => {
                     failed += usize::from(sp);
+                    out_tan.push(t);
                     out.push(s);
                 }
             }
         }
         segs = out;
+        tan = out_tan;
         if segs.len() == n {
             // No split was possible: those junctions stay.
             stats.unresolved_junctions = unresolved + failed;

@@ -17,7 +17,7 @@ pub mod map;
 pub mod sides;
 pub mod split;
 
-use super::g1::{G1Ops, angle_deg, enforce_g1_with, mapped_tangent_with};
+use super::g1::{G1Ops, enforce_g1_with, mapped_tangent_with};
 use super::{Chain, ChainSegment, CosError, Params};
 use crate::spline::{BSplineCurve, BSplineSurface, BezierCurve};
 use ibez::IP;
@@ -108,7 +108,7 @@ pub fn run(
         closed,
         params.max_segments,
         &G1Ops {
-            angle: |x: &FSeg, y: &FSeg| angle_deg(&tangent(x, true)?, &tangent(y, false)?),
+            tangents: |x: &FSeg| Some((tangent(x, false)?, tangent(x, true)?)),
             deviation: |x: &FSeg| x.h,
             param_len: |x: &FSeg| x.t1 - x.t0,
             split: |x: &FSeg| {
