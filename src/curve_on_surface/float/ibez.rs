@@ -434,6 +434,27 @@ pub struct MidPatch {
     pub weights: Vec<f64>,
 }
 
+/// Upper bound of the largest coordinate difference of neighbouring true control points (along
+/// u or v) of a net of midpoints `m` (degrees `p × q`) with radius `r`: the f64 differences
+/// round by at most `u` relatively, the true points add `2 r`.
+fn neighbour_bound(m: &[[f64; 3]], p: usize, q: usize, r: f64) -> f64 {
+    let mut a = 0.0f64;
+    for i in 0..=p {
+        for j in 0..=q {
+            let x = &m[i * (q + 1) + j];
+            for (di, dj) in [(1, 0), (0, 1)] {
+                if i + di <= p && j + dj <= q {
+                    let y = &m[(i + di) * (q + 1) + j + dj];
+                    for c in 0..3 {
+                        a = a.max((y[c] - x[c]).abs());
+                    }
+                }
+            }
+        }
+    }
+    (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14)
+}
+
 /// The weights of [`MidPatch::compose_line`].
 fn composition_weights(p: usize, q: usize) -> Vec<f64> {
     let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
@@ -457,21 +478,7 @@ impl MidPatch {
                 mx = mx.max(c.mid().abs());
             }
         }
-        let mut a = 0.0f64;
-        for i in 0..=p {
-            for j in 0..=q {
-                let x = &m[i * (q + 1) + j];
-                for (di, dj) in [(1, 0), (0, 1)] {
-                    if i + di <= p && j + dj <= q {
-                        let y = &m[(i + di) * (q + 1) + j + dj];
-                        for c in 0..3 {
-                            a = a.max((y[c] - x[c]).abs());
-                        }
-                    }
-                }
-            }
-        }
-        let a = (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14);
+        let a = neighbour_bound(&m, p, q, r);
         MidPatch {
             p,
             q,
@@ -511,21 +518,7 @@ impl MidPatch {
             .flatten()
             .fold(0.0f64, |acc: f64, x| acc.max(x.abs()));
         let r = ((2.0 * k * self.r) * (1.0 + 1e-15) + 2.3e-16 * mx + 1e-300) * (1.0 + 1e-14);
-        let mut a = 0.0f64;
-        for i in 0..=np {
-            for j in 0..=nq {
-                let x = &m[i * (nq + 1) + j];
-                for (di, dj) in [(1, 0), (0, 1)] {
-                    if i + di <= np && j + dj <= nq {
-                        let y = &m[(i + di) * (nq + 1) + j + dj];
-                        for c in 0..3 {
-                            a = a.max((y[c] - x[c]).abs());
-                        }
-                    }
-                }
-            }
-        }
-        let a = (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14);
+        let a = neighbour_bound(&m, np, nq, r);
         Some(MidPatch {
             p: np,
             q: nq,
