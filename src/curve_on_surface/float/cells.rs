@@ -4,7 +4,8 @@
 //! local refinement on a sub-rectangle (hodograph hulls, Cauchy–Schwarz). Every bound is
 //! computed upward from enclosures of the exact patch, so it holds for the exact surface.
 
-use super::ibez::{I, IP, IPatch, MidPatch, bspline_span_bezier_f64};
+use super::ibez::{I, IP};
+use super::midpatch::{IPatch, MidPatch, bspline_span_bezier_f64};
 use crate::spline::{BSplineSurface, BezierSurface};
 use std::cell::OnceCell;
 

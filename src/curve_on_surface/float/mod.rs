@@ -14,6 +14,7 @@ pub mod cells;
 pub mod distance;
 pub mod ibez;
 pub mod map;
+pub mod midpatch;
 pub mod sides;
 pub mod split;
 
