@@ -47,7 +47,9 @@ pub fn measure(
     let mut worst = 0.0f64;
     let mut n = 0;
     for m in segments {
-        let c = &m.domain_curve;
+        let Some(c) = &m.domain_curve else {
+            continue;
+        };
         let out = BezierCurve {
             control: m.control_points.clone(),
         };

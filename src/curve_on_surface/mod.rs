@@ -182,8 +182,9 @@ pub struct ChainSegment {
     pub control_points: Vec<[f64; 3]>,
     pub domain: [[f64; 2]; 2],
     pub bound: f64,
-    /// The domain curve piece this segment stands for, in f64 (for the evidence).
-    pub domain_curve: crate::spline::BezierCurve<[f64; 2]>,
+    /// The domain curve piece this segment stands for, in f64 — kept only when evidence is
+    /// measured (its sole use).
+    pub domain_curve: Option<crate::spline::BezierCurve<[f64; 2]>>,
 }
 
 /// What either path delivers before the result is assembled.
@@ -423,7 +424,8 @@ fn exact_chain(
                 control_points: m.control_points,
                 domain: m.domain,
                 bound: (x.k * x.h).next_up(),
-                domain_curve: x.curve(&pieces).map(crate::geom::to_f64_point),
+                domain_curve: (params.evidence_samples > 0)
+                    .then(|| x.curve(&pieces).map(crate::geom::to_f64_point)),
             })
             .collect(),
         rounding,

@@ -134,9 +134,9 @@ pub fn run(
             control_points: cps,
             domain: [x.a, x.b],
             bound: (x.k * x.h).next_up(),
-            domain_curve: BezierCurve {
+            domain_curve: (params.evidence_samples > 0).then(|| BezierCurve {
                 control: distance::sub_curve(x, &pieces).m,
-            },
+            }),
         })
         .collect();
     Ok(Chain {
