@@ -20,6 +20,7 @@
 //! (BigRational throughout), the reference. Both certify the same object: the exact curve on
 //! S given by blossoming S on each chord of the f64 domain polyline.
 
+pub mod casteljau;
 pub mod cells;
 pub mod distance;
 pub mod evidence;

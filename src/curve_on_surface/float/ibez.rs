@@ -300,27 +300,7 @@ pub(crate) fn polar_values_into<const D: usize>(
     y: f64,
     out: &mut [[f64; D]],
 ) {
-    let n = m.len() - 1;
-    let (sx, sy) = (1.0 - x, 1.0 - y);
-    let mut ylev: ArrayVec<[f64; D], 16> = m.iter().copied().collect();
-    let mut w: ArrayVec<[f64; D], 16> = ylev.clone();
-    for (j, o) in out.iter_mut().enumerate().take(n + 1) {
-        let len = n + 1 - j;
-        w[..len].copy_from_slice(&ylev[..len]);
-        for r in 1..len {
-            for i in 0..len - r {
-                for c in 0..D {
-                    w[i][c] = sx * w[i][c] + x * w[i + 1][c];
-                }
-            }
-        }
-        *o = w[0];
-        for i in 0..len - 1 {
-            for c in 0..D {
-                ylev[i][c] = sy * ylev[i][c] + y * ylev[i + 1][c];
-            }
-        }
-    }
+    crate::curve_on_surface::casteljau::polar_values(m, x, y, out)
 }
 
 /// Upper bound of the Euclidean norm of every point of the box `x`.

@@ -5,6 +5,7 @@
 //! lerp lemma of [`super::ibez`].
 
 use super::ibez::{I, IP, mid, mr_polar_values, polar_values, polar_values_into};
+use crate::curve_on_surface::casteljau;
 
 /// [`bspline_span_bezier`] on exact f64 control points (or midpoints with radius `r`), in
 /// f64: the Bézier control points of span `s` and a bound on every coordinate's distance to
@@ -202,6 +203,7 @@ impl MidPatch {
                     out[i * (q + 1) + j] = *v;
                 }
             }
+        } else if casteljau::polar_net(&self.m, p + 1, q + 1, [xu, yu, xv, yv], out).is_some() {
         } else {
             let mut rows = [[0.0; 3]; 64];
             for i in 0..=p {
