@@ -125,6 +125,27 @@ pub fn polar_net(
     Some(())
 }
 
+/// de Casteljau evaluation at `t` of the scalar Bézier coefficients `m` (any number): the
+/// lerps `(1 - t) a + t b` of the general loops.
+pub fn eval_1d(m: &[f64], t: f64) -> f64 {
+    let mut buf = [0.0; 32];
+    let mut heap = Vec::new();
+    let w: &mut [f64] = if m.len() <= buf.len() {
+        &mut buf[..m.len()]
+    } else {
+        heap.resize(m.len(), 0.0);
+        &mut heap
+    };
+    w.copy_from_slice(m);
+    let s = 1.0 - t;
+    for r in 1..w.len() {
+        for i in 0..w.len() - r {
+            w[i] = s * w[i] + t * w[i + 1];
+        }
+    }
+    w[0]
+}
+
 /// de Casteljau evaluation of the `L` points `w` at `t`.
 #[inline]
 fn casteljau_fixed<const L: usize>(mut w: [[f64; 3]; L], t: f64) -> [f64; 3] {

@@ -176,6 +176,22 @@ fn det3<S: Scalar>(u: &[S; 3], v: &[S; 3], w: &[S; 3]) -> S {
 }
 
 /// `C(n, k)` in `i64` (exact for n ≤ 60, saturating beyond — far above any spline degree).
+/// Pascal's triangle `C(n, k)` for `n < 64` (all below `2^63`), built at compile time.
+pub const BINOMIAL: [[u64; 64]; 64] = {
+    let mut t = [[0u64; 64]; 64];
+    let mut n = 0;
+    while n < 64 {
+        t[n][0] = 1;
+        let mut k = 1;
+        while k <= n {
+            t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
+            k += 1;
+        }
+        n += 1;
+    }
+    t
+};
+
 pub fn binomial_i64(n: usize, k: usize) -> i64 {
     if k > n {
         return 0;
@@ -195,4 +211,24 @@ pub fn binomial_i64(n: usize, k: usize) -> i64 {
 /// Used to lift f64 input into an exact backend: `lift::<BigRational>(x)` is exact.
 pub fn lift<S: Scalar>(x: f64) -> S {
     S::from_f64(x).expect("lift: caller guarantees a finite value")
+}
+
+#[cfg(test)]
+mod binomial_tests {
+    use super::{BINOMIAL, binomial_i64};
+
+    /// The compile-time triangle equals the multiplicative formula (exact in i128) and
+    /// the symmetry and row-sum identities.
+    #[test]
+    fn pascal_triangle_matches_the_formula() {
+        for n in 0..64usize {
+            let mut row_sum: u128 = 0;
+            for k in 0..=n {
+                assert_eq!(BINOMIAL[n][k] as i64, binomial_i64(n, k), "C({n},{k})");
+                assert_eq!(BINOMIAL[n][k], BINOMIAL[n][n - k]);
+                row_sum += BINOMIAL[n][k] as u128;
+            }
+            assert_eq!(row_sum, 1u128 << n);
+        }
+    }
 }

@@ -5,7 +5,7 @@
 //! computed upward from enclosures of the exact patch, so it holds for the exact surface.
 
 use super::ibez::{I, IP};
-use super::midpatch::{IPatch, MidPatch, bspline_span_bezier_f64};
+use super::midpatch::{IPatch, MidPatch, bspline_span_bezier_f64_into};
 use crate::spline::{BSplineSurface, BezierSurface};
 use std::cell::OnceCell;
 
@@ -98,26 +98,30 @@ impl<'a> FCells<'a> {
         };
         // Rows (fixed u index) → Bézier in v; then columns → Bézier in u (f64 with the
         // error bound of `bspline_span_bezier_f64`, applied twice).
-        let mut rows: Vec<Vec<[f64; 3]>> = Vec::with_capacity(p + 1);
+        let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));
         let mut e_rows = 0.0f64;
         for r in su - p..=su {
             let row = &self.s.net[r * nv..(r + 1) * nv];
-            let (pts, e) = bspline_span_bezier_f64(&self.kv, q, row, 0.0, sv).ok_or_else(err)?;
+            let e = bspline_span_bezier_f64_into(&self.kv, q, row, 0.0, sv, &mut rows)
+                .ok_or_else(err)?;
             e_rows = e_rows.max(e);
-            rows.push(pts);
         }
         let mut m = vec![[0.0; 3]; (p + 1) * (q + 1)];
         let mut e_net = 0.0f64;
-        let mut col = vec![[0.0; 3]; su + 1];
+        // The columns as the span's `p + 1` points, indexed from `su - p` (the knots are
+        // shifted alike, so span `p` of the shifted knots is span `su`).
+        let mut col = vec![[0.0; 3]; p + 1];
+        let mut pts = Vec::with_capacity(p + 1);
         for l in 0..=q {
-            for (k, r) in (su - p..=su).enumerate() {
-                col[r] = rows[k][l];
+            for (k, x) in col.iter_mut().enumerate() {
+                *x = rows[k * (q + 1) + l];
             }
-            let (pts, e) =
-                bspline_span_bezier_f64(&self.ku, p, &col, e_rows, su).ok_or_else(err)?;
+            pts.clear();
+            let e = bspline_span_bezier_f64_into(&self.ku[su - p..], p, &col, e_rows, p, &mut pts)
+                .ok_or_else(err)?;
             e_net = e_net.max(e);
-            for (k, x) in pts.into_iter().enumerate() {
-                m[k * (q + 1) + l] = x;
+            for (k, x) in pts.iter().enumerate() {
+                m[k * (q + 1) + l] = *x;
             }
         }
         let net: Vec<IP<3>> = m
@@ -133,21 +137,25 @@ impl<'a> FCells<'a> {
         let dv_lo = (I::point(v1) - I::point(v0)).lo;
         let mpatch = MidPatch::new(&patch);
         let eq12 = eq12_bound(&mpatch, du_lo, dv_lo);
+        let (mhodo_u, mhodo_v) = (mpatch.hodograph(true), mpatch.hodograph(false));
+        // The tangents of the ε_T pass use the hodographs' midpoints (computed in f64 from
+        // the patch's midpoints as `k (P_{i+1} - P_i)`).
+        let bezier_of = |h: &MidPatch| BezierSurface {
+            p: h.p,
+            q: h.q,
+            net: h.m.clone(),
+        };
         Ok(FCell {
             u0,
             u1,
             v0,
             v1,
-            hodo_f64: {
-                let m = BezierSurface {
-                    p,
-                    q,
-                    net: patch.net.iter().map(super::ibez::mid).collect(),
-                };
-                (m.hodograph_u(), m.hodograph_v())
-            },
-            mhodo_u: mpatch.hodograph(true),
-            mhodo_v: mpatch.hodograph(false),
+            hodo_f64: (
+                mhodo_u.as_ref().map(bezier_of),
+                mhodo_v.as_ref().map(bezier_of),
+            ),
+            mhodo_u,
+            mhodo_v,
             mpatch,
             patch,
             du_lo,

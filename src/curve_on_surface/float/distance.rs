@@ -39,61 +39,85 @@ pub struct SubCurve {
 /// [`SubCurve`] of a segment: polar values of its piece at `t_0`, `t_1` (exact f64 in
 /// `[0, 1]`), `n` de Casteljau levels on the piece's midpoints.
 pub fn sub_curve(s: &FSeg, pieces: &[Piece]) -> SubCurve {
-    let p = &pieces[s.piece];
-    let n = p.ctrl_f64.len() - 1;
-    let mut m = Vec::with_capacity(n + 1);
-    mr_polar_values(&p.ctrl_f64, s.t0, s.t1, &mut m);
-    SubCurve {
-        r: mr_levels_error(p.ctrl_r, n, p.ctrl_mx),
-        mx: p.ctrl_mx * (1.0 + 1e-13),
-        m,
-    }
+    let mut c = SubCurve {
+        m: Vec::new(),
+        r: 0.0,
+        mx: 0.0,
+    };
+    sub_curve_into(s, pieces, &mut c);
+    c
 }
 
-/// De Casteljau halves at 1/2 in f64 (the caller adds `n` levels of error).
-fn halves_f64(c: &[[f64; 2]]) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
+/// [`sub_curve`] into `c`, reusing its storage.
+pub fn sub_curve_into(s: &FSeg, pieces: &[Piece], c: &mut SubCurve) {
+    let p = &pieces[s.piece];
+    let n = p.ctrl_f64.len() - 1;
+    c.m.clear();
+    mr_polar_values(&p.ctrl_f64, s.t0, s.t1, &mut c.m);
+    c.r = mr_levels_error(p.ctrl_r, n, p.ctrl_mx);
+    c.mx = p.ctrl_mx * (1.0 + 1e-13);
+}
+
+/// De Casteljau halves at 1/2 in f64 of `c` (the caller adds `n` levels of error), appended
+/// to `out` (left then right); `w` is scratch.
+fn halves_f64(c: &[[f64; 2]], w: &mut Vec<[f64; 2]>, out: &mut Vec<[f64; 2]>) {
     let n = c.len() - 1;
-    let mut w = c.to_vec();
-    let mut left = Vec::with_capacity(n + 1);
-    let mut right = vec![w[n]; n + 1];
-    left.push(w[0]);
+    w.clear();
+    w.extend_from_slice(c);
+    let start = out.len();
+    out.resize(start + 2 * (n + 1), c[n]);
+    out[start] = w[0];
     for r in 1..=n {
         for i in 0..=n - r {
             for k in 0..2 {
                 w[i][k] = 0.5 * w[i][k] + 0.5 * w[i + 1][k];
             }
         }
-        left.push(w[0]);
-        right[n - r] = w[n - r];
+        out[start + r] = w[0];
+        out[start + n + 1 + n - r] = w[n - r];
     }
-    (left, right)
+}
+
+/// Scratch storage of [`hull_bound`], kept across segments.
+#[derive(Default)]
+pub struct HullScratch {
+    parts: Vec<[f64; 2]>,
+    next: Vec<[f64; 2]>,
+    w: Vec<[f64; 2]>,
 }
 
 /// Certified `h` (stopping once `≤ target`) for the curve piece `c` and the chord: the
 /// halving levels run in f64 on midpoints, each adding the error of `n` de Casteljau levels
 /// (values stay within the hull, so `mx` bounds them).
-fn hull_bound(c: &SubCurve, a: &[f64; 2], b: &[f64; 2], e: f64, target: f64) -> f64 {
-    let n = c.m.len() - 1;
-    let mut parts = vec![c.m.clone()];
+fn hull_bound(
+    c: &SubCurve,
+    a: &[f64; 2],
+    b: &[f64; 2],
+    e: f64,
+    target: f64,
+    scratch: &mut HullScratch,
+) -> f64 {
+    let n1 = c.m.len();
+    let n = n1 - 1;
+    let HullScratch { parts, next, w } = scratch;
+    parts.clear();
+    parts.extend_from_slice(&c.m);
     let mut r = c.r;
     let mut best = f64::INFINITY;
     for level in 0..=HULL_LEVELS {
         let m = parts
             .iter()
-            .flatten()
             .map(|q| dist_to_segment_mr(q, r, a, b))
             .fold(0.0, f64::max);
         best = best.min((m + e).next_up());
         if best <= target || level == HULL_LEVELS {
             break;
         }
-        parts = parts
-            .iter()
-            .flat_map(|p| {
-                let (l, r) = halves_f64(p);
-                [l, r]
-            })
-            .collect();
+        next.clear();
+        for p in parts.chunks_exact(n1) {
+            halves_f64(p, w, next);
+        }
+        std::mem::swap(parts, next);
         r = mr_levels_error(r, n, c.mx * (1.0 + 1e-12));
     }
     best
@@ -144,8 +168,8 @@ fn certify(
     c: &SubCurve,
     h_est: f64,
     cells: &FCells,
-    eps_d: f64,
-    bound: Bound,
+    (eps_d, bound): (f64, Bound),
+    scratch: &mut HullScratch,
 ) -> Result<bool, FloatError> {
     let r = region(c, s, cells.domain());
     if !(s.k.is_finite() && within(&r, &s.k_region)) {
@@ -169,7 +193,7 @@ fn certify(
         return Ok(false);
     }
     let d = crate::curve_on_surface::tolerance::tolerance_2d(eps_d, s.k);
-    s.h = hull_bound(c, &s.a, &s.b, s.ea.max(s.eb), d);
+    s.h = hull_bound(c, &s.a, &s.b, s.ea.max(s.eb), d, scratch);
     if (s.k * s.h).next_up() > eps_d && !s.k_own {
         s.k = lipschitz(r, cells, bound)?;
         s.k_region = r;
@@ -196,13 +220,21 @@ pub fn farthest(c: &[[f64; 2]]) -> (f64, f64) {
         return (0.5, 0.0);
     }
     let chord = [c[n][0] - c[0][0], c[n][1] - c[0][1]];
-    let b: Vec<f64> = c
-        .iter()
-        .map(|p| (p[0] - c[0][0]) * chord[1] - (p[1] - c[0][1]) * chord[0])
-        .collect();
-    let db: Vec<f64> = b.windows(2).map(|w| w[1] - w[0]).collect();
+    let (mut b_buf, mut b_heap) = ([0.0; 32], Vec::new());
+    let b = small_buf(&mut b_buf, &mut b_heap, n + 1);
+    for (bi, p) in b.iter_mut().zip(c) {
+        *bi = (p[0] - c[0][0]) * chord[1] - (p[1] - c[0][1]) * chord[0];
+    }
+    let (mut db_buf, mut db_heap) = ([0.0; 32], Vec::new());
+    let db = small_buf(&mut db_buf, &mut db_heap, n);
+    for (d, w) in db.iter_mut().zip(b.windows(2)) {
+        *d = w[1] - w[0];
+    }
+    let (b, db) = (&*b, &*db);
     let bern = |coef: &[f64], t: f64| {
-        let mut w: arrayvec::ArrayVec<f64, 32> = coef.iter().copied().collect();
+        let (mut buf, mut heap) = ([0.0; 32], Vec::new());
+        let w = small_buf(&mut buf, &mut heap, coef.len());
+        w.copy_from_slice(coef);
         for r in 1..w.len() {
             for i in 0..w.len() - r {
                 w[i] = (1.0 - t) * w[i] + t * w[i + 1];
@@ -236,7 +268,7 @@ pub fn farthest(c: &[[f64; 2]]) -> (f64, f64) {
         }
         for t in roots {
             if t > 0.0 && t < 1.0 {
-                let f = bern(&b, t).abs();
+                let f = bern(b, t).abs();
                 if f > best.0 {
                     best = (f, t);
                 }
@@ -251,23 +283,23 @@ pub fn farthest(c: &[[f64; 2]]) -> (f64, f64) {
         return (best.1.clamp(1.0 / 64.0, 63.0 / 64.0), dist);
     }
     let k = 64;
-    let mut prev = bern(&db, 0.0);
+    let mut prev = bern(db, 0.0);
     for i in 1..=k {
         let t1 = i as f64 / k as f64;
-        let cur = bern(&db, t1);
+        let cur = bern(db, t1);
         if prev == 0.0 || prev.signum() != cur.signum() {
             let (mut lo, mut hi) = ((i - 1) as f64 / k as f64, t1);
             let slo = prev.signum();
             for _ in 0..60 {
                 let m = 0.5 * (lo + hi);
-                if bern(&db, m).signum() == slo {
+                if bern(db, m).signum() == slo {
                     lo = m;
                 } else {
                     hi = m;
                 }
             }
             let t = 0.5 * (lo + hi);
-            let f = bern(&b, t).abs();
+            let f = bern(b, t).abs();
             if t > 0.0 && t < 1.0 && f > best.0 {
                 best = (f, t);
             }
@@ -281,6 +313,16 @@ pub fn farthest(c: &[[f64; 2]]) -> (f64, f64) {
         0.0
     };
     (best.1.clamp(1.0 / 64.0, 63.0 / 64.0), dist)
+}
+
+/// `n` zeros in `buf` when they fit, else in `heap`.
+fn small_buf<'a>(buf: &'a mut [f64; 32], heap: &'a mut Vec<f64>, n: usize) -> &'a mut [f64] {
+    if n <= buf.len() {
+        &mut buf[..n]
+    } else {
+        heap.resize(n, 0.0);
+        heap
+    }
 }
 
 /// Split a segment at local parameter `s`; the new vertex is the midpoint of the enclosure
@@ -324,6 +366,12 @@ pub fn enforce_distance(
     bound: Bound,
     max_segments: usize,
 ) -> Result<Vec<FSeg>, FloatError> {
+    let mut c = SubCurve {
+        m: Vec::new(),
+        r: 0.0,
+        mx: 0.0,
+    };
+    let mut scratch = HullScratch::default();
     loop {
         let mut out = Vec::with_capacity(segs.len() * 2);
         let mut changed = false;
@@ -332,9 +380,11 @@ pub fn enforce_distance(
                 out.push(s);
                 continue;
             }
-            let c = sub_curve(&s, pieces);
+            sub_curve_into(&s, pieces, &mut c);
             let (t_far, h_est) = farthest(&c.m);
-            if s.h.is_infinite() && !certify(&mut s, &c, h_est, cells, eps_d, bound)? {
+            if s.h.is_infinite()
+                && !certify(&mut s, &c, h_est, cells, (eps_d, bound), &mut scratch)?
+            {
                 s.h = f64::INFINITY;
             }
             if (s.k * s.h).next_up() <= eps_d {

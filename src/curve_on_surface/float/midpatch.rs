@@ -22,35 +22,60 @@ pub fn bspline_span_bezier_f64(
     r: f64,
     s: usize,
 ) -> Option<(Vec<[f64; 3]>, f64)> {
-    let (a, b) = (knots[s], knots[s + 1]);
-    let mx = ctrl[s - p..=s]
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, x| m.max(x.abs()));
     let mut out = Vec::with_capacity(p + 1);
-    let mut d: Vec<[f64; 3]> = Vec::with_capacity(p + 1);
-    for k in 0..=p {
-        d.clear();
-        d.extend_from_slice(&ctrl[s - p..=s]);
-        for lvl in 1..=p {
-            let x = if lvl <= p - k { a } else { b };
-            for j in (s - p + lvl..=s).rev() {
-                let (uj, ue) = (knots[j], knots[j + p + 1 - lvl]);
-                let den = ue - uj;
-                if den.is_nan() || den < 1e-290 {
-                    return None;
-                }
-                let alpha = (x - uj) / den;
-                let i = j - (s - p);
-                for c in 0..3 {
-                    d[i][c] = (1.0 - alpha) * d[i - 1][c] + alpha * d[i][c];
-                }
+    let err = bspline_span_bezier_f64_into(knots, p, ctrl, r, s, &mut out)?;
+    Some((out, err))
+}
+
+/// [`bspline_span_bezier_f64`] appending the `p + 1` points to `out`. Point `k` is the de
+/// Boor recurrence with `p - k` levels at `a = u_s` then `k` at `b = u_{s+1}`; the levels at
+/// `a` are shared by all `k` (each point takes exactly the operations of its own recurrence).
+pub fn bspline_span_bezier_f64_into(
+    knots: &[f64],
+    p: usize,
+    ctrl: &[[f64; 3]],
+    r: f64,
+    s: usize,
+    out: &mut Vec<[f64; 3]>,
+) -> Option<f64> {
+    let (a, b) = (knots[s], knots[s + 1]);
+    let base = &ctrl[s - p..=s];
+    let mx = base.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    for lvl in 1..=p {
+        for j in s - p + lvl..=s {
+            let den = knots[j + p + 1 - lvl] - knots[j];
+            if den.is_nan() || den < 1e-290 {
+                return None;
             }
         }
-        out.push(d[p]);
     }
-    let err = (r + p as f64 * (1.1e-15 * mx * (1.0 + 1e-12) + 1e-300)) * (1.0 + 1e-14);
-    Some((out, err))
+    // One de Boor level at `x` on `d` (indices `lvl..=p` of the span's points).
+    let level = |d: &mut [[f64; 3]], lvl: usize, x: f64| {
+        for j in (s - p + lvl..=s).rev() {
+            let (uj, ue) = (knots[j], knots[j + p + 1 - lvl]);
+            let alpha = (x - uj) / (ue - uj);
+            let i = j - (s - p);
+            for c in 0..3 {
+                d[i][c] = (1.0 - alpha) * d[i - 1][c] + alpha * d[i][c];
+            }
+        }
+    };
+    let start = out.len();
+    out.resize(start + p + 1, [0.0; 3]);
+    let (mut da, mut e) = ([[0.0; 3]; 32], [[0.0; 3]; 32]);
+    let (da, e) = (&mut da[..=p], &mut e[..=p]);
+    da.copy_from_slice(base);
+    for na in 0..=p {
+        if na > 0 {
+            level(da, na, a);
+        }
+        e.copy_from_slice(da);
+        for lvl in na + 1..=p {
+            level(e, lvl, b);
+        }
+        out[start + p - na] = e[p];
+    }
+    Some((r + p as f64 * (1.1e-15 * mx * (1.0 + 1e-12) + 1e-300)) * (1.0 + 1e-14))
 }
 
 /// A patch in midpoint–radius form, cached per cell for the two hot uses (the local
@@ -65,9 +90,6 @@ pub struct MidPatch {
     pub r: f64,
     pub mx: f64,
     pub a: f64,
-    /// `C(p,i) C(q,j) / C(p+q, i+j)` in f64 (row-major), the weights of the line
-    /// composition; each within `u` relatively of the exact one.
-    pub weights: Vec<f64>,
 }
 
 /// Upper bound of the largest coordinate difference of neighbouring true control points (along
@@ -91,18 +113,6 @@ fn neighbour_bound(m: &[[f64; 3]], p: usize, q: usize, r: f64) -> f64 {
     (a * (1.0 + 1e-14) + 2.0 * r) * (1.0 + 1e-14)
 }
 
-/// The weights of [`MidPatch::compose_line`].
-fn composition_weights(p: usize, q: usize) -> Vec<f64> {
-    let binom = |n: usize, k: usize| crate::scalar::binomial_i64(n, k) as f64;
-    let mut w = Vec::with_capacity((p + 1) * (q + 1));
-    for i in 0..=p {
-        for j in 0..=q {
-            w.push(binom(p, i) * binom(q, j) / binom(p + q, i + j));
-        }
-    }
-    w
-}
-
 impl MidPatch {
     pub fn new(s: &IPatch) -> MidPatch {
         let (p, q) = (s.p, s.q);
@@ -115,15 +125,7 @@ impl MidPatch {
             }
         }
         let a = neighbour_bound(&m, p, q, r);
-        MidPatch {
-            p,
-            q,
-            m,
-            r,
-            mx,
-            a,
-            weights: composition_weights(p, q),
-        }
+        MidPatch { p, q, m, r, mx, a }
     }
 
     /// The hodograph `∂/∂s` (`along_u`) or `∂/∂r` in local coordinates, in midpoint–radius
@@ -162,7 +164,6 @@ impl MidPatch {
             r,
             mx,
             a,
-            weights: composition_weights(np, nq),
         })
     }
 
@@ -259,8 +260,11 @@ impl MidPatch {
     /// The image of the local segment `a → b` (exact local coordinates within `dt` of the
     /// given ones, all in `[0, 1]`): the degree `p + q` Bézier control points in f64 and a
     /// bound on every coordinate's distance to the exact ones. The binomial combination
-    /// `Σ C(p,i) C(q,j) / C(p+q,k) h_ij` has weights summing to 1; with at most 32 terms its
-    /// rounding (weights and sum) is within `(terms + 3) · 1.2e-16 · max |h|`.
+    /// `Σ C(p,i) C(q,j) / C(p+q,k) h_ij` has weights summing to 1, each computed as
+    /// `fl(fl(C(p,i) C(q,j)) / fl(C(p+q,k)))` from exact integers: within `3u` relatively of
+    /// the exact weight (one rounding each for the product and the conversion of `C(p+q,k)`
+    /// when they exceed `2^53`, one for the division; all exact below that). With at most 32
+    /// terms the rounding (weights, products and sum) is within `(terms + 4) · 1.2e-16 · max |h|`.
     pub fn compose_line(&self, a: [f64; 2], b: [f64; 2], dt: f64) -> (Vec<[f64; 3]>, f64) {
         let (p, q) = (self.p, self.q);
         let mut buf = [[0.0; 3]; 64];
@@ -279,12 +283,25 @@ impl MidPatch {
                 mh = mh.max(c.abs());
             }
         }
+        let binom = |n: usize, k: usize| crate::scalar::BINOMIAL[n][k] as f64;
+        let mut bp = [0.0; 64];
+        let mut bq = [0.0; 64];
+        let mut bpq = [0.0; 64];
+        for (i, b) in bp.iter_mut().enumerate().take(p + 1) {
+            *b = binom(p, i);
+        }
+        for (j, b) in bq.iter_mut().enumerate().take(q + 1) {
+            *b = binom(q, j);
+        }
+        for (k, b) in bpq.iter_mut().enumerate().take(p + q + 1) {
+            *b = binom(p + q, k);
+        }
         let out: Vec<[f64; 3]> = (0..=p + q)
             .map(|k| {
                 let mut acc = [0.0; 3];
                 for i in k.saturating_sub(q)..=k.min(p) {
                     let j = k - i;
-                    let w = self.weights[i * (q + 1) + j];
+                    let w = bp[i] * bq[j] / bpq[k];
                     let v = &h[i * (q + 1) + j];
                     for c in 0..3 {
                         acc[c] += w * v[c];
@@ -295,7 +312,7 @@ impl MidPatch {
             .collect();
         let terms = (p.min(q) + 1) as f64;
         let err =
-            (eh + (terms + 3.0) * 1.2e-16 * (mh + eh) * (1.0 + 1e-14) + 1e-300) * (1.0 + 1e-14);
+            (eh + (terms + 4.0) * 1.2e-16 * (mh + eh) * (1.0 + 1e-14) + 1e-300) * (1.0 + 1e-14);
         (out, err)
     }
 }

@@ -13,11 +13,10 @@
 //! [`super::distance`]): they only keep each chord in one patch.
 
 use super::cells::FCells;
-use super::ibez::{
-    I, IP, bspline_span_bezier, dist_hi, eval, ip, mid, mr_blossom, mr_levels_error, split_at,
-};
+use super::ibez::{I, IP, bspline_span_bezier, dist_hi, eval, ip, mid, mr_levels_error, split_at};
 use super::{FSeg, FloatError, Piece};
 use crate::curve_on_surface::CosError;
+use crate::curve_on_surface::casteljau;
 use crate::spline::BSplineCurve;
 
 const MAX_DEPTH: u32 = 40;
@@ -83,17 +82,15 @@ fn isolate(
         // value at the midpoint decides the side (an undecided sign stops the narrowing).
         let s0 = strict_sign(&b[0][0]);
         let n = b.len() - 1;
-        let mids: Vec<[f64; 1]> = b.iter().map(|x| [x[0].mid()]).collect();
+        let mids: Vec<f64> = b.iter().map(|x| x[0].mid()).collect();
         let r = b.iter().fold(0.0f64, |m, x| m.max(x[0].radius_about_mid()));
-        let mx = mids.iter().fold(0.0f64, |m, x| m.max(x[0].abs()));
+        let mx = mids.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         // The value at a point parameter is within `err` of the f64 de Casteljau value.
         let err = mr_levels_error(r, n, mx);
         let (mut a, mut z) = (0.0f64, 1.0f64);
-        let mut ts = vec![0.0; n];
         while (z - a) * (hi - lo) > ROOT_WIDTH {
             let c = a + (z - a) / 2.0;
-            ts.fill(c);
-            let v = mr_blossom(&mids, &ts)[0];
+            let v = casteljau::eval_1d(&mids, c);
             let m = if v > err {
                 1
             } else if v < -err {
@@ -129,6 +126,11 @@ fn isolate(
 /// line inside the domain, where end zones may be accepted; on the domain's boundary they
 /// may not, since the curve must be proven inside).
 fn crossings(ctrl: &[IP<2>], dim: usize, k: f64, interior: bool) -> Result<Vec<f64>, ()> {
+    // A line outside the range of the enclosed control points: the exact curve lies in
+    // their convex hull, strictly on one side, so it does not cross.
+    if ctrl.iter().all(|p| p[dim].lo > k) || ctrl.iter().all(|p| p[dim].hi < k) {
+        return Ok(Vec::new());
+    }
     let b: Vec<IP<1>> = ctrl.iter().map(|p| [p[dim] - I::point(k)]).collect();
     let mut out = Vec::new();
     isolate(b, 0.0, 1.0, 0, interior, &mut out)?;
