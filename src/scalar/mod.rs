@@ -177,7 +177,7 @@ fn det3<S: Scalar>(u: &[S; 3], v: &[S; 3], w: &[S; 3]) -> S {
 
 /// `C(n, k)` in `i64` (exact for n ≤ 60, saturating beyond — far above any spline degree).
 /// Pascal's triangle `C(n, k)` for `n < 64` (all below `2^63`), built at compile time.
-pub const BINOMIAL: [[u64; 64]; 64] = {
+pub static BINOMIAL: [[u64; 64]; 64] = {
     let mut t = [[0u64; 64]; 64];
     let mut n = 0;
     while n < 64 {
