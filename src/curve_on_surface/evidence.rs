@@ -144,6 +144,65 @@ pub fn uniform_chord_deviation(
     worst
 }
 
+/// Measured (evidence) deviation of the image of the chord `D(t0) → D(t1)` from the image of
+/// `D[t0, t1]`: for 65 sample points of `S(D)`, the distance to the nearest of 1025 samples
+/// of the chord's image.
+pub fn chord_deviation(
+    surface: &BSplineSurface<[f64; 3]>,
+    curve: &crate::spline::NurbsCurve<f64, 2>,
+    t0: f64,
+    t1: f64,
+) -> f64 {
+    let img = |uv: [f64; 2]| surface.eval(&uv[0], &uv[1]);
+    let (a, b) = (curve.eval(&t0), curve.eval(&t1));
+    let chord: Vec<[f64; 3]> = (0..=1024)
+        .map(|j| {
+            let s = j as f64 / 1024.0;
+            img([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])])
+        })
+        .collect();
+    (0..=64)
+        .map(|i| {
+            let x = img(curve.eval(&(t0 + (t1 - t0) * i as f64 / 64.0)));
+            chord
+                .iter()
+                .map(|y| dist(y, &x))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The fewest chords (evidence, greedy) whose images deviate at most `tol` from the exact
+/// image: from `D`'s start, the longest chord (parameter found by bisection to `2^-20` of the
+/// range) whose measured [`chord_deviation`] is within `tol`, repeated to the end. Greedy
+/// covering is optimal when a sub-chord never deviates more than its chord, so this is a
+/// measured floor for any method that maps chords of `D` — however it chooses them.
+pub fn greedy_chord_count(
+    surface: &BSplineSurface<[f64; 3]>,
+    curve: &crate::spline::NurbsCurve<f64, 2>,
+    tol: f64,
+) -> usize {
+    let (ta, tb) = curve.hom.domain();
+    let (mut t, mut count) = (ta, 0);
+    while t < tb && count < 100_000 {
+        count += 1;
+        if chord_deviation(surface, curve, t, tb) <= tol {
+            break;
+        }
+        let (mut lo, mut hi) = (t, tb);
+        while hi - lo > (tb - ta) * 2f64.powi(-20) {
+            let m = 0.5 * (lo + hi);
+            if chord_deviation(surface, curve, t, m) <= tol {
+                lo = m;
+            } else {
+                hi = m;
+            }
+        }
+        t = if lo > t { lo } else { hi };
+    }
+    count
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
