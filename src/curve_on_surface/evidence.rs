@@ -265,6 +265,9 @@ mod tests {
             (measured - brute).abs() <= 1e-4,
             "measured {measured:.4e}, brute force {brute:.4e}"
         );
-        assert!(measured <= bound, "measured {measured:.4e} > bound {bound:.4e}");
+        assert!(
+            measured <= bound,
+            "measured {measured:.4e} > bound {bound:.4e}"
+        );
     }
 }

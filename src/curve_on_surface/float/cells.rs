@@ -195,13 +195,23 @@ impl<'a> FCells<'a> {
     /// common part (S is continuous and piecewise C¹, and `r` is convex, so the segment between
     /// two points crosses finitely many cells and the bounds chain).
     pub fn lipschitz_on(&self, r: [f64; 4], local: bool) -> Result<f64, CellError> {
+        // The cells whose open span meets `[lo, hi]`'s interior — or, for a degenerate
+        // `lo == hi`, the first closed span holding it: the convex `r` lies in the union of
+        // those closed cells, and on each closed cell S is its patch's polynomial, so a cell
+        // touching `r` only along its edge adds nothing (edges snapped onto knot lines are
+        // common, and would build the neighbour for nothing).
         let range = |br: &[f64], lo: f64, hi: f64| {
-            let first = (0..br.len() - 1).find(|&i| br[i + 1] >= lo).unwrap_or(0);
-            let last = (0..br.len() - 1)
-                .rev()
-                .find(|&i| br[i] <= hi)
-                .unwrap_or(br.len() - 2);
-            first..=last.max(first)
+            let n = br.len() - 1;
+            let first = (0..n).find(|&i| br[i + 1] > lo).unwrap_or(n - 1);
+            let last = (0..n).rev().find(|&i| br[i] < hi).unwrap_or(0);
+            if lo < hi && first <= last {
+                first..=last
+            } else {
+                let c = (0..n)
+                    .find(|&i| br[i] <= lo && lo <= br[i + 1])
+                    .unwrap_or(first);
+                c..=c
+            }
         };
         let mut k = 0.0f64;
         for i in range(&self.u_breaks, r[0], r[1]) {

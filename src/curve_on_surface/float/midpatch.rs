@@ -49,12 +49,20 @@ pub fn bspline_span_bezier_f64_into(
             }
         }
     }
-    // One de Boor level at `x` on `d` (indices `lvl..=p` of the span's points).
+    if span_fixed(&knots[s - p..=s + p], p, base, &mut *out).is_none() {
+        span_general(&knots[s - p..=s + p], p, base, out);
+    }
+    Some(err_of(r, p, mx))
+}
+
+/// The general loop of [`span_fixed`] (any degree up to 31).
+fn span_general(kk: &[f64], p: usize, base: &[[f64; 3]], out: &mut Vec<[f64; 3]>) {
+    let (a, b) = (kk[p], kk[p + 1]);
+    // One de Boor level at `x` on `d` (local indices `lvl..=p` of the span's points).
     let level = |d: &mut [[f64; 3]], lvl: usize, x: f64| {
-        for j in (s - p + lvl..=s).rev() {
-            let (uj, ue) = (knots[j], knots[j + p + 1 - lvl]);
+        for i in (lvl..=p).rev() {
+            let (uj, ue) = (kk[i], kk[i + p + 1 - lvl]);
             let alpha = (x - uj) / (ue - uj);
-            let i = j - (s - p);
             for c in 0..3 {
                 d[i][c] = (1.0 - alpha) * d[i - 1][c] + alpha * d[i][c];
             }
@@ -75,7 +83,62 @@ pub fn bspline_span_bezier_f64_into(
         }
         out[start + p - na] = e[p];
     }
-    Some((r + p as f64 * (1.1e-15 * mx * (1.0 + 1e-12) + 1e-300)) * (1.0 + 1e-14))
+}
+
+/// The bound of [`bspline_span_bezier_f64`].
+fn err_of(r: f64, p: usize, mx: f64) -> f64 {
+    (r + p as f64 * (1.1e-15 * mx * (1.0 + 1e-12) + 1e-300)) * (1.0 + 1e-14)
+}
+
+/// [`bspline_span_bezier_f64_into`] for `L = p + 1 ≤ 5` points with the sizes known at
+/// compile time: the same operations (`α = (x - u_j) / (u_e - u_j)` computed once per level
+/// and index for each of `a`, `b`; the same lerps in the same order). `kk` = the knots
+/// `u_{s-p} ..= u_{s+p}`; `None` when no fixed kernel exists.
+fn span_fixed(kk: &[f64], p: usize, base: &[[f64; 3]], out: &mut Vec<[f64; 3]>) -> Option<()> {
+    fn run<const L: usize>(kk: &[f64], base: &[[f64; 3]], out: &mut Vec<[f64; 3]>) {
+        let p = L - 1;
+        let (a, b) = (kk[p], kk[p + 1]);
+        // alpha[lvl][i] for the point `i` (local index) at level `lvl`.
+        let mut al_a = [[0.0; L]; L];
+        let mut al_b = [[0.0; L]; L];
+        for lvl in 1..L {
+            for i in lvl..L {
+                let (uj, ue) = (kk[i], kk[i + p + 1 - lvl]);
+                al_a[lvl][i] = (a - uj) / (ue - uj);
+                al_b[lvl][i] = (b - uj) / (ue - uj);
+            }
+        }
+        let level = |d: &mut [[f64; 3]; L], lvl: usize, al: &[f64; L]| {
+            for i in (lvl..L).rev() {
+                let alpha = al[i];
+                for c in 0..3 {
+                    d[i][c] = (1.0 - alpha) * d[i - 1][c] + alpha * d[i][c];
+                }
+            }
+        };
+        let mut da: [[f64; 3]; L] = std::array::from_fn(|i| base[i]);
+        let start = out.len();
+        out.resize(start + L, [0.0; 3]);
+        for na in 0..L {
+            if na > 0 {
+                level(&mut da, na, &al_a[na]);
+            }
+            let mut e = da;
+            for lvl in na + 1..L {
+                level(&mut e, lvl, &al_b[lvl]);
+            }
+            out[start + p - na] = e[p];
+        }
+    }
+    match p + 1 {
+        1 => run::<1>(kk, base, out),
+        2 => run::<2>(kk, base, out),
+        3 => run::<3>(kk, base, out),
+        4 => run::<4>(kk, base, out),
+        5 => run::<5>(kk, base, out),
+        _ => return None,
+    }
+    Some(())
 }
 
 /// A patch in midpoint–radius form, cached per cell for the two hot uses (the local
@@ -430,6 +493,30 @@ mod tests {
     use crate::scalar::Scalar;
     use crate::spline::BezierSurface;
     use num_rational::BigRational;
+
+    /// The fixed-size span extraction computes bit for bit what the general loop does.
+    #[test]
+    fn fixed_span_extraction_equals_the_general_loop() {
+        let mut r = rng(11);
+        let mut compared = 0;
+        for p in 1..=4usize {
+            for _ in 0..20 {
+                let mut kk: Vec<f64> = (0..2 * p + 1).map(|_| r().abs()).collect();
+                kk.sort_by(f64::total_cmp);
+                if kk[p + 1] <= kk[p] || kk.windows(2).any(|w| w[1] <= w[0]) {
+                    continue;
+                }
+                let base: Vec<[f64; 3]> = (0..=p).map(|_| [r(), r(), r()]).collect();
+                let (mut f, mut g) = (Vec::new(), Vec::new());
+                span_fixed(&kk, p, &base, &mut f).unwrap();
+                span_general(&kk, p, &base, &mut g);
+                assert_eq!(f, g, "degree {p}");
+                compared += 1;
+            }
+        }
+        assert!(compared >= 60, "{compared}");
+        assert!(span_fixed(&[0.0; 11], 5, &[[0.0; 3]; 6], &mut Vec::new()).is_none());
+    }
 
     #[test]
     fn f64_span_extraction_is_within_its_bound() {
