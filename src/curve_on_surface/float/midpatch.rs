@@ -38,7 +38,6 @@ pub fn bspline_span_bezier_f64_into(
     s: usize,
     out: &mut Vec<[f64; 3]>,
 ) -> Option<f64> {
-    let (a, b) = (knots[s], knots[s + 1]);
     let base = &ctrl[s - p..=s];
     let mx = base.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
     for lvl in 1..=p {
