@@ -128,6 +128,24 @@ pub fn polar_net(
 /// de Casteljau evaluation at `t` of the scalar Bézier coefficients `m` (any number): the
 /// lerps `(1 - t) a + t b` of the general loops.
 pub fn eval_1d(m: &[f64], t: f64) -> f64 {
+    fn fixed<const L: usize>(m: &[f64], t: f64) -> f64 {
+        let mut w: [f64; L] = std::array::from_fn(|i| m[i]);
+        let s = 1.0 - t;
+        for r in 1..L {
+            for i in 0..L - r {
+                w[i] = s * w[i] + t * w[i + 1];
+            }
+        }
+        w[0]
+    }
+    match m.len() {
+        2 => return fixed::<2>(m, t),
+        3 => return fixed::<3>(m, t),
+        4 => return fixed::<4>(m, t),
+        5 => return fixed::<5>(m, t),
+        6 => return fixed::<6>(m, t),
+        _ => {}
+    }
     let mut buf = [0.0; 32];
     let mut heap = Vec::new();
     let w: &mut [f64] = if m.len() <= buf.len() {
@@ -239,6 +257,19 @@ mod tests {
             }
         }
         assert!(eval_tensor(&[[0.0; 3]; 6], 6, 1, 0.5, 0.5).is_none());
+        // Scalar evaluation: the fixed sizes and the general loop (40 coefficients) against
+        // the plain recurrence.
+        for len in (1..=8).chain([40]) {
+            let m: Vec<f64> = (0..len).map(|_| r()).collect();
+            let t = r().abs();
+            let mut w = m.clone();
+            for k in 1..len {
+                for i in 0..len - k {
+                    w[i] = (1.0 - t) * w[i] + t * w[i + 1];
+                }
+            }
+            assert_eq!(eval_1d(&m, t), w[0], "{len}");
+        }
         assert!(polar_net(&[[0.0; 3]; 6], 1, 6, [0.0; 4], &mut [[0.0; 3]; 6]).is_none());
     }
 }

@@ -78,8 +78,10 @@ fn isolate(
         return Ok(());
     }
     if simple_root(&b) {
-        // Bisection on the local parameter of this sub-interval: the sign of the enclosed
-        // value at the midpoint decides the side (an undecided sign stops the narrowing).
+        // Narrowing on the local parameter of this sub-interval (Illinois regula falsi, with
+        // a bisection step after any step that did not halve the bracket): the sign of the
+        // enclosed value at the trial point decides the side; a trial point whose sign is
+        // undecided lies within the enclosure's width of the root and is taken as it.
         let s0 = strict_sign(&b[0][0]);
         let n = b.len() - 1;
         let mids: Vec<f64> = b.iter().map(|x| x[0].mid()).collect();
@@ -88,8 +90,19 @@ fn isolate(
         // The value at a point parameter is within `err` of the f64 de Casteljau value.
         let err = mr_levels_error(r, n, mx);
         let (mut a, mut z) = (0.0f64, 1.0f64);
+        let (mut fa, mut fz) = (mids[0], mids[n]);
+        let (mut last_side, mut bisect) = (0i8, false);
+        let mut found = None;
         while (z - a) * (hi - lo) > ROOT_WIDTH {
-            let c = a + (z - a) / 2.0;
+            let width = z - a;
+            let mut c = if bisect || fa == fz {
+                a + width / 2.0
+            } else {
+                (a * fz - z * fa) / (fz - fa)
+            };
+            if !(c > a && c < z) {
+                c = a + width / 2.0;
+            }
             let v = casteljau::eval_1d(&mids, c);
             let m = if v > err {
                 1
@@ -100,13 +113,26 @@ fn isolate(
             };
             if m == s0 {
                 a = c;
+                fa = v;
+                if last_side == 1 {
+                    fz /= 2.0;
+                }
+                last_side = 1;
             } else if m == -s0 {
                 z = c;
+                fz = v;
+                if last_side == -1 {
+                    fa /= 2.0;
+                }
+                last_side = -1;
             } else {
+                found = Some(c);
                 break;
             }
+            bisect = z - a > width / 2.0;
         }
-        out.push(lo + (hi - lo) * (a + (z - a) / 2.0));
+        let t = found.unwrap_or(a + (z - a) / 2.0);
+        out.push(lo + (hi - lo) * t);
         return Ok(());
     }
     if depth >= MAX_DEPTH {
