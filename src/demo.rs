@@ -261,7 +261,8 @@ impl std::fmt::Display for DemoReport {
         writeln!(
             f,
             "  control points            9            | 16               | 33             | {:<29} | {}",
-            dr.control_points, r.num_control_points
+            format!("{} (C1 B-spline)", dr.control_points_bspline),
+            r.num_control_points
         )?;
         writeln!(
             f,

@@ -44,16 +44,27 @@ fn table2_reproduction() {
     let dr = vericad::curve_on_surface::renner::degree_reduction(&s, &c, 1e-3).unwrap();
     println!(
         "degree reduction baseline (paper: degree 3, 7 segments, 16 control points, 0.63e-4 from S): \
-         degree {}, {} segments, {} control points, {:.2e} from S, {:.2e} from the exact image (sampled)",
+         degree {}, {} segments, {} control points as a C1 cubic B-spline ({} as a Bézier chain; \
+         junction tangents within {:.1e}°), {:.2e} from S, {:.2e} from the exact image (sampled)",
         dr.degree,
         dr.segments,
+        dr.control_points_bspline,
         dr.control_points,
+        dr.max_junction_angle_deg,
         dr.max_distance_to_surface_sampled,
         dr.max_deviation_sampled
     );
     // The baseline meets its tolerance at its samples and, unlike the blossomed segments,
     // does not lie on S (its distance to S is measured, and not negligible).
     assert_eq!(dr.exact_degree, 8);
+    // S is C1 and D smooth, so the exact image is C1 and the Hermite cubics meet with
+    // parallel tangents: the chain is a C1 cubic B-spline with double interior knots.
+    assert!(
+        dr.max_junction_angle_deg < 1e-3,
+        "{}",
+        dr.max_junction_angle_deg
+    );
+    assert_eq!(dr.control_points_bspline, 2 * dr.segments + 2);
     assert!(dr.max_deviation_sampled <= 1e-3);
     assert!(dr.max_distance_to_surface_sampled > 1e-6);
     assert!(dr.segments >= 1 && dr.segments < r.num_segments);

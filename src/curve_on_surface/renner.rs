@@ -8,8 +8,10 @@
 //! has no free control point left, so this is the constrained reduction itself); where the
 //! cubic deviates from the exact piece by more than the tolerance (measured at samples, as
 //! parametric distance, an upper bound of the distance at those samples), the piece is
-//! halved and each half reduced again. The result is G1 (C1 within each exact piece) and lies
-//! *near* S, not on it: the distance to S is measured by projecting samples onto S.
+//! halved and each half reduced again. The result is G1 (C1 within each exact piece; where the
+//! exact image is C1 the junction tangents are parallel, and the chain is counted as the C1
+//! cubic B-spline with double interior knots, `2n + 2` control points, as the paper counts) and
+//! lies *near* S, not on it: the distance to S is measured by projecting samples onto S.
 //!
 //! Everything here is measured, not proven: it is a baseline for comparison tables.
 
@@ -29,6 +31,13 @@ pub struct DegreeReduction {
     pub segments: usize,
     /// Control points of the G1 chain (shared end points counted once).
     pub control_points: usize,
+    /// Control points of the chain as a cubic B-spline: `2n + 2` with double interior knots
+    /// when every junction's tangents are parallel and alike in direction (then interval
+    /// lengths following the end-derivative ratios make it C1 — the paper's count, 16 for
+    /// its 7 segments), else `3n + 1`.
+    pub control_points_bspline: usize,
+    /// Largest angle (degrees, f64) between the tangents meeting at a junction.
+    pub max_junction_angle_deg: f64,
     /// Largest measured deviation from the exact image (parametric, at samples).
     pub max_deviation_sampled: f64,
     /// Largest measured distance of the cubic chain from S (samples projected onto S).
@@ -147,10 +156,26 @@ pub fn degree_reduction(
             to_s = to_s.max(dist(&surface.eval(&uv[0], &uv[1]), &x));
         }
     }
+    let mut max_angle = 0.0f64;
+    let mut parallel = true;
+    for w in cubics.windows(2) {
+        let t0: [f64; 3] = std::array::from_fn(|i| w[0][3][i] - w[0][2][i]);
+        let t1: [f64; 3] = std::array::from_fn(|i| w[1][1][i] - w[1][0][i]);
+        match super::g1::angle_deg(&t0, &t1) {
+            Some(a) => max_angle = max_angle.max(a),
+            None => parallel = false,
+        }
+    }
+    // Parallel up to the f64 composition (local coordinates from rounded sub-curves; Table 2
+    // measures 1.5e-6°).
+    parallel &= max_angle < 1e-3;
+    let n = cubics.len();
     Ok(DegreeReduction {
         degree: 3,
-        segments: cubics.len(),
-        control_points: 3 * cubics.len() + 1,
+        segments: n,
+        control_points: 3 * n + 1,
+        control_points_bspline: if parallel { 2 * n + 2 } else { 3 * n + 1 },
+        max_junction_angle_deg: max_angle,
         max_deviation_sampled: worst,
         max_distance_to_surface_sampled: to_s,
         exact_degree,
