@@ -110,54 +110,38 @@ pub fn measure(
 }
 
 /// Measured (evidence) deviation of the images of `n` chords at uniform parameters of the
-/// domain curve from the exact image: for sample points of `S(D)`, the distance to the
-/// nearest of 2049 samples of the corresponding chord's image. A baseline to compare
-/// segment counts with (e.g. the paper's 8 segments for Table 2).
+/// domain curve from the exact image ([`chord_deviation`] of each, with 2049 chord samples).
+/// A baseline to compare segment counts with (e.g. the paper's 8 segments for Table 2).
 pub fn uniform_chord_deviation(
     surface: &BSplineSurface<[f64; 3]>,
     curve: &crate::spline::NurbsCurve<f64, 2>,
     n: usize,
 ) -> f64 {
     let (ta, tb) = curve.hom.domain();
-    let img = |uv: [f64; 2]| surface.eval(&uv[0], &uv[1]);
-    let mut worst = 0.0f64;
-    for k in 0..n {
-        let (t0, t1) = (
-            ta + (tb - ta) * k as f64 / n as f64,
-            ta + (tb - ta) * (k + 1) as f64 / n as f64,
-        );
-        let (a, b) = (curve.eval(&t0), curve.eval(&t1));
-        for i in 0..=64 {
-            let x = img(curve.eval(&(t0 + (t1 - t0) * i as f64 / 64.0)));
-            let near = (0..=2048)
-                .map(|j| {
-                    let s = j as f64 / 2048.0;
-                    dist(
-                        &img([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]),
-                        &x,
-                    )
-                })
-                .fold(f64::INFINITY, f64::min);
-            worst = worst.max(near);
-        }
-    }
-    worst
+    (0..n)
+        .map(|k| {
+            let t0 = ta + (tb - ta) * k as f64 / n as f64;
+            let t1 = ta + (tb - ta) * (k + 1) as f64 / n as f64;
+            chord_deviation(surface, curve, t0, t1, 2048)
+        })
+        .fold(0.0, f64::max)
 }
 
 /// Measured (evidence) deviation of the image of the chord `D(t0) → D(t1)` from the image of
-/// `D[t0, t1]`: for 65 sample points of `S(D)`, the distance to the nearest of 1025 samples
-/// of the chord's image.
+/// `D[t0, t1]`: for 65 sample points of `S(D)`, the distance to the nearest of
+/// `chord_samples + 1` samples of the chord's image.
 pub fn chord_deviation(
     surface: &BSplineSurface<[f64; 3]>,
     curve: &crate::spline::NurbsCurve<f64, 2>,
     t0: f64,
     t1: f64,
+    chord_samples: usize,
 ) -> f64 {
     let img = |uv: [f64; 2]| surface.eval(&uv[0], &uv[1]);
     let (a, b) = (curve.eval(&t0), curve.eval(&t1));
-    let chord: Vec<[f64; 3]> = (0..=1024)
+    let chord: Vec<[f64; 3]> = (0..=chord_samples)
         .map(|j| {
-            let s = j as f64 / 1024.0;
+            let s = j as f64 / chord_samples as f64;
             img([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])])
         })
         .collect();
@@ -174,9 +158,10 @@ pub fn chord_deviation(
 
 /// The fewest chords (evidence, greedy) whose images deviate at most `tol` from the exact
 /// image: from `D`'s start, the longest chord (parameter found by bisection to `2^-20` of the
-/// range) whose measured [`chord_deviation`] is within `tol`, repeated to the end. Greedy
-/// covering is optimal when a sub-chord never deviates more than its chord, so this is a
-/// measured floor for any method that maps chords of `D` — however it chooses them.
+/// range) whose measured [`chord_deviation`] (1025 chord samples) is within `tol`, repeated
+/// to the end. Greedy covering is optimal when a sub-chord never deviates more than its
+/// chord, so this is a measured floor for any method that maps chords of `D` — however it
+/// chooses them.
 pub fn greedy_chord_count(
     surface: &BSplineSurface<[f64; 3]>,
     curve: &crate::spline::NurbsCurve<f64, 2>,
@@ -186,13 +171,13 @@ pub fn greedy_chord_count(
     let (mut t, mut count) = (ta, 0);
     while t < tb && count < 100_000 {
         count += 1;
-        if chord_deviation(surface, curve, t, tb) <= tol {
+        if chord_deviation(surface, curve, t, tb, 1024) <= tol {
             break;
         }
         let (mut lo, mut hi) = (t, tb);
         while hi - lo > (tb - ta) * 2f64.powi(-20) {
             let m = 0.5 * (lo + hi);
-            if chord_deviation(surface, curve, t, m) <= tol {
+            if chord_deviation(surface, curve, t, m, 1024) <= tol {
                 lo = m;
             } else {
                 hi = m;
