@@ -5,7 +5,8 @@
 //! computed upward from enclosures of the exact patch, so it holds for the exact surface.
 
 use super::ibez::{I, IP};
-use super::midpatch::{IPatch, MidPatch, bspline_span_bezier_f64_into};
+use super::midpatch::{IPatch, MidPatch};
+use super::span::bspline_span_bezier_f64_into;
 use crate::spline::{BSplineSurface, BezierSurface};
 use std::cell::OnceCell;
 

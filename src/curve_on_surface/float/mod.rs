@@ -16,6 +16,7 @@ pub mod ibez;
 pub mod map;
 pub mod midpatch;
 pub mod sides;
+pub mod span;
 pub mod split;
 
 use super::g1::{G1Ops, enforce_g1_with, mapped_tangent_with};
