@@ -289,18 +289,7 @@ pub(crate) fn mr_polar_values<const D: usize>(
     }
     let start = out.len();
     out.resize(start + n + 1, [0.0; D]);
-    polar_values_into(m, x, y, &mut out[start..]);
-}
-
-/// [`mr_polar_values`] into a slice of `n + 1` points (degree below 16): the de Casteljau
-/// levels at `y` are kept, and each polar value applies `x` to its level.
-pub(crate) fn polar_values_into<const D: usize>(
-    m: &[[f64; D]],
-    x: f64,
-    y: f64,
-    out: &mut [[f64; D]],
-) {
-    crate::curve_on_surface::casteljau::polar_values(m, x, y, out)
+    crate::curve_on_surface::casteljau::polar_values(m, x, y, &mut out[start..]);
 }
 
 /// Upper bound of the Euclidean norm of every point of the box `x`.

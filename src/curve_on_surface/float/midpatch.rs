@@ -3,7 +3,7 @@
 //! step 3, and the mapping by blossoming, step 6), with a-priori error bounds built on the
 //! lerp lemma of [`super::ibez`].
 
-use super::ibez::{I, IP, mid, mr_polar_values, polar_values, polar_values_into};
+use super::ibez::{I, IP, mid, mr_polar_values, polar_values};
 use crate::curve_on_surface::casteljau;
 
 /// A patch in midpoint–radius form, cached per cell for the two hot uses (the local
@@ -136,7 +136,7 @@ impl MidPatch {
         } else {
             let mut rows = [[0.0; 3]; 64];
             for i in 0..=p {
-                polar_values_into(
+                casteljau::polar_values(
                     &self.m[i * (q + 1)..(i + 1) * (q + 1)],
                     xv,
                     yv,
@@ -149,7 +149,7 @@ impl MidPatch {
                 for i in 0..=p {
                     col[i] = rows[i * (q + 1) + j];
                 }
-                polar_values_into(&col[..=p], xu, yu, &mut vals[..=p]);
+                casteljau::polar_values(&col[..=p], xu, yu, &mut vals[..=p]);
                 for i in 0..=p {
                     out[i * (q + 1) + j] = vals[i];
                 }
