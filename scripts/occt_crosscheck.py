@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Independent read-back of files written by vericad, with Open CASCADE.
 
-For each input model (default: every IGES/STEP file in ../shared/data), vericad converts it
+For each input model (default: every IGES/STEP file in tests/data/public), vericad converts it
 to IGES and to STEP; Open CASCADE (pip install cadquery-ocp-novtk, module OCP.OCP) reads
 each written file, and every face's surface is evaluated at a 5x5 grid of parameters and
 compared with vericad's own evaluation of the same surface (`vericad eval --json`).
@@ -101,6 +101,6 @@ def main(files):
 
 
 if __name__ == "__main__":
-    data = os.path.join(HERE, "..", "..", "shared", "data")
+    data = os.path.join(HERE, "..", "tests", "data", "public")
     args = sys.argv[1:] or sorted(glob.glob(os.path.join(data, "*.igs")) + glob.glob(os.path.join(data, "*.st*p")))
     sys.exit(main(args))

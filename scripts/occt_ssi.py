@@ -4,14 +4,14 @@ same tolerance, one run. Needs `pip install cadquery-ocp-novtk` and a release bu
 (`cargo build --release`). Prints a table for BENCHMARKS.md.
 
 Cases: two cylinders (radii 1 and 0.6, perpendicular axes) as rational B-splines, written by
-OCCT to IGES and read by vericad from that file; the faces of ../shared/data/gmsh-t20_data.step,
+OCCT to IGES and read by vericad from that file; the faces of tests/data/public/gmsh-t20_data.step,
 every pair whose boxes overlap (OCCT) / all pairs with net-box culling (vericad)."""
 import json, os, subprocess, sys, tempfile, time
 import OCP.OCP as o
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = os.path.join(ROOT, "target", "release", "vericad")
-DATA = os.path.join(ROOT, "..", "shared", "data")
+DATA = os.path.join(ROOT, "tests", "data", "public")
 TOL = 1e-6
 
 

@@ -232,7 +232,8 @@ fn convert_and_curve_on_surface_from_iges_and_step() {
 #[test]
 fn viewing_formats_are_consistent() {
     let d = tmp("view");
-    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/abc-0000.step");
+    let src =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
     let (vtp, obj) = (d.join("a.vtp"), d.join("a.obj"));
     for out in [&vtp, &obj] {
         let (code, _, stderr) = vericad(&["convert", src.to_str().unwrap(), out.to_str().unwrap()]);
@@ -264,8 +265,8 @@ fn viewing_formats_are_consistent() {
 #[test]
 fn convert_format_override_and_binary_stl() {
     let d = tmp("fmt");
-    let src =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/gmsh-surface1.stl");
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/gmsh-surface1.stl");
     let ascii = vericad::io::read_model(&src).unwrap();
     let bin = d.join("b.stl");
     let (code, _, stderr) = vericad(&[
@@ -289,8 +290,8 @@ fn convert_format_override_and_binary_stl() {
         }
     }
     let out = d.join("noext");
-    let igs =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/occt-BUC50025.igs");
+    let igs = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/occt-BUC50025.igs");
     let (code, _, _) = vericad(&[
         "convert",
         igs.to_str().unwrap(),

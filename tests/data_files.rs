@@ -1,4 +1,4 @@
-//! Real CAD files written by other tools (`../shared/data`): every file loads, with the face
+//! Real CAD files written by other tools (`tests/data/public`): every file loads, with the face
 //! counts and surface kinds Open CASCADE reports (the table in shared/data/README.md, copied
 //! here by hand); round trips keep every bit; analytic conversions are exact.
 
@@ -8,7 +8,7 @@ use vericad::model::{Model, SurfaceKind};
 
 fn data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
+        .join("tests/data/public")
         .join(name)
 }
 

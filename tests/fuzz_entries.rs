@@ -76,10 +76,10 @@ fn curve_on_surface_target_survives_random_bytes() {
     }
 }
 
-/// The readers on byte-level mutations of every real file in ../shared/data.
+/// The readers on byte-level mutations of every real file in tests/data/public.
 #[test]
 fn readers_survive_mutated_real_files() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public");
     let mut files: Vec<Vec<u8>> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())

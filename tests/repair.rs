@@ -282,7 +282,7 @@ fn bad_input_is_a_typed_error() {
 
 #[test]
 fn real_patch_sets_repair_without_error() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public");
     for f in ["occt-bug28366_fuselage.stp", "gmsh-t20_data.step"] {
         let out =
             std::env::temp_dir().join(format!("vericad-repair-{}-{f}.json", std::process::id()));

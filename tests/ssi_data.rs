@@ -1,4 +1,4 @@
-//! SSI on the public CAD files in ../shared/data and through the command line: runs complete
+//! SSI on the public CAD files in tests/data/public and through the command line: runs complete
 //! without error, every point carries a proven bound within tol, results are the same for
 //! every thread count, the time limit yields a marked partial result.
 
@@ -7,7 +7,7 @@ use vericad::ssi::{SsiParams, intersect_models};
 
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
+        .join("tests/data/public")
         .join(name)
 }
 
