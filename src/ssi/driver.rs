@@ -188,12 +188,17 @@ pub fn intersect_models(
     let uncertified: usize = pairs
         .iter()
         .filter_map(|p| p.coverage.as_ref())
-        .map(|c| c.uncertified + c.on_branch)
+        .map(|c| c.uncertified)
         .sum();
-    let no_missed_loops = !meshes
+    let no_missed_branches = !meshes
         && pairs
             .iter()
-            .all(|p| p.coverage.as_ref().is_some_and(|c| c.no_missed_loops));
+            .all(|p| p.coverage.as_ref().is_some_and(|c| c.no_missed_branches));
+    let matched = pairs
+        .iter()
+        .filter_map(|p| p.coverage.as_ref())
+        .map(|c| c.match_distance)
+        .fold(0.0, f64::max);
     let mut certificate = vec![
         if meshes {
             "every point lies within the stated distance of both triangulations (rigorous bound on the constructed crossing point)".to_string()
@@ -203,12 +208,11 @@ pub fn intersect_models(
         "branch topology comes from exact signs with symbolic perturbation; every segment is used once (checked)".to_string(),
         if meshes {
             "mesh mode: the curves are the exact intersection of the triangulations; no coverage certificate".to_string()
-        } else if no_missed_loops {
-            "coverage: every parameter-box pair is proven free (disjoint control-net boxes) or loop-free (separated normal cones): no closed loop was missed".to_string()
+        } else if no_missed_branches {
+            format!("coverage: every branch of the true intersection (closed loop, open arc, touching point) comes within {matched:.3e} of the output, proven: every parameter-box pair is free (disjoint control-point boxes), within that distance of the output, or transversal (separated normal cones) with every border crossing within that distance of the output")
         } else {
-            format!("coverage: {uncertified} parameter-box pairs are neither proven free nor loop-free (listed per pair): a small closed loop could hide there")
+            format!("coverage: NOT certified: {uncertified} parameter-box pairs undecided (listed per pair with the reason): a branch could be missing there")
         },
-        "open pieces: not certified complete (a missed open piece would cross a box border; borders are not checked)".to_string(),
         "chord midpoints within tol of the true curve are measured after refinement (evidence, not proof)".to_string(),
     ];
     if prm.respect_trims {
@@ -235,7 +239,7 @@ pub fn intersect_models(
         dist_max,
         all_points_within_tol: dist_max <= prm.tol,
         pairs_not_run: not_run,
-        no_missed_loops,
+        no_missed_branches,
         uncertified_box_pairs: uncertified,
         partial,
         seconds: t0.elapsed().as_secs_f64(),

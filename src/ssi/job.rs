@@ -251,19 +251,18 @@ impl std::fmt::Display for SsiResult {
             .filter_map(|p| p.coverage.as_ref())
             .collect();
         if !cov.is_empty() {
-            let (pairs, free, lf, ob, oblf, unc) = cov.iter().fold((0, 0, 0, 0, 0, 0), |a, c| {
+            let (pairs, free, near, tr, unc) = cov.iter().fold((0, 0, 0, 0, 0), |a, c| {
                 (
                     a.0 + c.pairs,
                     a.1 + c.free,
-                    a.2 + c.loop_free,
-                    a.3 + c.on_branch,
-                    a.4 + c.on_branch_loop_free,
-                    a.5 + c.uncertified,
+                    a.2 + c.near_output,
+                    a.3 + c.transversal,
+                    a.4 + c.uncertified,
                 )
             });
             writeln!(
                 f,
-                "  coverage: {pairs} parameter-box pairs: {free} proven free, {lf} loop-free, {oblf} on a branch and loop-free, {ob} on a branch (not loop-free), {unc} uncertified"
+                "  coverage: {pairs} parameter-box pairs: {free} proven free, {near} within the match distance of the output, {tr} transversal with every border crossing near the output, {unc} uncertified"
             )?;
         }
         if s.partial {

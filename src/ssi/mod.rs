@@ -70,10 +70,15 @@ pub struct SsiParams {
     pub max_insert_depth: u32,
     /// Stop starting new work after this many seconds; the result is marked partial.
     pub time_limit: Option<f64>,
-    /// Halvings of every Bézier patch for the coverage certificate (capped so that a surface
-    /// has at most `max_coverage_boxes` boxes); `None` turns the certificate off.
-    pub coverage_depth: Option<u32>,
-    pub max_coverage_boxes: usize,
+    /// Compute the coverage certificate ([`coverage`]): every branch of the true
+    /// intersection comes within `coverage_match` of the output, or its region is listed.
+    pub coverage: bool,
+    /// The match distance of the coverage claim (default: 10 × tol).
+    pub coverage_match: Option<f64>,
+    /// Quarterings of a piece in the coverage refinement.
+    pub coverage_max_depth: u32,
+    /// Boxes examined by the coverage certificate per face pair.
+    pub coverage_max_boxes: usize,
     /// Clip branches to the faces' trimming loops.
     pub respect_trims: bool,
 }
@@ -90,8 +95,10 @@ impl Default for SsiParams {
             refine_tangent_sin: 1e-6,
             max_insert_depth: 12,
             time_limit: None,
-            coverage_depth: Some(2),
-            max_coverage_boxes: 256,
+            coverage: true,
+            coverage_match: None,
+            coverage_max_depth: 24,
+            coverage_max_boxes: 50_000,
             respect_trims: false,
         }
     }
@@ -112,6 +119,11 @@ impl SsiParams {
                 "tangent angle (degrees, below 90)",
                 self.tangent_angle_deg,
             ));
+        }
+        if let Some(m) = self.coverage_match
+            && !(m > 0.0 && m.is_finite())
+        {
+            return Err(SsiError::Parameter("coverage match distance", m));
         }
         if let Some(t) = self.time_limit
             && !(t > 0.0 && t.is_finite())

@@ -2,7 +2,7 @@
 
 use super::branch::{BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
-use super::coverage::coverage;
+use super::coverage::{CoverageParams, coverage};
 use super::cull::{TriTree, triangle_box};
 use super::refine::RefineParams;
 use super::refine::Refined;
@@ -173,18 +173,15 @@ pub fn intersect_surfaces(
             BranchResult::Touch(t) => out.touch_points.push(t),
         }
     }
-    if out.complete
-        && let Some(d) = prm.coverage_depth
-    {
-        let patches = |s: &NurbsSurface<f64, 3>| {
-            (s.hom.ku.breakpoints().len().max(2) - 1) * (s.hom.kv.breakpoints().len().max(2) - 1)
+    if out.complete && prm.coverage {
+        let cp = CoverageParams {
+            match_distance: prm.coverage_match.unwrap_or(10.0 * prm.tol),
+            max_pair_depth: prm.coverage_max_depth,
+            max_crossing_depth: 96,
+            max_boxes: prm.coverage_max_boxes,
+            deadline,
         };
-        let most = patches(sa).max(patches(sb)).max(1);
-        let mut depth = d;
-        while depth > 0 && most << (2 * depth) > prm.max_coverage_boxes {
-            depth -= 1;
-        }
-        out.coverage = Some(coverage(sa, sb, depth, &out.branches));
+        out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
     }
     out.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(out)

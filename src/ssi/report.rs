@@ -135,8 +135,9 @@ pub struct Summary {
     /// Whether every point is proven within `tol` of both surfaces.
     pub all_points_within_tol: bool,
     pub pairs_not_run: usize,
-    /// Whether the coverage certificate rules out a missed closed loop in every pair.
-    pub no_missed_loops: bool,
+    /// Whether the coverage certificate proves, in every pair, that every branch of the true
+    /// intersection comes within the match distance of the output.
+    pub no_missed_branches: bool,
     /// Box pairs (over all face pairs) neither proven free nor loop-free.
     pub uncertified_box_pairs: usize,
     pub partial: bool,

@@ -1,0 +1,164 @@
+//! Normal cones of Bézier pieces and the Sederberg–Meyers separation test.
+//!
+//! The normal `S_u × S_v` of a piece is a non-negative combination of the cross products
+//! `A_k × B_l` of the Bernstein coefficients of `A ∝ S_u` and `B ∝ S_v` (`A = w X_u − w_u X`,
+//! `B = w X_v − w_v X` for homogeneous `(X, w)`, the products taken in Bernstein form; the
+//! hodographs themselves for polynomial pieces; the positive factor `1/w²` does not change
+//! directions). These cross products, enclosed in intervals, are the cone's *generators*.
+//!
+//! **Separation lemma.** If vectors `m`, `m'` satisfy `m·a > 0 > m·b` and `m'·a > 0`,
+//! `m'·b > 0` for every generator `a` of cone A and `b` of cone B, then for every non-zero
+//! `a ∈ A`, `b ∈ B`, with `w = m × m'`: `(a × b)·w = (a·m)(b·m') − (a·m')(b·m) > 0`. Hence
+//! (i) no normal of A is parallel or antiparallel to a normal of B, (ii) both pieces are
+//! regular (`m·n_A > 0` so `n_A ≠ 0`), and (iii) along any intersection curve of the two
+//! pieces, whose tangent is parallel to `n_A × n_B`, the height `w·x` is strictly monotone:
+//! the curve cannot close (Sederberg & Meyers 1988). Every sign is taken on an interval
+//! enclosure and counts only when the whole interval has it.
+
+use super::patch::{IPatch, V, zero_net};
+use crate::scalar::{Interval, binomial_i64};
+
+fn cross(a: &V, b: &V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Bernstein product of scalar grid `f` (`fp × fq`) and vector grid `g` (`gp × gq`).
+fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) -> Option<Vec<V>> {
+    let (p, q) = (fp + gp, fq + gq);
+    let mut net = zero_net((p + 1) * (q + 1));
+    for k in 0..=fp {
+        for r in 0..=fq {
+            for l in 0..=gp {
+                for s in 0..=gq {
+                    let num = (binomial_i64(fp, k)
+                        * binomial_i64(gp, l)
+                        * binomial_i64(fq, r)
+                        * binomial_i64(gq, s)) as f64;
+                    let den = (binomial_i64(p, k + l) * binomial_i64(q, r + s)) as f64;
+                    let c = Interval::point(num).checked_div(Interval::point(den))?
+                        * f[k * (fq + 1) + r];
+                    let idx = (k + l) * (q + 1) + (r + s);
+                    let gv = g[l * (gq + 1) + s];
+                    net[idx] = std::array::from_fn(|c2| net[idx][c2] + gv[c2] * c);
+                }
+            }
+        }
+    }
+    Some(net)
+}
+
+/// Normal-cone generators of a piece; empty when one may vanish or overflow (no cone is then
+/// claimed, and no separation can be shown).
+pub(crate) fn normal_generators(h: &IPatch, polynomial: bool) -> Vec<V> {
+    let (Some(hu), Some(hv)) = (h.hodograph(true), h.hodograph(false)) else {
+        return Vec::new();
+    };
+    let (a, b) = if polynomial {
+        (hu.x, hv.x)
+    } else {
+        let diff = |s: Option<Vec<V>>, t: Option<Vec<V>>| -> Option<Vec<V>> {
+            Some(
+                s?.iter()
+                    .zip(&t?)
+                    .map(|(x, y)| std::array::from_fn(|c| x[c] - y[c]))
+                    .collect(),
+            )
+        };
+        let a = diff(
+            product(&h.w, h.p, h.q, &hu.x, hu.p, hu.q),
+            product(&hu.w, hu.p, hu.q, &h.x, h.p, h.q),
+        );
+        let b = diff(
+            product(&h.w, h.p, h.q, &hv.x, hv.p, hv.q),
+            product(&hv.w, hv.p, hv.q, &h.x, h.p, h.q),
+        );
+        match (a, b) {
+            (Some(a), Some(b)) => (a, b),
+            _ => return Vec::new(),
+        }
+    };
+    let mut out = Vec::with_capacity(a.len() * b.len());
+    for x in &a {
+        for y in &b {
+            let c = cross(x, y);
+            if c.iter().all(|v| v.contains_zero()) || !c.iter().all(|v| v.is_finite()) {
+                return Vec::new();
+            }
+            out.push(c);
+        }
+    }
+    out
+}
+
+fn dot(m: &[f64; 3], v: &V) -> Interval {
+    let m: V = m.map(Interval::point);
+    m[0] * v[0] + m[1] * v[1] + m[2] * v[2]
+}
+
+fn unit_mean(v: &[V]) -> Option<[f64; 3]> {
+    let mut s = [0.0; 3];
+    for x in v {
+        let f: [f64; 3] = std::array::from_fn(|k| x[k].mid());
+        let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+        if l > 0.0 && l.is_finite() {
+            for k in 0..3 {
+                s[k] += f[k] / l;
+            }
+        }
+    }
+    let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+    (n > 0.0 && n.is_finite()).then(|| s.map(|c| c / n))
+}
+
+/// Whether the two cones are proven to hold no parallel vectors (the separation lemma, with
+/// `m`, `m'` the difference and sum of the generators' unit means; the lemma holds for any
+/// choice, the choice only decides how often it succeeds).
+pub(crate) fn cones_separated(a: &[V], b: &[V]) -> bool {
+    if a.is_empty() || b.is_empty() {
+        return false;
+    }
+    let (Some(ua), Some(ub)) = (unit_mean(a), unit_mean(b)) else {
+        return false;
+    };
+    let m: [f64; 3] = std::array::from_fn(|k| ua[k] - ub[k]);
+    let m2: [f64; 3] = std::array::from_fn(|k| ua[k] + ub[k]);
+    let pos = |i: Interval| i.lo > 0.0;
+    let neg = |i: Interval| i.hi < 0.0;
+    a.iter().all(|x| pos(dot(&m, x)) && pos(dot(&m2, x)))
+        && b.iter().all(|y| neg(dot(&m, y)) && pos(dot(&m2, y)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> V {
+        [x, y, z].map(Interval::point)
+    }
+
+    #[test]
+    fn separation_needs_every_generator() {
+        let a = vec![v(0.1, 0.0, 1.0), v(-0.1, 0.0, 1.0)];
+        let b = vec![v(1.0, 0.0, 0.1), v(1.0, 0.1, 0.0)];
+        assert!(cones_separated(&a, &b));
+        // A generator of B parallel to one of A: never separated.
+        let b2 = vec![v(1.0, 0.0, 0.1), v(0.2, 0.0, 2.0)];
+        assert!(!cones_separated(&a, &b2));
+        // Antiparallel also counts as parallel.
+        let b3 = vec![v(1.0, 0.0, 0.1), v(-0.1, 0.0, -1.0)];
+        assert!(!cones_separated(&a, &b3));
+        // A cone surrounding the other's direction (the dome over a plane).
+        let ring: Vec<V> = (0..8)
+            .map(|k| {
+                let t = k as f64 * std::f64::consts::FRAC_PI_4;
+                v(0.3 * t.cos(), 0.3 * t.sin(), 1.0)
+            })
+            .collect();
+        assert!(!cones_separated(&ring, &[v(0.0, 0.0, 1.0)]));
+        assert!(!cones_separated(&[], &b));
+    }
+}

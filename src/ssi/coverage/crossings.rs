@@ -1,0 +1,71 @@
+//! Border crossings: every point where a border curve of one piece meets the other piece is
+//! enclosed, by subdividing the curve and the piece together, in boxes that are either proven
+//! empty (disjoint control-point boxes: convex hull property) or proven to lie within the
+//! match distance of the output (see [`super::near`]). What neither can be shown for, down
+//! to the depth limit, is returned as a *possible crossing away from the output*.
+
+use super::near::Near;
+use super::patch::{Box3, ICurve, IPatch, diagonal, disjoint, meet};
+
+/// What the search established for one border curve against one piece.
+#[derive(Debug, Default)]
+pub(crate) struct CrossingSearch {
+    /// Boxes examined.
+    pub boxes: usize,
+    /// Boxes holding possible crossings, all proven within the match distance of the output.
+    pub near_output: usize,
+    /// A box that may hold a crossing and is not proven near the output (its model-space
+    /// enclosure), if any was left at the depth or box limit.
+    pub open: Option<Box3>,
+}
+
+/// Search `curve` against `patch`: subdivide both until every part is empty or near the
+/// output; stop at `max_depth` levels or `max_boxes` boxes.
+pub(crate) fn search(
+    curve: &ICurve,
+    patch: &IPatch,
+    near: &Near,
+    d: f64,
+    max_depth: u32,
+    max_boxes: usize,
+) -> CrossingSearch {
+    let mut out = CrossingSearch::default();
+    let mut stack: Vec<(ICurve, IPatch, u32)> = vec![(curve.clone(), patch.clone(), 0)];
+    while let Some((c, s, depth)) = stack.pop() {
+        out.boxes += 1;
+        let (hc, hs) = match (c.hull(), s.hull()) {
+            (Some(a), Some(b)) => (a, b),
+            // No enclosure (weights not positive, overflow): cannot be excluded.
+            (a, b) => {
+                out.open = Some(
+                    a.or(b)
+                        .unwrap_or(([f64::NEG_INFINITY; 3], [f64::INFINITY; 3])),
+                );
+                return out;
+            }
+        };
+        if disjoint(&hc, &hs) {
+            continue;
+        }
+        let m = meet(&hc, &hs);
+        if near.box_within(&m, d) || c.cartesian().is_some_and(|p| near.net_within(&p, d)) {
+            out.near_output += 1;
+            continue;
+        }
+        if depth >= max_depth || out.boxes >= max_boxes {
+            out.open = Some(m);
+            return out;
+        }
+        // Split the curve when it is the larger, else the piece (along its longer direction).
+        if diagonal(&hc) >= diagonal(&hs) {
+            let (l, r) = c.halve();
+            stack.push((l, s.clone(), depth + 1));
+            stack.push((r, s, depth + 1));
+        } else {
+            let (l, r) = s.halve(s.longer_in_u());
+            stack.push((c.clone(), l, depth + 1));
+            stack.push((c, r, depth + 1));
+        }
+    }
+    out
+}

@@ -1,0 +1,420 @@
+//! The coverage certificate: no branch of the true intersection — closed loop or open arc —
+//! is missing from the output, except in listed regions.
+//!
+//! # The theorem
+//!
+//! Let `S_A`, `S_B` be NURBS surfaces with positive weights on the parameter rectangles `D_A`,
+//! `D_B`, `I = {(z_a, z_b) : S_A(z_a) = S_B(z_b)}` their true intersection in `D_A × D_B`, and
+//! `O` the output (reported branch polylines, closed ones closed, and touching points). The
+//! rectangles are cut into Bézier pieces (knot spans) and these, adaptively, into quarters;
+//! the *leaf pairs* `α × β` of this refinement cover `D_A × D_B`. Every leaf pair is
+//! classified as one of:
+//!
+//! 1. **free** — the boxes of the enclosed control points of the two pieces are disjoint.
+//!    (Convex hull property: a piece with positive weights lies in the convex hull of its
+//!    Cartesian control points.) Then `I ∩ (α × β) = ∅`.
+//! 2. **near the output** — the common part of the two boxes, which holds every intersection
+//!    point of the pair, lies within the match distance `d` of one segment of `O`
+//!    ([`near`]).
+//! 3. **transversal** — the normal cones are separated ([`cones`]: no parallel normals, both
+//!    pieces regular), and every point where a border curve of `α` meets the piece `β`, or a
+//!    border curve of `β` meets `α`, is enclosed in boxes proven within `d` of `O`
+//!    ([`crossings`]). With separated cones, `I ∩ (α × β)` is a 1-manifold (implicit function
+//!    theorem: the Jacobian `[S_Au S_Av −S_Bs −S_Bt]` has rank 3), and a component that
+//!    does not meet the border of `α × β` would be a closed curve whose tangent is parallel
+//!    to `n_A × n_B`, along which `w·x` is strictly monotone — impossible. So every
+//!    component of `I ∩ (α × β)` contains a border crossing, which lies within `d` of `O`.
+//! 4. **uncertified** — none of the above within the budget; listed with the reason.
+//!
+//! **Claim.** Every connected component of `I` (every branch: closed loop, open arc, isolated
+//! touching point) contains a point within `d` of `O`, or meets a listed uncertified pair.
+//! Proof: a component contains a point of some leaf pair; that pair is not free; in a pair
+//! near the output every point is within `d` of `O`; in a transversal pair the component's
+//! piece contains a border crossing within `d` of `O`.
+//!
+//! Hypotheses: positive weights (checked on the enclosures: a weight interval that is not
+//! strictly positive makes the piece uncertified), control points finite. Nothing depends on
+//! the tracer, the triangulation or the placement of the surfaces (seams and poles of closed
+//! surfaces included: a loop through a seam is, in the parameter rectangle, an arc whose ends
+//! are border crossings). The claim is one-sided: that the reported points lie on the true
+//! curve is the point certificate's business.
+//!
+//! Every piece is extracted exactly (rational knot insertion) and then enclosed in intervals;
+//! every halving and every sign is computed in outward-rounded interval arithmetic. The uv
+//! labels of pieces (for reports) are rounded midpoints; the pieces themselves are exact
+//! halves.
+
+pub mod cones;
+pub mod crossings;
+pub mod near;
+pub mod patch;
+
+use super::report::{BranchOut, TouchOut};
+use crate::geom::{Hom, lift_point};
+use crate::scalar::{Interval, Scalar, lift};
+use crate::spline::NurbsSurface;
+use cones::{cones_separated, normal_generators};
+use crossings::search;
+use near::Near;
+use num_rational::BigRational;
+use patch::{Box3, IPatch, SIDES, V, box_of, diagonal, disjoint, meet, separated_along};
+use serde::Serialize;
+use std::cell::OnceCell;
+use std::rc::Rc;
+use std::time::Instant;
+
+type Q = BigRational;
+
+/// Budgets and the match distance.
+#[derive(Clone, Debug)]
+pub struct CoverageParams {
+    /// `d`: every branch must come within this distance of the output.
+    pub match_distance: f64,
+    /// Quarterings of a piece in the pair refinement.
+    pub max_pair_depth: u32,
+    /// Halvings in one border-crossing search.
+    pub max_crossing_depth: u32,
+    /// Boxes examined in all, per face pair (pairs and crossing boxes).
+    pub max_boxes: usize,
+    pub deadline: Option<Instant>,
+}
+
+/// Why a pair of parameter boxes is not certified.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reason {
+    /// The normal cones could not be separated (tangency, a touching point, a small loop,
+    /// a singular point, or a degenerate piece such as a pole) down to the depth limit.
+    NormalsNotSeparated,
+    /// A border of one piece may cross the other piece at a place not within the match
+    /// distance of the output: a branch may be missing there.
+    CrossingAwayFromOutput,
+    /// No enclosure (a weight not proven positive, or overflow).
+    NoEnclosure,
+    /// The box or time budget ran out before the pair was decided.
+    Budget,
+}
+
+/// A pair of parameter boxes that could not be certified.
+#[derive(Clone, Debug, Serialize)]
+pub struct RegionOut {
+    pub uv_a: [f64; 4],
+    pub uv_b: [f64; 4],
+    pub reason: Reason,
+    /// Centre of a model-space box holding the undecided part (for crossings: the possible
+    /// crossing point).
+    pub point: Option<[f64; 3]>,
+}
+
+/// Counts of leaf pairs by class, and the uncertified ones (first 100).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct CoverageOut {
+    /// Bézier pieces (knot-span patches) of each surface.
+    pub boxes_a: usize,
+    pub boxes_b: usize,
+    /// Leaf pairs of the refinement, by class (`pairs` = the sum of the four classes).
+    pub pairs: usize,
+    /// Pairs examined, split ones included.
+    pub pairs_examined: usize,
+    pub free: usize,
+    pub near_output: usize,
+    pub transversal: usize,
+    pub uncertified: usize,
+    /// Boxes examined in border-crossing searches, and those proven near the output.
+    pub crossing_boxes: usize,
+    pub crossing_boxes_near_output: usize,
+    /// The match distance `d` of the claim.
+    pub match_distance: f64,
+    /// Whether every leaf pair is free, near the output or transversal: then every branch of
+    /// the true intersection comes within `match_distance` of the output (the claim above).
+    pub no_missed_branches: bool,
+    pub uncertified_regions: Vec<RegionOut>,
+    /// Output points whose parameters lie in a leaf pair proven free with a gap between the
+    /// boxes larger than the point's proven distances to the two surfaces (a contradiction:
+    /// must be 0; a self-check of the certificate). `None` when not checked (more than
+    /// 2·10⁷ point–pair tests).
+    pub free_pairs_with_branch_points: Option<usize>,
+    pub seconds: f64,
+}
+
+/// One piece of a domain: its exact-enclosed patch, uv label, box and cached data.
+struct Cell {
+    uv: [f64; 4],
+    patch: IPatch,
+    /// Enclosed Cartesian control points, their box, and a rough normal.
+    pts: Option<Vec<V>>,
+    hull: Option<Box3>,
+    normal: [f64; 3],
+    polynomial: bool,
+    normals: OnceCell<Vec<V>>,
+    kids: OnceCell<[Rc<Cell>; 4]>,
+}
+
+impl Cell {
+    fn new(patch: IPatch, uv: [f64; 4], polynomial: bool) -> Rc<Cell> {
+        let pts = patch.cartesian();
+        Rc::new(Cell {
+            uv,
+            hull: pts.as_deref().map(box_of),
+            pts,
+            normal: patch.rough_normal(),
+            patch,
+            polynomial,
+            normals: OnceCell::new(),
+            kids: OnceCell::new(),
+        })
+    }
+    fn normals(&self) -> &[V] {
+        self.normals
+            .get_or_init(|| normal_generators(&self.patch, self.polynomial))
+    }
+    fn kids(&self) -> &[Rc<Cell>; 4] {
+        self.kids.get_or_init(|| {
+            let [u0, u1, v0, v1] = self.uv;
+            let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+            let [a, b, c, d] = self.patch.quarters();
+            [
+                Cell::new(a, [u0, um, v0, vm], self.polynomial),
+                Cell::new(b, [u0, um, vm, v1], self.polynomial),
+                Cell::new(c, [um, u1, v0, vm], self.polynomial),
+                Cell::new(d, [um, u1, vm, v1], self.polynomial),
+            ]
+        })
+    }
+    fn diag(&self) -> f64 {
+        self.hull.as_ref().map_or(f64::INFINITY, diagonal)
+    }
+}
+
+fn outward(lo: &Q, hi: &Q) -> (f64, f64) {
+    let (mut a, mut b) = (lo.to_f64(), hi.to_f64());
+    if lift::<Q>(a) > *lo {
+        a = a.next_down();
+    }
+    if lift::<Q>(b) < *hi {
+        b = b.next_up();
+    }
+    (a, b)
+}
+
+/// Interval enclosure of a rational, outward.
+fn enclose(x: &Q) -> Interval {
+    let (lo, hi) = outward(x, x);
+    Interval { lo, hi }
+}
+
+/// The Bézier pieces of a surface, extracted exactly and enclosed.
+fn roots(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
+    let exact = s.hom.map(
+        |k| lift::<Q>(*k),
+        |h| Hom {
+            wp: lift_point(&h.wp),
+            w: lift(h.w),
+        },
+    );
+    let polynomial = s.is_polynomial();
+    exact
+        .bezier_patches()
+        .into_iter()
+        .map(|bp| {
+            let patch = IPatch {
+                p: bp.patch.p,
+                q: bp.patch.q,
+                x: bp
+                    .patch
+                    .net
+                    .iter()
+                    .map(|h| std::array::from_fn(|c| enclose(&h.wp[c])))
+                    .collect(),
+                w: bp.patch.net.iter().map(|h| enclose(&h.w)).collect(),
+            };
+            let uv = [
+                bp.u0.to_f64(),
+                bp.u1.to_f64(),
+                bp.v0.to_f64(),
+                bp.v1.to_f64(),
+            ];
+            Cell::new(patch, uv, polynomial)
+        })
+        .collect()
+}
+
+/// The output set: branch polylines and touching points.
+pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut]) -> Near {
+    let mut segs = Vec::new();
+    for b in branches {
+        let n = b.points.len();
+        for k in 0..n {
+            if k + 1 < n {
+                segs.push((b.points[k], b.points[k + 1]));
+            } else if b.closed && n > 1 {
+                segs.push((b.points[k], b.points[0]));
+            } else if n == 1 {
+                segs.push((b.points[0], b.points[0]));
+            }
+        }
+    }
+    for t in touches {
+        segs.push((t.point, t.point));
+    }
+    Near::new(segs)
+}
+
+fn centre(b: &Box3) -> [f64; 3] {
+    std::array::from_fn(|k| 0.5 * b.0[k] + 0.5 * b.1[k])
+}
+
+fn inside(uv: &[f64; 2], c: &[f64; 4]) -> bool {
+    c[0] <= uv[0] && uv[0] <= c[1] && c[2] <= uv[1] && uv[1] <= c[3]
+}
+
+/// Classify the leaf pairs of an adaptive refinement of `sa × sb` (see the module comment).
+pub fn coverage(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    branches: &[BranchOut],
+    touches: &[TouchOut],
+    prm: &CoverageParams,
+) -> CoverageOut {
+    let t0 = Instant::now();
+    let near = output_set(branches, touches);
+    let d = prm.match_distance;
+    let (ra, rb) = (roots(sa), roots(sb));
+    let mut out = CoverageOut {
+        boxes_a: ra.len(),
+        boxes_b: rb.len(),
+        match_distance: d,
+        ..Default::default()
+    };
+    let mut free_leaves: Vec<([f64; 4], [f64; 4], f64)> = Vec::new();
+    let mut stack: Vec<(Rc<Cell>, Rc<Cell>, u32, u32)> = Vec::new();
+    for a in &ra {
+        for b in &rb {
+            stack.push((a.clone(), b.clone(), 0, 0));
+        }
+    }
+    let mut boxes = 0usize;
+    let uncertified = |out: &mut CoverageOut, a: &Cell, b: &Cell, reason, point| {
+        out.uncertified += 1;
+        if out.uncertified_regions.len() < 100 {
+            out.uncertified_regions.push(RegionOut {
+                uv_a: a.uv,
+                uv_b: b.uv,
+                reason,
+                point,
+            });
+        }
+    };
+    while let Some((a, b, da, db)) = stack.pop() {
+        out.pairs_examined += 1;
+        boxes += 1;
+        let over = boxes > prm.max_boxes || prm.deadline.is_some_and(|t| Instant::now() > t);
+        let (Some(ha), Some(hb)) = (a.hull, b.hull) else {
+            uncertified(&mut out, &a, &b, Reason::NoEnclosure, None);
+            continue;
+        };
+        let (pa, pb) = (
+            a.pts.as_deref().unwrap_or(&[]),
+            b.pts.as_deref().unwrap_or(&[]),
+        );
+        if disjoint(&ha, &hb)
+            || separated_along(pa, pb, &a.normal)
+            || separated_along(pa, pb, &b.normal)
+        {
+            out.free += 1;
+            // A lower bound on the gap for the self-check (0 when separated by a normal).
+            let gap = (0..3)
+                .map(|k| (hb.0[k] - ha.1[k]).max(ha.0[k] - hb.1[k]))
+                .fold(0.0, f64::max);
+            free_leaves.push((a.uv, b.uv, gap));
+            continue;
+        }
+        let m = meet(&ha, &hb);
+        if near.box_within(&m, d) || near.net_within(pa, d) || near.net_within(pb, d) {
+            out.near_output += 1;
+            continue;
+        }
+        if over {
+            uncertified(&mut out, &a, &b, Reason::Budget, Some(centre(&m)));
+            continue;
+        }
+        if cones_separated(a.normals(), b.normals()) {
+            let mut open = None;
+            'sides: for (from, to) in [(&a, &b), (&b, &a)] {
+                for side in SIDES {
+                    let left = prm.max_boxes.saturating_sub(boxes).max(1);
+                    let s = search(
+                        &from.patch.edge(side),
+                        &to.patch,
+                        &near,
+                        d,
+                        prm.max_crossing_depth,
+                        left,
+                    );
+                    boxes += s.boxes;
+                    out.crossing_boxes += s.boxes;
+                    out.crossing_boxes_near_output += s.near_output;
+                    if s.open.is_some() {
+                        open = s.open;
+                        break 'sides;
+                    }
+                }
+            }
+            match open {
+                None => out.transversal += 1,
+                Some(bx) => {
+                    let reason = if boxes > prm.max_boxes {
+                        Reason::Budget
+                    } else {
+                        Reason::CrossingAwayFromOutput
+                    };
+                    uncertified(&mut out, &a, &b, reason, Some(centre(&bx)));
+                }
+            }
+            continue;
+        }
+        // Not decided: quarter the larger piece (pieces below a quarter of the match
+        // distance are not split further: they are decided by the output or listed).
+        let can_a = da < prm.max_pair_depth && a.diag() > 0.25 * d;
+        let can_b = db < prm.max_pair_depth && b.diag() > 0.25 * d;
+        let split_a = can_a && (!can_b || a.diag() >= b.diag());
+        if split_a {
+            for k in a.kids() {
+                stack.push((k.clone(), b.clone(), da + 1, db));
+            }
+        } else if can_b {
+            for k in b.kids() {
+                stack.push((a.clone(), k.clone(), da, db + 1));
+            }
+        } else {
+            uncertified(
+                &mut out,
+                &a,
+                &b,
+                Reason::NormalsNotSeparated,
+                Some(centre(&m)),
+            );
+        }
+    }
+    // Self-check: no output point may have its parameters in a free pair whose boxes are
+    // farther apart than the point is from the two surfaces.
+    let npts: usize = branches.iter().map(|b| b.uv_a.len()).sum();
+    if free_leaves.len().saturating_mul(npts) <= 20_000_000 {
+        let mut bad = 0;
+        for br in branches {
+            let slack = br.dist_a_max + br.dist_b_max;
+            for (x, y) in br.uv_a.iter().zip(&br.uv_b) {
+                bad += usize::from(
+                    free_leaves
+                        .iter()
+                        .any(|(ua, ub, gap)| *gap > slack && inside(x, ua) && inside(y, ub)),
+                );
+            }
+        }
+        out.free_pairs_with_branch_points = Some(bad);
+    }
+    out.pairs = out.free + out.near_output + out.transversal + out.uncertified;
+    out.no_missed_branches = out.uncertified == 0;
+    out.seconds = t0.elapsed().as_secs_f64();
+    out
+}

@@ -1,0 +1,210 @@
+//! The output set `O` — the reported branch polylines (closed ones closed) and touching
+//! points — and the rigorous test "every point of a box lies within `d` of `O`".
+//!
+//! Distance to one segment is a convex function, so its largest value over a box is taken at
+//! a corner: a box lies within `d` of a segment when all eight corners do. For a corner `c`,
+//! any point `s(t)` of the segment bounds the distance from above; `t` is chosen by rounded
+//! projection and `‖c − s(t)‖` is enclosed in interval arithmetic, so the test never says
+//! "near" wrongly.
+
+use super::patch::{Box3, V};
+use crate::scalar::Interval;
+
+/// Segments of the output with a bounding-volume tree over their boxes.
+pub(crate) struct Near {
+    segs: Vec<([f64; 3], [f64; 3])>,
+    /// Tree nodes: box, and either two children or a range of `order`.
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+}
+
+struct Node {
+    b: Box3,
+    kids: Option<(u32, u32)>,
+    range: (u32, u32),
+}
+
+fn seg_box(s: &([f64; 3], [f64; 3])) -> Box3 {
+    (
+        std::array::from_fn(|k| s.0[k].min(s.1[k])),
+        std::array::from_fn(|k| s.0[k].max(s.1[k])),
+    )
+}
+
+/// Upper bound on the distance from `c` to the segment `[p, q]`.
+pub(crate) fn dist_upper(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
+    let d: [f64; 3] = std::array::from_fn(|k| q[k] - p[k]);
+    let e: [f64; 3] = std::array::from_fn(|k| c[k] - p[k]);
+    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    let t = if dd > 0.0 {
+        ((e[0] * d[0] + e[1] * d[1] + e[2] * d[2]) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let t = if t.is_finite() { t } else { 0.0 };
+    let ti = Interval::point(t);
+    let mut s = Interval::point(0.0);
+    for k in 0..3 {
+        let (pk, qk) = (Interval::point(p[k]), Interval::point(q[k]));
+        let x = pk + (qk - pk) * ti;
+        s = s + (Interval::point(c[k]) - x).sqr();
+    }
+    if !s.is_finite() {
+        return f64::INFINITY;
+    }
+    s.hi.sqrt().next_up()
+}
+
+impl Near {
+    pub fn new(segs: Vec<([f64; 3], [f64; 3])>) -> Near {
+        let segs: Vec<_> = segs
+            .into_iter()
+            .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
+            .collect();
+        let mut n = Near {
+            order: (0..segs.len() as u32).collect(),
+            segs,
+            nodes: Vec::new(),
+        };
+        if !n.segs.is_empty() {
+            n.build(0, n.segs.len());
+        }
+        n
+    }
+    fn build(&mut self, lo: usize, hi: usize) -> u32 {
+        let mut b: Box3 = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &i in &self.order[lo..hi] {
+            let s = seg_box(&self.segs[i as usize]);
+            for k in 0..3 {
+                b.0[k] = b.0[k].min(s.0[k]);
+                b.1[k] = b.1[k].max(s.1[k]);
+            }
+        }
+        let id = self.nodes.len() as u32;
+        self.nodes.push(Node {
+            b,
+            kids: None,
+            range: (lo as u32, hi as u32),
+        });
+        if hi - lo > 4 {
+            let axis = (0..3)
+                .max_by(|&x, &y| (b.1[x] - b.0[x]).total_cmp(&(b.1[y] - b.0[y])))
+                .unwrap_or(0);
+            let mid = (lo + hi) / 2;
+            let segs = &self.segs;
+            let key = |i: &u32| {
+                let s = &segs[*i as usize];
+                s.0[axis] + s.1[axis]
+            };
+            self.order[lo..hi].select_nth_unstable_by(mid - lo, |a, b| key(a).total_cmp(&key(b)));
+            let l = self.build(lo, mid);
+            let r = self.build(mid, hi);
+            self.nodes[id as usize].kids = Some((l, r));
+        }
+        id
+    }
+    /// Whether every point of box `b` is proven within `d` of one output segment.
+    pub fn box_within(&self, b: &Box3, d: f64) -> bool {
+        let corners: Vec<[f64; 3]> = (0..8)
+            .map(|m| std::array::from_fn(|k| if m >> k & 1 == 0 { b.0[k] } else { b.1[k] }))
+            .collect();
+        self.hull_within(&corners, b, d)
+    }
+    /// Whether the convex hull of enclosed control points (each an interval box, given as
+    /// Cartesian enclosures) is proven within `d` of one output segment. A piece with
+    /// positive weights lies in that hull, and the distance to a segment is convex, so its
+    /// largest value over the hull is taken at a corner of one of the boxes.
+    pub fn net_within(&self, pts: &[V], d: f64) -> bool {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        let mut corners = Vec::with_capacity(pts.len());
+        for p in pts {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k].lo);
+                hi[k] = hi[k].max(p[k].hi);
+            }
+            let n = [p[0], p[1], p[2]].map(|i| if i.lo == i.hi { 1 } else { 2 });
+            for a in 0..n[0] {
+                for b in 0..n[1] {
+                    for c in 0..n[2] {
+                        let pick = |i: Interval, s: usize| if s == 0 { i.lo } else { i.hi };
+                        corners.push([pick(p[0], a), pick(p[1], b), pick(p[2], c)]);
+                    }
+                }
+            }
+        }
+        self.hull_within(&corners, &(lo, hi), d)
+    }
+    fn hull_within(&self, corners: &[[f64; 3]], b: &Box3, d: f64) -> bool {
+        if self.nodes.is_empty()
+            || corners.is_empty()
+            || !corners.iter().flatten().all(|x| x.is_finite())
+        {
+            return false;
+        }
+        let mut stack = vec![0u32];
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i as usize];
+            // A segment within d of all corners has its box within d of the query box.
+            if (0..3).any(|k| n.b.1[k] < b.0[k] - d || n.b.0[k] > b.1[k] + d) {
+                continue;
+            }
+            match n.kids {
+                Some((l, r)) => {
+                    stack.push(l);
+                    stack.push(r);
+                }
+                None => {
+                    for &s in &self.order[n.range.0 as usize..n.range.1 as usize] {
+                        let (p, q) = &self.segs[s as usize];
+                        if corners.iter().all(|c| dist_upper(c, p, q) <= d) {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_near_a_polyline() {
+        let segs: Vec<_> = (0..100)
+            .map(|i| ([i as f64, 0.0, 0.0], [i as f64 + 1.0, 0.0, 0.0]))
+            .collect();
+        let n = Near::new(segs);
+        assert!(n.box_within(&([10.2, -0.1, -0.1], [10.4, 0.1, 0.1]), 0.15));
+        // Corner distance is sqrt(0.02) = 0.1414..: refused just below it.
+        assert!(!n.box_within(&([10.2, -0.1, -0.1], [10.4, 0.1, 0.1]), 0.141));
+        // A box spanning a vertex of the polyline: within d of one segment only if it fits.
+        assert!(!n.box_within(&([10.5, 2.0, 0.0], [10.6, 2.1, 0.0]), 1.0));
+        assert!(!Near::new(Vec::new()).box_within(&([0.0; 3], [0.0; 3]), 1.0));
+        assert!(n.box_within(&([0.0; 3], [0.0; 3]), 0.0));
+    }
+
+    #[test]
+    fn dist_upper_is_an_upper_bound() {
+        let (p, q) = ([0.1, 0.2, 0.3], [1.7, -0.4, 2.9]);
+        for k in 0..200 {
+            let t = k as f64 / 199.0;
+            let c = [0.3 + t, t * t - 0.5, 1.0 - t];
+            // Distance in high precision by exact projection in f64 with a margin check.
+            let d: [f64; 3] = std::array::from_fn(|i| q[i] - p[i]);
+            let e: [f64; 3] = std::array::from_fn(|i| c[i] - p[i]);
+            let tt = ((e[0] * d[0] + e[1] * d[1] + e[2] * d[2])
+                / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]))
+                .clamp(0.0, 1.0);
+            let exact: f64 = (0..3)
+                .map(|i| (c[i] - p[i] - tt * d[i]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let u = dist_upper(&c, &p, &q);
+            assert!(u >= exact * (1.0 - 1e-14) && u <= exact * (1.0 + 1e-12) + 1e-300);
+        }
+    }
+}

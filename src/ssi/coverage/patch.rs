@@ -1,0 +1,351 @@
+//! Bézier pieces with *enclosed* control points: every coordinate and weight is an
+//! outward-rounded [`Interval`] holding the exact value, so a piece obtained by halving stands
+//! for the exact sub-patch (or sub-curve) of the exact surface, and its control-point box
+//! encloses that exact piece (convex hull property, positive weights).
+
+use crate::scalar::Interval;
+
+pub(crate) type V = [Interval; 3];
+
+fn iv0() -> Interval {
+    Interval::point(0.0)
+}
+
+/// Axis-aligned box `[lo, hi]` in model space.
+pub(crate) type Box3 = ([f64; 3], [f64; 3]);
+
+/// The box of the Cartesian control points `x/w` of homogeneous interval control points, or
+/// `None` when a weight interval is not strictly positive or anything is not finite (no
+/// convex-hull claim is then possible).
+pub(crate) fn hull_box(x: &[V], w: &[Interval]) -> Option<Box3> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for (p, wi) in x.iter().zip(w) {
+        if wi.lo.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !wi.is_finite() {
+            return None;
+        }
+        for k in 0..3 {
+            let c = p[k].checked_div(*wi)?;
+            if !c.is_finite() {
+                return None;
+            }
+            lo[k] = lo[k].min(c.lo);
+            hi[k] = hi[k].max(c.hi);
+        }
+    }
+    Some((lo, hi))
+}
+
+/// The Cartesian control points `x/w`, enclosed, or `None` when a weight interval is not
+/// strictly positive or anything is not finite.
+pub(crate) fn cartesian(x: &[V], w: &[Interval]) -> Option<Vec<V>> {
+    let mut out = Vec::with_capacity(x.len());
+    for (p, wi) in x.iter().zip(w) {
+        if wi.lo.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !wi.is_finite() {
+            return None;
+        }
+        let mut c = [Interval::point(0.0); 3];
+        for k in 0..3 {
+            c[k] = p[k].checked_div(*wi)?;
+            if !c[k].is_finite() {
+                return None;
+            }
+        }
+        out.push(c);
+    }
+    Some(out)
+}
+
+/// The box of enclosed points.
+pub(crate) fn box_of(pts: &[V]) -> Box3 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in pts {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k].lo);
+            hi[k] = hi[k].max(p[k].hi);
+        }
+    }
+    (lo, hi)
+}
+
+/// Whether the convex hulls of two sets of enclosed points are proven disjoint along
+/// direction `n` (any direction: the projections of the hulls are the hulls of the
+/// projections).
+pub(crate) fn separated_along(a: &[V], b: &[V], n: &[f64; 3]) -> bool {
+    if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
+        return false;
+    }
+    let nn = n.map(Interval::point);
+    let range = |pts: &[V]| {
+        pts.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                let t = p[0] * nn[0] + p[1] * nn[1] + p[2] * nn[2];
+                (lo.min(t.lo), hi.max(t.hi))
+            })
+    };
+    let (ra, rb) = (range(a), range(b));
+    ra.1 < rb.0 || rb.1 < ra.0
+}
+
+/// Whether two boxes are disjoint (a strict gap on some axis).
+pub(crate) fn disjoint(a: &Box3, b: &Box3) -> bool {
+    (0..3).any(|k| a.1[k] < b.0[k] || b.1[k] < a.0[k])
+}
+
+/// The common part of two overlapping boxes.
+pub(crate) fn meet(a: &Box3, b: &Box3) -> Box3 {
+    (
+        std::array::from_fn(|k| a.0[k].max(b.0[k])),
+        std::array::from_fn(|k| a.1[k].min(b.1[k])),
+    )
+}
+
+/// Length of the box diagonal (rounded; used only to choose what to split).
+pub(crate) fn diagonal(b: &Box3) -> f64 {
+    (0..3)
+        .map(|k| (b.1[k] - b.0[k]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// One de Casteljau halving at `t = 1/2` of a row of homogeneous interval points; returns
+/// the control points of the left and right halves. Multiplication by 1/2 is exact, so each
+/// step adds only the rounding of one sum.
+/// Homogeneous control points of a curve: coordinates and weights.
+type Row = (Vec<V>, Vec<Interval>);
+
+fn halve_row(xs: &[V], ws: &[Interval]) -> (Row, Row) {
+    let n = xs.len() - 1;
+    let half = Interval::point(0.5);
+    let mut x = xs.to_vec();
+    let mut w = ws.to_vec();
+    let (mut lx, mut lw) = (vec![x[0]; n + 1], vec![w[0]; n + 1]);
+    let (mut rx, mut rw) = (vec![x[n]; n + 1], vec![w[n]; n + 1]);
+    for level in 1..=n {
+        for k in 0..=n - level {
+            x[k] = std::array::from_fn(|c| (x[k][c] + x[k + 1][c]) * half);
+            w[k] = (w[k] + w[k + 1]) * half;
+        }
+        lx[level] = x[0];
+        lw[level] = w[0];
+        rx[n - level] = x[n - level];
+        rw[n - level] = w[n - level];
+    }
+    ((lx, lw), (rx, rw))
+}
+
+/// A Bézier curve with interval homogeneous control points.
+#[derive(Clone, Debug)]
+pub(crate) struct ICurve {
+    pub x: Vec<V>,
+    pub w: Vec<Interval>,
+}
+
+impl ICurve {
+    pub fn halve(&self) -> (ICurve, ICurve) {
+        let ((lx, lw), (rx, rw)) = halve_row(&self.x, &self.w);
+        (ICurve { x: lx, w: lw }, ICurve { x: rx, w: rw })
+    }
+    pub fn hull(&self) -> Option<Box3> {
+        hull_box(&self.x, &self.w)
+    }
+    pub fn cartesian(&self) -> Option<Vec<V>> {
+        cartesian(&self.x, &self.w)
+    }
+}
+
+/// Which border of a patch's parameter rectangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Side {
+    U0,
+    U1,
+    V0,
+    V1,
+}
+
+pub(crate) const SIDES: [Side; 4] = [Side::U0, Side::U1, Side::V0, Side::V1];
+
+/// A tensor-product Bézier patch with interval homogeneous control points, row-major
+/// (`i` along u, degree `p`; `j` along v, degree `q`).
+#[derive(Clone, Debug)]
+pub(crate) struct IPatch {
+    pub p: usize,
+    pub q: usize,
+    pub x: Vec<V>,
+    pub w: Vec<Interval>,
+}
+
+impl IPatch {
+    pub fn at(&self, i: usize, j: usize) -> usize {
+        i * (self.q + 1) + j
+    }
+    pub fn hull(&self) -> Option<Box3> {
+        hull_box(&self.x, &self.w)
+    }
+    pub fn cartesian(&self) -> Option<Vec<V>> {
+        cartesian(&self.x, &self.w)
+    }
+    /// A rough unit normal from the corner control points (midpoints; chooses a separating
+    /// direction, proves nothing by itself). Zero when degenerate.
+    pub fn rough_normal(&self) -> [f64; 3] {
+        let pt = |k: usize| -> [f64; 3] {
+            let w = self.w[k].mid();
+            std::array::from_fn(|c| self.x[k][c].mid() / w)
+        };
+        let (a, b, c, d) = (
+            pt(self.at(0, 0)),
+            pt(self.at(self.p, 0)),
+            pt(self.at(0, self.q)),
+            pt(self.at(self.p, self.q)),
+        );
+        let e: [f64; 3] = std::array::from_fn(|k| d[k] - a[k]);
+        let f: [f64; 3] = std::array::from_fn(|k| c[k] - b[k]);
+        let n = [
+            e[1] * f[2] - e[2] * f[1],
+            e[2] * f[0] - e[0] * f[2],
+            e[0] * f[1] - e[1] * f[0],
+        ];
+        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if l > 0.0 && l.is_finite() {
+            n.map(|x| x / l)
+        } else {
+            [0.0; 3]
+        }
+    }
+    /// de Casteljau at 1/2 along u (`along_u`) or v; the two halves.
+    pub fn halve(&self, along_u: bool) -> (IPatch, IPatch) {
+        let (n, m) = if along_u {
+            (self.p, self.q)
+        } else {
+            (self.q, self.p)
+        };
+        let mut l = self.clone();
+        let mut r = self.clone();
+        for line in 0..=m {
+            let idx = |k: usize| {
+                if along_u {
+                    self.at(k, line)
+                } else {
+                    self.at(line, k)
+                }
+            };
+            let xs: Vec<V> = (0..=n).map(|k| self.x[idx(k)]).collect();
+            let ws: Vec<Interval> = (0..=n).map(|k| self.w[idx(k)]).collect();
+            let ((lx, lw), (rx, rw)) = halve_row(&xs, &ws);
+            for k in 0..=n {
+                l.x[idx(k)] = lx[k];
+                l.w[idx(k)] = lw[k];
+                r.x[idx(k)] = rx[k];
+                r.w[idx(k)] = rw[k];
+            }
+        }
+        (l, r)
+    }
+    /// The four quarters `[u-low v-low, u-low v-high, u-high v-low, u-high v-high]`.
+    pub fn quarters(&self) -> [IPatch; 4] {
+        let (l, r) = self.halve(true);
+        let (a, b) = l.halve(false);
+        let (c, d) = r.halve(false);
+        [a, b, c, d]
+    }
+    /// The border curve on `side` (exactly the patch restricted to that border).
+    pub fn edge(&self, side: Side) -> ICurve {
+        let idx: Vec<usize> = match side {
+            Side::U0 => (0..=self.q).map(|j| self.at(0, j)).collect(),
+            Side::U1 => (0..=self.q).map(|j| self.at(self.p, j)).collect(),
+            Side::V0 => (0..=self.p).map(|i| self.at(i, 0)).collect(),
+            Side::V1 => (0..=self.p).map(|i| self.at(i, self.q)).collect(),
+        };
+        ICurve {
+            x: idx.iter().map(|&k| self.x[k]).collect(),
+            w: idx.iter().map(|&k| self.w[k]).collect(),
+        }
+    }
+    /// Whether the net is longer along u than along v (by the midpoints of its border rows;
+    /// a heuristic that only chooses which way to split).
+    pub fn longer_in_u(&self) -> bool {
+        let pt = |k: usize| -> [f64; 3] {
+            let w = self.w[k].mid();
+            std::array::from_fn(|c| self.x[k][c].mid() / w)
+        };
+        let d = |a: usize, b: usize| {
+            let (x, y) = (pt(a), pt(b));
+            (0..3).map(|c| (x[c] - y[c]).powi(2)).sum::<f64>()
+        };
+        let lu =
+            d(self.at(0, 0), self.at(self.p, 0)) + d(self.at(0, self.q), self.at(self.p, self.q));
+        let lv =
+            d(self.at(0, 0), self.at(0, self.q)) + d(self.at(self.p, 0), self.at(self.p, self.q));
+        lv.partial_cmp(&lu) != Some(std::cmp::Ordering::Greater)
+    }
+    /// Hodograph in u or v (degree one less), homogeneous `(X', w')`; `None` at degree 0.
+    pub fn hodograph(&self, along_u: bool) -> Option<IPatch> {
+        let (p, q) = if along_u {
+            (self.p.checked_sub(1)?, self.q)
+        } else {
+            (self.p, self.q.checked_sub(1)?)
+        };
+        let deg = Interval::point(if along_u { self.p } else { self.q } as f64);
+        let mut h = IPatch {
+            p,
+            q,
+            x: Vec::with_capacity((p + 1) * (q + 1)),
+            w: Vec::with_capacity((p + 1) * (q + 1)),
+        };
+        for i in 0..=p {
+            for j in 0..=q {
+                let (a, b) = if along_u {
+                    (self.at(i + 1, j), self.at(i, j))
+                } else {
+                    (self.at(i, j + 1), self.at(i, j))
+                };
+                h.x.push(std::array::from_fn(|c| (self.x[a][c] - self.x[b][c]) * deg));
+                h.w.push((self.w[a] - self.w[b]) * deg);
+            }
+        }
+        Some(h)
+    }
+}
+
+/// Zero net of the given size.
+pub(crate) fn zero_net(n: usize) -> Vec<V> {
+    vec![[iv0(); 3]; n]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pt(x: f64, y: f64, z: f64) -> V {
+        [x, y, z].map(Interval::point)
+    }
+
+    #[test]
+    fn halves_enclose_exact_de_casteljau() {
+        // Quadratic row with weights: halving at 1/2 of (0, 1, 3) with weights (1, 2, 1):
+        // left = (0, 1, 7/4·...) checked through the homogeneous values, exact in binary.
+        let c = ICurve {
+            x: vec![pt(0.0, 0.0, 0.0), pt(2.0, 4.0, 0.0), pt(3.0, 0.0, 0.0)],
+            w: [1.0, 2.0, 1.0].map(Interval::point).to_vec(),
+        };
+        let (l, r) = c.halve();
+        // Homogeneous midpoint at level 2: ((0+2)/2 + (2+3)/2)/2 = 1.75 in x, weight 1.5.
+        assert_eq!(l.x[2][0], Interval::point(1.75));
+        assert_eq!(l.w[2], Interval::point(1.5));
+        assert_eq!(r.x[0], l.x[2]);
+        assert_eq!(l.x[1][1], Interval::point(2.0));
+        assert_eq!(r.w[1], Interval::point(1.5));
+    }
+
+    #[test]
+    fn hull_refuses_non_positive_weights() {
+        let x = vec![pt(0.0, 0.0, 0.0), pt(1.0, 0.0, 0.0)];
+        assert!(hull_box(&x, &[Interval::point(1.0), Interval::new(-1e-300, 1.0)]).is_none());
+        assert!(hull_box(&x, &[Interval::point(1.0), Interval::point(0.0)]).is_none());
+        let b = hull_box(&x, &[Interval::point(1.0), Interval::point(2.0)]).unwrap();
+        assert_eq!(b, ([0.0, 0.0, 0.0], [0.5, 0.0, 0.0]));
+        let nan = vec![pt(f64::NAN, 0.0, 0.0)];
+        assert!(hull_box(&nan, &[Interval::point(1.0)]).is_none());
+    }
+}
