@@ -1,5 +1,7 @@
 //! Command-line interface: parses arguments, calls one library job, prints its report.
-//! Exit codes: 0 success, 2 bad input (unreadable or invalid file, bad arguments),
+//! Exit codes: 0 success (for `ssi` and `certify-ssi`: everything reported is proven),
+//! 3 finished but not certified (uncertified regions, points or curves not within tol,
+//! missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
 //! 1 failure of the computation or of writing outputs.
 
 use clap::{Parser, Subcommand};
@@ -9,6 +11,10 @@ use std::path::PathBuf;
 pub const EXIT_BAD_INPUT: i32 = 2;
 /// Exit code for a failed computation or output.
 pub const EXIT_FAILURE: i32 = 1;
+/// The run finished but not everything it reports is proven: `ssi` with uncertified
+/// coverage regions, points not proven within tol, or a partial run; `certify-ssi` with
+/// foreign curves not within tol, or vericad branches missing or partly missing from them.
+pub const EXIT_UNCERTIFIED: i32 = 3;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -310,11 +316,21 @@ pub fn run(cli: Cli) -> i32 {
                 vtk: vtk.as_deref(),
                 iges: iges.as_deref(),
             };
-            finish(
-                job::run(&file, file2.as_deref(), &prm, threads, outputs),
-                json,
-                |e| e.is_bad_input(),
-            )
+            match job::run(&file, file2.as_deref(), &prm, threads, outputs) {
+                Ok(r) => {
+                    print(&r, json);
+                    if r.summary.certified {
+                        0
+                    } else {
+                        EXIT_UNCERTIFIED
+                    }
+                }
+                Err(e) if e.is_bad_input() => bad(e),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    EXIT_FAILURE
+                }
+            }
         }
         Command::CertifySsi {
             a,
@@ -339,7 +355,12 @@ pub fn run(cli: Cli) -> i32 {
             ) {
                 Ok(r) => {
                     print(&r, json);
-                    0
+                    let all_within = r.curves_within_tol == r.curves.len();
+                    if all_within && r.missing_branches == 0 && r.partial_branches == 0 {
+                        0
+                    } else {
+                        EXIT_UNCERTIFIED
+                    }
                 }
                 Err(e) if e.is_bad_input() => bad(e),
                 Err(e) => {

@@ -242,6 +242,7 @@ pub fn intersect_models(
         no_missed_branches,
         uncertified_box_pairs: uncertified,
         partial,
+        certified: dist_max <= prm.tol && !partial && (meshes || no_missed_branches),
         seconds: t0.elapsed().as_secs_f64(),
         certificate,
     };

@@ -141,6 +141,9 @@ pub struct Summary {
     /// Box pairs (over all face pairs) neither proven free nor loop-free.
     pub uncertified_box_pairs: usize,
     pub partial: bool,
+    /// Everything above is proven: every point within tol, no branch missed (coverage), the
+    /// run complete. The command exits with 3 when this is false.
+    pub certified: bool,
     pub seconds: f64,
     /// Plain words on what is proven (points) and what is not (completeness).
     pub certificate: Vec<String>,
