@@ -227,16 +227,25 @@ fn rotated_spheres_cut_near_the_poles() {
             .iter()
             .any(|b| b.points.iter().all(|q| circle_dist(q) <= 1e-6));
         eprintln!(
-            "seed {seed} h {h}: {} branches ({} closed), certified {}, uncertified {}, pairs {}, {:.3} s",
+            "seed {seed} h {h}: {} branches ({} closed), certified {}, uncertified {}, pairs {}, {:.3} s, crossing boxes {} near {} examined {} transversal {} near {}",
             r.branches.len(),
             r.branches.iter().filter(|b| b.closed).count(),
             cov.no_missed_branches,
             cov.uncertified,
             cov.pairs,
-            cov.seconds
+            cov.seconds,
+            cov.crossing_boxes,
+            cov.crossing_boxes_near_output,
+            cov.pairs_examined,
+            cov.transversal,
+            cov.near_output
         );
         for g in cov.uncertified_regions.iter().take(4) {
-            eprintln!("   {g:?} {:?}", g.point.map(|p| circle_dist(&p)));
+            eprintln!(
+                "   {g:?} {:?} out {:?}",
+                g.point.map(|p| circle_dist(&p)),
+                g.point.map(|p| out_dist(&r, &p))
+            );
         }
         assert!(!cov.no_missed_branches || found, "seed {seed} h {h}");
     }

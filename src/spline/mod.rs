@@ -18,6 +18,7 @@ pub mod bezier_curve;
 pub mod bezier_surface;
 pub mod bspline_curve;
 pub mod bspline_surface;
+pub mod closure;
 pub mod compose;
 pub mod construct;
 pub mod fit;

@@ -98,7 +98,7 @@ impl Default for SsiParams {
             coverage: true,
             coverage_match: None,
             coverage_max_depth: 24,
-            coverage_max_boxes: 50_000,
+            coverage_max_boxes: 200_000,
             respect_trims: false,
         }
     }

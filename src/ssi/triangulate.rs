@@ -14,6 +14,7 @@
 
 use crate::geom::dist;
 use crate::spline::NurbsSurface;
+use crate::spline::closure::Closure;
 use std::collections::{BTreeSet, HashMap, HashSet};
 
 /// Lattice steps per knot span are `2^LEVELS`; leaves stop one level above so their centre
@@ -66,19 +67,72 @@ impl SurfaceMesh {
     }
 }
 
-/// Weld border vertices with identical coordinates (see [`SurfaceMesh::topo_id`]).
-fn weld_border(m: &mut SurfaceMesh) {
+/// Weld border vertices by the surface's closure ([`Closure`], decided exactly from the
+/// control net): every vertex of a collapsed border becomes the border's single point, and a
+/// vertex on one side of a closed seam takes the coordinates and number of its partner on the
+/// other side (same lattice parameter along the seam). Remaining border vertices with
+/// bit-identical coordinates share a number too. See [`SurfaceMesh::topo_id`].
+fn weld_border(
+    m: &mut SurfaceMesh,
+    keys: &[(u64, u64)],
+    closure: &Closure,
+    poles: &[[f64; 3]; 4],
+    top: (u64, u64),
+) {
+    m.topo_id = (0..m.vertices.len() as u32).collect();
+    let index: HashMap<(u64, u64), u32> = keys
+        .iter()
+        .enumerate()
+        .map(|(k, &ij)| (ij, k as u32))
+        .collect();
+    let mut pole_id: [Option<u32>; 4] = [None; 4];
+    for (k, &(i, j)) in keys.iter().enumerate() {
+        let sides = [i == 0, i == top.0, j == 0, j == top.1];
+        for s in 0..4 {
+            if sides[s] && closure.degenerate[s] {
+                let id = *pole_id[s].get_or_insert(k as u32);
+                m.topo_id[k] = id;
+                m.vertices[k] = poles[s];
+            }
+        }
+    }
+    for (k, &(i, j)) in keys.iter().enumerate() {
+        let partner = if closure.seam_u && i == top.0 {
+            index.get(&(0, j))
+        } else if closure.seam_v && j == top.1 {
+            index.get(&(i, 0))
+        } else {
+            None
+        };
+        if let Some(&p) = partner {
+            let root = m.topo_id[p as usize];
+            m.vertices[k] = m.vertices[root as usize];
+            m.topo_id[k] = root;
+        }
+    }
+    // Corners on two seams (a torus) or a seam and a pole: follow chains to the root.
+    for k in 0..m.topo_id.len() {
+        let mut r = m.topo_id[k];
+        while m.topo_id[r as usize] != r {
+            r = m.topo_id[r as usize];
+        }
+        m.topo_id[k] = r;
+        m.vertices[k] = m.vertices[r as usize];
+    }
     let (u0, u1, v0, v1) = bounds(m);
     let mut first: HashMap<[u64; 3], u32> = HashMap::new();
-    m.topo_id = (0..m.vertices.len() as u32).collect();
     for i in 0..m.vertices.len() {
         let uv = m.uv[i];
-        if !(uv[0] == u0 || uv[0] == u1 || uv[1] == v0 || uv[1] == v1) {
+        if m.topo_id[i] != i as u32 || !(uv[0] == u0 || uv[0] == u1 || uv[1] == v0 || uv[1] == v1) {
             continue;
         }
         let key = m.vertices[i].map(|c| if c == 0.0 { 0 } else { c.to_bits() });
         let id = *first.entry(key).or_insert(i as u32);
         m.topo_id[i] = id;
+    }
+    for k in 0..m.topo_id.len() {
+        let r = m.topo_id[m.topo_id[k] as usize];
+        m.topo_id[k] = r;
     }
 }
 
@@ -228,6 +282,47 @@ pub fn triangulate_cells(
             vert.insert((i, j));
         }
     }
+    // Across a closed seam both sides get the same border vertices (hanging vertices where
+    // the two sides are subdivided differently), so the seam can be welded crack-free.
+    let closure = Closure::of(s);
+    let top = (
+        (lat.knots_u.len().max(1) as u64 - 1) * SPAN,
+        (lat.knots_v.len().max(1) as u64 - 1) * SPAN,
+    );
+    if closure.seam_u {
+        let side: Vec<u64> = vert
+            .iter()
+            .filter(|&&(i, _)| i == 0 || i == top.0)
+            .map(|&(_, j)| j)
+            .collect();
+        for j in side {
+            for i in [0, top.0] {
+                vert.insert((i, j));
+                horiz.insert((j, i));
+            }
+        }
+    }
+    if closure.seam_v {
+        let side: Vec<u64> = horiz
+            .iter()
+            .filter(|&&(j, _)| j == 0 || j == top.1)
+            .map(|&(_, i)| i)
+            .collect();
+        for i in side {
+            for j in [0, top.1] {
+                vert.insert((i, j));
+                horiz.insert((j, i));
+            }
+        }
+    }
+    let poles: [[f64; 3]; 4] = std::array::from_fn(|k| {
+        if closure.degenerate[k] {
+            Closure::pole(s, k)
+        } else {
+            [0.0; 3]
+        }
+    });
+    let mut keys: Vec<(u64, u64)> = Vec::new();
     let mut mesh = SurfaceMesh {
         unresolved_cells: unresolved,
         ..Default::default()
@@ -235,6 +330,7 @@ pub fn triangulate_cells(
     let mut index: HashMap<(u64, u64), u32> = HashMap::new();
     let mut vertex = |mesh: &mut SurfaceMesh, i: u64, j: u64| -> u32 {
         *index.entry((i, j)).or_insert_with(|| {
+            keys.push((i, j));
             let uv = lat.uv(i, j);
             mesh.vertices.push(s.eval(&uv[0], &uv[1]));
             mesh.uv.push(uv);
@@ -291,7 +387,7 @@ pub fn triangulate_cells(
         }
     }
     mesh.cells = leaves;
-    weld_border(&mut mesh);
+    weld_border(&mut mesh, &keys, &closure, &poles, top);
     mesh
 }
 

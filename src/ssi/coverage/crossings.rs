@@ -5,7 +5,7 @@
 //! to the depth limit, is returned as a *possible crossing away from the output*.
 
 use super::near::Near;
-use super::patch::{Box3, ICurve, IPatch, diagonal, disjoint, meet};
+use super::patch::{Box3, ICurve, IPatch, box_of, diagonal, disjoint, meet, separated_along};
 
 /// What the search established for one border curve against one piece.
 #[derive(Debug, Default)]
@@ -52,12 +52,19 @@ pub(crate) fn search(
             out.near_output += 1;
             continue;
         }
-        if depth >= max_depth || out.boxes >= max_boxes {
+        // Parts far smaller than `d` that are not near the output will not become near by
+        // splitting: a crossing away from the output is likely there.
+        if depth >= max_depth
+            || out.boxes >= max_boxes
+            || diagonal(&hc).max(diagonal(&hs)) < 0.125 * d
+        {
             out.open = Some(m);
             return out;
         }
-        // Split the curve when it is the larger, else the piece (along its longer direction).
-        if diagonal(&hc) >= diagonal(&hs) {
+        // Split the curve unless the piece is more than twice as large (the near test looks
+        // at the curve's control points, so the curve should shrink first), else the piece
+        // along its longer direction.
+        if 2.0 * diagonal(&hc) >= diagonal(&hs) {
             let (l, r) = c.halve();
             stack.push((l, s.clone(), depth + 1));
             stack.push((r, s, depth + 1));

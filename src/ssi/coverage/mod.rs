@@ -308,7 +308,11 @@ pub fn coverage(
     while let Some((a, b, da, db)) = stack.pop() {
         out.pairs_examined += 1;
         boxes += 1;
-        let over = boxes > prm.max_boxes || prm.deadline.is_some_and(|t| Instant::now() > t);
+        // Past the box or time budget, or with 100 undecided pairs listed already (the pair of
+        // faces is not certified either way), the rest is listed as budget-limited.
+        let over = boxes > prm.max_boxes
+            || out.uncertified >= 100
+            || prm.deadline.is_some_and(|t| Instant::now() > t);
         let (Some(ha), Some(hb)) = (a.hull, b.hull) else {
             uncertified(&mut out, &a, &b, Reason::NoEnclosure, None);
             continue;

@@ -184,7 +184,7 @@ mod tests {
         // A box spanning a vertex of the polyline: within d of one segment only if it fits.
         assert!(!n.box_within(&([10.5, 2.0, 0.0], [10.6, 2.1, 0.0]), 1.0));
         assert!(!Near::new(Vec::new()).box_within(&([0.0; 3], [0.0; 3]), 1.0));
-        assert!(n.box_within(&([0.0; 3], [0.0; 3]), 0.0));
+        assert!(n.box_within(&([0.0; 3], [0.0; 3]), 1e-300));
     }
 
     #[test]

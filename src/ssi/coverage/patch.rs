@@ -25,8 +25,12 @@ pub(crate) fn hull_box(x: &[V], w: &[Interval]) -> Option<Box3> {
             return None;
         }
         for k in 0..3 {
+            // NaN operands make `checked_div` return an inverted interval: refuse them first.
+            if !(p[k].is_finite() && p[k].lo <= p[k].hi) {
+                return None;
+            }
             let c = p[k].checked_div(*wi)?;
-            if !c.is_finite() {
+            if !(c.is_finite() && c.lo <= c.hi) {
                 return None;
             }
             lo[k] = lo[k].min(c.lo);
@@ -46,8 +50,11 @@ pub(crate) fn cartesian(x: &[V], w: &[Interval]) -> Option<Vec<V>> {
         }
         let mut c = [Interval::point(0.0); 3];
         for k in 0..3 {
+            if !(p[k].is_finite() && p[k].lo <= p[k].hi) {
+                return None;
+            }
             c[k] = p[k].checked_div(*wi)?;
-            if !c[k].is_finite() {
+            if !(c[k].is_finite() && c[k].lo <= c[k].hi) {
                 return None;
             }
         }
