@@ -16,7 +16,8 @@
 //! with `X = Σ N_i N_j w_ij P_ij`, `w = Σ N_i N_j w_ij`; the quotients are refused (`None`)
 //! when the enclosure of `w` contains 0. A box that meets several spans is cut at the knot
 //! lines; each piece (box ∩ closed span rectangle) is enclosed with its span's function and
-//! the results are joined by the hull. Parts of the box beyond the parameter domain are
+//! the results are joined by the hull (boxes meeting more than [`MAX_PIECES`] spans in one
+//! direction are refused). Parts of the box beyond the parameter domain are
 //! enclosed with the *polynomial extension* of the outermost span (callers that need points
 //! of the true face check that their parameters lie in the domain).
 //!
@@ -46,37 +47,37 @@ fn pt(x: f64) -> Interval {
 }
 
 /// Largest order (degree + 1) handled; higher degrees are refused (`None`).
-pub const MAX_ORDER: usize = 24;
+pub const MAX_ORDER: usize = 16;
 
-/// Values of the `p + 1` basis functions of a span.
-pub type Basis = arrayvec::ArrayVec<Interval, MAX_ORDER>;
+/// Most spans a box may meet in one direction; wider boxes are refused (`None`).
+pub const MAX_PIECES: usize = 8;
 
-/// Basis functions `N_{span-p..=span}` of the polynomial piece of span `span` (and, when
-/// `deriv`, their first derivatives), enclosed for every parameter in `x`. `None` only if a
-/// knot difference of the span is not positive (never for a non-empty span), or the degree
-/// is [`MAX_ORDER`] or more.
+/// Basis functions `N_{span-p..=span}` of the polynomial piece of span `span` written to
+/// `n[..=p]` (and, when `d` is given, their first derivatives to `d[..=p]`), enclosed for every
+/// parameter in `x`. `None` only if a knot difference of the span is not positive (never for a
+/// non-empty span), or the degree is [`MAX_ORDER`] or more.
 pub fn basis_d1(
     k: &KnotVector<f64>,
     span: usize,
     x: Interval,
-    deriv: bool,
-) -> Option<(Basis, Basis)> {
+    n: &mut [Interval; MAX_ORDER],
+    d: Option<&mut [Interval; MAX_ORDER]>,
+) -> Option<()> {
     let p = k.degree();
     if p >= MAX_ORDER {
         return None;
     }
     let t = k.knots();
-    let zero = || Basis::from_iter(std::iter::repeat_n(pt(0.0), p + 1));
-    let (mut n, mut left, mut right) = (zero(), zero(), zero());
-    let mut prev = zero();
+    let zero = pt(0.0);
+    let (mut left, mut right, mut prev) = ([zero; MAX_ORDER], [zero; MAX_ORDER], [zero; MAX_ORDER]);
     n[0] = pt(1.0);
     for j in 1..=p {
-        if deriv && j == p {
+        if d.is_some() && j == p {
             prev[..p].copy_from_slice(&n[..p]);
         }
         left[j] = x - pt(t[span + 1 - j]);
         right[j] = pt(t[span + j]) - x;
-        let mut saved = pt(0.0);
+        let mut saved = zero;
         for r in 0..j {
             // right[r+1] + left[j-r] with the parameter cancelled: a positive knot difference.
             let den = pt(t[span + r + 1]) - pt(t[span + 1 + r - j]);
@@ -86,40 +87,45 @@ pub fn basis_d1(
         }
         n[j] = saved;
     }
-    let mut d = zero();
-    if deriv && p >= 1 {
-        {
-            let deg = pt(p as f64);
-            for (a, da) in d.iter_mut().enumerate() {
-                let i = span - p + a;
-                let t1 = if a >= 1 {
-                    prev[a - 1].checked_div(pt(t[i + p]) - pt(t[i]))?
-                } else {
-                    pt(0.0)
-                };
-                let t2 = if a < p {
-                    prev[a].checked_div(pt(t[i + p + 1]) - pt(t[i + 1]))?
-                } else {
-                    pt(0.0)
-                };
-                *da = deg * (t1 - t2);
-            }
+    if let Some(d) = d {
+        if p == 0 {
+            d[0] = zero;
+            return Some(());
+        }
+        let deg = pt(p as f64);
+        for (a, da) in d.iter_mut().enumerate().take(p + 1) {
+            let i = span - p + a;
+            let t1 = if a >= 1 {
+                prev[a - 1].checked_div(pt(t[i + p]) - pt(t[i]))?
+            } else {
+                zero
+            };
+            let t2 = if a < p {
+                prev[a].checked_div(pt(t[i + p + 1]) - pt(t[i + 1]))?
+            } else {
+                zero
+            };
+            *da = deg * (t1 - t2);
         }
     }
-    Some((n, d))
+    Some(())
 }
 
+type Pieces = arrayvec::ArrayVec<(usize, Interval), MAX_PIECES>;
+
 /// The spans an interval meets, each with the part of the interval it covers (the outermost
-/// spans extended to infinity: polynomial extension beyond the domain).
-fn pieces(k: &KnotVector<f64>, x: Interval) -> Vec<(usize, Interval)> {
+/// spans extended to infinity: polynomial extension beyond the domain); `None` beyond
+/// [`MAX_PIECES`].
+fn pieces(k: &KnotVector<f64>, x: Interval) -> Option<Pieces> {
     let t = k.knots();
+    let (s0, s1) = (k.find_span(&x.lo), k.find_span(&x.hi));
+    let mut out = Pieces::new();
+    if s0 == s1 {
+        out.push((s0, x));
+        return Some(out);
+    }
     let (d0, d1) = k.domain();
     let (first, last) = (k.find_span(&d0), k.find_span(&d1));
-    let (s0, s1) = (k.find_span(&x.lo), k.find_span(&x.hi));
-    if s0 == s1 {
-        return vec![(s0, x)];
-    }
-    let mut out = Vec::with_capacity(1 + s1 - s0);
     for s in s0..=s1 {
         if t[s] >= t[s + 1] {
             continue;
@@ -127,10 +133,10 @@ fn pieces(k: &KnotVector<f64>, x: Interval) -> Vec<(usize, Interval)> {
         let lo = if s == first { x.lo } else { x.lo.max(t[s]) };
         let hi = if s == last { x.hi } else { x.hi.min(t[s + 1]) };
         if lo <= hi {
-            out.push((s, Interval::new(lo, hi)));
+            out.try_push((s, Interval::new(lo, hi))).ok()?;
         }
     }
-    out
+    Some(out)
 }
 
 fn hull3(a: [Interval; 3], b: [Interval; 3]) -> [Interval; 3] {
@@ -145,8 +151,10 @@ fn piece(
     deriv: bool,
 ) -> Option<Jet> {
     let h = &s.hom;
-    let (nu, du) = basis_d1(&h.ku, su, u, deriv)?;
-    let (nv, dv) = basis_d1(&h.kv, sv, v, deriv)?;
+    let zero = [pt(0.0); MAX_ORDER];
+    let (mut nu, mut du, mut nv, mut dv) = (zero, zero, zero, zero);
+    basis_d1(&h.ku, su, u, &mut nu, deriv.then_some(&mut du))?;
+    basis_d1(&h.kv, sv, v, &mut nv, deriv.then_some(&mut dv))?;
     let (p, q) = (h.ku.degree(), h.kv.degree());
     let ncols = h.kv.n_ctrl();
     let z = [pt(0.0); 4];
@@ -193,7 +201,7 @@ fn enclose(s: &NurbsSurface<f64, 3>, u: Interval, v: Interval, deriv: bool) -> O
     if !(u.is_finite() && v.is_finite() && u.lo <= u.hi && v.lo <= v.hi) {
         return None;
     }
-    let (pu, pv) = (pieces(&s.hom.ku, u), pieces(&s.hom.kv, v));
+    let (pu, pv) = (pieces(&s.hom.ku, u)?, pieces(&s.hom.kv, v)?);
     let mut out: Option<Jet> = None;
     for &a in &pu {
         for &b in &pv {

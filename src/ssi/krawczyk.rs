@@ -246,8 +246,8 @@ const TRIES: usize = 8;
 fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
     // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
     let mut y = z0;
+    let (mut f, mut j) = sys.eval_f64(&y);
     for _ in 0..NEWTON_STEPS {
-        let (f, j) = sys.eval_f64(&y);
         let Some(ji) = inverse4(j) else {
             return Attempt::Fail(Uncertified::Singular);
         };
@@ -256,14 +256,16 @@ fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
         if !next.iter().all(|x| x.is_finite()) {
             break;
         }
-        let small = (0..4).all(|i| d[i].abs() <= 4.0 * f64::EPSILON * y[i].abs().max(1e-300));
         y = next;
-        if small {
+        if let Fourth::Hold { k, c } = sys.e {
+            y[k] = c;
+        }
+        (f, j) = sys.eval_f64(&y);
+        // Converged when the step was at the level of the domain's rounding (1e-12 of its
+        // size): the next one would be below the box radius anyway.
+        if (0..4).all(|i| d[i].abs() <= 1e-12 * (sys.hi[i] - sys.lo[i] + y[i].abs())) {
             break;
         }
-    }
-    if let Fourth::Hold { k, c } = sys.e {
-        y[k] = c;
     }
     // Newton ran far off the faces: no isolated zero near p (tangency, or no curve there).
     if !(0..4).all(|i| {
@@ -272,7 +274,8 @@ fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
     }) {
         return Attempt::Fail(Uncertified::NoContraction);
     }
-    let Some(yinv) = inverse4(sys.eval_f64(&y).1) else {
+    // The preconditioner: the inverse of the f64 Jacobian at y (any matrix is sound).
+    let Some(yinv) = inverse4(j) else {
         return Attempt::Fail(Uncertified::Singular);
     };
     let Some((fy, at_y)) = sys.f_at(&y) else {
