@@ -1,16 +1,16 @@
 //! Step 9b — the curve certificate: for an output point `p` with parameters `(u, v)` on
 //! `S_A` and `(s, t)` on `S_B`, a proven radius `r` such that a true intersection point
-//! `q = S_A(u*, v*) = S_B(s*, t*)`, with `(u*, v*)` and `(s*, t*)` in the (closed) parameter
-//! domains of the two faces, lies within `r` of `p`. So `r` bounds the distance from `p` to the
-//! intersection *curve* — unlike [`super::certify`], which bounds the distance to each surface
-//! at `p`'s own parameters (near tangency a point within `d` of both surfaces can be `d / θ`
-//! from the curve, `θ` the angle between the surfaces).
+//! `q = S_A(u*, v*) = S_B(s*, t*)`, with `(u*, v*)` and `(s*, t*)` in the closed (untrimmed)
+//! parameter domains of the two faces, lies within `r` of `p`. So `r` bounds the distance from
+//! `p` to the intersection *curve* — unlike [`super::certify`], which bounds the distance to
+//! each surface at `p`'s own parameters (near tangency a point within `d` of both surfaces can
+//! be `d / θ` from the curve, `θ` the angle between the surfaces).
 //!
 //! **The system.** `F(u, v, s, t) = (S_A(u, v) − S_B(s, t), g)` with the fourth equation `g`
 //! either `n · (S_A(u, v) − p)` (the plane through `p` across the curve; `n` a unit `f64`
-//! approximation of the curve tangent `N_A × N_B` at `p`'s parameters) or, for a point on a
-//! border of a domain, `z_k − c` (that parameter held on the border line). Any fixed `n`
-//! keeps the argument sound; a good one keeps the Jacobian well conditioned.
+//! approximation of the curve tangent `N_A × N_B` at `p`'s parameters) or, when the zero may
+//! lie beyond a border of a domain, `z_k − c` (that parameter held on the border line). Any
+//! fixed `n` keeps the argument sound; a good one keeps the Jacobian well conditioned.
 //!
 //! **Krawczyk's theorem** (Krawczyk 1969; in this form Rump, *Verification methods*, Acta
 //! Numerica 2010, the Krawczyk operator). Let `X` be a box, `y ∈ X`, `Y` any real 4 × 4 matrix,
