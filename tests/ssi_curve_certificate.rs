@@ -315,7 +315,7 @@ fn sphere_and_plane(h: f64, tol: f64) -> (usize, usize, f64) {
 
 #[test]
 fn exact_sphere_cut_by_planes() {
-    let tol = 1e-6;
+    let tol = 1e-5;
     for h in [0.0, 0.7, -1.25, 1.875, 1.984375] {
         let (cert, total, largest) = sphere_and_plane(h, tol);
         println!("sphere ∩ z = {h}: {cert} of {total} certified, dist_curve_max {largest:.2e}");
@@ -524,7 +524,7 @@ fn summary_speaks_of_the_curve() {
 // (d) Random angles and heights.
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(12))]
+    #![proptest_config(ProptestConfig::with_cases(8))]
     #[test]
     fn random_planes_and_heights(
         lt in -4.0f64..-0.2,
