@@ -22,9 +22,11 @@ pub struct Interval {
 
 impl Interval {
     /// The degenerate interval holding exactly `x`.
+    #[inline]
     pub fn point(x: f64) -> Interval {
         Interval { lo: x, hi: x }
     }
+    #[inline]
     fn widen(lo: f64, hi: f64) -> Interval {
         Interval {
             lo: lo.next_down(),
@@ -32,6 +34,7 @@ impl Interval {
         }
     }
     /// Whether 0 lies in the interval.
+    #[inline]
     pub fn contains_zero(&self) -> bool {
         self.lo <= 0.0 && self.hi >= 0.0
     }
@@ -45,14 +48,17 @@ impl Interval {
         ((m - self.lo).max(self.hi - m)).next_up()
     }
     /// Whether the enclosure is finite (no overflow happened).
+    #[inline]
     pub fn is_finite(&self) -> bool {
         self.lo.is_finite() && self.hi.is_finite()
     }
     /// The interval `[lo, hi]` (caller guarantees `lo <= hi`).
+    #[inline]
     pub fn new(lo: f64, hi: f64) -> Interval {
         Interval { lo, hi }
     }
     /// The smallest interval holding both.
+    #[inline]
     pub fn hull(self, o: Interval) -> Interval {
         Interval {
             lo: self.lo.min(o.lo),
@@ -60,6 +66,7 @@ impl Interval {
         }
     }
     /// `max |x|` over the interval.
+    #[inline]
     pub fn mag(&self) -> f64 {
         self.lo.abs().max(self.hi.abs())
     }
@@ -83,6 +90,7 @@ impl Interval {
         self.hi < 0.0
     }
     /// Quotient; `None` when the divisor interval contains zero.
+    #[inline]
     pub fn checked_div(self, o: Interval) -> Option<Interval> {
         if o.contains_zero() {
             return None;
@@ -113,6 +121,7 @@ impl Interval {
 }
 
 /// Knuth's TwoSum: `a + b = s + e` exactly, `s` the rounded sum.
+#[inline]
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
@@ -122,6 +131,7 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 
 /// Dekker's TwoProduct (Veltkamp splitting): `a · b = p + e` exactly, `p` the rounded
 /// product (valid without overflow/underflow; callers widen when that may have happened).
+#[inline]
 fn two_product(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     let split = |x: f64| {
@@ -139,6 +149,7 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 /// from an error-free transformation: exact results stay points. When the transformation
 /// is not trustworthy (non-finite, or magnitudes where underflow may spoil it), one ulp
 /// each way, as round-to-nearest guarantees.
+#[inline]
 fn bounds(r: f64, e: f64) -> (f64, f64) {
     if !r.is_finite() || !e.is_finite() || (r != 0.0 && r.abs() < 1e-280) {
         return (r.next_down(), r.next_up());
@@ -152,10 +163,12 @@ fn bounds(r: f64, e: f64) -> (f64, f64) {
     }
 }
 
+#[inline]
 fn lo_sum(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     bounds(s, e).0
 }
+#[inline]
 fn hi_sum(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     bounds(s, e).1
@@ -163,6 +176,7 @@ fn hi_sum(a: f64, b: f64) -> f64 {
 
 impl Add for Interval {
     type Output = Interval;
+    #[inline]
     fn add(self, o: Interval) -> Interval {
         if self.lo != self.hi || o.lo != o.hi {
             // Not points: one ulp outward (round-to-nearest is within half an ulp).
@@ -176,6 +190,7 @@ impl Add for Interval {
 }
 impl Sub for Interval {
     type Output = Interval;
+    #[inline]
     fn sub(self, o: Interval) -> Interval {
         if self.lo != self.hi || o.lo != o.hi {
             return Interval::widen(self.lo - o.hi, self.hi - o.lo);
@@ -188,6 +203,7 @@ impl Sub for Interval {
 }
 impl Neg for Interval {
     type Output = Interval;
+    #[inline]
     fn neg(self) -> Interval {
         Interval {
             lo: -self.hi,
@@ -196,6 +212,7 @@ impl Neg for Interval {
     }
 }
 /// Bounds of the exact product `a · b`.
+#[inline]
 fn product_bounds(a: f64, b: f64) -> (f64, f64) {
     if a == 0.0 || b == 0.0 {
         return (0.0, 0.0);
@@ -210,12 +227,14 @@ fn product_bounds(a: f64, b: f64) -> (f64, f64) {
 
 /// Whether multiplying by `x` is exact for every finite operand away from the extremes of
 /// the exponent range: a point that is 0, or ± a power of two.
+#[inline]
 fn exact_multiplier(x: Interval) -> bool {
     x.lo == x.hi && (x.lo == 0.0 || (x.lo.abs().to_bits() & ((1u64 << 52) - 1)) == 0)
 }
 
 impl Mul for Interval {
     type Output = Interval;
+    #[inline]
     fn mul(self, o: Interval) -> Interval {
         if self.lo == self.hi && o.lo == o.hi {
             let (lo, hi) = product_bounds(self.lo, o.lo);

@@ -1,9 +1,11 @@
 //! Steps 8–9 applied to one traced curve: refine its sample points onto the true surfaces,
 //! insert points where the polyline strays from the true curve by more than `tol`, certify
-//! every point, classify the ends, fit splines.
+//! every point (distance to each surface, [`super::certify`]; distance to the intersection
+//! curve, [`super::krawczyk`]), classify the ends, fit splines.
 
 use super::certify::ExactSurface;
 use super::fit::fit_branch;
+use super::krawczyk::certify_on_curve;
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
 };
@@ -27,6 +29,8 @@ pub struct PairGeometry<'a> {
 }
 
 /// A refined branch, or a touching point when the branch has zero length.
+// One per branch, moved once: the size difference costs nothing.
+#[allow(clippy::large_enum_variant)]
 pub enum BranchResult {
     Curve(BranchOut),
     Touch(TouchOut),
@@ -255,7 +259,11 @@ pub fn refine_branch(
     let uv_a: Vec<[f64; 2]> = all.iter().map(|r| r.uv_a).collect();
     let uv_b: Vec<[f64; 2]> = all.iter().map(|r| r.uv_b).collect();
     let fit = fit_branch(&points, &uv_a, &uv_b, b.closed);
-    BranchResult::Curve(BranchOut {
+    let radii = all
+        .iter()
+        .map(|r| certify_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b).map(|c| c.radius))
+        .collect();
+    let mut out = BranchOut {
         closed: b.closed,
         points,
         uv_a,
@@ -269,5 +277,11 @@ pub fn refine_branch(
         inserted_points: ins.inserted,
         max_chord_deviation: ins.max_dev,
         fit,
-    })
+        dist_curve_max: None,
+        curve_uncertified_points: 0,
+        curve_radius: Vec::new(),
+        curve_uncertified: Vec::new(),
+    };
+    out.set_curve_radii(radii);
+    BranchResult::Curve(out)
 }

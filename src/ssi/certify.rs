@@ -2,14 +2,15 @@
 //! surface `S`, a proven upper bound on `||x - S(u, v)||`.
 //!
 //! Fast path: `S(u, v)` is evaluated in outward-rounded interval arithmetic (Cox–de Boor basis,
-//! The NURBS Book A2.2, and the homogeneous sum, then the quotient), which encloses the exact
-//! value; `||x - S||` is bounded above from the enclosure with upward rounding. Reference path
+//! The NURBS Book A2.2, and the homogeneous sum, then the quotient: [`super::enclose`]), which
+//! encloses the exact value; `||x - S||` is bounded above from the enclosure with upward rounding. Reference path
 //! (used when an interval division straddles zero, and on request): `x`, `u`, `v` and the
 //! control net are `f64`, so they lift exactly into rationals; `S(u, v)` is evaluated exactly,
 //! `||x - S(u,v)||²` is an exact rational `q`, and the bound is the smallest `f64` found whose
 //! square is proven `>= q`. Both are rigorous; nothing is sampled: the bound holds for the
 //! stated parameters (and bounds the distance to the surface, as `S(u, v)` lies on it).
 
+use super::enclose::enclose_point;
 use crate::geom::{Hom, Point, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
 use crate::spline::NurbsSurface;
@@ -24,53 +25,19 @@ pub struct ExactSurface {
     pub exact_only: bool,
 }
 
-/// Basis functions `N_{span-p..=span}(t)` enclosed in intervals (A2.2).
-fn basis_iv(k: &crate::spline::KnotVector<f64>, t: f64) -> Option<(usize, Vec<Interval>)> {
-    let p = k.degree();
-    let span = k.find_span(&t);
-    let u = k.knots();
-    let x = Interval::point(t);
-    let mut n = vec![Interval::point(0.0); p + 1];
-    let mut left = vec![Interval::point(0.0); p + 1];
-    let mut right = vec![Interval::point(0.0); p + 1];
-    n[0] = Interval::point(1.0);
-    for j in 1..=p {
-        left[j] = x - Interval::point(u[span + 1 - j]);
-        right[j] = Interval::point(u[span + j]) - x;
-        let mut saved = Interval::point(0.0);
-        for r in 0..j {
-            let temp = n[r].checked_div(right[r + 1] + left[j - r])?;
-            n[r] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
-        }
-        n[j] = saved;
-    }
-    Some((span, n))
-}
-
 /// Upper bound on `||x - S(u, v)||` by interval evaluation; `None` if inconclusive.
 fn interval_bound(s: &NurbsSurface<f64, 3>, x: &[f64; 3], uv: &[f64; 2]) -> Option<f64> {
-    let h = &s.hom;
-    let (su, nu) = basis_iv(&h.ku, uv[0])?;
-    let (sv, nv) = basis_iv(&h.kv, uv[1])?;
-    let (p, q) = (h.ku.degree(), h.kv.degree());
-    let ncols = h.kv.n_ctrl();
-    let mut acc = [Interval::point(0.0); 4];
-    for (a, na) in nu.iter().enumerate() {
-        for (b, nb) in nv.iter().enumerate() {
-            let c = &h.net[(su - p + a) * ncols + (sv - q + b)];
-            let w = *na * *nb;
-            for k in 0..3 {
-                acc[k] = acc[k] + w * Interval::point(c.wp[k]);
-            }
-            acc[3] = acc[3] + w * Interval::point(c.w);
-        }
-    }
+    let sk = enclose_point(s, Interval::point(uv[0]), Interval::point(uv[1]))?;
+    distance_upper(x, &sk)
+}
+
+/// Upper bound (rounded upward) on `sup ||x - q||` over the points `q` of the box `b`;
+/// `None` if not finite.
+pub fn distance_upper(x: &[f64; 3], b: &[Interval; 3]) -> Option<f64> {
     let mut d2 = 0.0f64;
     for k in 0..3 {
-        let sk = acc[k].checked_div(acc[3])?;
-        let dk = Interval::point(x[k]) - sk;
-        let m = dk.lo.abs().max(dk.hi.abs());
+        let dk = Interval::point(x[k]) - b[k];
+        let m = dk.mag();
         d2 = (d2 + (m * m).next_up()).next_up();
     }
     let r = d2.sqrt().next_up();

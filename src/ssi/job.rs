@@ -206,15 +206,19 @@ impl std::fmt::Display for SsiResult {
         )?;
         writeln!(
             f,
-            "  branches: {} ({} closed), {} points; largest proven distance to a surface {:.3e} ({})",
+            "  branches: {} ({} closed), {} points; largest proven distance to a surface {:.3e}, to the curve {} ({})",
             s.branches,
             s.closed_branches,
             s.points,
             s.dist_max,
+            match s.dist_curve_max {
+                Some(d) => format!("{d:.3e}"),
+                None => format!("unproven at {} points", s.points_curve_uncertified),
+            },
             if s.all_points_within_tol {
-                "all within tol"
+                "all within tol of the curve"
             } else {
-                "NOT all within tol"
+                "NOT all proven within tol of the curve"
             }
         )?;
         for p in self
@@ -236,11 +240,15 @@ impl std::fmt::Display for SsiResult {
             for (j, b) in p.branches.iter().enumerate() {
                 writeln!(
                     f,
-                    "    branch {j}: {} , {} points, proven dist {:.2e} / {:.2e}, ends {:?}",
+                    "    branch {j}: {} , {} points, proven dist {:.2e} / {:.2e}, to the curve {}, ends {:?}",
                     if b.closed { "closed" } else { "open" },
                     b.points.len(),
                     b.dist_a_max,
                     b.dist_b_max,
+                    match b.dist_curve_max {
+                        Some(d) => format!("{d:.2e}"),
+                        None => format!("unproven at {} points", b.curve_uncertified_points),
+                    },
                     b.ends
                 )?;
             }

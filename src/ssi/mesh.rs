@@ -113,6 +113,15 @@ pub fn intersect_meshes(
             refused_insertions: 0,
             max_chord_deviation: 0.0,
             fit: None,
+            // The crossing points' bounds are distances to the exact crossing of the meshes,
+            // a point of their intersection curve.
+            dist_curve_max: Some(err),
+            curve_uncertified_points: 0,
+            curve_radius: pts
+                .iter()
+                .map(|&p| Some(topo.points[p as usize].err))
+                .collect(),
+            curve_uncertified: Vec::new(),
         });
     }
     stats.seconds = t0.elapsed().as_secs_f64();

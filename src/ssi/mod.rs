@@ -10,7 +10,8 @@
 //! | 6–7 loop detection and tracing | [`trace`] |
 //! | 8 refinement (barycentric, Auxiliary Plane Method) | [`refine`], [`branch`] |
 //! | 9 spline fitting | [`fit`] |
-//! | certificate of every point | [`certify`] |
+//! | certificate of every point: distance to each surface | [`certify`] |
+//! | certificate of every point: distance to the intersection curve (Krawczyk) | [`krawczyk`], [`enclose`] |
 //! | tangential contacts | [`touch`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
 
@@ -19,9 +20,11 @@ pub mod certify;
 pub mod coverage;
 pub mod cull;
 pub mod driver;
+pub mod enclose;
 pub mod fit;
 pub mod foreign;
 pub mod job;
+pub mod krawczyk;
 pub mod mesh;
 pub mod pair;
 pub mod refine;

@@ -29,9 +29,22 @@ pub struct BranchOut {
     pub uv_a: Vec<[f64; 2]>,
     pub uv_b: Vec<[f64; 2]>,
     /// Proven upper bounds on the distance of every point to surface A / B at its own
-    /// parameters (mesh mode: to the triangulation).
+    /// parameters (mesh mode: to the triangulation). These bound the distance to each
+    /// *surface*, not to the intersection curve: near tangency a point within `d` of both
+    /// surfaces can lie much farther than `d` from the curve (see `dist_curve_max`).
     pub dist_a_max: f64,
     pub dist_b_max: f64,
+    /// Proven upper bound on the distance of every point to the intersection *curve* (a true
+    /// common point of both faces lies within it: Krawczyk's test, [`super::krawczyk`]), the
+    /// largest over the points; `None` when some point is uncertified. Mesh mode: the bound
+    /// on the distance to the exact crossing of the triangulations.
+    pub dist_curve_max: Option<f64>,
+    /// Points without a proven distance to the curve (tangency, singular points, ...).
+    pub curve_uncertified_points: usize,
+    /// Per point, the proven distance to the intersection curve, or `None` (uncertified).
+    pub curve_radius: Vec<Option<f64>>,
+    /// The uncertified points: index into `points` and the reason.
+    pub curve_uncertified: Vec<CurveUncertified>,
     /// Ends of an open branch (empty for closed ones).
     pub ends: Vec<EndKind>,
     /// Points whose refinement met tangential surfaces / did not converge.
@@ -46,6 +59,46 @@ pub struct BranchOut {
     pub max_chord_deviation: f64,
     /// Cubic fits: control points and knots in 3D and in each domain (empty if too short).
     pub fit: Option<FitOut>,
+}
+
+/// A point of a branch not certified against the intersection curve, and why.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct CurveUncertified {
+    pub index: usize,
+    pub reason: super::krawczyk::Uncertified,
+}
+
+impl BranchOut {
+    /// Set the curve certificate from per-point results (radius, or why there is none).
+    pub fn set_curve_radii(&mut self, radii: Vec<Result<f64, super::krawczyk::Uncertified>>) {
+        self.curve_uncertified = radii
+            .iter()
+            .enumerate()
+            .filter_map(|(index, r)| r.err().map(|reason| CurveUncertified { index, reason }))
+            .collect();
+        self.curve_radius = radii.into_iter().map(|r| r.ok()).collect();
+        self.curve_uncertified_points = self.curve_uncertified.len();
+        self.dist_curve_max = (self.curve_uncertified_points == 0).then(|| {
+            self.curve_radius
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, r| m.max(*r))
+        });
+    }
+    /// The per-point curve results (inverse of [`BranchOut::set_curve_radii`]).
+    pub fn curve_results(&self) -> Vec<Result<f64, super::krawczyk::Uncertified>> {
+        let mut out: Vec<_> = self
+            .curve_radius
+            .iter()
+            .map(|r| r.ok_or(super::krawczyk::Uncertified::NotFinite))
+            .collect();
+        for c in &self.curve_uncertified {
+            if let Some(o) = out.get_mut(c.index) {
+                *o = Err(c.reason);
+            }
+        }
+        out
+    }
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -130,9 +183,16 @@ pub struct Summary {
     pub branches: usize,
     pub closed_branches: usize,
     pub points: usize,
-    /// Largest proven point-to-surface distance over all branches.
+    /// Largest proven point-to-surface distance over all branches (each point to each
+    /// surface at its own parameters).
     pub dist_max: f64,
-    /// Whether every point is proven within `tol` of both surfaces.
+    /// Largest proven point-to-curve distance over all branches (`None` when some point is
+    /// uncertified against the curve).
+    pub dist_curve_max: Option<f64>,
+    /// Points without a proven distance to the intersection curve.
+    pub points_curve_uncertified: usize,
+    /// Whether every point is proven within `tol` of the intersection curve (false when any
+    /// point is uncertified).
     pub all_points_within_tol: bool,
     pub pairs_not_run: usize,
     /// Whether the coverage certificate proves, in every pair, that every branch of the true
@@ -141,8 +201,8 @@ pub struct Summary {
     /// Box pairs (over all face pairs) neither proven free nor loop-free.
     pub uncertified_box_pairs: usize,
     pub partial: bool,
-    /// Everything above is proven: every point within tol, no branch missed (coverage), the
-    /// run complete. The command exits with 3 when this is false.
+    /// Everything above is proven: every point within tol of the intersection curve
+    /// (`all_points_within_tol`), no branch missed (coverage), the run complete. The command exits with 3 when this is false.
     pub certified: bool,
     pub seconds: f64,
     /// Plain words on what is proven (points) and what is not (completeness).

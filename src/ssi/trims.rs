@@ -9,6 +9,7 @@
 //! [`EndKind::TrimBoundary`].
 
 use super::fit::fit_branch;
+use super::krawczyk::Uncertified;
 use super::report::{BranchOut, EndKind};
 use crate::model::Surface;
 use crate::predicates::orient2d;
@@ -112,6 +113,7 @@ pub fn clip(b: &BranchOut, ra: Option<&TrimRegion>, rb: Option<&TrimRegion>) -> 
                     EndKind::TrimBoundary
                 }
             };
+            let curve = b.curve_results();
             let mut out = BranchOut {
                 closed: false,
                 points: r.iter().map(|&i| b.points[i]).collect(),
@@ -121,6 +123,11 @@ pub fn clip(b: &BranchOut, ra: Option<&TrimRegion>, rb: Option<&TrimRegion>) -> 
                 fit: None,
                 ..b.clone()
             };
+            out.set_curve_radii(
+                r.iter()
+                    .map(|&i| curve.get(i).copied().unwrap_or(Err(Uncertified::NotFinite)))
+                    .collect(),
+            );
             refit(&mut out);
             out
         })

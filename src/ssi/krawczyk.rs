@@ -1,0 +1,519 @@
+//! Step 9b — the curve certificate: for an output point `p` with parameters `(u, v)` on
+//! `S_A` and `(s, t)` on `S_B`, a proven radius `r` such that a true intersection point
+//! `q = S_A(u*, v*) = S_B(s*, t*)`, with `(u*, v*)` and `(s*, t*)` in the closed (untrimmed)
+//! parameter domains of the two faces, lies within `r` of `p`. So `r` bounds the distance from
+//! `p` to the intersection *curve* — unlike [`super::certify`], which bounds the distance to
+//! each surface at `p`'s own parameters (near tangency a point within `d` of both surfaces can
+//! be `d / θ` from the curve, `θ` the angle between the surfaces).
+//!
+//! **The system.** `F(u, v, s, t) = (S_A(u, v) − S_B(s, t), g)` with the fourth equation `g`
+//! either `n · (S_A(u, v) − p)` (the plane through `p` across the curve; `n` a unit `f64`
+//! approximation of the curve tangent `N_A × N_B` at `p`'s parameters) or, when the zero may
+//! lie beyond a border of a domain, `z_k − c` (that parameter held on the border line). Any
+//! fixed `n` keeps the argument sound; a good one keeps the Jacobian well conditioned.
+//!
+//! **Krawczyk's theorem** (Krawczyk 1969; in this form Rump, *Verification methods*, Acta
+//! Numerica 2010, the Krawczyk operator). Let `X` be a box, `y ∈ X`, `Y` any real 4 × 4 matrix,
+//! `F` continuous on `X`, and `J` an interval matrix such that for all `x, x' ∈ X` the
+//! difference `F(x) − F(x')` equals `M (x − x')` for some real `M ∈ J` (each row an average
+//! of gradients: the mean-value form). If
+//!
+//! `K(X) = y − Y F(y) + (I − Y J)(X − y) ⊂ interior(X)`
+//!
+//! then `Y` and every `M ∈ J` are non-singular, and `F` has exactly one zero in `X`, and it lies
+//! in `K(X)`. (Existence: `x ↦ x − Y F(x)` maps `X` into `K(X) ⊂ X`, Brouwer; uniqueness: two
+//! zeros give `M (x − x') = 0`.) Here `y` is the `f64` Newton solution of `F = 0` started at
+//! `p`'s parameters, `Y ≈ J(y)⁻¹` in `f64`, `F(y)` is enclosed by interval evaluation, and `J`
+//! encloses the Jacobian over the whole box ([`super::enclose`], one-sided across knot lines,
+//! which is what the mean-value form needs). The box is chosen by ε-inflation: radius from
+//! the Newton correction `|Y F(y)|`, doubled (or grown to hold `K`) for a few tries.
+//!
+//! **The radius.** The zero `z*` lies in `K(X) ∩ X`; the point `q = S_A(z*_uv) = S_B(z*_st)` in
+//! the intersection of the enclosures of `S_A` and `S_B` over that box (mean-value forms about
+//! `y`, with the derivative enclosures over `X`), and `r` bounds
+//! `sup ||p − q||` over it with upward rounding. The zero is a point of the *faces* only if its
+//! parameters lie in the domains: that is checked (`K(X) ∩ X` inside the closed domains, the
+//! held parameter equal to the border value); a box reaching past a border is retried with the
+//! parameter held on that border.
+//!
+//! **Hypotheses.** The surfaces are continuous (interior knot multiplicity at most the
+//! degree, enforced when a surface is built) and their weights do not vanish on the boxes
+//! (proven by the interval quotient, refused otherwise). Nothing else: knots, control points
+//! and `p` are taken as the exact `f64` values they are.
+//!
+//! **Uncertified** (never guessed): where the surfaces are tangent or nearly so (the normals
+//! parallel, the Jacobian singular or the box not contracted after the tries), at singular
+//! points of the intersection, where the zero leaves both a domain and the border retry, and
+//! where an enclosure fails. The reason is reported per point ([`Uncertified`]).
+
+use super::certify::distance_upper;
+use super::enclose::{Jet, enclose_jet, enclose_point};
+use super::refine::{domain, point_d1};
+use crate::geom::{cross, dot, norm};
+use crate::scalar::Interval;
+use crate::spline::NurbsSurface;
+use serde::Serialize;
+
+/// Why a point is not certified against the curve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Uncertified {
+    /// A coordinate or parameter is not finite.
+    NotFinite,
+    /// The surface normals at the point are parallel to working precision (tangency or a
+    /// singular point): there is no curve tangent and the system is singular.
+    Tangency,
+    /// The `f64` Jacobian at the Newton solution could not be inverted.
+    Singular,
+    /// No box passed the Krawczyk test (ill-conditioned: near tangency).
+    NoContraction,
+    /// The zero may lie beyond a border of a face's domain, and holding that parameter on
+    /// the border does not isolate it either (a curve running along the border, as where
+    /// adjacent faces meet at their common edge; a corner of both domains).
+    OutsideDomain,
+    /// An interval enclosure failed (a weight enclosure holds 0, or overflow).
+    Enclosure,
+}
+
+/// A proven curve point near `p`.
+#[derive(Clone, Copy, Debug)]
+pub struct CurveCertificate {
+    /// Upper bound on `||p − q||`, `q` a true intersection point of the two faces.
+    pub radius: f64,
+    /// Box of parameters `(u, v, s, t)` holding the unique zero of the system.
+    pub params: [Interval; 4],
+    /// The parameter held on a border line instead of the plane across the curve.
+    pub held: Option<usize>,
+}
+
+type M4 = [[f64; 4]; 4];
+
+#[derive(Clone, Copy, Debug)]
+enum Fourth {
+    /// `n · (S_A(u, v) − p) = 0`.
+    Plane { n: [f64; 3], p: [f64; 3] },
+    /// `z_k − c = 0`.
+    Hold { k: usize, c: f64 },
+}
+
+struct System<'a> {
+    sa: &'a NurbsSurface<f64, 3>,
+    sb: &'a NurbsSurface<f64, 3>,
+    e: Fourth,
+    /// The point certified.
+    p: [f64; 3],
+    /// Domain bounds of `(u, v, s, t)`.
+    lo: [f64; 4],
+    hi: [f64; 4],
+}
+
+fn pt(x: f64) -> Interval {
+    Interval::point(x)
+}
+
+impl System<'_> {
+    /// `F` and its Jacobian in `f64` (approximations: they only steer).
+    fn eval_f64(&self, z: &[f64; 4]) -> ([f64; 4], M4) {
+        let (a, au, av) = point_d1(self.sa, z[0], z[1]);
+        let (b, bs, bt) = point_d1(self.sb, z[2], z[3]);
+        let mut f = [0.0; 4];
+        let mut j = [[0.0; 4]; 4];
+        for k in 0..3 {
+            f[k] = a[k] - b[k];
+            j[k] = [au[k], av[k], -bs[k], -bt[k]];
+        }
+        match self.e {
+            Fourth::Plane { n, p } => {
+                f[3] = dot(&n, &[a[0] - p[0], a[1] - p[1], a[2] - p[2]]);
+                j[3] = [dot(&n, &au), dot(&n, &av), 0.0, 0.0];
+            }
+            Fourth::Hold { k, c } => {
+                f[3] = z[k] - c;
+                j[3] = [0.0; 4];
+                j[3][k] = 1.0;
+            }
+        }
+        (f, j)
+    }
+
+    /// Enclosure of `F(y)` at the point `y`, with those of `S_A(y_uv)` and `S_B(y_st)`.
+    fn f_at(&self, y: &[f64; 4]) -> Option<([Interval; 4], [[Interval; 3]; 2])> {
+        let a = enclose_point(self.sa, pt(y[0]), pt(y[1]))?;
+        let b = enclose_point(self.sb, pt(y[2]), pt(y[3]))?;
+        let g = match self.e {
+            Fourth::Plane { n, p } => {
+                (0..3).fold(pt(0.0), |acc, k| acc + pt(n[k]) * (a[k] - pt(p[k])))
+            }
+            Fourth::Hold { k, c } => pt(y[k]) - pt(c),
+        };
+        Some(([a[0] - b[0], a[1] - b[1], a[2] - b[2], g], [a, b]))
+    }
+
+    /// Interval Jacobian over the box `x` (mean-value form, see the module comment).
+    fn jacobian(&self, x: &[Interval; 4]) -> Option<([[Interval; 4]; 4], [Jet; 2])> {
+        let ja = enclose_jet(self.sa, x[0], x[1])?;
+        let jb = enclose_jet(self.sb, x[2], x[3])?;
+        let mut j = [[pt(0.0); 4]; 4];
+        for k in 0..3 {
+            j[k] = [ja.su[k], ja.sv[k], -jb.su[k], -jb.sv[k]];
+        }
+        match self.e {
+            Fourth::Plane { n, .. } => {
+                let d = |v: &[Interval; 3]| (0..3).fold(pt(0.0), |acc, k| acc + pt(n[k]) * v[k]);
+                j[3] = [d(&ja.su), d(&ja.sv), pt(0.0), pt(0.0)];
+            }
+            Fourth::Hold { k, .. } => j[3][k] = pt(1.0),
+        }
+        Some((j, [ja, jb]))
+    }
+
+    /// `K(X)` for centre `y`, preconditioner `yinv`, enclosure `fy` of `F(y)`; with the
+    /// surfaces' derivative enclosures over `X`.
+    fn krawczyk(
+        &self,
+        y: &[f64; 4],
+        x: &[Interval; 4],
+        yinv: &M4,
+        fy: &[Interval; 4],
+    ) -> Option<([Interval; 4], [Jet; 2])> {
+        let (j, jets) = self.jacobian(x)?;
+        let mut k = [pt(0.0); 4];
+        for i in 0..4 {
+            let mut acc = pt(y[i]);
+            for l in 0..4 {
+                acc = acc - pt(yinv[i][l]) * fy[l];
+            }
+            for c in 0..4 {
+                // (I − Y J)_{ic}
+                let mut cij = pt(if i == c { 1.0 } else { 0.0 });
+                for l in 0..4 {
+                    cij = cij - pt(yinv[i][l]) * j[l][c];
+                }
+                acc = acc + cij * (x[c] - pt(y[c]));
+            }
+            k[i] = acc;
+        }
+        Some((k, jets))
+    }
+}
+
+/// Inverse of a 4 × 4 matrix (Gauss–Jordan, partial pivoting); `None` if singular.
+fn inverse4(mut a: M4) -> Option<M4> {
+    let mut inv: M4 = std::array::from_fn(|i| std::array::from_fn(|j| (i == j) as u8 as f64));
+    for c in 0..4 {
+        let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
+        if a[p][c] == 0.0 || a[p][c].is_nan() {
+            return None;
+        }
+        a.swap(c, p);
+        inv.swap(c, p);
+        let d = a[c][c];
+        for k in 0..4 {
+            a[c][k] /= d;
+            inv[c][k] /= d;
+        }
+        for r in 0..4 {
+            if r != c {
+                let f = a[r][c];
+                for k in 0..4 {
+                    a[r][k] -= f * a[c][k];
+                    inv[r][k] -= f * inv[c][k];
+                }
+            }
+        }
+    }
+    inv.iter().flatten().all(|x| x.is_finite()).then_some(inv)
+}
+
+fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
+    std::array::from_fn(|i| (0..4).map(|k| m[i][k] * v[k]).sum())
+}
+
+/// Result of one attempt; `Outside(k, c)`: the zero may leave the domain across the border
+/// `z_k = c`.
+enum Attempt {
+    Done(CurveCertificate),
+    Outside(usize, f64),
+    Fail(Uncertified),
+}
+
+/// Sines of the angle between the normals below which the point counts as tangential.
+const TANGENT_SIN: f64 = 1e-12;
+/// Newton steps in `f64`, and ε-inflation tries.
+const NEWTON_STEPS: usize = 12;
+const TRIES: usize = 8;
+
+fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
+    // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
+    let mut y = z0;
+    let (mut f, mut j) = sys.eval_f64(&y);
+    for _ in 0..NEWTON_STEPS {
+        let Some(ji) = inverse4(j) else {
+            return Attempt::Fail(Uncertified::Singular);
+        };
+        let d = mul4(&ji, &f);
+        let next: [f64; 4] = std::array::from_fn(|i| y[i] - d[i]);
+        if !next.iter().all(|x| x.is_finite()) {
+            break;
+        }
+        y = next;
+        if let Fourth::Hold { k, c } = sys.e {
+            y[k] = c;
+        }
+        (f, j) = sys.eval_f64(&y);
+        // Converged when the step was at the level of the domain's rounding (1e-12 of its
+        // size): the next one would be below the box radius anyway.
+        if (0..4).all(|i| d[i].abs() <= 1e-12 * (sys.hi[i] - sys.lo[i] + y[i].abs())) {
+            break;
+        }
+    }
+    // Newton ran far off the faces: no isolated zero near p (tangency, or no curve there).
+    if !(0..4).all(|i| {
+        let w = sys.hi[i] - sys.lo[i];
+        y[i] >= sys.lo[i] - 0.25 * w && y[i] <= sys.hi[i] + 0.25 * w
+    }) {
+        return Attempt::Fail(Uncertified::NoContraction);
+    }
+    // The preconditioner: the inverse of the f64 Jacobian at y (any matrix is sound).
+    let Some(yinv) = inverse4(j) else {
+        return Attempt::Fail(Uncertified::Singular);
+    };
+    let Some((fy, at_y)) = sys.f_at(&y) else {
+        return Attempt::Fail(Uncertified::Enclosure);
+    };
+    // Starting radius: twice the (enclosed) Newton correction plus a few ulps of the scale.
+    let mut rad = [0.0f64; 4];
+    for i in 0..4 {
+        let mut corr = pt(0.0);
+        for l in 0..4 {
+            corr = corr + pt(yinv[i][l]) * fy[l];
+        }
+        let scale = y[i].abs() + (sys.hi[i] - sys.lo[i]);
+        rad[i] = 2.0 * corr.mag() + 64.0 * f64::EPSILON * scale;
+    }
+    let mut found = None;
+    for try_no in 0..TRIES {
+        let x: [Interval; 4] = std::array::from_fn(|i| {
+            Interval::new((pt(y[i]) - pt(rad[i])).lo, (pt(y[i]) + pt(rad[i])).hi)
+        });
+        let Some((k, jets)) = sys.krawczyk(&y, &x, &yinv, &fy) else {
+            // A grown box may reach where a weight enclosure holds 0.
+            return Attempt::Fail(if try_no == 0 {
+                Uncertified::Enclosure
+            } else {
+                Uncertified::NoContraction
+            });
+        };
+        if !k.iter().all(|v| v.is_finite()) {
+            return Attempt::Fail(Uncertified::NoContraction);
+        }
+        if (0..4).all(|i| k[i].lo > x[i].lo && k[i].hi < x[i].hi) {
+            found = Some((x, k, jets));
+            break;
+        }
+        for i in 0..4 {
+            let reach = (k[i].lo - y[i]).abs().max((k[i].hi - y[i]).abs());
+            rad[i] = (2.0 * rad[i]).max(1.25 * reach);
+        }
+        if !(0..4)
+            .all(|i| rad[i].is_finite() && rad[i] <= 0.25 * (sys.hi[i] - sys.lo[i]).max(1e-300))
+        {
+            break;
+        }
+    }
+    let Some((x, k, jets)) = found else {
+        return Attempt::Fail(Uncertified::NoContraction);
+    };
+    // The zero lies in K(X) ∩ X; a held parameter equals its border value exactly.
+    let mut z: [Interval; 4] =
+        std::array::from_fn(|i| Interval::new(k[i].lo.max(x[i].lo), k[i].hi.min(x[i].hi)));
+    let held = match sys.e {
+        Fourth::Hold { k, c } => {
+            z[k] = pt(c);
+            Some(k)
+        }
+        Fourth::Plane { .. } => None,
+    };
+    for i in 0..4 {
+        if z[i].lo < sys.lo[i] {
+            return Attempt::Outside(i, sys.lo[i]);
+        }
+        if z[i].hi > sys.hi[i] {
+            return Attempt::Outside(i, sys.hi[i]);
+        }
+    }
+    // q = S_A(z*_uv) = S_B(z*_st), enclosed by the mean-value form about y over z ⊂ X.
+    let mv = |s0: &[Interval; 3], j: &Jet, a: usize| -> [Interval; 3] {
+        let (du, dv) = (z[a] - pt(y[a]), z[a + 1] - pt(y[a + 1]));
+        std::array::from_fn(|c| s0[c] + j.su[c] * du + j.sv[c] * dv)
+    };
+    let (ea, eb) = (mv(&at_y[0], &jets[0], 0), mv(&at_y[1], &jets[1], 2));
+    let mut q = [pt(0.0); 3];
+    for c in 0..3 {
+        let (lo, hi) = (ea[c].lo.max(eb[c].lo), ea[c].hi.min(eb[c].hi));
+        if lo > hi {
+            // Both enclose q: cannot happen; refuse rather than claim.
+            return Attempt::Fail(Uncertified::Enclosure);
+        }
+        q[c] = Interval::new(lo, hi);
+    }
+    match distance_upper(&sys.p, &q) {
+        Some(radius) => Attempt::Done(CurveCertificate {
+            radius,
+            params: z,
+            held,
+        }),
+        None => Attempt::Fail(Uncertified::Enclosure),
+    }
+}
+
+/// The curve certificate of the point `p` with parameters `uv_a` on `sa` and `uv_b` on `sb`
+/// (see the module comment).
+pub fn certify_on_curve(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    p: &[f64; 3],
+    uv_a: &[f64; 2],
+    uv_b: &[f64; 2],
+) -> Result<CurveCertificate, Uncertified> {
+    if !p.iter().chain(uv_a).chain(uv_b).all(|x| x.is_finite()) {
+        return Err(Uncertified::NotFinite);
+    }
+    let (da, db) = (domain(sa), domain(sb));
+    let lo = [da[0], da[2], db[0], db[2]];
+    let hi = [da[1], da[3], db[1], db[3]];
+    let z0 = [uv_a[0], uv_a[1], uv_b[0], uv_b[1]];
+    let mut sys = System {
+        sa,
+        sb,
+        e: Fourth::Hold { k: 0, c: 0.0 },
+        p: *p,
+        lo,
+        hi,
+    };
+    // The plane across the curve through p; if the zero may lie beyond a border, that
+    // parameter held on the border instead.
+    let (_, au, av) = point_d1(sa, z0[0], z0[1]);
+    let (_, bs, bt) = point_d1(sb, z0[2], z0[3]);
+    let (na, nb) = (cross(&au, &av), cross(&bs, &bt));
+    let t = cross(&na, &nb);
+    let (la, lb, lt) = (norm(&na), norm(&nb), norm(&t));
+    if !(la > 0.0 && lb > 0.0 && lt > TANGENT_SIN * la * lb && lt.is_finite()) {
+        return Err(Uncertified::Tangency);
+    }
+    sys.e = Fourth::Plane {
+        n: t.map(|c| c / lt),
+        p: *p,
+    };
+    match attempt(&sys, z0) {
+        Attempt::Done(c) => Ok(c),
+        Attempt::Fail(u) => Err(u),
+        Attempt::Outside(k, c) => {
+            sys.e = Fourth::Hold { k, c };
+            let mut z = z0;
+            z[k] = c;
+            match attempt(&sys, z) {
+                Attempt::Done(c) => Ok(c),
+                // The zero lies on or near a border where holding the parameter does not
+                // isolate it (a curve along the border, a corner of both domains).
+                Attempt::Fail(_) | Attempt::Outside(..) => Err(Uncertified::OutsideDomain),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::{Frame, bilinear, sphere};
+
+    fn plane_z(h: f64) -> NurbsSurface<f64, 3> {
+        bilinear(
+            [-2.0, -2.0, h],
+            [2.0, -2.0, h],
+            [-2.0, 2.0, h],
+            [2.0, 2.0, h],
+        )
+        .unwrap()
+    }
+
+    /// Planes z = 0 and through the x axis at angle θ: the curve is the x axis. Points off it
+    /// by `e` get a radius at least their distance and not much more.
+    #[test]
+    fn tilted_planes() {
+        for th in [0.3, 1e-2, 1e-4, 1e-6] {
+            let (c, s) = (2.0 * f64::cos(th), 2.0 * f64::sin(th));
+            let b = bilinear([-2.0, -c, -s], [2.0, -c, -s], [-2.0, c, s], [2.0, c, s]).unwrap();
+            let a = plane_z(0.0);
+            for e in [0.0, 1e-9, 1e-7] {
+                // u = (x+2)/4, v = (y+2)/4 on A; on B v' = (y/cos θ + 2)/4 roughly.
+                let p = [0.3, e, 0.0];
+                let uv_a = [(p[0] + 2.0) / 4.0, (p[1] + 2.0) / 4.0];
+                let uv_b = [(p[0] + 2.0) / 4.0, 0.5];
+                let cert = certify_on_curve(&a, &b, &p, &uv_a, &uv_b).unwrap();
+                assert!(cert.radius >= e, "{th} {e}: {}", cert.radius);
+                assert!(cert.radius <= e + 1e-13, "{th} {e}: {}", cert.radius);
+            }
+        }
+    }
+
+    /// The sphere of radius 2 cut by z = h: radius bounds the distance to the circle.
+    #[test]
+    fn sphere_and_plane() {
+        let f = Frame {
+            o: [0.0; 3],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 1.0, 0.0],
+            z: [0.0, 0.0, 1.0],
+        };
+        let s = sphere(&f, 2.0).unwrap();
+        let h = 0.7;
+        let a = plane_z(h);
+        let rho = (4.0f64 - h * h).sqrt();
+        for k in 0..20 {
+            // A point near the circle, its parameters from a nearby sphere point.
+            let phi = 0.05 + 6.0 * k as f64 / 20.0;
+            let x = [rho * phi.cos() + 1e-8, rho * phi.sin(), h];
+            let u = phi / std::f64::consts::TAU;
+            let v = 0.5 + (h / 2.0).asin() / std::f64::consts::PI;
+            let uv_a = [(x[0] + 2.0) / 4.0, (x[1] + 2.0) / 4.0];
+            let cert = certify_on_curve(&a, &s, &x, &uv_a, &[u, v]).unwrap();
+            let d = ((x[0] * x[0] + x[1] * x[1]).sqrt() - rho).abs();
+            assert!(
+                cert.radius >= d - 1e-15 && cert.radius <= d + 1e-9,
+                "{k}: {} {d}",
+                cert.radius
+            );
+        }
+    }
+
+    /// Where the surfaces touch, or nearly touch without meeting, nothing is certified.
+    #[test]
+    fn tangency_is_uncertified() {
+        let f = Frame {
+            o: [0.0; 3],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 1.0, 0.0],
+            z: [0.0, 0.0, 1.0],
+        };
+        let s = sphere(&f, 2.0).unwrap();
+        for h in [2.0, 2.0 + 1e-9, 2.0 - 1e-12] {
+            let a = plane_z(h);
+            // Near the north pole on the sphere (v slightly below 1).
+            for v in [1.0, 1.0 - 1e-7, 1.0 - 1e-4] {
+                let q = s.eval(&0.1, &v);
+                let r = certify_on_curve(
+                    &a,
+                    &s,
+                    &q,
+                    &[(q[0] + 2.0) / 4.0, (q[1] + 2.0) / 4.0],
+                    &[0.1, v],
+                );
+                if let Ok(c) = r {
+                    // Only a true root may be claimed: below the pole plane, z = h must be met.
+                    assert!(h < 2.0, "{h} {v}: {c:?}");
+                }
+            }
+        }
+    }
+}
