@@ -214,6 +214,42 @@ pub fn refine_branch(
             )
         })
         .count();
+    // Points whose proven distance to the curve exceeds tol/8 (near tangency the refinement
+    // stops within tol of both surfaces, which can be far from the curve) move to the centre
+    // of their certified root box, and are certified again there; the move is kept only when
+    // the new radius is smaller.
+    let mut radii: Vec<_> = all
+        .iter()
+        .map(|r| certify_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b).map(|c| (c.radius, c)))
+        .collect();
+    let (dom_a, dom_b) = (domain(g.sa), domain(g.sb));
+    for (r, cert) in all.iter_mut().zip(radii.iter_mut()) {
+        let Ok((radius, c)) = cert else { continue };
+        if *radius <= prm.tol / 8.0 {
+            continue;
+        }
+        let clamp = |x: f64, lo: f64, hi: f64| x.clamp(lo, hi);
+        let uv_a = [
+            clamp(c.params[0].mid(), dom_a[0], dom_a[1]),
+            clamp(c.params[1].mid(), dom_a[2], dom_a[3]),
+        ];
+        let uv_b = [
+            clamp(c.params[2].mid(), dom_b[0], dom_b[1]),
+            clamp(c.params[3].mid(), dom_b[2], dom_b[3]),
+        ];
+        let (pa, pb) = (g.sa.eval(&uv_a[0], &uv_a[1]), g.sb.eval(&uv_b[0], &uv_b[1]));
+        let xyz: [f64; 3] = std::array::from_fn(|k| 0.5 * (pa[k] + pb[k]));
+        if let Ok(c2) = certify_on_curve(g.sa, g.sb, &xyz, &uv_a, &uv_b)
+            && c2.radius < *radius
+        {
+            r.xyz = xyz;
+            r.uv_a = uv_a;
+            r.uv_b = uv_b;
+            r.gap = dist(&pa, &pb);
+            *cert = Ok((c2.radius, c2));
+        }
+    }
+    let radii: Vec<_> = radii.into_iter().map(|c| c.map(|(r, _)| r)).collect();
     let mut da_max = 0.0f64;
     let mut db_max = 0.0f64;
     for r in &all {
@@ -259,10 +295,6 @@ pub fn refine_branch(
     let uv_a: Vec<[f64; 2]> = all.iter().map(|r| r.uv_a).collect();
     let uv_b: Vec<[f64; 2]> = all.iter().map(|r| r.uv_b).collect();
     let fit = fit_branch(&points, &uv_a, &uv_b, b.closed);
-    let radii = all
-        .iter()
-        .map(|r| certify_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b).map(|c| c.radius))
-        .collect();
     let mut out = BranchOut {
         closed: b.closed,
         points,
