@@ -250,3 +250,34 @@ fn rotated_spheres_cut_near_the_poles() {
         assert!(!cov.no_missed_branches || found, "seed {seed} h {h}");
     }
 }
+
+/// A sphere against itself and two overlapping coplanar squares: reported as coincident
+/// (proven exactly), with no curves, and the run not certified as curves.
+#[test]
+fn coincident_faces_are_reported_not_traced() {
+    use vericad::model::{Model, Surface};
+    use vericad::ssi::coincide::CoincidenceKind;
+    let f = rotated(7);
+    let s = sphere(&f, 1.5).unwrap();
+    let r = run(&s, &s, 1e-6);
+    assert_eq!(
+        r.coincident.as_ref().unwrap().kind,
+        CoincidenceKind::Identical
+    );
+    assert!(r.branches.is_empty() && r.touch_points.is_empty());
+    let z = |x: f64, y: f64| [x, y, 0.5 * x - 0.25 * y];
+    let a = bilinear(z(0.0, 0.0), z(1.0, 0.0), z(0.0, 1.0), z(1.0, 1.0)).unwrap();
+    let b = bilinear(z(0.5, 0.5), z(1.5, 0.5), z(0.5, 1.5), z(1.5, 1.5)).unwrap();
+    let r = run(&a, &b, 1e-6);
+    assert_eq!(
+        r.coincident.as_ref().unwrap().kind,
+        CoincidenceKind::Coplanar
+    );
+    let m = Model {
+        surfaces: vec![Surface::new("a", a), Surface::new("b", b)],
+        ..Default::default()
+    };
+    let res = vericad::ssi::intersect_models(&m, None, &SsiParams::default(), &|_, _| {}).unwrap();
+    assert_eq!(res.summary.coincident_pairs, 1);
+    assert!(!res.summary.certified && !res.summary.no_missed_branches);
+}

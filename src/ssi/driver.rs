@@ -199,9 +199,10 @@ pub fn intersect_models(
         .map(|c| c.uncertified)
         .sum();
     let no_missed_branches = !meshes
-        && pairs
-            .iter()
-            .all(|p| p.coverage.as_ref().is_some_and(|c| c.no_missed_branches));
+        && pairs.iter().all(|p| {
+            p.coincident.is_none() && p.coverage.as_ref().is_some_and(|c| c.no_missed_branches)
+        });
+    let coincident_pairs = pairs.iter().filter(|p| p.coincident.is_some()).count();
     let matched = pairs
         .iter()
         .filter_map(|p| p.coverage.as_ref())
@@ -235,6 +236,11 @@ pub fn intersect_models(
             "branches clipped to trim loops ({trimmed_faces} trimmed faces), polygonized with {SAMPLES_PER_CURVE} samples per trim curve: exact decisions against the polygon, evidence against the true trim curves"
         ));
     }
+    if coincident_pairs > 0 {
+        certificate.push(format!(
+            "COINCIDENT: {coincident_pairs} face pairs are proven to coincide (identical, or all control points in one plane, exact): their intersection is a region, not curves; listed per pair, not certified as curves"
+        ));
+    }
     if partial {
         certificate.push(format!(
             "PARTIAL: stopped by the time limit; {not_run} pairs not run"
@@ -258,6 +264,7 @@ pub fn intersect_models(
         pairs_not_run: not_run,
         no_missed_branches,
         uncertified_box_pairs: uncertified,
+        coincident_pairs,
         partial,
         certified: all_points_within_tol && !partial && (meshes || no_missed_branches),
         seconds: t0.elapsed().as_secs_f64(),

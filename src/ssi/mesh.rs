@@ -134,5 +134,6 @@ pub fn intersect_meshes(
         stats,
         coverage: None,
         complete: true,
+        coincident: None,
     })
 }

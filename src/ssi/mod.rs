@@ -17,6 +17,7 @@
 
 pub mod branch;
 pub mod certify;
+pub mod coincide;
 pub mod coverage;
 pub mod cull;
 pub mod driver;

@@ -2,6 +2,7 @@
 
 use super::branch::{BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
+use super::coincide::coincidence;
 use super::coverage::{CoverageParams, coverage};
 use super::cull::{TriTree, triangle_box};
 use super::refine::RefineParams;
@@ -112,6 +113,20 @@ pub fn intersect_surfaces(
 ) -> Result<PairOut, SsiError> {
     let t0 = Instant::now();
     let mut stats = PairStats::default();
+    if let Some(c) = coincidence(sa, sb) {
+        stats.seconds = t0.elapsed().as_secs_f64();
+        return Ok(PairOut {
+            a: ids.0,
+            b: ids.1,
+            branches: Vec::new(),
+            touch_points: Vec::new(),
+            contacts: Vec::new(),
+            stats,
+            coverage: None,
+            complete: true,
+            coincident: Some(c),
+        });
+    }
     let (ma, mb) = meshes(sa, sb, prm, &mut stats);
     stats.triangles_a = ma.triangles.len();
     stats.triangles_b = mb.triangles.len();
@@ -155,6 +170,7 @@ pub fn intersect_surfaces(
         stats,
         coverage: None,
         complete: true,
+        coincident: None,
     };
     for (k, r) in singular.iter().enumerate() {
         out.touch_points.push(touch_out(

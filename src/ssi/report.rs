@@ -168,6 +168,9 @@ pub struct PairOut {
     pub coverage: Option<super::coverage::CoverageOut>,
     /// `false` when the time limit stopped this pair before it finished.
     pub complete: bool,
+    /// The faces are proven to coincide (identical, or coplanar): their intersection is a
+    /// region, not curves; no curves or certificates are computed for the pair.
+    pub coincident: Option<super::coincide::CoincidenceOut>,
 }
 
 /// What the whole run proves and what it does not.
@@ -200,6 +203,8 @@ pub struct Summary {
     pub no_missed_branches: bool,
     /// Box pairs (over all face pairs) neither proven free nor loop-free.
     pub uncertified_box_pairs: usize,
+    /// Face pairs proven to coincide (see `PairOut::coincident`).
+    pub coincident_pairs: usize,
     pub partial: bool,
     /// Everything above is proven: every point within tol of the intersection curve
     /// (`all_points_within_tol`), no branch missed (coverage), the run complete. The command exits with 3 when this is false.

@@ -33,22 +33,24 @@ pub(crate) fn search(
     let mut stack: Vec<(ICurve, IPatch, u32)> = vec![(curve.clone(), patch.clone(), 0)];
     while let Some((c, s, depth)) = stack.pop() {
         out.boxes += 1;
-        let (hc, hs) = match (c.hull(), s.hull()) {
+        let (pc, ps) = match (c.cartesian(), s.cartesian()) {
             (Some(a), Some(b)) => (a, b),
             // No enclosure (weights not positive, overflow): cannot be excluded.
             (a, b) => {
                 out.open = Some(
                     a.or(b)
+                        .map(|p| box_of(&p))
                         .unwrap_or(([f64::NEG_INFINITY; 3], [f64::INFINITY; 3])),
                 );
                 return out;
             }
         };
-        if disjoint(&hc, &hs) {
+        let (hc, hs) = (box_of(&pc), box_of(&ps));
+        if disjoint(&hc, &hs) || separated_along(&pc, &ps, &s.rough_normal()) {
             continue;
         }
         let m = meet(&hc, &hs);
-        if near.box_within(&m, d) || c.cartesian().is_some_and(|p| near.net_within(&p, d)) {
+        if near.box_within(&m, d) || near.net_within(&pc, d) {
             out.near_output += 1;
             continue;
         }

@@ -17,27 +17,9 @@ pub(crate) type Box3 = ([f64; 3], [f64; 3]);
 /// The box of the Cartesian control points `x/w` of homogeneous interval control points, or
 /// `None` when a weight interval is not strictly positive or anything is not finite (no
 /// convex-hull claim is then possible).
+#[cfg(test)]
 pub(crate) fn hull_box(x: &[V], w: &[Interval]) -> Option<Box3> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for (p, wi) in x.iter().zip(w) {
-        if wi.lo.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !wi.is_finite() {
-            return None;
-        }
-        for k in 0..3 {
-            // NaN operands make `checked_div` return an inverted interval: refuse them first.
-            if !(p[k].is_finite() && p[k].lo <= p[k].hi) {
-                return None;
-            }
-            let c = p[k].checked_div(*wi)?;
-            if !(c.is_finite() && c.lo <= c.hi) {
-                return None;
-            }
-            lo[k] = lo[k].min(c.lo);
-            hi[k] = hi[k].max(c.hi);
-        }
-    }
-    Some((lo, hi))
+    cartesian(x, w).map(|p| box_of(&p))
 }
 
 /// The Cartesian control points `x/w`, enclosed, or `None` when a weight interval is not
@@ -154,9 +136,6 @@ impl ICurve {
         let ((lx, lw), (rx, rw)) = halve_row(&self.x, &self.w);
         (ICurve { x: lx, w: lw }, ICurve { x: rx, w: rw })
     }
-    pub fn hull(&self) -> Option<Box3> {
-        hull_box(&self.x, &self.w)
-    }
     pub fn cartesian(&self) -> Option<Vec<V>> {
         cartesian(&self.x, &self.w)
     }
@@ -186,9 +165,6 @@ pub(crate) struct IPatch {
 impl IPatch {
     pub fn at(&self, i: usize, j: usize) -> usize {
         i * (self.q + 1) + j
-    }
-    pub fn hull(&self) -> Option<Box3> {
-        hull_box(&self.x, &self.w)
     }
     pub fn cartesian(&self) -> Option<Vec<V>> {
         cartesian(&self.x, &self.w)

@@ -1,0 +1,152 @@
+//! Coincident surfaces: pairs whose intersection is not a set of curves but a region. Two
+//! cases are decided exactly, before any triangulation:
+//!
+//! * **identical** — the same knots, degrees, homogeneous control points and weights, bit for
+//!   bit: the surfaces are one surface, and their intersection is all of it.
+//! * **coplanar** — every Cartesian control point of both surfaces (`X/w`, exactly, in
+//!   rationals) lies in one plane (exact `orient3d` against three non-collinear control
+//!   points). A NURBS surface with positive weights lies in the convex hull of its control
+//!   points, so both surfaces lie in that plane, and wherever their images overlap they
+//!   coincide: the intersection is a planar region (possibly empty), not curves.
+//!
+//! Other coincidences (a surface and a reparametrization or a piece of it, overlapping
+//! curved surfaces) are not detected here; the curve pipeline then runs and its certificates
+//! refuse where the normals are parallel.
+
+use crate::predicates::orient::orient3d;
+use crate::scalar::{Scalar, Sign, lift};
+use crate::spline::NurbsSurface;
+use num_rational::BigRational;
+use serde::Serialize;
+
+type Q = BigRational;
+
+/// How two faces coincide.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CoincidenceKind {
+    Identical,
+    Coplanar,
+}
+
+/// A proven coincidence, reported instead of intersection curves.
+#[derive(Clone, Debug, Serialize)]
+pub struct CoincidenceOut {
+    pub kind: CoincidenceKind,
+    /// A point of the common plane and a normal (coplanar; for identical surfaces: none).
+    pub plane_point: Option<[f64; 3]>,
+    pub plane_normal: Option<[f64; 3]>,
+}
+
+fn cartesian_exact(s: &NurbsSurface<f64, 3>) -> Option<Vec<[Q; 3]>> {
+    s.hom
+        .net
+        .iter()
+        .map(|h| {
+            let w = lift::<Q>(h.w);
+            if !(h.w > 0.0) || !h.wp.iter().all(|x| x.is_finite()) {
+                return None;
+            }
+            Some(h.wp.map(|x| lift::<Q>(x) / &w))
+        })
+        .collect()
+}
+
+fn sub(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
+    std::array::from_fn(|k| &a[k] - &b[k])
+}
+
+fn cross(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
+    [
+        &a[1] * &b[2] - &a[2] * &b[1],
+        &a[2] * &b[0] - &a[0] * &b[2],
+        &a[0] * &b[1] - &a[1] * &b[0],
+    ]
+}
+
+/// Whether the two surfaces are proven to coincide (see the module comment).
+pub fn coincidence(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> Option<CoincidenceOut> {
+    let same = {
+        let (a, b) = (&sa.hom, &sb.hom);
+        a.ku.degree() == b.ku.degree()
+            && a.kv.degree() == b.kv.degree()
+            && a.ku.knots() == b.ku.knots()
+            && a.kv.knots() == b.kv.knots()
+            && a.net.len() == b.net.len()
+            && a.net
+                .iter()
+                .zip(&b.net)
+                .all(|(x, y)| x.wp == y.wp && x.w == y.w)
+    };
+    if same {
+        return Some(CoincidenceOut {
+            kind: CoincidenceKind::Identical,
+            plane_point: None,
+            plane_normal: None,
+        });
+    }
+    let pa = cartesian_exact(sa)?;
+    let pb = cartesian_exact(sb)?;
+    let p0 = pa[0].clone();
+    let p1 = pa.iter().find(|p| **p != p0)?.clone();
+    let zero = <Q as num_traits::Zero>::zero();
+    let p2 = pa
+        .iter()
+        .find(|p| {
+            cross(&sub(&p1, &p0), &sub(p, &p0))
+                .iter()
+                .any(|c| *c != zero)
+        })?
+        .clone();
+    let flat = pa
+        .iter()
+        .chain(&pb)
+        .all(|p| orient3d::<Q>(&p0, &p1, &p2, p) == Sign::Zero);
+    if !flat {
+        return None;
+    }
+    let n = cross(&sub(&p1, &p0), &sub(&p2, &p0));
+    let nf: [f64; 3] = std::array::from_fn(|k| n[k].to_f64());
+    let l = (nf[0] * nf[0] + nf[1] * nf[1] + nf[2] * nf[2]).sqrt();
+    Some(CoincidenceOut {
+        kind: CoincidenceKind::Coplanar,
+        plane_point: Some(std::array::from_fn(|k| p0[k].to_f64())),
+        plane_normal: (l > 0.0 && l.is_finite()).then(|| nf.map(|c| c / l)),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::{Frame, bilinear, sphere};
+
+    #[test]
+    fn identical_and_coplanar_are_proven_others_not() {
+        let f = Frame {
+            o: [0.3, -1.0, 2.0],
+            x: [0.6, 0.8, 0.0],
+            y: [-0.8, 0.6, 0.0],
+            z: [0.0, 0.0, 1.0],
+        };
+        let s = sphere(&f, 2.0).unwrap();
+        assert_eq!(
+            coincidence(&s, &s).unwrap().kind,
+            CoincidenceKind::Identical
+        );
+        // Two squares in the plane z = x + 2y (exact in binary), overlapping.
+        let z = |x: f64, y: f64| [x, y, x + 2.0 * y];
+        let a = bilinear(z(0.0, 0.0), z(1.0, 0.0), z(0.0, 1.0), z(1.0, 1.0)).unwrap();
+        let b = bilinear(z(0.5, 0.5), z(1.5, 0.5), z(0.5, 1.5), z(1.5, 1.5)).unwrap();
+        let c = coincidence(&a, &b).unwrap();
+        assert_eq!(c.kind, CoincidenceKind::Coplanar);
+        // Lifted by one ulp at one corner: not coplanar.
+        let mut q = z(1.5, 1.5);
+        q[2] = q[2].next_up();
+        let b2 = bilinear(z(0.5, 0.5), z(1.5, 0.5), z(0.5, 1.5), q).unwrap();
+        assert!(coincidence(&a, &b2).is_none());
+        // The sphere against a plane through its centre: no coincidence.
+        assert!(coincidence(&s, &a).is_none());
+        let s2 = sphere(&f, 2.0 + 1e-15).unwrap();
+        assert!(coincidence(&s, &s2).is_none());
+    }
+}
