@@ -231,6 +231,20 @@ fn finish<T: serde::Serialize + std::fmt::Display, E: std::fmt::Display>(
     }
 }
 
+/// Intersection squares distances: refuse models with coordinates beyond
+/// [`crate::model::MAX_COORDINATE`] (bad input) before it starts. Files that do not read are
+/// left to the job, which reports them.
+fn refuse_out_of_range<'a>(files: impl IntoIterator<Item = &'a PathBuf>) -> Option<i32> {
+    for f in files {
+        if let Ok(m) = crate::io::read_model(f)
+            && let Err(e) = m.check_coordinate_range()
+        {
+            return Some(bad(format!("{}: {e}", f.display())));
+        }
+    }
+    None
+}
+
 /// Run a parsed command; returns the process exit code.
 pub fn run(cli: Cli) -> i32 {
     match cli.command {
@@ -298,6 +312,9 @@ pub fn run(cli: Cli) -> i32 {
             json,
         } => {
             use crate::ssi::job;
+            if let Some(code) = refuse_out_of_range(std::iter::once(&file).chain(&file2)) {
+                return code;
+            }
             let prm = crate::ssi::SsiParams {
                 tol,
                 flatness,
@@ -325,6 +342,9 @@ pub fn run(cli: Cli) -> i32 {
             out,
             json,
         } => {
+            if let Some(code) = refuse_out_of_range([&a, &b]) {
+                return code;
+            }
             let prm = crate::ssi::SsiParams {
                 tol,
                 ..Default::default()
