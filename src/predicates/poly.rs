@@ -259,55 +259,6 @@ pub fn count_roots(p: &Poly, a: &BigRational, b: &BigRational) -> usize {
     n.max(0) as usize
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    fn r(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
-    fn p(c: &[i64]) -> Poly {
-        Poly::new(c.iter().map(|&x| r(x, 1)).collect())
-    }
-
-    #[test]
-    fn odd_part_and_sturm() {
-        // (t - 1/2)^2 (t - 1/4) (t - 3/4)^3: sign changes at 1/4 and 3/4 only.
-        let f = Poly::new(vec![r(-1, 2), r(1, 1)])
-            .mul(&Poly::new(vec![r(-1, 2), r(1, 1)]))
-            .mul(&Poly::new(vec![r(-1, 4), r(1, 1)]))
-            .mul(
-                &Poly::new(vec![r(-3, 4), r(1, 1)])
-                    .mul(&Poly::new(vec![r(-3, 4), r(1, 1)]))
-                    .mul(&Poly::new(vec![r(-3, 4), r(1, 1)])),
-            );
-        let odd = f.odd_multiplicity_part();
-        assert_eq!(odd.degree(), Some(2));
-        assert_eq!(count_roots(&odd, &r(0, 1), &r(1, 1)), 2);
-        let iso = isolate_roots(&odd, &r(0, 1), &r(1, 1), &r(1, 1000));
-        assert_eq!(iso.len(), 2);
-        assert!(iso[0].0 <= r(1, 4) && r(1, 4) <= iso[0].1);
-        assert!(iso[1].0 <= r(3, 4) && r(3, 4) <= iso[1].1);
-        // t^2 - 2 on (0, 2): one root, irrational.
-        let g = p(&[-2, 0, 1]);
-        let iso = isolate_roots(&g, &r(0, 1), &r(2, 1), &r(1, 1 << 20));
-        assert_eq!(iso.len(), 1);
-        let (lo, hi) = &iso[0];
-        assert!(lo * lo < r(2, 1) && hi * hi > r(2, 1));
-    }
-
-    #[test]
-    fn bernstein_conversion() {
-        let b = [r(0, 1), r(3, 1), r(-1, 2), r(0, 1)];
-        let pw = Poly::from_bernstein(&b);
-        for i in 0..=10 {
-            let t = r(i, 10);
-            let om = r(1, 1) - &t;
-            let direct = &b[1] * r(3, 1) * &t * &om * &om + &b[2] * r(3, 1) * &t * &t * &om;
-            assert_eq!(pw.eval(&t), direct);
-        }
-    }
-}
-
 /// Whether the polynomial with Bernstein coefficients `b` on `[0, 1]` is negative anywhere
 /// on `[0, 1]`, decided exactly: `None` when it is `>= 0` on the whole interval (a touch
 /// of zero included), otherwise a parameter where it is negative — or, when every candidate
@@ -363,4 +314,75 @@ pub fn negative_on_unit_interval(b: &[BigRational]) -> Option<BigRational> {
         }
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    fn r(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+    fn p(c: &[i64]) -> Poly {
+        Poly::new(c.iter().map(|&x| r(x, 1)).collect())
+    }
+
+    #[test]
+    fn odd_part_and_sturm() {
+        // (t - 1/2)^2 (t - 1/4) (t - 3/4)^3: sign changes at 1/4 and 3/4 only.
+        let f = Poly::new(vec![r(-1, 2), r(1, 1)])
+            .mul(&Poly::new(vec![r(-1, 2), r(1, 1)]))
+            .mul(&Poly::new(vec![r(-1, 4), r(1, 1)]))
+            .mul(
+                &Poly::new(vec![r(-3, 4), r(1, 1)])
+                    .mul(&Poly::new(vec![r(-3, 4), r(1, 1)]))
+                    .mul(&Poly::new(vec![r(-3, 4), r(1, 1)])),
+            );
+        let odd = f.odd_multiplicity_part();
+        assert_eq!(odd.degree(), Some(2));
+        assert_eq!(count_roots(&odd, &r(0, 1), &r(1, 1)), 2);
+        let iso = isolate_roots(&odd, &r(0, 1), &r(1, 1), &r(1, 1000));
+        assert_eq!(iso.len(), 2);
+        assert!(iso[0].0 <= r(1, 4) && r(1, 4) <= iso[0].1);
+        assert!(iso[1].0 <= r(3, 4) && r(3, 4) <= iso[1].1);
+        // t^2 - 2 on (0, 2): one root, irrational.
+        let g = p(&[-2, 0, 1]);
+        let iso = isolate_roots(&g, &r(0, 1), &r(2, 1), &r(1, 1 << 20));
+        assert_eq!(iso.len(), 1);
+        let (lo, hi) = &iso[0];
+        assert!(lo * lo < r(2, 1) && hi * hi > r(2, 1));
+    }
+
+    #[test]
+    fn bernstein_conversion() {
+        let b = [r(0, 1), r(3, 1), r(-1, 2), r(0, 1)];
+        let pw = Poly::from_bernstein(&b);
+        for i in 0..=10 {
+            let t = r(i, 10);
+            let om = r(1, 1) - &t;
+            let direct = &b[1] * r(3, 1) * &t * &om * &om + &b[2] * r(3, 1) * &t * &t * &om;
+            assert_eq!(pw.eval(&t), direct);
+        }
+    }
+
+    #[test]
+    fn negative_on_unit_interval_sees_touches_and_interior_dips() {
+        let q = |v: &[i64]| -> Vec<BigRational> {
+            v.iter()
+                .map(|x| BigRational::from_integer(BigInt::from(*x)))
+                .collect()
+        };
+        let neg = |v: &[i64]| negative_on_unit_interval(&q(v));
+        // (1 - 2t)^2: touches zero at 1/2 from above.
+        assert_eq!(neg(&[1, -1, 1]), None);
+        // -(1 - 2t)^2: below zero except at 1/2 (negative at the ends).
+        assert_eq!(neg(&[-1, 1, -1]), Some(BigRational::zero()));
+        // -2t(1 - t): zero at both ends, negative inside, no sign change in (0, 1).
+        let t = neg(&[0, -1, 0]).unwrap();
+        assert!(Poly::from_bernstein(&q(&[0, -1, 0])).eval(&t) < BigRational::zero());
+        // 6t^2 - 6t + 1: two sign changes.
+        let t = neg(&[1, -2, 1]).unwrap();
+        assert!(Poly::from_bernstein(&q(&[1, -2, 1])).eval(&t) < BigRational::zero());
+        assert_eq!(neg(&[0, 0, 0]), None);
+        assert_eq!(neg(&[0, 1, 0]), None);
+    }
 }
