@@ -264,7 +264,7 @@ pub fn to_string(t: &Triangulation) -> String {
 /// would be written as infinity) is refused: the vertex index and value are returned.
 pub fn to_binary(t: &Triangulation) -> Result<Vec<u8>, (usize, f64)> {
     for (k, v) in t.vertices.iter().enumerate() {
-        if let Some(x) = v.iter().find(|x| !(x.abs() <= f32::MAX as f64)) {
+        if let Some(x) = v.iter().find(|x| x.is_nan() || x.abs() > f32::MAX as f64) {
             return Err((k, *x));
         }
     }

@@ -77,7 +77,7 @@ impl Model {
     pub fn check_coordinate_range(&self) -> Result<(), RangeError> {
         for (i, s) in self.surfaces.iter().enumerate() {
             let m = largest(surface_points(&s.nurbs));
-            if !(m <= MAX_COORDINATE) {
+            if m > MAX_COORDINATE {
                 return Err(RangeError {
                     what: surface_label(i, s),
                     value: m,
@@ -87,7 +87,7 @@ impl Model {
         for (i, c) in self.curves.iter().enumerate() {
             if let super::CurveGeometry::Space(c3) = &c.geometry {
                 let m = largest(curve_points(c3));
-                if !(m <= MAX_COORDINATE) {
+                if m > MAX_COORDINATE {
                     return Err(RangeError {
                         what: format!("curve {i} ({})", c.name),
                         value: m,
@@ -97,7 +97,7 @@ impl Model {
         }
         for (i, t) in self.triangulations.iter().enumerate() {
             let m = largest(t.vertices.iter().copied());
-            if !(m <= MAX_COORDINATE) {
+            if m > MAX_COORDINATE {
                 return Err(RangeError {
                     what: format!("triangulation {i} ({})", t.name),
                     value: m,

@@ -137,9 +137,11 @@ pub fn arc(f: &Frame, r: f64, a0: f64, a1: f64) -> Result<NurbsCurve<f64, 3>, Sp
     positive("arc radius", r)?;
     // Angles beyond ±2^52 have no fractional part left: the arc would not be where it says.
     let sweep = a1 - a0;
-    if !(a0.abs() <= 4.5e15 && a1.abs() <= 4.5e15)
-        || !(sweep > 0.0 && sweep <= std::f64::consts::TAU * (1.0 + 1e-9))
-    {
+    let usable = a0.abs() <= 4.5e15
+        && a1.abs() <= 4.5e15
+        && sweep > 0.0
+        && sweep <= std::f64::consts::TAU * (1.0 + 1e-9);
+    if !usable {
         return Err(SplineError::Invalid(format!(
             "arc angles {a0:e} .. {a1:e} (radians) are not an increasing range of at most a full turn"
         )));
