@@ -356,3 +356,43 @@ fn step_writer_keeps_conversion_based_units() {
         assert_eq!(read_model(&out).unwrap().unit.as_deref(), Some(unit));
     }
 }
+
+fn repaired(name: &str) -> vericad::repair::RepairReport {
+    let patches = accepted(name)
+        .surfaces
+        .into_iter()
+        .map(|s| s.nurbs)
+        .collect();
+    vericad::repair::repair(
+        patches,
+        &Default::default(),
+        &Default::default(),
+        &|_: &str| {},
+    )
+    .unwrap()
+    .report
+}
+
+#[test]
+fn repair_finds_the_same_feature_edge_at_any_scale() {
+    let small = repaired("two-patches-1.json");
+    let huge = repaired("two-patches-1e80.json");
+    assert_eq!(small.feature_edges, 1);
+    assert_eq!(huge.edges_connected, small.edges_connected);
+    assert_eq!(huge.feature_edges, small.feature_edges);
+    assert_eq!(huge.patches_out, small.patches_out);
+    assert!(huge.gaps_left.is_empty());
+}
+
+#[test]
+fn t_junction_splitting_is_bounded() {
+    let r = repaired("soup-model.json");
+    // 2 input patches, at most 4 splits each.
+    assert!(r.t_junctions <= 8, "{} splits", r.t_junctions);
+    assert!(r.patches_out <= 10, "{} patches out", r.patches_out);
+    assert!(
+        r.not_done.iter().any(|n| n.contains("split budget")),
+        "{:?}",
+        r.not_done
+    );
+}
