@@ -396,3 +396,24 @@ fn t_junction_splitting_is_bounded() {
         r.not_done
     );
 }
+
+#[test]
+fn feature_overrides_naming_no_edge_are_refused() {
+    let patches: Vec<_> = accepted("two-patches-1.json")
+        .surfaces
+        .into_iter()
+        .map(|s| s.nurbs)
+        .collect();
+    for bad in [(7, 0), (0, 4)] {
+        let ov = vericad::repair::features::FeatureOverrides {
+            add: vec![bad],
+            remove: vec![],
+        };
+        let r = vericad::repair::repair(patches.clone(), &Default::default(), &ov, &|_: &str| {});
+        let e = r.err().expect("refused").to_string();
+        assert_has(
+            &e,
+            &["feature override", &format!("[{}, {}]", bad.0, bad.1)],
+        );
+    }
+}

@@ -35,6 +35,10 @@ pub enum RepairError {
     Patch(usize, String),
     #[error("no patches to repair")]
     Empty,
+    #[error(
+        "feature override [{0}, {1}] names no patch edge (patches 0..{2}, edges 0 south, 1 east, 2 north, 3 west)"
+    )]
+    Override(usize, usize, usize),
 }
 
 #[derive(Clone, Debug)]
@@ -195,6 +199,16 @@ pub fn repair(
                 splits.push(t);
             }
         }
+    }
+    // Overrides name edges of the patches after splitting (as the report does); one that
+    // names no edge would be ignored silently.
+    if let Some(&(p, e)) = overrides
+        .add
+        .iter()
+        .chain(&overrides.remove)
+        .find(|(p, e)| *p >= patches.len() || *e >= 4)
+    {
+        return Err(RepairError::Override(p, e, patches.len()));
     }
     let candidates = connect(&patches, prm.u1);
     progress("edge verification");
