@@ -417,3 +417,12 @@ fn feature_overrides_naming_no_edge_are_refused() {
         );
     }
 }
+
+#[test]
+fn absurd_thread_counts_are_bad_input() {
+    let f = data("plane-z0.step");
+    let (code, _, err) =
+        vericad(&["ssi", f.to_str().unwrap(), "--threads", "100000"], MINUTE).expect("ssi returns");
+    assert_eq!(code, 2, "{err}");
+    assert_has(&err, &["--threads"]);
+}

@@ -9,6 +9,8 @@ use std::path::PathBuf;
 pub const EXIT_BAD_INPUT: i32 = 2;
 /// Exit code for a failed computation or output.
 pub const EXIT_FAILURE: i32 = 1;
+/// Largest `--threads` accepted (each worker has its own stack).
+pub const MAX_THREADS: usize = 1024;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -106,7 +108,7 @@ pub enum Command {
         /// Clip the curves to the faces' trimming loops (IGES 144/142, JSON trim loops).
         #[arg(long)]
         respect_trims: bool,
-        /// Worker threads (default: all cores). Results do not depend on it.
+        /// Worker threads (default: all cores; at most 1024). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
         /// Write the JSON result here.
@@ -312,6 +314,11 @@ pub fn run(cli: Cli) -> i32 {
             json,
         } => {
             use crate::ssi::job;
+            if let Some(n) = threads
+                && !(1..=MAX_THREADS).contains(&n)
+            {
+                return bad(format!("--threads must be in 1..={MAX_THREADS}, not {n}"));
+            }
             if let Some(code) = refuse_out_of_range(std::iter::once(&file).chain(&file2)) {
                 return code;
             }
