@@ -141,7 +141,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         warnings: vec![],
     };
     let curve_path = out_dir.join("demo-exact-curve.json");
-    std::fs::write(&curve_path, json::to_string(&curve_model))
+    crate::io::write_atomic(&curve_path, json::to_string(&curve_model))
         .map_err(|e| DemoError::Write(curve_path.display().to_string(), e))?;
     let params = crate::curve_on_surface::Params {
         eps_d: 1e-3,
@@ -153,7 +153,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
     };
     let cos = crate::curve_on_surface::approximate(&model.surfaces[0].nurbs, dc, &params)?;
     let cos_path = out_dir.join("demo-curve-on-surface.json");
-    std::fs::write(
+    crate::io::write_atomic(
         &cos_path,
         serde_json::to_string_pretty(&cos).unwrap_or_default(),
     )
@@ -168,7 +168,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         polyline: &cos.domain_polyline,
         title: "Yang et al. Table 2: domain curve (blue) and certified polyline (red)",
     });
-    std::fs::write(&svg_path, svg)
+    crate::io::write_atomic(&svg_path, svg)
         .map_err(|e| DemoError::Write(svg_path.display().to_string(), e))?;
     let bs = crate::spline::BSplineSurface {
         ku: model.surfaces[0].nurbs.hom.ku.clone(),
@@ -201,7 +201,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         ],
     };
     let text = serde_json::to_string_pretty(&report).unwrap_or_default();
-    std::fs::write(&report_path, text)
+    crate::io::write_atomic(&report_path, text)
         .map_err(|e| DemoError::Write(report_path.display().to_string(), e))?;
     Ok(report)
 }

@@ -25,6 +25,9 @@ pub fn model_json(data: &[u8]) {
     };
     match json::from_str(text, "fuzz") {
         Ok(m) => {
+            if let Err(e) = m.validate() {
+                panic!("the JSON reader accepted geometry that is not finite: {e}");
+            }
             let again =
                 json::from_str(&json::to_string(&m), "fuzz-rt").expect("re-read of written model");
             assert_eq!(m, again, "round trip changed the model");
@@ -120,10 +123,14 @@ pub fn curve_on_surface(data: &[u8]) {
 }
 
 /// STEP, IGES and STL readers: any bytes give a model or a located error, never a panic;
-/// an accepted model's surfaces evaluate to finite points.
+/// everything an accepted model holds is finite (knots, spans, control points, weights,
+/// `w·p`, vertices) and its surfaces evaluate to points that are not NaN.
 pub fn readers(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let check = |m: crate::model::Model| {
+        if let Err(e) = m.validate() {
+            panic!("a reader accepted geometry that is not finite: {e}");
+        }
         for s in &m.surfaces {
             let (u0, _, v0, _) = s.nurbs.hom.domain();
             let p = s.nurbs.eval(&u0, &v0);
@@ -138,8 +145,9 @@ pub fn readers(data: &[u8]) {
         Ok(m) => check(m),
         Err(e) => assert!(!e.reason.is_empty()),
     }
-    if let Err(e) = crate::io::stl::from_bytes(data, "fuzz.stl") {
-        assert!(!e.reason.is_empty());
+    match crate::io::stl::from_bytes(data, "fuzz.stl") {
+        Ok(m) => check(m),
+        Err(e) => assert!(!e.reason.is_empty()),
     }
 }
 

@@ -15,6 +15,8 @@ pub const EXIT_FAILURE: i32 = 1;
 /// coverage regions, points not proven within tol, or a partial run; `certify-ssi` with
 /// foreign curves not within tol, or vericad branches missing or partly missing from them.
 pub const EXIT_UNCERTIFIED: i32 = 3;
+/// Largest `--threads` accepted (each worker has its own stack).
+pub const MAX_THREADS: usize = 1024;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -112,7 +114,7 @@ pub enum Command {
         /// Clip the curves to the faces' trimming loops (IGES 144/142, JSON trim loops).
         #[arg(long)]
         respect_trims: bool,
-        /// Worker threads (default: all cores). Results do not depend on it.
+        /// Worker threads (default: all cores; at most 1024). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
         /// Write the JSON result here.
@@ -304,6 +306,11 @@ pub fn run(cli: Cli) -> i32 {
             json,
         } => {
             use crate::ssi::job;
+            if let Some(n) = threads
+                && !(1..=MAX_THREADS).contains(&n)
+            {
+                return bad(format!("--threads must be in 1..={MAX_THREADS}, not {n}"));
+            }
             let prm = crate::ssi::SsiParams {
                 tol,
                 flatness,

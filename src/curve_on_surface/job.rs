@@ -103,7 +103,7 @@ pub fn run(
         approximate_with_progress(&surf.nurbs, curve, params, &mut report)?
     };
     if let Some(o) = out {
-        std::fs::write(o, serde_json::to_string_pretty(&r).unwrap_or_default())
+        crate::io::write_atomic(o, serde_json::to_string_pretty(&r).unwrap_or_default())
             .map_err(|e| JobError::Write(o.display().to_string(), e))?;
     }
     if let Some(p) = svg {
@@ -124,7 +124,7 @@ pub fn run(
                 r.num_segments, r.certificate.hausdorff_bound
             ),
         });
-        std::fs::write(p, doc).map_err(|e| JobError::Write(p.display().to_string(), e))?;
+        crate::io::write_atomic(p, doc).map_err(|e| JobError::Write(p.display().to_string(), e))?;
     }
     if let Some(p) = outputs.iges {
         let b = &r.bspline;
@@ -144,7 +144,7 @@ pub fn run(
             unit: sm.unit.clone(),
             ..Default::default()
         };
-        std::fs::write(p, crate::io::iges::write::to_string(&m, "curve-on-surface"))
+        crate::io::write_atomic(p, crate::io::iges::write::to_string(&m, "curve-on-surface"))
             .map_err(|e| JobError::Write(p.display().to_string(), e))?;
     }
     if let Some(p) = outputs.vtk {
@@ -178,7 +178,7 @@ pub fn run(
             name: "certified".into(),
             values: cert,
         });
-        std::fs::write(p, crate::io::vtk::render(&pd))
+        crate::io::write_atomic(p, crate::io::vtk::render(&pd))
             .map_err(|e| JobError::Write(p.display().to_string(), e))?;
     }
     Ok(r)

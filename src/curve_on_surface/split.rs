@@ -11,7 +11,7 @@ use super::segments::{Seg, offset, round};
 use crate::geom::lift_point;
 use crate::predicates::poly::{
     Poly, certify_squarefree, deflate_ends, descartes_isolate, integer_bernstein,
-    integer_power_from_bernstein, isolate_roots,
+    integer_power_from_bernstein, isolate_roots, negative_on_unit_interval,
 };
 use crate::scalar::{Scalar, lift};
 use crate::spline::{BSplineCurve, BezierCurve};
@@ -81,8 +81,41 @@ pub fn split(curve: &BSplineCurve<[f64; 2]>, cells: &Cells) -> Result<Split, Cos
     let bz = cq.bezier_pieces();
     let mut pieces = Vec::with_capacity(bz.len());
     let mut segs = Vec::new();
+    let dom = [
+        cells.u_breaks[0],
+        cells.u_breaks[cells.u_breaks.len() - 1],
+        cells.v_breaks[0],
+        cells.v_breaks[cells.v_breaks.len() - 1],
+    ];
     for bp in bz {
         let c = bp.curve;
+        let g = |t: &Q| (bp.t0.clone() + (bp.t1.clone() - bp.t0.clone()) * t.clone()).to_f64();
+        // Inside the domain, exactly: each edge function (u - u0, u1 - u, v - v0, v1 - v)
+        // is >= 0 on the whole piece. Crossing parameters alone miss a piece that touches an
+        // edge from outside (a double root, no sign change).
+        for (dim, edge, sign) in [
+            (0, dom[0], 1),
+            (0, dom[1], -1),
+            (1, dom[2], 1),
+            (1, dom[3], -1),
+        ] {
+            let e: Q = lift(edge);
+            let b: Vec<Q> = c
+                .control
+                .iter()
+                .map(|p| {
+                    let d = p[dim].clone() - e.clone();
+                    if sign > 0 { d } else { -d }
+                })
+                .collect();
+            if let Some(t) = negative_on_unit_interval(&b) {
+                return Err(CosError::OutOfDomain {
+                    t0: g(&t),
+                    t1: g(&t),
+                    at: round(&c.eval(&t)),
+                });
+            }
+        }
         let mut cuts: Vec<(Q, Snap)> = Vec::new();
         for (dim, breaks) in [(0usize, &cells.u_breaks), (1usize, &cells.v_breaks)] {
             for &k in breaks.iter() {

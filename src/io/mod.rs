@@ -73,6 +73,37 @@ pub enum WriteError {
     NoTriangulation(String),
     #[error("cannot write {0}: {1}")]
     Io(String, std::io::Error),
+    #[error(
+        "{0}: vertex {1} has coordinate {2:e}, beyond the f32 range of binary STL (it would be written as infinity)"
+    )]
+    NotRepresentable(String, usize, f64),
+}
+
+/// Write `bytes` to `path` atomically: into a temporary file in the same directory, then
+/// renamed over `path`. A failed write (disk full, file size limit) leaves the previous
+/// file untouched and removes the temporary file.
+pub fn write_atomic(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> std::io::Result<()> {
+    use std::io::Write;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "output".into());
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes.as_ref())?;
+        f.sync_all()?;
+        drop(f);
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
 }
 
 /// Write a model in the format named by the path's extension.
@@ -109,7 +140,9 @@ pub fn write_model_as(
             .triangulations
             .first()
             .ok_or_else(|| WriteError::NoTriangulation(name0.clone()))?;
-        std::fs::write(path, stl::to_binary(t)).map_err(|e| WriteError::Io(name0, e))?;
+        let bytes = stl::to_binary(t)
+            .map_err(|(k, x)| WriteError::NotRepresentable(name0.clone(), k, x))?;
+        write_atomic(path, bytes).map_err(|e| WriteError::Io(name0, e))?;
         return Ok(warnings);
     }
     let for_format = std::path::PathBuf::from(format!("x.{ext}"));
@@ -129,6 +162,43 @@ pub fn write_model_as(
         warnings.push(format!(
             "{} triangulation(s) not written (the format holds NURBS only)",
             m.triangulations.len()
+        ));
+    }
+    if matches!(fmt, Some(Format::Step | Format::Iges)) || matches!(ext.as_str(), "vtp" | "obj") {
+        let domain: Vec<String> = m
+            .curves
+            .iter()
+            .filter(|c| matches!(c.geometry, crate::model::CurveGeometry::Domain(_)))
+            .map(|c| c.name.clone())
+            .collect();
+        if !domain.is_empty() {
+            warnings.push(format!(
+                "{} domain curve(s) (u, v) written as space curves (u, v, 0), which is how they read back: {}",
+                domain.len(),
+                crate::model::list_ids(domain)
+            ));
+        }
+    }
+    if matches!(fmt, Some(Format::Step | Format::Iges)) {
+        let reversed = m.surfaces.iter().filter(|s| s.reversed).count();
+        if reversed > 0 {
+            warnings.push(format!(
+                "{reversed} reversed face(s) (normal opposite to S_u x S_v): this writer stores surfaces, not faces, so the orientation is not kept"
+            ));
+        }
+        if !m.patch_sets.is_empty() {
+            warnings.push(format!(
+                "{} patch set(s) not written (the writer stores one set of surfaces)",
+                m.patch_sets.len()
+            ));
+        }
+    }
+    if fmt == Some(Format::Step)
+        && let Some(u) = &m.unit
+        && !step::write::unit_supported(u)
+    {
+        warnings.push(format!(
+            "unit '{u}' has no STEP form in this writer: coordinates written unchanged, labelled mm"
         ));
     }
     let name = path.display().to_string();
@@ -151,6 +221,6 @@ pub fn write_model_as(
             _ => return Err(WriteError::UnknownFormat(name)),
         },
     };
-    std::fs::write(path, text).map_err(|e| WriteError::Io(name, e))?;
+    write_atomic(path, text).map_err(|e| WriteError::Io(name, e))?;
     Ok(warnings)
 }

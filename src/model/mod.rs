@@ -5,11 +5,13 @@
 //! [`json`] reads and writes the native JSON format (schema in `docs/model-format.md`);
 //! every fault in a file is a [`ModelError`] naming the file, the JSON path and the reason.
 
+pub mod check;
 pub mod eval;
 pub mod info;
 pub mod json;
 
 use crate::spline::{NurbsCurve, NurbsSurface};
+pub use check::{MAX_COORDINATE, RangeError, list_ids};
 
 /// A curve in the parameter plane of a surface (`u, v`) or in space.
 #[derive(Clone, Debug, PartialEq)]

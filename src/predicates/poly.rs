@@ -259,6 +259,63 @@ pub fn count_roots(p: &Poly, a: &BigRational, b: &BigRational) -> usize {
     n.max(0) as usize
 }
 
+/// Whether the polynomial with Bernstein coefficients `b` on `[0, 1]` is negative anywhere
+/// on `[0, 1]`, decided exactly: `None` when it is `>= 0` on the whole interval (a touch
+/// of zero included), otherwise a parameter where it is negative — or, when every candidate
+/// point happens to be a root, a parameter of a sign change.
+///
+/// All coefficients `>= 0` decide at once (convex hull). Otherwise the polynomial `g` is
+/// negative somewhere iff its odd-multiplicity part (square-free, with the sign changes of
+/// `g` as its roots) has a root in `(0, 1)`, or `g` is negative at an end; without sign
+/// changes `g` keeps one sign on `(0, 1)` away from its even roots, read at one of `n + 1`
+/// distinct points (a non-zero polynomial of degree `n` has at most `n` roots). A double
+/// root — a curve touching a line from one side — is therefore no sign change but is still
+/// classified by the side it lies on.
+pub fn negative_on_unit_interval(b: &[BigRational]) -> Option<BigRational> {
+    let zero = BigRational::zero();
+    if b.iter().all(|x| *x >= zero) {
+        return None;
+    }
+    let n = b.len() - 1;
+    if b[0] < zero {
+        return Some(zero);
+    }
+    if b[n] < zero {
+        return Some(BigRational::one());
+    }
+    let g = Poly::from_bernstein(b);
+    if g.is_zero() {
+        return None;
+    }
+    let (lo, hi) = (zero.clone(), BigRational::one());
+    let odd = g.odd_multiplicity_part();
+    if count_roots(&odd, &lo, &hi) > 0 {
+        let width = BigRational::new(BigInt::one(), BigInt::one() << 32);
+        let roots = isolate_roots(&odd, &lo, &hi, &width);
+        for (a, c) in &roots {
+            for t in [a, c] {
+                if g.eval(t) < zero {
+                    return Some(t.clone());
+                }
+            }
+        }
+        let two = BigRational::from_integer(BigInt::from(2));
+        return Some(roots.first().map_or(
+            BigRational::new(BigInt::one(), BigInt::from(2)),
+            |(a, c)| (a + c) / two,
+        ));
+    }
+    let den = BigInt::from(n as u64 + 2);
+    for j in 1..=n as u64 + 1 {
+        let t = BigRational::new(BigInt::from(j), den.clone());
+        let v = g.eval(&t);
+        if !v.is_zero() {
+            return (v < zero).then_some(t);
+        }
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -305,5 +362,27 @@ mod tests {
             let direct = &b[1] * r(3, 1) * &t * &om * &om + &b[2] * r(3, 1) * &t * &t * &om;
             assert_eq!(pw.eval(&t), direct);
         }
+    }
+
+    #[test]
+    fn negative_on_unit_interval_sees_touches_and_interior_dips() {
+        let q = |v: &[i64]| -> Vec<BigRational> {
+            v.iter()
+                .map(|x| BigRational::from_integer(BigInt::from(*x)))
+                .collect()
+        };
+        let neg = |v: &[i64]| negative_on_unit_interval(&q(v));
+        // (1 - 2t)^2: touches zero at 1/2 from above.
+        assert_eq!(neg(&[1, -1, 1]), None);
+        // -(1 - 2t)^2: below zero except at 1/2 (negative at the ends).
+        assert_eq!(neg(&[-1, 1, -1]), Some(BigRational::zero()));
+        // -2t(1 - t): zero at both ends, negative inside, no sign change in (0, 1).
+        let t = neg(&[0, -1, 0]).unwrap();
+        assert!(Poly::from_bernstein(&q(&[0, -1, 0])).eval(&t) < BigRational::zero());
+        // 6t^2 - 6t + 1: two sign changes.
+        let t = neg(&[1, -2, 1]).unwrap();
+        assert!(Poly::from_bernstein(&q(&[1, -2, 1])).eval(&t) < BigRational::zero());
+        assert_eq!(neg(&[0, 0, 0]), None);
+        assert_eq!(neg(&[0, 1, 0]), None);
     }
 }

@@ -33,15 +33,28 @@ pub struct FeatureOverrides {
     pub remove: Vec<(usize, usize)>,
 }
 
+/// `v / |v|`, scaled by its largest component first so that neither squaring overflows
+/// (coordinates near 1e160) nor underflows (near 1e-160): the direction does not depend on
+/// the model's scale.
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let m = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    let w = v.map(|c| c / m);
+    let l = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+    Some(w.map(|c| c / l))
+}
+
 fn unit_normal(s: &NurbsSurface<f64, 3>, uv: [f64; 2]) -> Option<[f64; 3]> {
     let (_, su, sv) = crate::ssi::refine::point_d1(s, uv[0], uv[1]);
-    let n = [
+    // The normal's direction from the tangents' directions: scale-independent.
+    let (su, sv) = (unit(su)?, unit(sv)?);
+    unit([
         su[1] * sv[2] - su[2] * sv[1],
         su[2] * sv[0] - su[0] * sv[2],
         su[0] * sv[1] - su[1] * sv[0],
-    ];
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    (l > 0.0 && l.is_finite()).then(|| n.map(|c| c / l))
+    ])
 }
 
 /// Largest normal angle (degrees) along a connected edge pair, at `n` samples.

@@ -33,7 +33,7 @@ pub struct Outputs<'a> {
 }
 
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
-    std::fs::write(path, text)
+    crate::io::write_atomic(path, text)
         .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
 }
 

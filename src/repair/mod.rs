@@ -35,6 +35,10 @@ pub enum RepairError {
     Patch(usize, String),
     #[error("no patches to repair")]
     Empty,
+    #[error(
+        "feature override [{0}, {1}] names no patch edge (patches 0..{2}, edges 0 south, 1 east, 2 north, 3 west)"
+    )]
+    Override(usize, usize, usize),
 }
 
 #[derive(Clone, Debug)]
@@ -48,6 +52,10 @@ pub struct RepairParams {
     pub samples: usize,
     /// Rounds of T-junction splitting.
     pub max_t_rounds: usize,
+    /// T-junction splits allowed per input patch, in total: a split's new corners can land
+    /// on other patches' edges (folded or degenerate patches), so splitting is bounded
+    /// linearly in the input; T-junctions left when the budget is spent are reported.
+    pub max_t_splits_per_patch: usize,
 }
 
 impl Default for RepairParams {
@@ -58,6 +66,7 @@ impl Default for RepairParams {
             feature_angle_deg: 30.0,
             samples: 16,
             max_t_rounds: 8,
+            max_t_splits_per_patch: 4,
         }
     }
 }
@@ -162,14 +171,24 @@ pub fn repair(
     let mut origin: Vec<usize> = (0..patches_in).collect();
     let mut splits = Vec::new();
     progress("connectivity and T-junctions");
+    let split_budget = prm.max_t_splits_per_patch.saturating_mul(patches_in);
+    let mut unsplit = 0;
     for _ in 0..prm.max_t_rounds {
         let tj = t_junctions(&patches, prm.u1);
         if tj.is_empty() {
             break;
         }
+        if splits.len() >= split_budget {
+            unsplit = tj.len();
+            break;
+        }
         // One split per patch per round (the others are found again on the halves).
         let mut done = std::collections::BTreeSet::new();
         for t in tj {
+            if splits.len() >= split_budget {
+                unsplit += 1;
+                continue;
+            }
             if !done.insert(t.patch) {
                 continue;
             }
@@ -180,6 +199,16 @@ pub fn repair(
                 splits.push(t);
             }
         }
+    }
+    // Overrides name edges of the patches after splitting (as the report does); one that
+    // names no edge would be ignored silently.
+    if let Some(&(p, e)) = overrides
+        .add
+        .iter()
+        .chain(&overrides.remove)
+        .find(|(p, e)| *p >= patches.len() || *e >= 4)
+    {
+        return Err(RepairError::Override(p, e, patches.len()));
     }
     let candidates = connect(&patches, prm.u1);
     progress("edge verification");
@@ -293,7 +322,11 @@ pub fn repair(
         flipped_pairs: connected.iter().filter(|c| c.same_direction).count(),
         collapsed_edges,
         gap_max_before: gaps.iter().copied().fold(0.0, f64::max),
-        gap_mean_before: if gaps.is_empty() { 0.0 } else { gaps.iter().sum::<f64>() / gaps.len() as f64 },
+        gap_mean_before: if gaps.is_empty() {
+            0.0
+        } else {
+            gaps.iter().sum::<f64>() / gaps.len() as f64
+        },
         gap_histogram: hist,
         gaps_left: verified.iter().filter(|v| !v.connected).copied().collect(),
         gap_max_after,
@@ -306,10 +339,19 @@ pub fn repair(
         group_sizes: gs.iter().map(|g| (g.columns(), g.rows())).collect(),
         groups_not_merged: not_merged,
         max_merge_deviation: Some(max_dev),
-        not_done: vec![
-            "incompatible shared rows (different degree, count or knots) are not re-interpolated: listed in averaging.edges_incompatible".into(),
-            "groups grow only across aligned, consistently oriented neighbours (east-west, north-south); rotated or flipped neighbours bound a group".into(),
-        ],
+        not_done: {
+            let mut v: Vec<String> = vec![
+                "incompatible shared rows (different degree, count or knots) are not re-interpolated: listed in averaging.edges_incompatible".into(),
+                "groups grow only across aligned, consistently oriented neighbours (east-west, north-south); rotated or flipped neighbours bound a group".into(),
+            ];
+            if unsplit > 0 {
+                v.push(format!(
+                    "T-junction split budget ({} per input patch, {split_budget} in all) spent: {unsplit} T-junction(s) left unsplit",
+                    prm.max_t_splits_per_patch
+                ));
+            }
+            v
+        },
         seconds: t0.elapsed().as_secs_f64(),
     };
     Ok(RepairResult {

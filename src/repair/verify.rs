@@ -45,7 +45,15 @@ pub fn verify(
     candidates
         .par_iter()
         .map(|c| {
-            let gap = edge_gap(&patches[c.p], c.ep, &patches[c.q], c.eq, n);
+            // Edges with the same control points, weights and knots are the same curve: gap 0
+            // exactly, at any coordinate scale (sampling carries rounding errors relative to
+            // the coordinates, which exceed any absolute u2 far from the origin).
+            let (p, q) = (&patches[c.p], &patches[c.q]);
+            let gap = if super::average::identical(p, c.ep, q, c.eq, c.same_direction) {
+                0.0
+            } else {
+                edge_gap(p, c.ep, q, c.eq, n)
+            };
             VerifiedEdge {
                 connection: *c,
                 gap,

@@ -134,7 +134,19 @@ pub fn revolve_curve_range(
 /// `a0` to `a1` (radians, `a1 > a0`, at most a full turn): rational quadratic pieces of at
 /// most 90°, middle weights `cos(Δ/2)` (The NURBS Book A7.1).
 pub fn arc(f: &Frame, r: f64, a0: f64, a1: f64) -> Result<NurbsCurve<f64, 3>, SplineError> {
-    let sweep = (a1 - a0).clamp(1e-300, std::f64::consts::TAU);
+    positive("arc radius", r)?;
+    // Angles beyond ±2^52 have no fractional part left: the arc would not be where it says.
+    let sweep = a1 - a0;
+    let usable = a0.abs() <= 4.5e15
+        && a1.abs() <= 4.5e15
+        && sweep > 0.0
+        && sweep <= std::f64::consts::TAU * (1.0 + 1e-9);
+    if !usable {
+        return Err(SplineError::Invalid(format!(
+            "arc angles {a0:e} .. {a1:e} (radians) are not an increasing range of at most a full turn"
+        )));
+    }
+    let sweep = sweep.clamp(1e-300, std::f64::consts::TAU);
     let n = (sweep / std::f64::consts::FRAC_PI_2 - 1e-12)
         .ceil()
         .max(1.0) as usize;
@@ -205,6 +217,7 @@ pub fn bilinear(
 
 /// Cylinder of radius `r` about the frame's z axis for `h ∈ [h0, h1]`.
 pub fn cylinder(f: &Frame, r: f64, h0: f64, h1: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    positive("cylinder radius", r)?;
     revolve(
         f,
         &[([r, h0], 1.0), ([r, h1], 1.0)],
@@ -230,8 +243,20 @@ pub fn cone(
     )
 }
 
+/// `x` is a positive finite number, or an error naming `what`.
+fn positive(what: &str, x: f64) -> Result<(), SplineError> {
+    if x > 0.0 && x.is_finite() {
+        Ok(())
+    } else {
+        Err(SplineError::Invalid(format!(
+            "{what} {x:e} is not a positive finite number"
+        )))
+    }
+}
+
 /// Full sphere of radius `r` centred at the frame's origin.
 pub fn sphere(f: &Frame, r: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    positive("sphere radius", r)?;
     let prof = [
         ([0.0, -r], 1.0),
         ([r, -r], H),
@@ -244,6 +269,8 @@ pub fn sphere(f: &Frame, r: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
 
 /// Full torus: tube of radius `minor` around the circle of radius `major`.
 pub fn torus(f: &Frame, major: f64, minor: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    positive("torus minor radius", minor)?;
+    positive("torus major radius", major)?;
     let prof: Vec<([f64; 2], f64)> = UNIT_CIRCLE
         .iter()
         .map(|(c, w)| ([major + minor * c[0], minor * c[1]], *w))

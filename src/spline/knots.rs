@@ -36,6 +36,10 @@ pub enum KnotError {
     TooFewControlPoints { need: usize, got: usize },
     #[error("knot {0} is not finite")]
     NotFinite(usize),
+    #[error(
+        "knot span [{lo:e}, {hi:e}] is wider than the f64 range: basis functions would divide by infinity"
+    )]
+    SpanNotFinite { lo: f64, hi: f64 },
 }
 
 /// A validated knot vector for a spline of degree `degree` with `n_ctrl` control points:
@@ -77,6 +81,15 @@ impl<S: Scalar> KnotVector<S> {
             if knots[i] < knots[i - 1] {
                 return Err(KnotError::Unsorted(i));
             }
+        }
+        // Every difference of knots (the denominators of the basis recurrence) is at most
+        // the whole span: it must be a finite f64 too.
+        let (lo, hi) = (&knots[0], &knots[knots.len() - 1]);
+        if !(hi.clone() - lo.clone()).to_f64().is_finite() {
+            return Err(KnotError::SpanNotFinite {
+                lo: lo.to_f64(),
+                hi: hi.to_f64(),
+            });
         }
         // Multiplicities.
         let mut i = 0;

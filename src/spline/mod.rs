@@ -52,6 +52,14 @@ pub enum SplineError {
     Degree(usize),
     #[error("weight {index} is not positive")]
     Weight { index: usize },
+    /// A control point, weight or homogeneous coordinate `w·p` that is not a finite `f64`,
+    /// or control points whose differences overflow: evaluation would give NaN or infinity.
+    #[error("{0}")]
+    NotFinite(String),
+    /// Arguments of a constructor that describe no curve or surface (a radius that is not
+    /// positive, an angle range that is not a turn or less, ...).
+    #[error("{0}")]
+    Invalid(String),
     #[error("parameter {0} lies outside the domain [{1}, {2}]")]
     OutOfDomain(f64, f64, f64),
     #[error("need at least {need} points, got {got}")]

@@ -20,10 +20,70 @@ pub struct NurbsSurface<S: Scalar, const D: usize> {
     pub hom: BSplineSurface<Hom<S, D>>,
 }
 
-fn check_weights<S: Scalar>(w: &[S]) -> Result<(), SplineError> {
+pub(crate) fn check_weights<S: Scalar>(w: &[S]) -> Result<(), SplineError> {
     for (i, wi) in w.iter().enumerate() {
+        if !wi.to_f64().is_finite() {
+            return Err(SplineError::NotFinite(format!(
+                "weight {i} ({}) is not finite",
+                wi.to_f64()
+            )));
+        }
         if wi.sign() != crate::scalar::Sign::Positive {
             return Err(SplineError::Weight { index: i });
+        }
+    }
+    Ok(())
+}
+
+/// The homogeneous control points of a curve or surface are usable in `f64`: every
+/// coordinate `p`, every `w·p` finite, and the differences of the coordinates (hodographs,
+/// bounding boxes, distances between control points) finite. `at(k)` names control point `k`.
+pub(crate) fn check_control<S: Scalar, const D: usize>(
+    pts: &[[S; D]],
+    hom: &[Hom<S, D>],
+    at: impl Fn(usize) -> String,
+) -> Result<(), SplineError> {
+    const AXIS: [&str; 4] = ["x", "y", "z", "w"];
+    let fmt = |v: &[S]| {
+        v.iter()
+            .map(|x| format!("{:e}", x.to_f64()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    for (k, (p, h)) in pts.iter().zip(hom).enumerate() {
+        if p.iter().any(|x| !x.to_f64().is_finite()) {
+            return Err(SplineError::NotFinite(format!(
+                "control point {} ({}) is not finite",
+                at(k),
+                fmt(p)
+            )));
+        }
+        if h.wp.iter().any(|x| !x.to_f64().is_finite()) {
+            return Err(SplineError::NotFinite(format!(
+                "control point {}: weight × coordinate w·p = ({}) overflows (weight {:e}, point ({}))",
+                at(k),
+                fmt(&h.wp),
+                h.w.to_f64(),
+                fmt(p)
+            )));
+        }
+    }
+    for d in 0..D {
+        for (what, vals) in [
+            (
+                "coordinate",
+                pts.iter().map(|p| p[d].to_f64()).collect::<Vec<_>>(),
+            ),
+            ("w·p", hom.iter().map(|h| h.wp[d].to_f64()).collect()),
+        ] {
+            let lo = vals.iter().cloned().fold(f64::INFINITY, f64::min);
+            let hi = vals.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+            if !vals.is_empty() && !(hi - lo).is_finite() {
+                return Err(SplineError::NotFinite(format!(
+                    "control points span {what} {} from {lo:e} to {hi:e}: their differences overflow f64",
+                    AXIS[d.min(3)]
+                )));
+            }
         }
     }
     Ok(())
@@ -51,11 +111,12 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
             });
         }
         check_weights(&weights)?;
-        let h = pts
+        let h: Vec<Hom<S, D>> = pts
             .iter()
             .zip(&weights)
             .map(|(p, w)| Hom::from_point(p, w))
             .collect();
+        check_control(&pts, &h, |k| k.to_string())?;
         Ok(NurbsCurve {
             hom: BSplineCurve::new(knots, degree, h)?,
         })
@@ -124,11 +185,14 @@ impl<S: Scalar, const D: usize> NurbsSurface<S, D> {
             });
         }
         check_weights(&weights)?;
-        let h = pts
+        let h: Vec<Hom<S, D>> = pts
             .iter()
             .zip(&weights)
             .map(|(p, w)| Hom::from_point(p, w))
             .collect();
+        if nv > 0 {
+            check_control(&pts, &h, |k| format!("[{}][{}]", k / nv, k % nv))?;
+        }
         Ok(NurbsSurface {
             hom: BSplineSurface::new(knots_u, deg_u, knots_v, deg_v, nu, nv, h)?,
         })

@@ -21,6 +21,17 @@ pub enum JobError {
     Threads(String),
     #[error("foreign curves: {0}")]
     Foreign(String),
+    #[error("{0}: {1}")]
+    Range(String, crate::model::check::RangeError),
+}
+
+/// Read a model and refuse coordinates outside the supported range (squared distances in the
+/// certificates must not overflow).
+fn read_in_range(f: &Path) -> Result<Model, JobError> {
+    let m = crate::io::read_model(f)?;
+    m.check_coordinate_range()
+        .map_err(|e| JobError::Range(f.display().to_string(), e))?;
+    Ok(m)
 }
 
 impl JobError {
@@ -29,6 +40,7 @@ impl JobError {
             self,
             JobError::Read(_)
                 | JobError::Foreign(_)
+                | JobError::Range(..)
                 | JobError::Compute(
                     SsiError::Tolerance(_)
                         | SsiError::Parameter(..)
@@ -150,9 +162,9 @@ pub fn run(
     threads: Option<usize>,
     outputs: Outputs,
 ) -> Result<SsiResult, JobError> {
-    let a = crate::io::read_model(file_a)?;
+    let a = read_in_range(file_a)?;
     let b = match file_b {
-        Some(f) => Some(crate::io::read_model(f)?),
+        Some(f) => Some(read_in_range(f)?),
         None => None,
     };
     let t0 = Instant::now();
@@ -297,8 +309,8 @@ pub fn run_certify(
     match_distance: Option<f64>,
     json_out: Option<&Path>,
 ) -> Result<super::foreign::CertifyReport, JobError> {
-    let a = crate::io::read_model(file_a)?;
-    let b = crate::io::read_model(file_b)?;
+    let a = read_in_range(file_a)?;
+    let b = read_in_range(file_b)?;
     let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
     let r = intersect_models(&a, Some(&b), prm, &|_, _| {})?;
     let m = match_distance.unwrap_or(100.0 * prm.tol);

@@ -33,7 +33,16 @@ type Affine = ([[f64; 3]; 3], [f64; 3]);
 struct Reader<'a> {
     e: &'a BTreeMap<usize, Entry>,
     file: &'a str,
+    /// Curve entities still allowed to be expanded (composite members count each time they
+    /// are reached): nested composite curves that share members expand exponentially.
+    budget: std::cell::Cell<usize>,
 }
+
+/// Expansion budget of a file: curve entities reached through composite curves and
+/// boundaries, in total, at most this plus [`EXPANSION_PER_ENTITY`] per directory entry.
+pub const EXPANSION_BASE: usize = 100_000;
+/// See [`EXPANSION_BASE`].
+pub const EXPANSION_PER_ENTITY: usize = 16;
 
 type R<T> = Result<T, IgesError>;
 
@@ -80,6 +89,20 @@ impl Reader<'_> {
                 [[m[0], m[1], m[2]], [m[4], m[5], m[6]], [m[8], m[9], m[10]]],
                 [m[3], m[7], m[11]],
             );
+            // IGES prescribes a rotation (orthonormal R); scalings occur in practice and are
+            // applied, but a singular map collapses the geometry and is refused.
+            // Determinant of R scaled to largest entry 1 (no overflow for any finite R).
+            let scale = r.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+            let q = r.map(|row| row.map(|x| x / scale));
+            let det = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1])
+                - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0])
+                + q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+            if scale == 0.0 || det.abs() <= 1e-12 {
+                return self.err(
+                    de,
+                    format!("transformation matrix DE {t} is singular or nearly so (entries up to {scale:e}, determinant relative to them {det:e}): it collapses the geometry"),
+                );
+            }
             // Apply the inner (entity's own) first, then the outer: acc = outer ∘ acc.
             acc = Some(match acc {
                 None => (r, tr),
@@ -99,10 +122,20 @@ impl Reader<'_> {
     }
     fn apply(&self, de: usize, pts: &mut [[f64; 3]]) -> R<()> {
         if let Some((r, t)) = self.transform(de)? {
-            for p in pts.iter_mut() {
-                *p = std::array::from_fn(|i| {
+            for (k, p) in pts.iter_mut().enumerate() {
+                let q: [f64; 3] = std::array::from_fn(|i| {
                     r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2] + t[i]
                 });
+                if !q.iter().all(|x| x.is_finite()) {
+                    return self.err(
+                        de,
+                        format!(
+                            "transformation DE {} maps control point {k} ({:e}, {:e}, {:e}) to a non-finite point",
+                            self.e[&de].transform, p[0], p[1], p[2]
+                        ),
+                    );
+                }
+                *p = q;
             }
         }
         Ok(())
@@ -193,6 +226,20 @@ impl Reader<'_> {
     fn segments(&self, de: usize, depth: usize) -> R<Option<Vec<NurbsCurve<f64, 3>>>> {
         if depth > 16 {
             return self.err(de, "composite curves nested too deeply");
+        }
+        match self.budget.get().checked_sub(1) {
+            Some(b) => self.budget.set(b),
+            None => {
+                return self.err(
+                    de,
+                    format!(
+                        "composite curves expand to more curve segments than the file's expansion budget ({} + {} per entity = {}): members are shared too often",
+                        EXPANSION_BASE,
+                        EXPANSION_PER_ENTITY,
+                        EXPANSION_BASE + EXPANSION_PER_ENTITY * self.e.len()
+                    ),
+                );
+            }
         }
         if self.e[&de].etype == 102 {
             let n = self.nums(de, 1, 1)?[0] as usize;
@@ -293,6 +340,41 @@ impl Reader<'_> {
                     }
                 }
             }
+            510 => {
+                // 510: SURF, N, OF, LOOP x N (508 loops). 508: N, then per edge TYPE, EDGE,
+                // NDX, OF, K, (ISOP, CURV) x K: the CURV are the parameter-space curves.
+                let h = self.nums(face, 2, 2)?;
+                let (n, first_outer) = (h[0] as usize, h[1] == 1.0);
+                for k in 0..n.min(100_000) {
+                    let outer = k == 0 && first_outer;
+                    let lp = self.ptr(face, 4 + k)?;
+                    if self.e[&lp].etype != 508 {
+                        return self.err(face, format!("loop {k} (DE {lp}) is not a 508 loop"));
+                    }
+                    let ne = self.nums(lp, 1, 1)?[0] as usize;
+                    let mut at = 2;
+                    let mut curves = Vec::new();
+                    let mut ok = ne > 0;
+                    for _ in 0..ne.min(100_000) {
+                        let kk = self.nums(lp, at + 4, 1)?[0] as usize;
+                        if kk == 0 {
+                            ok = false;
+                        }
+                        for j in 0..kk.min(100_000) {
+                            match self.loop_2d(self.ptr(lp, at + 6 + 2 * j)?, outer)? {
+                                Some(l) => curves.extend(l.curves),
+                                None => ok = false,
+                            }
+                        }
+                        at += 5 + 2 * kk;
+                    }
+                    if ok {
+                        loops.push(TrimLoop { outer, curves });
+                    } else {
+                        missing += 1;
+                    }
+                }
+            }
             _ => {}
         }
         Ok((loops, missing))
@@ -309,8 +391,11 @@ impl Reader<'_> {
                 let (ap, _) = a.points_weights();
                 let d = ap[ap.len() - 1].sub(&ap[0]);
                 let l = crate::geom::norm(&d);
-                if l == 0.0 {
-                    return self.err(de, "degenerate axis");
+                if l == 0.0 || !l.is_finite() {
+                    return self.err(
+                        de,
+                        format!("axis DE {axis} has length {l:e}: not a usable direction"),
+                    );
                 }
                 // SA, TA (parameters 3, 4 of the 120): the angular range, radians.
                 let sa = self.nums(de, 3, 2)?;
@@ -350,7 +435,11 @@ const SURFACES: [i64; 3] = [128, 120, 122];
 /// Read IGES text.
 pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     let (e, unit, mut warnings) = parse(text, file)?;
-    let r = Reader { e: &e, file };
+    let r = Reader {
+        e: &e,
+        file,
+        budget: std::cell::Cell::new(EXPANSION_BASE + EXPANSION_PER_ENTITY * e.len()),
+    };
     let mut model = Model {
         unit,
         ..Model::default()
@@ -425,6 +514,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     for (t, n) in other {
         warnings.push(format!("{n} entit(ies) of type {t} not supported, skipped"));
     }
+    warnings.extend(model.degeneracy_warnings());
     model.warnings = warnings;
     for x in e.values() {
         *model

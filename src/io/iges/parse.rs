@@ -57,10 +57,18 @@ fn split_params(s: &str, pd: char, rd: char) -> Result<Vec<Param>, String> {
             continue;
         }
         if c == 'H' && !cur.trim().is_empty() && cur.trim().chars().all(|d| d.is_ascii_digit()) {
-            let n: usize = cur.trim().parse().map_err(|_| "bad Hollerith count")?;
-            if i + 1 + n > b.len() {
-                return Err("Hollerith string runs past the end".into());
-            }
+            let count = cur.trim();
+            // The count is checked against what is left, never added to an index first: a
+            // count near `usize::MAX` would wrap.
+            let n = match count.parse::<usize>() {
+                Ok(n) if n <= b.len() - (i + 1) => n,
+                _ => {
+                    return Err(format!(
+                        "Hollerith count {count} runs past the end of the parameters ({} characters left)",
+                        b.len() - (i + 1)
+                    ));
+                }
+            };
             out.push(Param::Str(b[i + 1..i + 1 + n].iter().collect()));
             cur.clear();
             i += 1 + n;
@@ -208,6 +216,15 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
                     Some("inch".into())
                 }
             };
+        }
+        // A string that claims to run past the end of the section is a broken file, not a
+        // header quirk: refuse it rather than guess where the header's values are.
+        Err(e) if e.starts_with("Hollerith") => {
+            return Err(IgesError {
+                file: file.into(),
+                location: "global section".into(),
+                reason: e,
+            });
         }
         Err(e) => warnings.push(format!("global section unreadable ({e}); defaults used")),
     }

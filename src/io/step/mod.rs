@@ -70,6 +70,20 @@ impl Reader<'_> {
             _ => self.err(id, format!("attribute {i} is not a number")),
         }
     }
+    /// A degree (or other count): an integer, not a real that would be truncated.
+    fn degree(&self, id: u64, args: &[Value], i: usize) -> R<usize> {
+        let x = self.num(id, args, i)?;
+        if x.fract() != 0.0 || !(1.0..=crate::spline::MAX_DEGREE as f64).contains(&x) {
+            return self.err(
+                id,
+                format!(
+                    "attribute {i} (degree) is {x}, not an integer in 1..={}",
+                    crate::spline::MAX_DEGREE
+                ),
+            );
+        }
+        Ok(x as usize)
+    }
     fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
         match self.arg(id, args, i)?.reference() {
             Some(r) => Ok(r),
@@ -182,8 +196,8 @@ impl Reader<'_> {
                     ),
                 },
             };
-        let p = self.num(id, base, 0)? as usize;
-        let q = self.num(id, base, 1)? as usize;
+        let p = self.degree(id, base, 0)?;
+        let q = self.degree(id, base, 1)?;
         let rows = self.arg(id, base, 2)?.list().ok_or_else(|| StepError {
             file: self.file.into(),
             location: format!("#{id}"),
@@ -242,7 +256,7 @@ impl Reader<'_> {
                 }
             },
         };
-        let p = self.num(id, base, 0)? as usize;
+        let p = self.degree(id, base, 0)?;
         let Some(cl) = self.arg(id, base, 1)?.list() else {
             return self.err(id, "control points are not a list");
         };
@@ -461,6 +475,15 @@ impl Reader<'_> {
     }
 }
 
+/// Surface entities that are recognised but not converted (reported when a bare patch set
+/// holds them).
+const UNSUPPORTED_SURFACES: [&str; 4] = [
+    "RECTANGULAR_TRIMMED_SURFACE",
+    "OFFSET_SURFACE",
+    "CURVE_BOUNDED_SURFACE",
+    "DEGENERATE_TOROIDAL_SURFACE",
+];
+
 const SURFACE_TYPES: [&str; 8] = [
     "B_SPLINE_SURFACE_WITH_KNOTS",
     "PLANE",
@@ -502,9 +525,10 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     } else {
         let mut referenced = BTreeSet::new();
         for e in p.entities.values() {
-            if SURFACE_TYPES.iter().any(|t| e.is(t))
-                || e.is("OFFSET_SURFACE")
-                || e.is("RECTANGULAR_TRIMMED_SURFACE")
+            if SURFACE_TYPES
+                .iter()
+                .chain(&UNSUPPORTED_SURFACES)
+                .any(|t| e.is(t))
             {
                 referenced.extend(e.refs());
             }
@@ -515,7 +539,29 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             .map(|(id, _)| (None, *id))
             .collect()
     };
-    let mut skipped: BTreeMap<String, usize> = BTreeMap::new();
+    // Surface entities of a bare patch set that this reader cannot convert: named, not
+    // dropped silently.
+    let mut skipped: BTreeMap<String, Vec<u64>> = BTreeMap::new();
+    if faces.is_empty() {
+        let mut referenced = BTreeSet::new();
+        for e in p.entities.values() {
+            if SURFACE_TYPES
+                .iter()
+                .chain(&UNSUPPORTED_SURFACES)
+                .any(|t| e.is(t))
+            {
+                referenced.extend(e.refs());
+            }
+        }
+        for (id, e) in &p.entities {
+            if let Some(t) = UNSUPPORTED_SURFACES.iter().find(|t| e.is(t))
+                && !SURFACE_TYPES.iter().any(|t| e.is(t))
+                && !referenced.contains(id)
+            {
+                skipped.entry(t.to_string()).or_default().push(*id);
+            }
+        }
+    }
     for (face, sid) in targets {
         match r.surface(sid, face)? {
             Some((nurbs, kind)) => {
@@ -533,25 +579,40 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
                     ..Surface::new("", nurbs)
                 })
             }
-            None => *skipped.entry(r.get(sid)?.name().to_string()).or_insert(0) += 1,
+            None => skipped
+                .entry(r.get(sid)?.name().to_string())
+                .or_default()
+                .push(face.unwrap_or(sid)),
         }
     }
-    // Free B-spline curves (not referenced by edges or surfaces are still listed).
+    // Free B-spline curves (not referenced by edges or surfaces are still listed); one
+    // that cannot be read is reported with its id and reason.
+    let mut bad_curves = Vec::new();
     for (id, e) in &p.entities {
-        if e.is("B_SPLINE_CURVE_WITH_KNOTS")
-            && let Ok(c) = r.bspline_curve(*id, e)
-        {
-            model.curves.push(Curve {
-                name: format!("#{id}"),
-                geometry: CurveGeometry::Space(c),
-            });
+        if e.is("B_SPLINE_CURVE_WITH_KNOTS") {
+            match r.bspline_curve(*id, e) {
+                Ok(c) => model.curves.push(Curve {
+                    name: format!("#{id}"),
+                    geometry: CurveGeometry::Space(c),
+                }),
+                Err(e) => bad_curves.push(format!("{}: {}", e.location, e.reason)),
+            }
         }
     }
-    for (k, n) in skipped {
+    for (k, ids) in skipped {
         model.warnings.push(format!(
-            "{n} face surface(s) of type {k} not supported, skipped"
+            "{} surface(s) of type {k} not supported, skipped: {}",
+            ids.len(),
+            crate::model::list_ids(ids.iter().map(|i| format!("#{i}")))
         ));
     }
+    for b in bad_curves {
+        model
+            .warnings
+            .push(format!("invalid B-spline curve skipped: {b}"));
+    }
+    let degenerate = model.degeneracy_warnings();
+    model.warnings.extend(degenerate);
     for e in p.entities.values() {
         let name = match e {
             Entity::Simple(n, _) => n.clone(),

@@ -340,6 +340,8 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
     };
     lx.line += text[..d].matches('\n').count();
     lx.i = d + 5;
+    // Line of each instance, to name both places when an id is defined twice.
+    let mut defined: BTreeMap<u64, usize> = BTreeMap::new();
     loop {
         match lx.peek() {
             None => return lx.err("missing ENDSEC"),
@@ -356,6 +358,13 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
                     Some(v) => v,
                     None => return lx.err("malformed instance id"),
                 };
+                if let Some(first) = defined.insert(id, lx.line) {
+                    // A second `#N=` would silently replace the first instance and every
+                    // reference to it: the file is ambiguous.
+                    return lx.err(format!(
+                        "#{id} is defined twice (first on line {first}); instance ids must be unique"
+                    ));
+                }
                 lx.eat(b'=')?;
                 let e = if lx.peek() == Some(b'(') {
                     lx.i += 1;

@@ -140,13 +140,9 @@ pub fn to_string(m: &Model, name: &str) -> String {
         data,
         "#{mm}=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));"
     );
-    match m.unit.as_deref().unwrap_or("mm") {
-        u @ ("inch" | "in" | "foot" | "ft") => {
-            let (nm, f) = if u.starts_with('i') {
-                ("INCH", "25.4")
-            } else {
-                ("FOOT", "304.8")
-            };
+    let u = m.unit.as_deref().unwrap_or("mm");
+    match conversion_unit(u) {
+        Some((nm, f)) => {
             let (dim, mwu) = (n(), n());
             let _ = writeln!(data, "#{dim}=DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);");
             let _ = writeln!(
@@ -158,7 +154,7 @@ pub fn to_string(m: &Model, name: &str) -> String {
                 "#{u1}=(CONVERSION_BASED_UNIT('{nm}',#{mwu}) LENGTH_UNIT() NAMED_UNIT(#{dim}));"
             );
         }
-        u => {
+        None => {
             let prefix = match u {
                 "m" => "$",
                 "cm" => ".CENTI.",
@@ -218,4 +214,21 @@ pub fn to_string(m: &Model, name: &str) -> String {
     out.push_str(&data);
     out.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
     out
+}
+
+/// Length units written as a CONVERSION_BASED_UNIT: STEP name and millimetres per unit.
+pub fn conversion_unit(u: &str) -> Option<(&'static str, &'static str)> {
+    Some(match u {
+        "inch" | "in" => ("INCH", "25.4"),
+        "foot" | "ft" => ("FOOT", "304.8"),
+        "mile" => ("MILE", "1609344."),
+        "mil" => ("MIL", "0.0254"),
+        "microinch" => ("MICROINCH", "0.0000254"),
+        _ => return None,
+    })
+}
+
+/// Whether the writer stores unit `u` (the SI units and [`conversion_unit`]s).
+pub fn unit_supported(u: &str) -> bool {
+    conversion_unit(u).is_some() || matches!(u, "m" | "mm" | "cm" | "km" | "um")
 }
