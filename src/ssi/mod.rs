@@ -11,16 +11,19 @@
 //! | 8 refinement (barycentric, Auxiliary Plane Method) | [`refine`], [`branch`] |
 //! | 9 spline fitting | [`fit`] |
 //! | certificate of every point | [`certify`] |
+//! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`], [`foreign_krawczyk`] |
 //! | tangential contacts | [`touch`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
 
 pub mod branch;
 pub mod certify;
+pub mod closest;
 pub mod coverage;
 pub mod cull;
 pub mod driver;
 pub mod fit;
 pub mod foreign;
+pub mod foreign_krawczyk;
 pub mod job;
 pub mod mesh;
 pub mod pair;
