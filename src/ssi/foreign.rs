@@ -12,8 +12,9 @@
 //! no intersection point lies within tol of it — every such point lies on both face sets);
 //! otherwise `uncertified` (e.g. at a tangent contact, where the Jacobian is singular: a
 //! curve that merely runs close to both surfaces there is never accepted), or, in one-file
-//! mode, `shared_edge` when it lies on the borders of the two faces it is nearest to (faces
-//! of a B-rep that meet along an edge: not a wrong curve, not certified either).
+//! mode, `shared_edge` when it lies within tol of the two faces it is nearest to and on the
+//! border of one of them (faces of a B-rep meet along edges: not a wrong curve, not
+//! certified either).
 //!
 //! vericad intersects the faces itself; a vericad branch is `missing` (or `partial`) only
 //! when one of its points is certified by the same Krawczyk test and the true point within
@@ -45,7 +46,8 @@ pub enum PointStatus {
     OnCurve,
     /// Proven farther than tol from face set A or from face set B.
     Off,
-    /// One-file mode: on the borders of the two nearest faces (a shared edge).
+    /// One-file mode: within tol of the two nearest faces and on the border of one of them
+    /// (faces of a B-rep meeting along an edge).
     SharedEdge,
     /// Neither could be proven.
     Uncertified,
@@ -411,8 +413,7 @@ fn check_point(fa: &[IvSurface], fb: Option<&[IvSurface]>, x: &[f64; 3], tol: f6
     if same
         && ca.upper <= tol
         && cb.upper <= tol
-        && on_border(&fa[ca.face], &ca.uv)
-        && on_border(&fa[cb.face], &cb.uv)
+        && (on_border(&fa[ca.face], &ca.uv) || on_border(&fa[cb.face], &cb.uv))
     {
         out.status = PointStatus::SharedEdge;
     }
@@ -588,7 +589,7 @@ pub fn certify(
         format!("a vericad branch is missing (or partial) only with a witness: a point of it certified within witness_radius of a true intersection point that is proven farther than match_distance = {match_distance:e} from every foreign polyline; unverified when it is not covered but no such witness was found"),
     ];
     if b.is_none() {
-        notes.push("one-file mode: foreign points are checked against every pair of distinct faces of the model (the nearest face and the nearest other face); points on the borders of both (edges shared by adjacent faces of a B-rep) are reported shared_edge: not wrong, not certified".into());
+        notes.push("one-file mode: foreign points are checked against every pair of distinct faces of the model (the nearest face and the nearest other face); points within tol of both and on the border of one of them (edges along which faces of a B-rep meet) that cannot be certified are reported shared_edge: not wrong, not certified".into());
     }
     if !vericad_ok {
         notes.push("vericad's own coverage certificate does not hold on this input (uncertified regions or a partial run): the completeness of the foreign result is not established".into());
