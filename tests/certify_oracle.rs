@@ -45,7 +45,7 @@ fn model(s: Vec<NurbsSurface<f64, 3>>) -> Model {
         surfaces: s
             .into_iter()
             .enumerate()
-            .map(|(i, s)| Surface::new(&format!("face {i}"), s))
+            .map(|(i, s)| Surface::new(format!("face {i}"), s))
             .collect(),
         ..Default::default()
     }
@@ -234,6 +234,10 @@ fn one_file_mode() {
     assert_eq!(v["mode"], "one_file");
     assert_eq!(v["curves_within_tol"], 1, "{v}");
     assert_eq!(v["missing_branches"], 0, "{v}");
+    // vericad's own branches come from distinct faces only (never a face with itself).
+    let brs = v["branches"].as_array().unwrap();
+    assert!(!brs.is_empty(), "{v}");
+    assert!(brs.iter().all(|b| b["face_a"] != b["face_b"]), "{v}");
     let certified = v["certified"].as_bool().unwrap();
     assert_eq!(code, Some(if certified { 0 } else { 3 }), "{v}");
     // The circle lifted off the plane by 1e-4: proven off, exit 3.

@@ -363,11 +363,7 @@ pub fn run(cli: Cli) -> i32 {
             ) {
                 Ok(r) => {
                     print(&r, json);
-                    if r.certified {
-                        0
-                    } else {
-                        EXIT_UNCERTIFIED
-                    }
+                    if r.certified { 0 } else { EXIT_UNCERTIFIED }
                 }
                 Err(e) if e.is_bad_input() => bad(e),
                 Err(e) => {

@@ -122,10 +122,14 @@ fn piece_enc(p: &IPatch, r: &[f64; 4], u: Interval, v: Interval) -> Option<Enc> 
     let (h, hv) = casteljau_d1(&c, sig);
     let (hu, _) = casteljau_d1(&d, sig);
     let w = h[3];
-    if !(w.lo > 0.0) || !w.is_finite() {
+    if w.lo.partial_cmp(&(0.0)) != Some(std::cmp::Ordering::Greater) || !w.is_finite() {
         return None;
     }
-    let s: V = [h[0].checked_div(w)?, h[1].checked_div(w)?, h[2].checked_div(w)?];
+    let s: V = [
+        h[0].checked_div(w)?,
+        h[1].checked_div(w)?,
+        h[2].checked_div(w)?,
+    ];
     let deriv = |g: &H, width: Interval| -> Option<V> {
         let mut o = [iv(0.0); 3];
         for k in 0..3 {
@@ -147,10 +151,8 @@ fn piece_enc(p: &IPatch, r: &[f64; 4], u: Interval, v: Interval) -> Option<Enc> 
 
 impl IvSurface {
     pub fn new(s: &NurbsSurface<f64, 3>) -> IvSurface {
-        let pieces: Vec<(IPatch, [f64; 4])> = roots(s)
-            .iter()
-            .map(|c| (c.patch.clone(), c.uv))
-            .collect();
+        let pieces: Vec<(IPatch, [f64; 4])> =
+            roots(s).iter().map(|c| (c.patch.clone(), c.uv)).collect();
         let (u0, u1, v0, v1) = s.hom.domain();
         let mut hull: Option<Box3> = Some(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]));
         for (p, _) in &pieces {
@@ -179,9 +181,17 @@ impl IvSurface {
         let mut out: Option<Enc> = None;
         let (mut us, mut vs) = (Vec::new(), Vec::new());
         for (p, r) in &self.pieces {
-            let a0 = if r[0] <= d[0] { f64::NEG_INFINITY } else { r[0] };
+            let a0 = if r[0] <= d[0] {
+                f64::NEG_INFINITY
+            } else {
+                r[0]
+            };
             let a1 = if r[1] >= d[1] { f64::INFINITY } else { r[1] };
-            let b0 = if r[2] <= d[2] { f64::NEG_INFINITY } else { r[2] };
+            let b0 = if r[2] <= d[2] {
+                f64::NEG_INFINITY
+            } else {
+                r[2]
+            };
             let b1 = if r[3] >= d[3] { f64::INFINITY } else { r[3] };
             let (ul, uh) = (u.lo.max(a0), u.hi.min(a1));
             let (vl, vh) = (v.lo.max(b0), v.hi.min(b1));
@@ -251,7 +261,7 @@ pub(crate) fn box_lower(x: &[f64; 3], b: &Box3) -> f64 {
 fn dir_lower(x: &[f64; 3], e: &[f64; 3], pts: &[V]) -> f64 {
     let ee = e.map(iv);
     let n2 = ee[0].sqr() + ee[1].sqr() + ee[2].sqr();
-    if !(n2.lo > 0.0) || !n2.is_finite() {
+    if n2.lo.partial_cmp(&(0.0)) != Some(std::cmp::Ordering::Greater) || !n2.is_finite() {
         return 0.0;
     }
     let mut m = f64::INFINITY;
@@ -259,7 +269,7 @@ fn dir_lower(x: &[f64; 3], e: &[f64; 3], pts: &[V]) -> f64 {
         let t = (0..3).fold(iv(0.0), |a, k| a + ee[k] * (iv(x[k]) - p[k]));
         m = m.min(t.lo);
     }
-    if !(m > 0.0) {
+    if m.partial_cmp(&(0.0)) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
     (m / n2.hi.sqrt().next_up()).next_down().max(0.0)
@@ -473,9 +483,12 @@ mod tests {
         ] {
             let x = f.at(a, b, c);
             let r = closest(std::slice::from_ref(&s), &x, &prm, &|_| true).unwrap();
-            let truth = ((a * a + b * b + c * c) as f64).sqrt() - 1.0;
+            let truth = (a * a + b * b + c * c).sqrt() - 1.0;
             let truth = truth.abs();
-            assert!(r.lower <= truth + 1e-12 && truth <= r.upper + 1e-12, "{r:?} {truth}");
+            assert!(
+                r.lower <= truth + 1e-12 && truth <= r.upper + 1e-12,
+                "{r:?} {truth}"
+            );
             // At the centre every point is closest: the budget ends the search (still sound).
             if c != 0.0 {
                 assert!(r.upper - r.lower <= 1e-8, "{r:?}");

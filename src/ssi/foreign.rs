@@ -305,10 +305,15 @@ fn seg_lower(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
         e[0] * d[1] - e[1] * d[0],
     ];
     let num = len2(&cr);
-    if !(num.lo > 0.0) || !dd.hi.is_finite() {
+    if num.lo.partial_cmp(&(0.0)) != Some(std::cmp::Ordering::Greater) || !dd.hi.is_finite() {
         return 0.0;
     }
-    (num.lo / dd.hi).next_down().max(0.0).sqrt().next_down().max(0.0)
+    (num.lo / dd.hi)
+        .next_down()
+        .max(0.0)
+        .sqrt()
+        .next_down()
+        .max(0.0)
 }
 
 /// Whether `uv` lies on (within a relative 1e-7 of) a border of the face's domain.
@@ -371,8 +376,7 @@ fn check_point(fa: &[IvSurface], fb: Option<&[IvSurface]>, x: &[f64; 3], tol: f6
     // Candidate faces: the nearest, then the next nearest within tol (a point near a face
     // border may have its true curve point on the neighbouring face).
     let second = |set: &[IvSurface], first: &super::closest::Closest, excl: Option<usize>| {
-        closest(set, x, &prm, &|i| i != first.face && Some(i) != excl)
-            .filter(|c| c.upper <= tol)
+        closest(set, x, &prm, &|i| i != first.face && Some(i) != excl).filter(|c| c.upper <= tol)
     };
     let mut cands_a = vec![ca];
     let mut cands_b = vec![cb];
@@ -434,7 +438,10 @@ pub fn certify(
 ) -> CertifyReport {
     let t0 = std::time::Instant::now();
     let prep = |m: &Model| -> Vec<IvSurface> {
-        m.surfaces.par_iter().map(|f| IvSurface::new(&f.nurbs)).collect()
+        m.surfaces
+            .par_iter()
+            .map(|f| IvSurface::new(&f.nurbs))
+            .collect()
     };
     let fa = prep(a);
     let fb = b.map(prep);
@@ -552,7 +559,8 @@ pub fn certify(
                 let step = (uncovered.len() / 16).max(1);
                 for &j in uncovered.iter().step_by(step).take(16) {
                     let x = br.points[j];
-                    if let Ok(r) = curve_point_radius(&fa[p.a], &sb[p.b], &x, br.uv_a[j], br.uv_b[j])
+                    if let Ok(r) =
+                        curve_point_radius(&fa[p.a], &sb[p.b], &x, br.uv_a[j], br.uv_b[j])
                         && far_from_foreign(&x, r)
                     {
                         witness = Some((x, r));

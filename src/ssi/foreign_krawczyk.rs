@@ -82,7 +82,7 @@ fn inverse(m: &[[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
     let scale = m.iter().flatten().fold(0.0f64, |s, x| s.max(x.abs()));
     for c in 0..4 {
         let p = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
-        if !(a[p][c].abs() > 1e-14 * scale) {
+        if a[p][c].abs().partial_cmp(&(1e-14 * scale)) != Some(std::cmp::Ordering::Greater) {
             return None;
         }
         a.swap(c, p);
@@ -254,7 +254,9 @@ pub fn curve_point_radius(
     let (na, nb) = (cross(&au, &av), cross(&bs, &bt));
     let t = cross(&na, &nb);
     let lt = norm(&t);
-    if !(lt > 1e-10 * norm(&na) * norm(&nb)) || !lt.is_finite() {
+    if lt.partial_cmp(&(1e-10 * norm(&na) * norm(&nb))) != Some(std::cmp::Ordering::Greater)
+        || !lt.is_finite()
+    {
         return Err(KrawczykFail::Singular);
     }
     let n = t.map(|c| c / lt);
@@ -346,10 +348,10 @@ mod tests {
             .unwrap(),
         );
         let x = [1e-3, 0.0, 1.0];
-        let ca = super::super::closest::closest(std::slice::from_ref(&s), &x, &prm, &|_| true)
-            .unwrap();
-        let cb = super::super::closest::closest(std::slice::from_ref(&tz), &x, &prm, &|_| true)
-            .unwrap();
+        let ca =
+            super::super::closest::closest(std::slice::from_ref(&s), &x, &prm, &|_| true).unwrap();
+        let cb =
+            super::super::closest::closest(std::slice::from_ref(&tz), &x, &prm, &|_| true).unwrap();
         assert!(curve_point_radius(&s, &tz, &x, ca.uv, cb.uv).is_err());
     }
 }

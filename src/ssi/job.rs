@@ -325,7 +325,12 @@ pub fn run_certify(
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
     }
     let t0 = Instant::now();
-    let r = intersect_models(&a, b.as_ref(), prm, &progress_printer("face pairs (vericad ssi)", t0))?;
+    let r = intersect_models(
+        &a,
+        b.as_ref(),
+        prm,
+        &progress_printer("face pairs (vericad ssi)", t0),
+    )?;
     let rep = super::foreign::certify(
         &a,
         b.as_ref(),
