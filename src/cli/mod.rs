@@ -129,12 +129,20 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Check another system's intersection curves between the faces of A and B: a proven
-    /// distance bound of every curve point to each face set, and the branches vericad finds
-    /// that the foreign result lacks.
+    /// Check another system's intersection curves between the faces of A and B (or, with B
+    /// omitted, between every two distinct faces of A). Per curve point: proven bounds on its
+    /// distance to each face set (global branch and bound, not a local search), and a proven
+    /// radius to a true intersection point (Krawczyk test; tangent contacts are never
+    /// accepted). A vericad branch is reported missing only with a certified witness point
+    /// far from every foreign curve. Exit 0 only when every curve is within tol of the
+    /// intersection, no branch is missing, partial or unverified, and vericad's own coverage
+    /// is certified; 3 otherwise.
     CertifySsi {
+        /// Faces of the first model.
         a: PathBuf,
-        b: PathBuf,
+        /// Faces of the second model; omitted: one-file mode (every pair of distinct faces of
+        /// A; points on edges shared by two faces are reported as such).
+        b: Option<PathBuf>,
         /// Foreign curves: IGES/STEP/JSON model curves (e.g. IGES 126), JSON polylines
         /// (`[[[x,y,z],...],...]` or `{"curves": [...]}`), or a vericad `ssi` result.
         #[arg(long)]
@@ -354,7 +362,7 @@ pub fn run(cli: Cli) -> i32 {
             };
             match crate::ssi::job::run_certify(
                 &a,
-                &b,
+                b.as_deref(),
                 &curves,
                 &prm,
                 match_distance,
@@ -362,12 +370,7 @@ pub fn run(cli: Cli) -> i32 {
             ) {
                 Ok(r) => {
                     print(&r, json);
-                    let all_within = r.curves_within_tol == r.curves.len();
-                    if all_within && r.missing_branches == 0 && r.partial_branches == 0 {
-                        0
-                    } else {
-                        EXIT_UNCERTIFIED
-                    }
+                    if r.certified { 0 } else { EXIT_UNCERTIFIED }
                 }
                 Err(e) if e.is_bad_input() => bad(e),
                 Err(e) => {

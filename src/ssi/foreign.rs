@@ -1,24 +1,72 @@
-//! Certifying a foreign intersection result (`vericad certify-ssi A B --curves FILE`): for
-//! every point of another system's intersection curves, a proven upper bound on its distance
-//! to each of the two face sets; and the branches vericad finds that the foreign result lacks.
+//! Certifying a foreign intersection result (`vericad certify-ssi A [B] --curves FILE`): an
+//! oracle. For every point `x` of another system's intersection curves:
 //!
-//! A point `x` is projected onto each face (grid start, then Newton on
-//! `(S - x)·S_u = (S - x)·S_v = 0`, clamped to the domain); the bound at the projected
-//! parameters (interval / exact evaluation, [`super::certify`]) is an upper bound on the
-//! distance from `x` to that face, since `S(u, v)` lies on it; the smallest over the faces is
-//! the reported bound. Foreign B-spline curves are checked at sample points: the bound holds
-//! at those points (between them it is evidence only — said in the report).
+//! 1. proven bounds `[lower, upper]` on the distance from `x` to face set A and to face set
+//!    B, global over all faces ([`super::closest`]: branch and bound on enclosed Bézier
+//!    pieces; no local search decides anything);
+//! 2. a proven radius `r`: a true intersection point `S_A(u, v) = S_B(s, t)` (parameters in
+//!    the faces' domains) lies within `r` of `x` ([`super::foreign_krawczyk`], Krawczyk on
+//!    the intersection system restricted to the plane through `x` normal to the curve).
+//!
+//! A point is `on_curve` when `r <= tol`; `off` when `max(lower_A, lower_B) > tol` (proven:
+//! no intersection point lies within tol of it — every such point lies on both face sets);
+//! otherwise `uncertified` (e.g. at a tangent contact, where the Jacobian is singular: a
+//! curve that merely runs close to both surfaces there is never accepted), or, in one-file
+//! mode, `shared_edge` when it lies within tol of the two faces it is nearest to and on the
+//! border of one of them (faces of a B-rep meet along edges: not a wrong curve, not
+//! certified either).
+//!
+//! vericad intersects the faces itself; a vericad branch is `missing` (or `partial`) only
+//! when one of its points is certified by the same Krawczyk test and the true point within
+//! `r` of it is proven farther than `match_distance` from every foreign polyline; when some
+//! of its points are not covered but none can be certified so, it is `unverified`.
+//! Foreign spline curves are checked at sample points: the bounds hold at those points
+//! (between them it is evidence only — said in the report).
 
-use super::certify::ExactSurface;
+use super::closest::{ClosestParams, IvSurface, closest};
+use super::coverage::near::Near;
+use super::foreign_krawczyk::{KrawczykFail, curve_point_radius};
 use super::refine::{domain, point_d1};
 use super::report::SsiResult;
-use crate::geom::{Point, dist_to_segment, dot};
+use crate::geom::{Point, dot};
 use crate::model::Model;
+use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// Samples per foreign spline curve.
 pub const CURVE_SAMPLES: usize = 200;
+
+/// The verdict on one foreign point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PointStatus {
+    /// A true intersection point is proven within tol.
+    OnCurve,
+    /// Proven farther than tol from face set A or from face set B.
+    Off,
+    /// One-file mode: within tol of the two nearest faces and on the border of one of them
+    /// (faces of a B-rep meeting along an edge).
+    SharedEdge,
+    /// Neither could be proven.
+    Uncertified,
+}
+
+/// A point that is not `on_curve`, with the reason.
+#[derive(Clone, Debug, Serialize)]
+pub struct PointIssue {
+    pub index: usize,
+    pub point: [f64; 3],
+    pub status: PointStatus,
+    /// `singular`, `no_contraction`, `face_border`, `no_enclosure` (Krawczyk),
+    /// `radius_above_tol`, `off_surface`, `no_face`.
+    pub reason: String,
+    /// Proven lower bound on the distance to the intersection (max over the two face sets).
+    pub dist_lower: f64,
+    /// Proven radius to a true intersection point, when one was certified.
+    pub curve_radius: Option<f64>,
+}
 
 /// One foreign curve, checked.
 #[derive(Clone, Debug, Serialize)]
@@ -28,10 +76,27 @@ pub struct ForeignCurve {
     /// `polyline` (every vertex checked) or `spline` (checked at samples).
     pub kind: &'static str,
     pub points_checked: usize,
-    /// Largest proven distance bound of a checked point to faces A / to faces B.
+    /// Largest proven upper bound on a checked point's distance to face set A / to face set
+    /// B (global: the closest point over all faces).
     pub dist_a_max: f64,
     pub dist_b_max: f64,
+    /// Largest proven lower bound on a checked point's distance to the intersection
+    /// (`max(dist to A, dist to B)` from below); above tol means proven off.
+    pub dist_lower_max: f64,
+    /// Largest proven radius to a true intersection point over the checked points; `None`
+    /// when some point has none.
+    pub curve_dist_max: Option<f64>,
+    pub points_on_curve: usize,
+    pub points_off: usize,
+    pub points_shared_edge: usize,
+    pub points_uncertified: usize,
+    /// `within_tol` (every point on_curve), `off` (some point proven off), `shared_edge`
+    /// (one-file mode: on_curve or on a shared edge), `uncertified`.
+    pub status: &'static str,
+    /// `status == within_tol`.
     pub within_tol: bool,
+    /// The first points that are not on_curve (up to 5).
+    pub issues: Vec<PointIssue>,
 }
 
 /// A vericad branch and how much of it the foreign curves cover.
@@ -42,48 +107,43 @@ pub struct BranchCoverage {
     pub branch: usize,
     pub closed: bool,
     pub points: usize,
-    /// Fraction of the branch's points within `match_distance` of a foreign curve.
+    /// Fraction of the branch's points proven within `match_distance` of a foreign curve.
     pub covered_fraction: f64,
-    /// `missing` (< 50% covered), `partial`, or `found`.
+    /// `found` (every point covered); `missing` (< 50% covered) or `partial` — only with a
+    /// witness: a point certified within `witness_radius` of a true intersection point that
+    /// is proven farther than `match_distance` from every foreign curve; `unverified`
+    /// (points not covered, none certified as such a witness).
     pub status: &'static str,
+    pub witness: Option<[f64; 3]>,
+    pub witness_radius: Option<f64>,
 }
 
 #[derive(Clone, Debug, Serialize)]
 pub struct CertifyReport {
+    /// `two_files` (faces of A against faces of B) or `one_file` (all distinct face pairs
+    /// of one model).
+    pub mode: &'static str,
     pub tol: f64,
     pub match_distance: f64,
+    pub points_checked: usize,
     pub curves: Vec<ForeignCurve>,
     pub curves_within_tol: usize,
+    pub curves_off: usize,
     pub branches: Vec<BranchCoverage>,
     pub missing_branches: usize,
     pub partial_branches: usize,
+    pub unverified_branches: usize,
+    /// vericad's own coverage certificate: every true branch comes within its match
+    /// distance of vericad's output (and the run is complete).
+    pub vericad_no_missed_branches: bool,
+    /// vericad's coverage holds and every vericad branch is found: every branch of the true
+    /// intersection comes within `vericad_match + match_distance` of a foreign curve.
+    pub foreign_complete: bool,
+    /// Every foreign curve within tol of the intersection and `foreign_complete`: the
+    /// command exits with 0 only then.
+    pub certified: bool,
+    pub seconds: f64,
     pub notes: Vec<String>,
-}
-
-struct Face {
-    s: NurbsSurface<f64, 3>,
-    exact: ExactSurface,
-    lo: [f64; 3],
-    hi: [f64; 3],
-}
-
-fn faces(m: &Model) -> Vec<Face> {
-    m.surfaces
-        .iter()
-        .map(|f| {
-            let pts = f.nurbs.points_weights().0;
-            let lo =
-                std::array::from_fn(|k| pts.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
-            let hi =
-                std::array::from_fn(|k| pts.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max));
-            Face {
-                s: f.nurbs.clone(),
-                exact: ExactSurface::new(&f.nurbs),
-                lo,
-                hi,
-            }
-        })
-        .collect()
 }
 
 fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
@@ -91,7 +151,7 @@ fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
 }
 
 /// Damped Gauss–Newton from `uv` towards the closest point of `s` to `x`.
-fn descend(
+pub(crate) fn descend(
     s: &NurbsSurface<f64, 3>,
     x: &[f64; 3],
     mut uv: [f64; 2],
@@ -158,25 +218,6 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
         .map_or([d[0], d[2]], |r| r.0)
 }
 
-/// Proven upper bound on the distance from `x` to the union of `fs` (infinite if none).
-fn distance_to(fs: &[Face], x: &[f64; 3]) -> f64 {
-    let mut best = f64::INFINITY;
-    for f in fs {
-        // Lower bound by the control-net box (convex hull): skip faces that cannot be closer.
-        let gap2: f64 = (0..3)
-            .map(|k| (f.lo[k] - x[k]).max(x[k] - f.hi[k]).max(0.0).powi(2))
-            .sum();
-        if gap2.sqrt() >= best {
-            continue;
-        }
-        let uv = project(&f.s, x);
-        if let Some(d) = f.exact.distance_bound(x, &uv) {
-            best = best.min(d);
-        }
-    }
-    best
-}
-
 /// A foreign curve as points: `(name, kind, points)`.
 pub type ForeignInput = (String, &'static str, Vec<[f64; 3]>);
 
@@ -234,80 +275,350 @@ pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, String>
         .collect())
 }
 
-/// Check foreign curves against faces `a` and `b`, and vericad's own `result` against them.
+/// Proven lower bound on the distance from `c` to the segment `[p, q]`.
+fn seg_lower(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
+    let iv = Interval::point;
+    let d: [Interval; 3] = std::array::from_fn(|k| iv(q[k]) - iv(p[k]));
+    let e: [Interval; 3] = std::array::from_fn(|k| iv(c[k]) - iv(p[k]));
+    let f: [Interval; 3] = std::array::from_fn(|k| iv(c[k]) - iv(q[k]));
+    let dotp = |a: &[Interval; 3], b: &[Interval; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let norm_lo = |s: Interval| {
+        if s.lo > 0.0 {
+            s.lo.sqrt().next_down().max(0.0)
+        } else {
+            0.0
+        }
+    };
+    let len2 = |a: &[Interval; 3]| a[0].sqr() + a[1].sqr() + a[2].sqr();
+    let dd = len2(&d);
+    let ed = dotp(&e, &d);
+    if dd.hi == 0.0 || ed.hi < 0.0 {
+        return norm_lo(len2(&e));
+    }
+    if (ed - dd).lo > 0.0 {
+        return norm_lo(len2(&f));
+    }
+    // Distance to the line (a lower bound on the distance to the segment): |e × d| / |d|.
+    let cr = [
+        e[1] * d[2] - e[2] * d[1],
+        e[2] * d[0] - e[0] * d[2],
+        e[0] * d[1] - e[1] * d[0],
+    ];
+    let num = len2(&cr);
+    if num.lo.partial_cmp(&(0.0)) != Some(std::cmp::Ordering::Greater) || !dd.hi.is_finite() {
+        return 0.0;
+    }
+    (num.lo / dd.hi)
+        .next_down()
+        .max(0.0)
+        .sqrt()
+        .next_down()
+        .max(0.0)
+}
+
+/// Whether `uv` lies on (within a relative 1e-7 of) a border of the face's domain.
+fn on_border(f: &IvSurface, uv: &[f64; 2]) -> bool {
+    let d = f.dom;
+    let (wu, wv) = (1e-7 * (d[1] - d[0]), 1e-7 * (d[3] - d[2]));
+    uv[0] <= d[0] + wu || uv[0] >= d[1] - wu || uv[1] <= d[2] + wv || uv[1] >= d[3] - wv
+}
+
+struct Check {
+    status: PointStatus,
+    reason: &'static str,
+    upper_a: f64,
+    upper_b: f64,
+    lower: f64,
+    radius: Option<f64>,
+}
+
+fn fail_name(e: KrawczykFail) -> &'static str {
+    match e {
+        KrawczykFail::Singular => "singular",
+        KrawczykFail::NoContraction => "no_contraction",
+        KrawczykFail::FaceBorder => "face_border",
+        KrawczykFail::NoEnclosure => "no_enclosure",
+    }
+}
+
+/// Check one foreign point against face sets `fa` and `fb` (`None`: one-file mode, the
+/// distinct faces of `fa`).
+fn check_point(fa: &[IvSurface], fb: Option<&[IvSurface]>, x: &[f64; 3], tol: f64) -> Check {
+    let prm = ClosestParams {
+        eps: 0.01 * tol,
+        max_pieces: 4000,
+    };
+    let mut out = Check {
+        status: PointStatus::Uncertified,
+        reason: "no_face",
+        upper_a: f64::INFINITY,
+        upper_b: f64::INFINITY,
+        lower: 0.0,
+        radius: None,
+    };
+    let Some(ca) = closest(fa, x, &prm, &|_| true) else {
+        return out;
+    };
+    let other = fb.unwrap_or(fa);
+    let same = fb.is_none();
+    let not_a = |i: usize| !same || i != ca.face;
+    let Some(cb) = closest(other, x, &prm, &not_a) else {
+        return out;
+    };
+    out.upper_a = ca.upper;
+    out.upper_b = cb.upper;
+    out.lower = ca.lower.max(cb.lower);
+    if out.lower > tol {
+        out.status = PointStatus::Off;
+        out.reason = "off_surface";
+        return out;
+    }
+    // Candidate faces: the nearest, then the next nearest within tol (a point near a face
+    // border may have its true curve point on the neighbouring face).
+    let second = |set: &[IvSurface], first: &super::closest::Closest, excl: Option<usize>| {
+        closest(set, x, &prm, &|i| i != first.face && Some(i) != excl).filter(|c| c.upper <= tol)
+    };
+    let mut cands_a = vec![ca];
+    let mut cands_b = vec![cb];
+    let mut err = KrawczykFail::NoContraction;
+    for round in 0..2 {
+        if round == 1 {
+            if let Some(c) = second(fa, &ca, same.then_some(cb.face)) {
+                cands_a.push(c);
+            }
+            if let Some(c) = second(other, &cb, same.then_some(ca.face)) {
+                cands_b.push(c);
+            }
+        }
+        for (i, a) in cands_a.iter().enumerate() {
+            for (j, b) in cands_b.iter().enumerate() {
+                if (round == 1 && i == 0 && j == 0) || (same && a.face == b.face) {
+                    continue;
+                }
+                match curve_point_radius(&fa[a.face], &other[b.face], x, a.uv, b.uv) {
+                    Ok(r) => {
+                        out.radius = Some(out.radius.map_or(r, |q: f64| q.min(r)));
+                        if r <= tol {
+                            out.status = PointStatus::OnCurve;
+                            out.reason = "";
+                            return out;
+                        }
+                    }
+                    Err(e) => err = e,
+                }
+            }
+        }
+    }
+    out.reason = if out.radius.is_some() {
+        "radius_above_tol"
+    } else {
+        fail_name(err)
+    };
+    if same
+        && ca.upper <= tol
+        && cb.upper <= tol
+        && (on_border(&fa[ca.face], &ca.uv) || on_border(&fa[cb.face], &cb.uv))
+    {
+        out.status = PointStatus::SharedEdge;
+    }
+    out
+}
+
+/// Check foreign curves against faces `a` and `b` (`None`: one-file mode, every pair of
+/// distinct faces of `a`), and vericad's own `result` against them. `progress(done, total)`
+/// is called as points are checked.
 pub fn certify(
     a: &Model,
-    b: &Model,
+    b: Option<&Model>,
     foreign: &[ForeignInput],
     result: &SsiResult,
     tol: f64,
     match_distance: f64,
+    progress: &(dyn Fn(usize, usize) + Sync),
 ) -> CertifyReport {
-    let (fa, fb) = (faces(a), faces(b));
+    let t0 = std::time::Instant::now();
+    let prep = |m: &Model| -> Vec<IvSurface> {
+        m.surfaces
+            .par_iter()
+            .map(|f| IvSurface::new(&f.nurbs))
+            .collect()
+    };
+    let fa = prep(a);
+    let fb = b.map(prep);
+    let fbs = fb.as_deref();
+    let total: usize = foreign.iter().map(|f| f.2.len()).sum();
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let curves: Vec<ForeignCurve> = foreign
         .iter()
         .enumerate()
         .map(|(i, (name, kind, pts))| {
-            let da = pts.iter().map(|x| distance_to(&fa, x)).fold(0.0, f64::max);
-            let db = pts.iter().map(|x| distance_to(&fb, x)).fold(0.0, f64::max);
+            let checks: Vec<Check> = pts
+                .par_iter()
+                .map(|x| {
+                    let c = check_point(&fa, fbs, x, tol);
+                    let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                    progress(n, total);
+                    c
+                })
+                .collect();
+            let count = |s: PointStatus| checks.iter().filter(|c| c.status == s).count();
+            let (on, off, shared, unc) = (
+                count(PointStatus::OnCurve),
+                count(PointStatus::Off),
+                count(PointStatus::SharedEdge),
+                count(PointStatus::Uncertified),
+            );
+            let status = if on == checks.len() {
+                "within_tol"
+            } else if off > 0 {
+                "off"
+            } else if unc == 0 {
+                "shared_edge"
+            } else {
+                "uncertified"
+            };
+            let issues = checks
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.status != PointStatus::OnCurve)
+                .take(5)
+                .map(|(k, c)| PointIssue {
+                    index: k,
+                    point: pts[k],
+                    status: c.status,
+                    reason: c.reason.into(),
+                    dist_lower: c.lower,
+                    curve_radius: c.radius,
+                })
+                .collect();
             ForeignCurve {
                 index: i,
                 name: name.clone(),
                 kind,
                 points_checked: pts.len(),
-                dist_a_max: da,
-                dist_b_max: db,
-                within_tol: da <= tol && db <= tol,
+                dist_a_max: checks.iter().map(|c| c.upper_a).fold(0.0, f64::max),
+                dist_b_max: checks.iter().map(|c| c.upper_b).fold(0.0, f64::max),
+                dist_lower_max: checks.iter().map(|c| c.lower).fold(0.0, f64::max),
+                curve_dist_max: checks
+                    .iter()
+                    .try_fold(0.0f64, |m, c| c.radius.map(|r| m.max(r))),
+                points_on_curve: on,
+                points_off: off,
+                points_shared_edge: shared,
+                points_uncertified: unc,
+                status,
+                within_tol: status == "within_tol",
+                issues,
             }
         })
         .collect();
-    let mut branches = Vec::new();
-    for p in &result.pairs {
-        for (k, br) in p.branches.iter().enumerate() {
-            let covered = br
-                .points
-                .iter()
-                .filter(|x| {
-                    foreign.iter().any(|(_, _, f)| {
-                        if f.len() == 1 {
-                            dist_to_segment(x, &f[0], &f[0]) <= match_distance
-                        } else {
-                            f.windows(2)
-                                .any(|w| dist_to_segment(x, &w[0], &w[1]) <= match_distance)
-                        }
-                    })
+    // vericad's branches against the foreign polylines.
+    let mut segs = Vec::new();
+    for (_, _, f) in foreign {
+        if f.len() == 1 {
+            segs.push((f[0], f[0]));
+        }
+        for w in f.windows(2) {
+            segs.push((w[0], w[1]));
+        }
+    }
+    let near = Near::new(segs.clone());
+    let far_from_foreign = |x: &[f64; 3], r: f64| -> bool {
+        let l = segs
+            .iter()
+            .map(|(p, q)| seg_lower(x, p, q))
+            .fold(f64::INFINITY, f64::min);
+        (Interval::point(l) - Interval::point(r)).lo > match_distance
+    };
+    let jobs: Vec<(usize, usize)> = result
+        .pairs
+        .iter()
+        .enumerate()
+        .flat_map(|(i, p)| (0..p.branches.len()).map(move |k| (i, k)))
+        .collect();
+    let branches: Vec<BranchCoverage> = jobs
+        .par_iter()
+        .map(|&(i, k)| {
+            let p = &result.pairs[i];
+            let br = &p.branches[k];
+            let uncovered: Vec<usize> = (0..br.points.len())
+                .filter(|&j| {
+                    let x = br.points[j];
+                    !near.box_within(&(x, x), match_distance)
                 })
-                .count();
-            let frac = covered as f64 / br.points.len().max(1) as f64;
-            branches.push(BranchCoverage {
+                .collect();
+            let frac = 1.0 - uncovered.len() as f64 / br.points.len().max(1) as f64;
+            let mut witness = None;
+            let sb = fbs.unwrap_or(&fa);
+            if !uncovered.is_empty()
+                && br.uv_a.len() == br.points.len()
+                && br.uv_b.len() == br.points.len()
+                && p.a < fa.len()
+                && p.b < sb.len()
+            {
+                let step = (uncovered.len() / 16).max(1);
+                for &j in uncovered.iter().step_by(step).take(16) {
+                    let x = br.points[j];
+                    if let Ok(r) =
+                        curve_point_radius(&fa[p.a], &sb[p.b], &x, br.uv_a[j], br.uv_b[j])
+                        && far_from_foreign(&x, r)
+                    {
+                        witness = Some((x, r));
+                        break;
+                    }
+                }
+            }
+            BranchCoverage {
                 face_a: p.a,
                 face_b: p.b,
                 branch: k,
                 closed: br.closed,
                 points: br.points.len(),
                 covered_fraction: frac,
-                status: if frac < 0.5 {
-                    "missing"
-                } else if frac < 1.0 {
-                    "partial"
-                } else {
-                    "found"
+                status: match (uncovered.is_empty(), witness.is_some()) {
+                    (true, _) => "found",
+                    (false, false) => "unverified",
+                    (false, true) if frac < 0.5 => "missing",
+                    (false, true) => "partial",
                 },
-            });
-        }
+                witness: witness.map(|w| w.0),
+                witness_radius: witness.map(|w| w.1),
+            }
+        })
+        .collect();
+    let count = |s: &str| branches.iter().filter(|b| b.status == s).count();
+    let vericad_ok = result.summary.no_missed_branches && !result.summary.partial;
+    let foreign_complete = vericad_ok && branches.iter().all(|b| b.status == "found");
+    let curves_within_tol = curves.iter().filter(|c| c.within_tol).count();
+    let mut notes = vec![
+        "dist_a_max / dist_b_max: proven upper bounds on each checked point's distance to face set A / B, global over all faces (branch and bound on enclosed Bezier pieces); dist_lower_max: proven lower bound on the distance to the intersection".into(),
+        "a point is on_curve when a true intersection point (S_A(u,v) = S_B(s,t) exactly, parameters in the faces' domains) is proven within tol of it by the Krawczyk test on the intersection system in the plane through the point normal to the curve; where the surfaces are tangent the Jacobian is singular and the point is uncertified, never accepted".into(),
+        "for spline curves the points are samples: between samples the verdict is evidence".into(),
+        format!("a vericad branch is missing (or partial) only with a witness: a point of it certified within witness_radius of a true intersection point that is proven farther than match_distance = {match_distance:e} from every foreign polyline; unverified when it is not covered but no such witness was found"),
+    ];
+    if b.is_none() {
+        notes.push("one-file mode: foreign points are checked against every pair of distinct faces of the model (the nearest face and the nearest other face); points within tol of both and on the border of one of them (edges along which faces of a B-rep meet) that cannot be certified are reported shared_edge: not wrong, not certified".into());
+    }
+    if !vericad_ok {
+        notes.push("vericad's own coverage certificate does not hold on this input (uncertified regions or a partial run): the completeness of the foreign result is not established".into());
     }
     CertifyReport {
+        mode: if b.is_none() { "one_file" } else { "two_files" },
         tol,
         match_distance,
-        curves_within_tol: curves.iter().filter(|c| c.within_tol).count(),
-        missing_branches: branches.iter().filter(|b| b.status == "missing").count(),
-        partial_branches: branches.iter().filter(|b| b.status == "partial").count(),
+        points_checked: total,
+        curves_within_tol,
+        curves_off: curves.iter().filter(|c| c.status == "off").count(),
+        missing_branches: count("missing"),
+        partial_branches: count("partial"),
+        unverified_branches: count("unverified"),
+        vericad_no_missed_branches: vericad_ok,
+        foreign_complete,
+        certified: foreign_complete && curves_within_tol == curves.len(),
         curves,
         branches,
-        notes: vec![
-            "dist_*_max are proven upper bounds at the checked points (projection, then interval/exact evaluation); for spline curves the points are samples, so between samples it is evidence".into(),
-            "a branch is missing when fewer than half of vericad's refined points lie within match_distance of a foreign curve".into(),
-        ],
+        seconds: t0.elapsed().as_secs_f64(),
+        notes,
     }
 }
 
@@ -315,48 +626,88 @@ impl std::fmt::Display for CertifyReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         writeln!(
             f,
-            "certify foreign SSI result, tol {:e}, match distance {:e}",
-            self.tol, self.match_distance
+            "certify foreign SSI result ({}), tol {:e}, match distance {:e}, {} points",
+            self.mode.replace('_', " "),
+            self.tol,
+            self.match_distance,
+            self.points_checked
         )?;
         for c in &self.curves {
             writeln!(
                 f,
-                "  curve {} ({}, {} points): proven distance <= {:.3e} to A, <= {:.3e} to B {}",
+                "  curve {} ({}, {} points): {} on the curve, {} off, {} on shared edges, {} uncertified; distance to A <= {:.3e}, to B <= {:.3e}, to the intersection >= {:.3e}{} -> {}",
                 c.index,
                 c.kind,
                 c.points_checked,
+                c.points_on_curve,
+                c.points_off,
+                c.points_shared_edge,
+                c.points_uncertified,
                 c.dist_a_max,
                 c.dist_b_max,
-                if c.within_tol {
-                    "(within tol)"
-                } else {
-                    "(NOT within tol)"
+                c.dist_lower_max,
+                c.curve_dist_max
+                    .map(|r| format!(", a true curve point within {r:.3e} of every point"))
+                    .unwrap_or_default(),
+                match c.status {
+                    "within_tol" => "within tol",
+                    "off" => "NOT within tol (proven off)",
+                    "shared_edge" => "on shared edges (not certified)",
+                    _ => "NOT certified",
                 }
             )?;
+            for i in &c.issues {
+                writeln!(
+                    f,
+                    "    point {} {:?}: {:?} ({})",
+                    i.index, i.point, i.status, i.reason
+                )?;
+            }
         }
         writeln!(
             f,
-            "  vericad branches: {} ({} missing from the foreign result, {} partly covered)",
+            "  vericad branches: {} ({} missing from the foreign result, {} partly missing, {} not covered but unverified); vericad's coverage {}",
             self.branches.len(),
             self.missing_branches,
-            self.partial_branches
+            self.partial_branches,
+            self.unverified_branches,
+            if self.vericad_no_missed_branches {
+                "certified"
+            } else {
+                "NOT certified"
+            }
         )?;
         for b in self.branches.iter().filter(|b| b.status != "found") {
             writeln!(
                 f,
-                "    faces ({}, {}) branch {} ({}, {} points): {} ({:.0}% covered)",
+                "    faces ({}, {}) branch {} ({}, {} points): {} ({:.0}% covered){}",
                 b.face_a,
                 b.face_b,
                 b.branch,
                 if b.closed { "closed" } else { "open" },
                 b.points,
                 b.status,
-                100.0 * b.covered_fraction
+                100.0 * b.covered_fraction,
+                match (b.witness, b.witness_radius) {
+                    (Some(w), Some(r)) => format!(
+                        "; a true intersection point within {r:.2e} of {w:?} is proven farther than the match distance from every foreign curve"
+                    ),
+                    _ => String::new(),
+                }
             )?;
         }
         for n in &self.notes {
             writeln!(f, "  - {n}")?;
         }
-        Ok(())
+        writeln!(
+            f,
+            "  {} ({:.3} s)",
+            if self.certified {
+                "CERTIFIED: every foreign curve lies within tol of the intersection and none is missing"
+            } else {
+                "NOT CERTIFIED"
+            },
+            self.seconds
+        )
     }
 }

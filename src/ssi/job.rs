@@ -299,25 +299,67 @@ impl std::fmt::Display for SsiResult {
     }
 }
 
-/// The `certify-ssi` job: a foreign result checked against faces of `file_a` and `file_b`,
-/// and vericad's own branches of the same faces checked for presence in it.
+/// Progress on stderr for runs over a second (at most once a second, and at the end).
+fn progress_printer(what: &'static str, t0: Instant) -> impl Fn(usize, usize) + Sync {
+    let last = std::sync::Mutex::new(0.0f64);
+    move |done: usize, total: usize| {
+        let el = t0.elapsed().as_secs_f64();
+        if el > 1.0
+            && let Ok(mut l) = last.lock()
+            && (el - *l >= 1.0 || done == total)
+            && *l < el
+        {
+            *l = el;
+            eprintln!("certify-ssi: {done}/{total} {what} ({el:.1} s)");
+        }
+    }
+}
+
+/// The `certify-ssi` job: a foreign result checked against faces of `file_a` and `file_b`
+/// (`None`: every pair of distinct faces of `file_a`), and vericad's own branches of the
+/// same faces checked for presence in it. `--out` is checked writable before the work.
 pub fn run_certify(
     file_a: &Path,
-    file_b: &Path,
+    file_b: Option<&Path>,
     curves: &Path,
     prm: &SsiParams,
     match_distance: Option<f64>,
     json_out: Option<&Path>,
 ) -> Result<super::foreign::CertifyReport, JobError> {
-    let a = read_in_range(file_a)?;
-    let b = read_in_range(file_b)?;
-    let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
-    let r = intersect_models(&a, Some(&b), prm, &|_, _| {})?;
+    prm.validate()?;
     let m = match_distance.unwrap_or(100.0 * prm.tol);
     if !(m > 0.0 && m.is_finite()) {
         return Err(JobError::Compute(SsiError::Parameter("match distance", m)));
     }
-    let rep = super::foreign::certify(&a, &b, &foreign, &r, prm.tol, m);
+    let a = read_in_range(file_a)?;
+    let b = match file_b {
+        Some(f) => Some(read_in_range(f)?),
+        None => None,
+    };
+    let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
+    if let Some(p) = json_out {
+        std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(p)
+            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+    }
+    let t0 = Instant::now();
+    let r = intersect_models(
+        &a,
+        b.as_ref(),
+        prm,
+        &progress_printer("face pairs (vericad ssi)", t0),
+    )?;
+    let rep = super::foreign::certify(
+        &a,
+        b.as_ref(),
+        &foreign,
+        &r,
+        prm.tol,
+        m,
+        &progress_printer("foreign points", t0),
+    );
     if let Some(p) = json_out {
         write(p, &serde_json::to_string_pretty(&rep).unwrap_or_default())?;
     }

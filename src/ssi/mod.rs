@@ -12,11 +12,15 @@
 //! | 9 spline fitting | [`fit`] |
 //! | certificate of every point: distance to each surface | [`certify`] |
 //! | certificate of every point: distance to the intersection curve (Krawczyk) | [`krawczyk`], [`enclose`] |
+//! | coverage: no branch missed | [`coverage`] |
+//! | coincident faces | [`coincide`] |
+//! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`], [`foreign_krawczyk`] |
 //! | tangential contacts | [`touch`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
 
 pub mod branch;
 pub mod certify;
+pub mod closest;
 pub mod coincide;
 pub mod coverage;
 pub mod cull;
@@ -24,6 +28,7 @@ pub mod driver;
 pub mod enclose;
 pub mod fit;
 pub mod foreign;
+pub mod foreign_krawczyk;
 pub mod job;
 pub mod krawczyk;
 pub mod mesh;

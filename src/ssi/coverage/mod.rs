@@ -138,9 +138,9 @@ pub struct CoverageOut {
 }
 
 /// One piece of a domain: its exact-enclosed patch, uv label, box and cached data.
-struct Cell {
-    uv: [f64; 4],
-    patch: IPatch,
+pub(crate) struct Cell {
+    pub(crate) uv: [f64; 4],
+    pub(crate) patch: IPatch,
     /// Enclosed Cartesian control points, their box, and a rough normal.
     pts: Option<Vec<V>>,
     hull: Option<Box3>,
@@ -204,7 +204,7 @@ fn enclose(x: &Q) -> Interval {
 }
 
 /// The Bézier pieces of a surface, extracted exactly and enclosed.
-fn roots(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
+pub(crate) fn roots(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
     let exact = s.hom.map(
         |k| lift::<Q>(*k),
         |h| Hom {
