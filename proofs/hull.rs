@@ -369,6 +369,7 @@ fn eval_exact(p: usize, q_: usize, net: &Net, u: &Q, v: &Q) -> [Q; 4] {
 ///   every exact point of the rational patch at random rational parameters (convex hull
 ///   property);
 /// * `ICurve::halve` on a border row encloses the exact halves of that row.
+#[allow(clippy::needless_range_loop)]
 pub fn prop_halve_and_hull(h: &IPatch, rng: &mut Rng) {
     let net = pick_net(h, rng);
     for along_u in [true, false] {
@@ -438,6 +439,7 @@ pub fn prop_halve_and_hull(h: &IPatch, rng: &mut Rng) {
 
 /// For any exact values in the enclosures with positive weights, `hull_box` holds `x/w` at
 /// all corners of each control point's box (the extremes of `x/w` over a box with `w > 0`).
+#[allow(clippy::needless_range_loop)]
 pub fn prop_hull_box_corners(x: &[V], w: &[Interval]) {
     let Some(b) = hull_box(x, w) else {
         return;
@@ -528,5 +530,4 @@ fn hull_box_refuses_what_it_cannot_enclose() {
         assert!(hull_box(&[p], &[w]).is_none(), "{w:?}");
     }
     assert!(hull_box(&[[Interval::point(f64::MAX); 3]], &[Interval::point(0.5)]).is_none());
-    let _ = Zero::is_zero(&zero());
 }
