@@ -101,7 +101,15 @@ impl Interval {
         if self.lo == self.hi && o.lo == o.hi {
             // Exact when the residual a - q·b vanishes (a, b, q in the normal range).
             let q = self.lo / o.lo;
-            if q.is_finite() && q.abs() >= 1e-280 && o.lo.abs() < 1e290 && q.abs() < 1e290 {
+            // Dekker's error term is exact only away from underflow: every operand and the
+            // quotient must be in the normal range well above the subnormals.
+            if q.is_finite()
+                && q.abs() >= 1e-280
+                && self.lo.abs() >= 1e-280
+                && o.lo.abs() >= 1e-280
+                && o.lo.abs() < 1e290
+                && q.abs() < 1e290
+            {
                 let (p, e) = two_product(q, o.lo);
                 if p == self.lo && e == 0.0 {
                     return Some(Interval::point(q));

@@ -53,7 +53,7 @@ fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) 
 
 /// Normal-cone generators of a piece; empty when one may vanish or overflow (no cone is then
 /// claimed, and no separation can be shown).
-pub(crate) fn normal_generators(h: &IPatch, polynomial: bool) -> Vec<V> {
+pub fn normal_generators(h: &IPatch, polynomial: bool) -> Vec<V> {
     let (Some(hu), Some(hv)) = (h.hodograph(true), h.hodograph(false)) else {
         return Vec::new();
     };
@@ -117,19 +117,26 @@ fn unit_mean(v: &[V]) -> Option<[f64; 3]> {
 /// Whether the two cones are proven to hold no parallel vectors (the separation lemma, with
 /// `m`, `m'` the difference and sum of the generators' unit means; the lemma holds for any
 /// choice, the choice only decides how often it succeeds).
-pub(crate) fn cones_separated(a: &[V], b: &[V]) -> bool {
+pub fn cones_separated(a: &[V], b: &[V]) -> bool {
+    separation(a, b).is_some()
+}
+
+/// The directions `(m, m')` of the separation lemma when the test succeeds: `m·a > 0`,
+/// `m'·a > 0`, `m·b < 0`, `m'·b > 0` proven for every generator `a` of A and `b` of B.
+pub fn separation(a: &[V], b: &[V]) -> Option<([f64; 3], [f64; 3])> {
     if a.is_empty() || b.is_empty() {
-        return false;
+        return None;
     }
     let (Some(ua), Some(ub)) = (unit_mean(a), unit_mean(b)) else {
-        return false;
+        return None;
     };
     let m: [f64; 3] = std::array::from_fn(|k| ua[k] - ub[k]);
     let m2: [f64; 3] = std::array::from_fn(|k| ua[k] + ub[k]);
     let pos = |i: Interval| i.lo > 0.0;
     let neg = |i: Interval| i.hi < 0.0;
-    a.iter().all(|x| pos(dot(&m, x)) && pos(dot(&m2, x)))
-        && b.iter().all(|y| neg(dot(&m, y)) && pos(dot(&m2, y)))
+    let ok = a.iter().all(|x| pos(dot(&m, x)) && pos(dot(&m2, x)))
+        && b.iter().all(|y| neg(dot(&m, y)) && pos(dot(&m2, y)));
+    ok.then_some((m, m2))
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use super::patch::{Box3, V};
 use crate::scalar::Interval;
 
 /// Segments of the output with a bounding-volume tree over their boxes.
-pub(crate) struct Near {
+pub struct Near {
     segs: Vec<([f64; 3], [f64; 3])>,
     /// Tree nodes: box, and either two children or a range of `order`.
     nodes: Vec<Node>,
@@ -32,7 +32,7 @@ fn seg_box(s: &([f64; 3], [f64; 3])) -> Box3 {
 }
 
 /// Upper bound on the distance from `c` to the segment `[p, q]`.
-pub(crate) fn dist_upper(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
+pub fn dist_upper(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
     let d: [f64; 3] = std::array::from_fn(|k| q[k] - p[k]);
     let e: [f64; 3] = std::array::from_fn(|k| c[k] - p[k]);
     let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];

@@ -5,26 +5,25 @@
 
 use crate::scalar::Interval;
 
-pub(crate) type V = [Interval; 3];
+pub type V = [Interval; 3];
 
 fn iv0() -> Interval {
     Interval::point(0.0)
 }
 
 /// Axis-aligned box `[lo, hi]` in model space.
-pub(crate) type Box3 = ([f64; 3], [f64; 3]);
+pub type Box3 = ([f64; 3], [f64; 3]);
 
 /// The box of the Cartesian control points `x/w` of homogeneous interval control points, or
 /// `None` when a weight interval is not strictly positive or anything is not finite (no
 /// convex-hull claim is then possible).
-#[cfg(test)]
-pub(crate) fn hull_box(x: &[V], w: &[Interval]) -> Option<Box3> {
+pub fn hull_box(x: &[V], w: &[Interval]) -> Option<Box3> {
     cartesian(x, w).map(|p| box_of(&p))
 }
 
 /// The Cartesian control points `x/w`, enclosed, or `None` when a weight interval is not
 /// strictly positive or anything is not finite.
-pub(crate) fn cartesian(x: &[V], w: &[Interval]) -> Option<Vec<V>> {
+pub fn cartesian(x: &[V], w: &[Interval]) -> Option<Vec<V>> {
     let mut out = Vec::with_capacity(x.len());
     for (p, wi) in x.iter().zip(w) {
         if wi.lo.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || !wi.is_finite() {
@@ -46,7 +45,7 @@ pub(crate) fn cartesian(x: &[V], w: &[Interval]) -> Option<Vec<V>> {
 }
 
 /// The box of enclosed points.
-pub(crate) fn box_of(pts: &[V]) -> Box3 {
+pub fn box_of(pts: &[V]) -> Box3 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in pts {
@@ -61,7 +60,7 @@ pub(crate) fn box_of(pts: &[V]) -> Box3 {
 /// Whether the convex hulls of two sets of enclosed points are proven disjoint along
 /// direction `n` (any direction: the projections of the hulls are the hulls of the
 /// projections).
-pub(crate) fn separated_along(a: &[V], b: &[V], n: &[f64; 3]) -> bool {
+pub fn separated_along(a: &[V], b: &[V], n: &[f64; 3]) -> bool {
     if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
         return false;
     }
@@ -78,12 +77,12 @@ pub(crate) fn separated_along(a: &[V], b: &[V], n: &[f64; 3]) -> bool {
 }
 
 /// Whether two boxes are disjoint (a strict gap on some axis).
-pub(crate) fn disjoint(a: &Box3, b: &Box3) -> bool {
+pub fn disjoint(a: &Box3, b: &Box3) -> bool {
     (0..3).any(|k| a.1[k] < b.0[k] || b.1[k] < a.0[k])
 }
 
 /// The common part of two overlapping boxes.
-pub(crate) fn meet(a: &Box3, b: &Box3) -> Box3 {
+pub fn meet(a: &Box3, b: &Box3) -> Box3 {
     (
         std::array::from_fn(|k| a.0[k].max(b.0[k])),
         std::array::from_fn(|k| a.1[k].min(b.1[k])),
@@ -126,7 +125,7 @@ fn halve_row(xs: &[V], ws: &[Interval]) -> (Row, Row) {
 
 /// A Bézier curve with interval homogeneous control points.
 #[derive(Clone, Debug)]
-pub(crate) struct ICurve {
+pub struct ICurve {
     pub x: Vec<V>,
     pub w: Vec<Interval>,
 }
@@ -143,7 +142,7 @@ impl ICurve {
 
 /// Which border of a patch's parameter rectangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Side {
+pub enum Side {
     U0,
     U1,
     V0,
@@ -155,7 +154,7 @@ pub(crate) const SIDES: [Side; 4] = [Side::U0, Side::U1, Side::V0, Side::V1];
 /// A tensor-product Bézier patch with interval homogeneous control points, row-major
 /// (`i` along u, degree `p`; `j` along v, degree `q`).
 #[derive(Clone, Debug)]
-pub(crate) struct IPatch {
+pub struct IPatch {
     pub p: usize,
     pub q: usize,
     pub x: Vec<V>,
