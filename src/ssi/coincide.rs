@@ -44,7 +44,9 @@ fn cartesian_exact(s: &NurbsSurface<f64, 3>) -> Option<Vec<[Q; 3]>> {
         .iter()
         .map(|h| {
             let w = lift::<Q>(h.w);
-            if !(h.w > 0.0) || !h.wp.iter().all(|x| x.is_finite()) {
+            if h.w.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
+                || !h.wp.iter().all(|x| x.is_finite())
+            {
                 return None;
             }
             Some(h.wp.map(|x| lift::<Q>(x) / &w))
