@@ -226,6 +226,8 @@ pub fn intersect_models(
             "mesh mode: the curves are the exact intersection of the triangulations; no coverage certificate".to_string()
         } else if no_missed_branches {
             format!("coverage: every branch of the true intersection (closed loop, open arc, touching point) comes within {matched:.3e} of the output, proven: every parameter-box pair is free (disjoint control-point boxes), within that distance of the output, or transversal (separated normal cones) with every border crossing within that distance of the output")
+        } else if uncertified == 0 && coincident_pairs > 0 {
+            "coverage: not applicable to coincident face pairs (below); every other pair is certified".to_string()
         } else {
             format!("coverage: NOT certified: {uncertified} parameter-box pairs undecided (listed per pair with the reason): a branch could be missing there")
         },

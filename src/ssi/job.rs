@@ -62,8 +62,9 @@ pub struct Outputs<'a> {
     pub iges: Option<&'a Path>,
 }
 
+/// Write through a temporary file and a rename: a failed write keeps the previous file.
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
-    std::fs::write(path, text)
+    crate::io::write_atomic(path, text)
         .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
 }
 

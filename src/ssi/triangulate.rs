@@ -21,6 +21,8 @@ use std::collections::{BTreeSet, HashMap, HashSet};
 /// is a lattice point.
 pub const LEVELS: u32 = 20;
 const SPAN: u64 = 1 << LEVELS;
+/// Most leaf cells of one surface's triangulation.
+pub const MAX_CELLS: usize = 1 << 18;
 
 /// A cell of the subdivision, by its lattice corners `[u0, u1) × [v0, v1)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -245,7 +247,10 @@ pub fn leaf_cells(
     let mut unresolved = 0;
     while let Some((c, d)) = stack.pop() {
         let split = force.contains(&c) || needs_split(&mut ev, &c, prm);
-        if split && d < depth_cap {
+        // A cell budget bounds time and memory whatever the flatness asked for (e.g.
+        // `--flatness 1e-300`): past it, cells stay unsplit and are counted unresolved.
+        let room = leaves.len() + stack.len() + 4 <= MAX_CELLS;
+        if split && d < depth_cap && room {
             let (um, vm) = ((c.u0 + c.u1) / 2, (c.v0 + c.v1) / 2);
             for (u0, u1, v0, v1) in [
                 (um, c.u1, vm, c.v1),
