@@ -25,7 +25,7 @@
 
 use super::closest::{ClosestParams, IvSurface, closest};
 use super::coverage::near::Near;
-use super::foreign_krawczyk::{KrawczykFail, curve_point_radius};
+use super::krawczyk::{Uncertified, certify_on_curve};
 use super::refine::{domain, point_d1};
 use super::report::SsiResult;
 use crate::geom::{Point, dot};
@@ -332,13 +332,27 @@ struct Check {
     radius: Option<f64>,
 }
 
-fn fail_name(e: KrawczykFail) -> &'static str {
+fn fail_name(e: Uncertified) -> &'static str {
     match e {
-        KrawczykFail::Singular => "singular",
-        KrawczykFail::NoContraction => "no_contraction",
-        KrawczykFail::FaceBorder => "face_border",
-        KrawczykFail::NoEnclosure => "no_enclosure",
+        Uncertified::NotFinite => "not_finite",
+        Uncertified::Tangency => "tangency",
+        Uncertified::Singular => "singular",
+        Uncertified::NoContraction => "no_contraction",
+        Uncertified::OutsideDomain => "face_border",
+        Uncertified::Enclosure => "no_enclosure",
     }
+}
+
+/// A proven radius within which a true intersection point of the two faces lies
+/// ([`super::krawczyk`]).
+fn curve_point_radius(
+    a: &IvSurface,
+    b: &IvSurface,
+    x: &[f64; 3],
+    uv_a: [f64; 2],
+    uv_b: [f64; 2],
+) -> Result<f64, Uncertified> {
+    certify_on_curve(&a.s, &b.s, x, &uv_a, &uv_b).map(|c| c.radius)
 }
 
 /// Check one foreign point against face sets `fa` and `fb` (`None`: one-file mode, the
@@ -380,7 +394,7 @@ fn check_point(fa: &[IvSurface], fb: Option<&[IvSurface]>, x: &[f64; 3], tol: f6
     };
     let mut cands_a = vec![ca];
     let mut cands_b = vec![cb];
-    let mut err = KrawczykFail::NoContraction;
+    let mut err = Uncertified::NoContraction;
     for round in 0..2 {
         if round == 1 {
             if let Some(c) = second(fa, &ca, same.then_some(cb.face)) {

@@ -14,7 +14,7 @@
 //! | certificate of every point: distance to the intersection curve (Krawczyk) | [`krawczyk`], [`enclose`] |
 //! | coverage: no branch missed | [`coverage`] |
 //! | coincident faces | [`coincide`] |
-//! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`], [`foreign_krawczyk`] |
+//! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`] (curve points by [`krawczyk`]) |
 //! | tangential contacts | [`touch`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
 
@@ -28,7 +28,6 @@ pub mod driver;
 pub mod enclose;
 pub mod fit;
 pub mod foreign;
-pub mod foreign_krawczyk;
 pub mod job;
 pub mod krawczyk;
 pub mod mesh;
