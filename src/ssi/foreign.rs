@@ -5,7 +5,7 @@
 //!    B, global over all faces ([`super::closest`]: branch and bound on enclosed Bézier
 //!    pieces; no local search decides anything);
 //! 2. a proven radius `r`: a true intersection point `S_A(u, v) = S_B(s, t)` (parameters in
-//!    the faces' domains) lies within `r` of `x` ([`super::foreign_krawczyk`], Krawczyk on
+//!    the faces' domains) lies within `r` of `x` ([`super::krawczyk`], the same certificate as vericad's own points: Krawczyk on
 //!    the intersection system restricted to the plane through `x` normal to the curve).
 //!
 //! A point is `on_curve` when `r <= tol`; `off` when `max(lower_A, lower_B) > tol` (proven:
