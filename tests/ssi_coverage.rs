@@ -248,6 +248,14 @@ fn rotated_spheres_cut_near_the_poles() {
             );
         }
         assert!(!cov.no_missed_branches || found, "seed {seed} h {h}");
+        // One closed loop in every placement (poles and seams welded).
+        assert_eq!(r.branches.len(), 1, "seed {seed} h {h}");
+        assert!(r.branches[0].closed && found, "seed {seed} h {h}");
+        // Certified complete away from the extreme cases (the equator lies on a knot line
+        // of the sphere; h = 1.9999 is 1e-4 from the pole).
+        if ![0.0, 1.9999].contains(&h) {
+            assert!(cov.no_missed_branches, "seed {seed} h {h}");
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 
 use super::certify::ExactSurface;
 use super::fit::fit_branch;
-use super::krawczyk::certify_on_curve;
+use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve};
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
 };
@@ -77,7 +77,11 @@ impl Inserter<'_, '_> {
                 )
             }
         };
-        let m = auxiliary_plane(self.g.sa, self.g.sb, ga, gb, self.prm);
+        let mut m = auxiliary_plane(self.g.sa, self.g.sb, ga, gb, self.prm);
+        if m.status == RefineStatus::Converged {
+            // Measure against the curve, not a point merely within tol of both surfaces.
+            let _ = onto_curve(self.g, &mut m, self.prm.tol);
+        }
         let chord = dist(&p.xyz, &q.xyz);
         let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (p.xyz[k] + q.xyz[k]));
         if m.status != RefineStatus::Converged || dist(&m.xyz, &mid) > chord.max(self.prm.tol) {
@@ -94,6 +98,42 @@ impl Inserter<'_, '_> {
         } else {
             self.max_dev = self.max_dev.max(dev);
         }
+    }
+}
+
+/// The curve certificate of `r` ([`certify_on_curve`]); when its proven distance to the curve
+/// exceeds `tol/8` (near tangency the refinement stops within tol of both surfaces, which can
+/// be far from the curve), `r` moves to the centre of its certified root box and is
+/// certified again there; the move is kept only when the new radius is smaller.
+fn onto_curve(
+    g: &PairGeometry,
+    r: &mut Refined,
+    tol: f64,
+) -> Result<CurveCertificate, Uncertified> {
+    let c = certify_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b)?;
+    if c.radius <= tol / 8.0 {
+        return Ok(c);
+    }
+    let (dom_a, dom_b) = (domain(g.sa), domain(g.sb));
+    let uv_a = [
+        c.params[0].mid().clamp(dom_a[0], dom_a[1]),
+        c.params[1].mid().clamp(dom_a[2], dom_a[3]),
+    ];
+    let uv_b = [
+        c.params[2].mid().clamp(dom_b[0], dom_b[1]),
+        c.params[3].mid().clamp(dom_b[2], dom_b[3]),
+    ];
+    let (pa, pb) = (g.sa.eval(&uv_a[0], &uv_a[1]), g.sb.eval(&uv_b[0], &uv_b[1]));
+    let xyz: [f64; 3] = std::array::from_fn(|k| 0.5 * (pa[k] + pb[k]));
+    match certify_on_curve(g.sa, g.sb, &xyz, &uv_a, &uv_b) {
+        Ok(c2) if c2.radius < c.radius => {
+            r.xyz = xyz;
+            r.uv_a = uv_a;
+            r.uv_b = uv_b;
+            r.gap = dist(&pa, &pb);
+            Ok(c2)
+        }
+        _ => Ok(c),
     }
 }
 
@@ -214,41 +254,12 @@ pub fn refine_branch(
             )
         })
         .count();
-    // Points whose proven distance to the curve exceeds tol/8 (near tangency the refinement
-    // stops within tol of both surfaces, which can be far from the curve) move to the centre
-    // of their certified root box, and are certified again there; the move is kept only when
-    // the new radius is smaller.
-    let mut radii: Vec<_> = all
-        .iter()
-        .map(|r| certify_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b).map(|c| (c.radius, c)))
+    // Points whose proven distance to the curve exceeds tol/8 move onto the curve (see
+    // [`onto_curve`]).
+    let radii: Vec<_> = all
+        .iter_mut()
+        .map(|r| onto_curve(g, r, prm.tol).map(|c| (c.radius, c)))
         .collect();
-    let (dom_a, dom_b) = (domain(g.sa), domain(g.sb));
-    for (r, cert) in all.iter_mut().zip(radii.iter_mut()) {
-        let Ok((radius, c)) = cert else { continue };
-        if *radius <= prm.tol / 8.0 {
-            continue;
-        }
-        let clamp = |x: f64, lo: f64, hi: f64| x.clamp(lo, hi);
-        let uv_a = [
-            clamp(c.params[0].mid(), dom_a[0], dom_a[1]),
-            clamp(c.params[1].mid(), dom_a[2], dom_a[3]),
-        ];
-        let uv_b = [
-            clamp(c.params[2].mid(), dom_b[0], dom_b[1]),
-            clamp(c.params[3].mid(), dom_b[2], dom_b[3]),
-        ];
-        let (pa, pb) = (g.sa.eval(&uv_a[0], &uv_a[1]), g.sb.eval(&uv_b[0], &uv_b[1]));
-        let xyz: [f64; 3] = std::array::from_fn(|k| 0.5 * (pa[k] + pb[k]));
-        if let Ok(c2) = certify_on_curve(g.sa, g.sb, &xyz, &uv_a, &uv_b)
-            && c2.radius < *radius
-        {
-            r.xyz = xyz;
-            r.uv_a = uv_a;
-            r.uv_b = uv_b;
-            r.gap = dist(&pa, &pb);
-            *cert = Ok((c2.radius, c2));
-        }
-    }
     let radii: Vec<_> = radii.into_iter().map(|c| c.map(|(r, _)| r)).collect();
     let mut da_max = 0.0f64;
     let mut db_max = 0.0f64;
