@@ -57,7 +57,7 @@ use cones::{cones_separated, normal_generators};
 use crossings::search;
 use near::Near;
 use num_rational::BigRational;
-use patch::{Box3, IPatch, SIDES, V, box_of, diagonal, disjoint, meet, separated_along};
+use patch::{Box3, IPatch, SIDES, Side, V, box_of, diagonal, disjoint, meet, separated_along};
 use serde::Serialize;
 use std::cell::OnceCell;
 use std::rc::Rc;
@@ -260,6 +260,28 @@ pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut]) -> Near {
     Near::new(segs)
 }
 
+/// A border curve of a piece (which surface, the fixed parameter and its value, the range of
+/// the other) with the piece of the other surface it is searched against. Labels are the
+/// subdivision's own values, so neighbours that share a border produce the same key.
+fn edge_key(from: usize, uv: &[f64; 4], side: Side, to: &[f64; 4]) -> [u64; 8] {
+    let (axis, fixed, lo, hi) = match side {
+        Side::U0 => (0, uv[0], uv[2], uv[3]),
+        Side::U1 => (0, uv[1], uv[2], uv[3]),
+        Side::V0 => (1, uv[2], uv[0], uv[1]),
+        Side::V1 => (1, uv[3], uv[0], uv[1]),
+    };
+    [
+        (from * 2 + axis) as u64,
+        fixed.to_bits(),
+        lo.to_bits(),
+        hi.to_bits(),
+        to[0].to_bits(),
+        to[1].to_bits(),
+        to[2].to_bits(),
+        to[3].to_bits(),
+    ]
+}
+
 fn centre(b: &Box3) -> [f64; 3] {
     std::array::from_fn(|k| 0.5 * b.0[k] + 0.5 * b.1[k])
 }
@@ -294,6 +316,7 @@ pub fn coverage(
         }
     }
     let mut boxes = 0usize;
+    let mut searched: std::collections::HashSet<[u64; 8]> = std::collections::HashSet::new();
     let uncertified = |out: &mut CoverageOut, a: &Cell, b: &Cell, reason, point| {
         out.uncertified += 1;
         if out.uncertified_regions.len() < 100 {
@@ -344,8 +367,14 @@ pub fn coverage(
         }
         if cones_separated(a.normals(), b.normals()) {
             let mut open = None;
-            'sides: for (from, to) in [(&a, &b), (&b, &a)] {
+            'sides: for (k, (from, to)) in [(&a, &b), (&b, &a)].into_iter().enumerate() {
                 for side in SIDES {
+                    // A border shared by two neighbouring pieces is one exact curve: a search
+                    // that succeeded against the same piece of the other surface holds for both.
+                    let key = edge_key(k, &from.uv, side, &to.uv);
+                    if searched.contains(&key) {
+                        continue;
+                    }
                     let left = prm.max_boxes.saturating_sub(boxes).max(1);
                     let s = search(
                         &from.patch.edge(side),
@@ -362,6 +391,7 @@ pub fn coverage(
                         open = s.open;
                         break 'sides;
                     }
+                    searched.insert(key);
                 }
             }
             match open {
