@@ -250,3 +250,73 @@ pub fn repair_soup(data: &[u8]) -> usize {
         Err(e) => panic!("repair refused valid patches: {e}"),
     }
 }
+
+/// SSI of two byte-defined biquadratic patches (small-integer control points, weights 1–4):
+/// coincidences, touching, crossings at knot lines and degenerate nets all occur. Never a
+/// panic; the coverage classes add up; a certified run has no uncertified region and every
+/// point proven within tol of the curve; every proven radius is finite. Returns the number of
+/// branches.
+pub fn ssi_surfaces(data: &[u8]) -> usize {
+    use crate::spline::NurbsSurface;
+    let byte = |k: usize| data.get(k).copied().unwrap_or(0);
+    let patch = |off: usize, rational: bool| {
+        let pts: Vec<[f64; 3]> = (0..9)
+            .map(|i| {
+                let (u, v) = ((i / 3) as f64, (i % 3) as f64);
+                let h = f64::from(byte(off + i) % 7) - 3.0;
+                [u, v, h * 0.5]
+            })
+            .collect();
+        let w: Vec<f64> = (0..9)
+            .map(|i| {
+                if rational {
+                    f64::from(byte(off + 9 + i) % 4 + 1)
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        NurbsSurface::new(k.clone(), 2, k, 2, 3, 3, pts, w)
+    };
+    let (Ok(a), Ok(mut b)) = (patch(0, byte(40) & 1 == 1), patch(18, byte(40) & 2 == 2)) else {
+        return 0;
+    };
+    // Turn B a quarter about the z axis and shift it by half a cell, so the patches cross.
+    for h in &mut b.hom.net {
+        let (x, y) = (h.wp[0], h.wp[1]);
+        h.wp[0] = y + 0.5 * h.w;
+        h.wp[1] = 2.0 * h.w - x;
+    }
+    let prm = crate::ssi::SsiParams {
+        tol: 1e-6,
+        coverage_max_boxes: 20_000,
+        ..Default::default()
+    };
+    let r = match crate::ssi::intersect_pair_canonical(&a, &b, (0, 1), &prm, None) {
+        Ok(r) => r,
+        Err(e) => panic!("ssi failed on valid patches: {e}"),
+    };
+    if let Some(c) = &r.coverage {
+        assert_eq!(
+            c.free + c.near_output + c.transversal + c.uncertified,
+            c.pairs
+        );
+        assert_eq!(c.no_missed_branches, c.uncertified == 0, "{c:?}");
+        assert!(
+            c.free_pairs_with_branch_points.is_none_or(|n| n == 0),
+            "{c:?}"
+        );
+    }
+    for br in &r.branches {
+        assert_eq!(br.curve_radius.len(), br.points.len());
+        for x in br.curve_radius.iter().flatten() {
+            assert!(x.is_finite() && *x >= 0.0, "radius {x}");
+        }
+        assert_eq!(
+            br.curve_uncertified_points,
+            br.curve_radius.iter().filter(|x| x.is_none()).count()
+        );
+    }
+    r.branches.len()
+}

@@ -132,6 +132,20 @@ fn ssi_meshes_on_random_degenerate_grids() {
 }
 
 #[test]
+fn ssi_surfaces_on_random_patches() {
+    let mut r = Rng(31);
+    let mut with = 0;
+    for _ in 0..40 {
+        let data: Vec<u8> = (0..41).map(|_| r.below(256) as u8).collect();
+        with += usize::from(fuzz_entry::ssi_surfaces(&data) > 0);
+    }
+    // The patches do cross (the test reaches the certificates, not only the culling).
+    assert!(with > 10, "{with} runs with branches");
+    fuzz_entry::ssi_surfaces(&[]);
+    fuzz_entry::ssi_surfaces(&[255; 41]);
+}
+
+#[test]
 fn repair_on_random_patch_soups() {
     let mut r = Rng(31);
     let mut connected = 0;
