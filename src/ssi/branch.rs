@@ -78,8 +78,10 @@ impl Inserter<'_, '_> {
             }
         };
         let mut m = auxiliary_plane(self.g.sa, self.g.sb, ga, gb, self.prm);
-        if m.status == RefineStatus::Converged {
-            // Measure against the curve, not a point merely within tol of both surfaces.
+        if m.status == RefineStatus::Converged && small_angle(self.g, &m) {
+            // Near tangency a point within tol of both surfaces can be far from the curve:
+            // measure against the curve (elsewhere the refinement lands on it closely, and
+            // every output point is certified against the curve afterwards anyway).
             let _ = onto_curve(self.g, &mut m, self.prm.tol);
         }
         let chord = dist(&p.xyz, &q.xyz);
@@ -98,6 +100,21 @@ impl Inserter<'_, '_> {
         } else {
             self.max_dev = self.max_dev.max(dev);
         }
+    }
+}
+
+/// Whether the surfaces meet at `r` at an angle whose sine is below 1/4 (or the normals are
+/// undefined there).
+fn small_angle(g: &PairGeometry, r: &Refined) -> bool {
+    match (
+        g.sa.unit_normal(&r.uv_a[0], &r.uv_a[1]),
+        g.sb.unit_normal(&r.uv_b[0], &r.uv_b[1]),
+    ) {
+        (Some(a), Some(b)) => {
+            let c = crate::geom::cross(&a, &b);
+            (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() < 0.25
+        }
+        _ => true,
     }
 }
 
