@@ -302,3 +302,22 @@ fn convert_format_override_and_binary_stl() {
     assert_eq!(code, 0);
     assert_eq!(vericad::io::step::read(&out).unwrap().surfaces.len(), 7);
 }
+
+/// Output paths are checked before the intersection starts: an unwritable `--out` fails at
+/// once (exit 1, "cannot write"), and no partial file is left.
+#[test]
+fn ssi_checks_outputs_before_the_work() {
+    let d = tmp("unwritable");
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/gmsh-t20_data.step");
+    let out = d.join("no-such-dir").join("r.json");
+    let (code, _, stderr) =
+        vericad(&["ssi", src.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("cannot write"), "{stderr}");
+    assert!(
+        !stderr.contains("face pairs"),
+        "no work before the check: {stderr}"
+    );
+    assert!(!out.exists());
+}

@@ -106,6 +106,22 @@ pub fn write_atomic(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> std::io:
     result
 }
 
+/// Check, before a long run, that `path` can be written the way [`write_atomic`] writes it:
+/// a temporary file in its directory is created and removed again; an existing file at
+/// `path` is not touched.
+pub fn check_writable(path: &std::path::Path) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    if path.is_dir() {
+        return Err(std::io::Error::other("is a directory"));
+    }
+    let tmp = dir.join(format!(".vericad-write-check.{}.tmp", std::process::id()));
+    std::fs::File::create(&tmp)?;
+    std::fs::remove_file(&tmp)
+}
+
 /// Write a model in the format named by the path's extension.
 pub fn write_model(
     path: &std::path::Path,

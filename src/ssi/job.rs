@@ -62,6 +62,12 @@ pub struct Outputs<'a> {
     pub iges: Option<&'a Path>,
 }
 
+/// Fail before the work when an output cannot be written.
+fn check_writable(p: &Path) -> Result<(), JobError> {
+    crate::io::check_writable(p)
+        .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))
+}
+
 /// Write through a temporary file and a rename: a failed write keeps the previous file.
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
     crate::io::write_atomic(path, text)
@@ -168,6 +174,12 @@ pub fn run(
         Some(f) => Some(read_in_range(f)?),
         None => None,
     };
+    for p in [outputs.json, outputs.vtk, outputs.iges]
+        .into_iter()
+        .flatten()
+    {
+        check_writable(p)?;
+    }
     let t0 = Instant::now();
     let last = std::sync::Mutex::new(0.0f64);
     let progress = |done: usize, total: usize| {
@@ -339,11 +351,7 @@ pub fn run_certify(
     };
     let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
     if let Some(p) = json_out {
-        std::fs::OpenOptions::new()
-            .create(true)
-            .append(true)
-            .open(p)
-            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+        check_writable(p)?;
     }
     let t0 = Instant::now();
     let r = intersect_models(
