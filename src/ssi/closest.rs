@@ -1,5 +1,4 @@
-//! Global certified distance from a point to a set of NURBS faces, and interval enclosures
-//! of a face and its first partials over a parameter box.
+//! Global certified distance from a point to a set of NURBS faces.
 //!
 //! # Distance (branch and bound)
 //!
@@ -16,7 +15,7 @@
 //! * **upper bound**: the corner control points of a Bézier piece are points of the surface;
 //!   the largest distance from `x` to a corner's enclosure, rounded up, bounds
 //!   `dist(x, S)` from above. So does the enclosure of `S(u, v)` at a parameter found by
-//!   Gauss–Newton ([`IvSurface::enclose`] on a point box).
+//!   Gauss–Newton ([`super::enclose::enclose_point`]).
 //!
 //! The pieces of all faces (faces first as single entries bounded by the box of their
 //! pieces, so far faces are never opened) are kept in a heap by lower bound; the lowest is
@@ -25,128 +24,27 @@
 //! budget: the lower end is the least lower bound of the pieces still open, which is at most
 //! the lower bound of the piece holding a closest point. No local search decides anything;
 //! there is no local-minimum trap (poles, seams, several near faces).
-//!
-//! # Enclosures over a parameter box
-//!
-//! [`IvSurface::enclose`] evaluates the homogeneous Bézier piece(s) meeting the box by
-//! tensor de Casteljau with interval parameters (each step encloses the value for every real
-//! parameter of the box), with the u and v derivatives from the last de Casteljau level
-//! (`p·(b₁ − b₀)`), then the quotient rule `S = X/w`, `S_u = (X_u − S w_u)/w` (refused when
-//! `w` is not proven positive). Boxes that straddle a knot line are evaluated per span and
-//! the hulls joined; this is refused when the surface is not continuous across the knot
-//! (multiplicity above the degree). At the ends of the domain the end spans' polynomials are
-//! used beyond the domain (callers check whether a root lies in the domain).
 
 use super::coverage::patch::{Box3, IPatch, V, box_of};
 use super::coverage::roots;
+use super::enclose::enclose_point;
 use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// Homogeneous point `(X, w)` in intervals.
-type H = [Interval; 4];
-
 fn iv(x: f64) -> Interval {
     Interval::point(x)
 }
 
-/// Enclosures of `S`, `S_u`, `S_v` over a parameter box.
-#[derive(Clone, Copy, Debug)]
-pub struct Enc {
-    pub s: V,
-    pub su: V,
-    pub sv: V,
-}
-
-fn hull3(a: &V, b: &V) -> V {
-    std::array::from_fn(|k| a[k].hull(b[k]))
-}
-
-/// A face prepared for enclosures and distance queries.
+/// A face prepared for distance queries: its enclosed Bézier pieces.
 pub struct IvSurface {
     pub s: NurbsSurface<f64, 3>,
     pieces: Vec<(IPatch, [f64; 4])>,
     /// Parameter domain `[u0, u1, v0, v1]`.
     pub dom: [f64; 4],
-    /// Continuous across every interior knot line in u / in v.
-    c0: [bool; 2],
     /// Box of all enclosed control points (`None`: no enclosure, weights not positive).
     pub hull: Option<Box3>,
-}
-
-fn continuous(k: &crate::spline::KnotVector<f64>) -> bool {
-    k.interior_breaks()
-        .iter()
-        .all(|t| k.multiplicity(t) <= k.degree())
-}
-
-/// de Casteljau of a row of homogeneous interval points at interval `t`: value and
-/// derivative with respect to `t`.
-fn casteljau_d1(pts: &[H], t: Interval) -> (H, H) {
-    let n = pts.len() - 1;
-    if n == 0 {
-        return (pts[0], [iv(0.0); 4]);
-    }
-    let s = iv(1.0) - t;
-    let mut b = pts.to_vec();
-    for level in 1..n {
-        for k in 0..=n - level {
-            b[k] = std::array::from_fn(|c| s * b[k][c] + t * b[k + 1][c]);
-        }
-    }
-    let val = std::array::from_fn(|c| s * b[0][c] + t * b[1][c]);
-    let nn = iv(n as f64);
-    let der = std::array::from_fn(|c| (b[1][c] - b[0][c]) * nn);
-    (val, der)
-}
-
-/// `S`, `S_u`, `S_v` of one Bézier piece on `[a0, a1] × [b0, b1]` over `u × v`.
-fn piece_enc(p: &IPatch, r: &[f64; 4], u: Interval, v: Interval) -> Option<Enc> {
-    let (wu, wv) = (iv(r[1]) - iv(r[0]), iv(r[3]) - iv(r[2]));
-    let tau = (u - iv(r[0])).checked_div(wu)?;
-    let sig = (v - iv(r[2])).checked_div(wv)?;
-    let mut c = Vec::with_capacity(p.q + 1);
-    let mut d = Vec::with_capacity(p.q + 1);
-    for j in 0..=p.q {
-        let row: Vec<H> = (0..=p.p)
-            .map(|i| {
-                let k = p.at(i, j);
-                [p.x[k][0], p.x[k][1], p.x[k][2], p.w[k]]
-            })
-            .collect();
-        let (val, der) = casteljau_d1(&row, tau);
-        c.push(val);
-        d.push(der);
-    }
-    let (h, hv) = casteljau_d1(&c, sig);
-    let (hu, _) = casteljau_d1(&d, sig);
-    let w = h[3];
-    if w.lo.partial_cmp(&(0.0)) != Some(std::cmp::Ordering::Greater) || !w.is_finite() {
-        return None;
-    }
-    let s: V = [
-        h[0].checked_div(w)?,
-        h[1].checked_div(w)?,
-        h[2].checked_div(w)?,
-    ];
-    let deriv = |g: &H, width: Interval| -> Option<V> {
-        let mut o = [iv(0.0); 3];
-        for k in 0..3 {
-            o[k] = ((g[k] - s[k] * g[3]).checked_div(w)?).checked_div(width)?;
-        }
-        Some(o)
-    };
-    let e = Enc {
-        s,
-        su: deriv(&hu, wu)?,
-        sv: deriv(&hv, wv)?,
-    };
-    e.s.iter()
-        .chain(&e.su)
-        .chain(&e.sv)
-        .all(|i| i.is_finite())
-        .then_some(e)
 }
 
 impl IvSurface {
@@ -167,63 +65,14 @@ impl IvSurface {
         IvSurface {
             s: s.clone(),
             dom: [u0, u1, v0, v1],
-            c0: [continuous(&s.hom.ku), continuous(&s.hom.kv)],
             hull: hull.filter(|h| h.0[0] <= h.1[0]),
             pieces,
         }
     }
 
-    /// Enclosures of `S`, `S_u`, `S_v` over `u × v` (see the module comment); `None` when
-    /// the box meets no piece, straddles a knot line where the surface is not continuous,
-    /// or a weight is not proven positive.
-    pub fn enclose(&self, u: Interval, v: Interval) -> Option<Enc> {
-        let d = self.dom;
-        let mut out: Option<Enc> = None;
-        let (mut us, mut vs) = (Vec::new(), Vec::new());
-        for (p, r) in &self.pieces {
-            let a0 = if r[0] <= d[0] {
-                f64::NEG_INFINITY
-            } else {
-                r[0]
-            };
-            let a1 = if r[1] >= d[1] { f64::INFINITY } else { r[1] };
-            let b0 = if r[2] <= d[2] {
-                f64::NEG_INFINITY
-            } else {
-                r[2]
-            };
-            let b1 = if r[3] >= d[3] { f64::INFINITY } else { r[3] };
-            let (ul, uh) = (u.lo.max(a0), u.hi.min(a1));
-            let (vl, vh) = (v.lo.max(b0), v.hi.min(b1));
-            if ul > uh || vl > vh {
-                continue;
-            }
-            us.push(r[0]);
-            vs.push(r[2]);
-            let e = piece_enc(p, r, Interval::new(ul, uh), Interval::new(vl, vh))?;
-            out = Some(match out {
-                None => e,
-                Some(o) => Enc {
-                    s: hull3(&o.s, &e.s),
-                    su: hull3(&o.su, &e.su),
-                    sv: hull3(&o.sv, &e.sv),
-                },
-            });
-        }
-        let many = |x: &mut Vec<f64>| {
-            x.sort_by(f64::total_cmp);
-            x.dedup();
-            x.len() > 1
-        };
-        if (many(&mut us) && !self.c0[0]) || (many(&mut vs) && !self.c0[1]) {
-            return None;
-        }
-        out
-    }
-
     /// Enclosure of the surface point `S(u, v)`.
     pub fn point(&self, uv: &[f64; 2]) -> Option<V> {
-        self.enclose(iv(uv[0]), iv(uv[1])).map(|e| e.s)
+        enclose_point(&self.s, iv(uv[0]), iv(uv[1]))
     }
 }
 
@@ -499,16 +348,15 @@ mod tests {
     #[test]
     fn enclosure_holds_evaluation_and_derivatives() {
         let s = sphere(&frame(), 2.0).unwrap();
-        let e = IvSurface::new(&s);
         for k in 0..50 {
             let (u, v) = (k as f64 / 49.0, (k * 13 % 50) as f64 / 49.0);
             let h = 1e-6;
-            let enc = e
-                .enclose(
-                    Interval::new(u - h, u + h).max_in(0.0, 1.0),
-                    Interval::new(v - h, v + h).max_in(0.0, 1.0),
-                )
-                .unwrap();
+            let enc = super::super::enclose::enclose_jet(
+                &s,
+                Interval::new(u - h, u + h).max_in(0.0, 1.0),
+                Interval::new(v - h, v + h).max_in(0.0, 1.0),
+            )
+            .unwrap();
             let (p, su, sv) = super::super::refine::point_d1(&s, u, v);
             for c in 0..3 {
                 assert!(enc.s[c].lo <= p[c] && p[c] <= enc.s[c].hi);
