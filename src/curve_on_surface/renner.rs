@@ -152,7 +152,7 @@ pub fn degree_reduction(
         };
         for i in 0..=8 {
             let x = cubic.eval(&(i as f64 / 8.0));
-            let uv = crate::ssi::foreign::project(surface, &x);
+            let uv = crate::spline::project::project(surface, &x);
             to_s = to_s.max(dist(&surface.eval(&uv[0], &uv[1]), &x));
         }
     }

@@ -26,6 +26,7 @@ pub mod interpolate;
 pub mod knots;
 pub mod linalg;
 pub mod nurbs;
+pub mod project;
 
 pub use bezier_curve::BezierCurve;
 pub use bezier_surface::BezierSurface;

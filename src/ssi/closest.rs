@@ -281,7 +281,7 @@ pub fn closest(
         if best.pieces >= newton_at && best.face != usize::MAX {
             newton_at *= 8;
             let g = &faces[best.face];
-            let (uv, _) = super::foreign::descend(&g.s, x, best.uv, &g.dom);
+            let (uv, _) = crate::spline::project::descend(&g.s, x, best.uv, &g.dom);
             if let Some(p) = g.point(&uv) {
                 let d = far_upper(x, &p);
                 if d < best.upper {

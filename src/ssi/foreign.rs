@@ -26,17 +26,13 @@
 use super::closest::{ClosestParams, IvSurface, closest};
 use super::coverage::near::Near;
 use super::krawczyk::{Uncertified, certify_on_curve};
-use super::refine::{domain, point_d1};
 use super::report::SsiResult;
-use crate::geom::{Point, dot};
 use crate::model::Model;
 use crate::scalar::Interval;
-use crate::spline::NurbsSurface;
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// Samples per foreign spline curve.
-pub const CURVE_SAMPLES: usize = 200;
+pub use super::foreign_read::{CURVE_SAMPLES, ForeignInput, read_foreign};
 
 /// The verdict on one foreign point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -144,135 +140,6 @@ pub struct CertifyReport {
     pub certified: bool,
     pub seconds: f64,
     pub notes: Vec<String>,
-}
-
-fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    a.sub(b)
-}
-
-/// Damped Gauss–Newton from `uv` towards the closest point of `s` to `x`.
-pub(crate) fn descend(
-    s: &NurbsSurface<f64, 3>,
-    x: &[f64; 3],
-    mut uv: [f64; 2],
-    d: &[f64; 4],
-) -> ([f64; 2], f64) {
-    let err = |uv: &[f64; 2]| {
-        let p = s.eval(&uv[0], &uv[1]);
-        dot(&sub(&p, x), &sub(&p, x))
-    };
-    let mut e = err(&uv);
-    for _ in 0..40 {
-        let (p, su, sv) = point_d1(s, uv[0], uv[1]);
-        let r = sub(&p, x);
-        let (a, b, c) = (dot(&su, &su), dot(&su, &sv), dot(&sv, &sv));
-        let (g0, g1) = (dot(&r, &su), dot(&r, &sv));
-        let det = a * c - b * b;
-        if det.is_nan() || det == 0.0 {
-            break;
-        }
-        let step = [-(c * g0 - b * g1) / det, -(a * g1 - b * g0) / det];
-        let mut t = 1.0;
-        let mut moved = false;
-        for _ in 0..12 {
-            let next = [
-                (uv[0] + t * step[0]).clamp(d[0], d[1]),
-                (uv[1] + t * step[1]).clamp(d[2], d[3]),
-            ];
-            let en = err(&next);
-            if en < e {
-                (uv, e, moved) = (next, en, true);
-                break;
-            }
-            t *= 0.5;
-        }
-        if !moved {
-            break;
-        }
-    }
-    (uv, e)
-}
-
-/// Parameters of (a local) closest point of `s` to `x`: the best of several grid starts,
-/// each refined by damped Gauss–Newton.
-pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
-    let d = domain(s);
-    let n = 16;
-    let mut starts: Vec<(f64, [f64; 2])> = Vec::with_capacity((n + 1) * (n + 1));
-    for i in 0..=n {
-        for j in 0..=n {
-            let uv = [
-                d[0] + (d[1] - d[0]) * i as f64 / n as f64,
-                d[2] + (d[3] - d[2]) * j as f64 / n as f64,
-            ];
-            let p = s.eval(&uv[0], &uv[1]);
-            starts.push((dot(&sub(&p, x), &sub(&p, x)), uv));
-        }
-    }
-    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    starts
-        .iter()
-        .take(4)
-        .map(|(_, uv)| descend(s, x, *uv, &d))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map_or([d[0], d[2]], |r| r.0)
-}
-
-/// A foreign curve as points: `(name, kind, points)`.
-pub type ForeignInput = (String, &'static str, Vec<[f64; 3]>);
-
-/// The curves of a foreign result file: a model's space curves (sampled), or JSON
-/// polylines (`[[[x,y,z],...],...]`, `{"curves": [...]}`, or a vericad `ssi` result).
-pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, String> {
-    let text = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if let Ok(v) = serde_json::from_slice::<serde_json::Value>(&text) {
-        let polys = if let Some(pairs) = v.get("pairs").and_then(|p| p.as_array()) {
-            pairs
-                .iter()
-                .flat_map(|p| p["branches"].as_array().cloned().unwrap_or_default())
-                .map(|b| b["points"].clone())
-                .collect()
-        } else if let Some(c) = v.get("curves").and_then(|c| c.as_array()) {
-            c.clone()
-        } else if let Some(c) = v.as_array() {
-            c.clone()
-        } else {
-            Vec::new()
-        };
-        if !polys.is_empty() || v.get("pairs").is_some() {
-            return polys
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    let pts: Vec<[f64; 3]> = serde_json::from_value(p.clone()).map_err(|e| {
-                        format!("{}: curve {i}: expected [[x,y,z],...]: {e}", path.display())
-                    })?;
-                    if pts.iter().flatten().any(|c| !c.is_finite()) {
-                        return Err(format!(
-                            "{}: curve {i}: non-finite coordinate",
-                            path.display()
-                        ));
-                    }
-                    Ok((format!("polyline {i}"), "polyline", pts))
-                })
-                .collect();
-        }
-    }
-    let m = crate::io::read_model(path).map_err(|e| e.to_string())?;
-    if m.curves.is_empty() {
-        return Err(format!("{}: no curves found", path.display()));
-    }
-    Ok(m.curves
-        .iter()
-        .map(|c| {
-            let s = c.geometry.to_space();
-            let (t0, t1) = s.hom.domain();
-            let pts = (0..CURVE_SAMPLES)
-                .map(|k| s.eval(&(t0 + (t1 - t0) * k as f64 / (CURVE_SAMPLES - 1) as f64)))
-                .collect();
-            (c.name.clone(), "spline", pts)
-        })
-        .collect())
 }
 
 /// Proven lower bound on the distance from `c` to the segment `[p, q]`.

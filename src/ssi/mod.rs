@@ -28,6 +28,7 @@ pub mod driver;
 pub mod enclose;
 pub mod fit;
 pub mod foreign;
+pub mod foreign_read;
 pub mod job;
 pub mod krawczyk;
 pub mod mesh;

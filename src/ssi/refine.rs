@@ -55,14 +55,7 @@ fn scale(a: &V3, s: f64) -> V3 {
     a.scale(&s)
 }
 
-/// `S`, `S_u`, `S_v` of a NURBS surface (rational quotient rule on the homogeneous form).
-pub fn point_d1(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> (V3, V3, V3) {
-    let (h, hu, hv) = s.hom.eval_d1(&u, &v);
-    let p = scale(&h.wp, 1.0 / h.w);
-    let su = scale(&sub(&hu.wp, &scale(&p, hu.w)), 1.0 / h.w);
-    let sv = scale(&sub(&hv.wp, &scale(&p, hv.w)), 1.0 / h.w);
-    (p, su, sv)
-}
+pub use crate::spline::project::point_d1;
 
 /// Parameter domain `[u0, u1] × [v0, v1]`.
 pub fn domain(s: &NurbsSurface<f64, 3>) -> [f64; 4] {

@@ -1,0 +1,89 @@
+//! A local closest point of a surface to a point: grid starts refined by damped
+//! Gauss–Newton. It finds *a* nearby foot, not the global closest point, and proves nothing:
+//! callers use it for measured distances (evidence) and as a start for certified searches.
+
+use super::NurbsSurface;
+use crate::geom::{Point, dot};
+
+/// `S(u, v)`, `S_u`, `S_v` of a rational surface (quotient rule on the homogeneous
+/// derivatives).
+pub fn point_d1(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+    let (h, hu, hv) = s.hom.eval_d1(&u, &v);
+    let p = h.wp.scale(&(1.0 / h.w));
+    let su = hu.wp.sub(&p.scale(&hu.w)).scale(&(1.0 / h.w));
+    let sv = hv.wp.sub(&p.scale(&hv.w)).scale(&(1.0 / h.w));
+    (p, su, sv)
+}
+
+fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    a.sub(b)
+}
+
+/// Damped Gauss–Newton from `uv` towards the closest point of `s` to `x`.
+pub fn descend(
+    s: &NurbsSurface<f64, 3>,
+    x: &[f64; 3],
+    mut uv: [f64; 2],
+    d: &[f64; 4],
+) -> ([f64; 2], f64) {
+    let err = |uv: &[f64; 2]| {
+        let p = s.eval(&uv[0], &uv[1]);
+        dot(&sub(&p, x), &sub(&p, x))
+    };
+    let mut e = err(&uv);
+    for _ in 0..40 {
+        let (p, su, sv) = point_d1(s, uv[0], uv[1]);
+        let r = sub(&p, x);
+        let (a, b, c) = (dot(&su, &su), dot(&su, &sv), dot(&sv, &sv));
+        let (g0, g1) = (dot(&r, &su), dot(&r, &sv));
+        let det = a * c - b * b;
+        if det.is_nan() || det == 0.0 {
+            break;
+        }
+        let step = [-(c * g0 - b * g1) / det, -(a * g1 - b * g0) / det];
+        let mut t = 1.0;
+        let mut moved = false;
+        for _ in 0..12 {
+            let next = [
+                (uv[0] + t * step[0]).clamp(d[0], d[1]),
+                (uv[1] + t * step[1]).clamp(d[2], d[3]),
+            ];
+            let en = err(&next);
+            if en < e {
+                (uv, e, moved) = (next, en, true);
+                break;
+            }
+            t *= 0.5;
+        }
+        if !moved {
+            break;
+        }
+    }
+    (uv, e)
+}
+
+/// Parameters of (a local) closest point of `s` to `x`: the best of several grid starts,
+/// each refined by damped Gauss–Newton.
+pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    let d = [u0, u1, v0, v1];
+    let n = 16;
+    let mut starts: Vec<(f64, [f64; 2])> = Vec::with_capacity((n + 1) * (n + 1));
+    for i in 0..=n {
+        for j in 0..=n {
+            let uv = [
+                d[0] + (d[1] - d[0]) * i as f64 / n as f64,
+                d[2] + (d[3] - d[2]) * j as f64 / n as f64,
+            ];
+            let p = s.eval(&uv[0], &uv[1]);
+            starts.push((dot(&sub(&p, x), &sub(&p, x)), uv));
+        }
+    }
+    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    starts
+        .iter()
+        .take(4)
+        .map(|(_, uv)| descend(s, x, *uv, &d))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or([d[0], d[2]], |r| r.0)
+}
