@@ -10,16 +10,15 @@
 //! rectangle in the plane; cylinders and cones: the axial range, full turn); spheres and tori
 //! are full. Anything skipped is counted in the model's warnings.
 
+mod entities;
 pub mod part21;
 mod units;
+use entities::Reader;
 use units::unit;
 pub mod write;
 
-use crate::geom::Point;
-use crate::model::{Curve, CurveGeometry, Model, Surface, SurfaceKind};
-use crate::spline::construct::{self, Frame};
-use crate::spline::{NurbsCurve, NurbsSurface};
-use part21::{Entity, Part21, Value};
+use crate::model::{Curve, CurveGeometry, Model, Surface};
+use part21::Entity;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A fault in a STEP file: where and why.
@@ -30,449 +29,6 @@ pub struct StepError {
     /// `line N` for syntax faults, `#N` for an entity.
     pub location: String,
     pub reason: String,
-}
-
-struct Reader<'a> {
-    p: &'a Part21,
-    file: &'a str,
-    angle_scale: f64,
-}
-
-type R<T> = Result<T, StepError>;
-
-fn nums(v: &Value) -> Option<Vec<f64>> {
-    v.list()?.iter().map(|x| x.num()).collect()
-}
-
-impl Reader<'_> {
-    fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
-        Err(StepError {
-            file: self.file.into(),
-            location: format!("#{id}"),
-            reason: reason.into(),
-        })
-    }
-    fn get(&self, id: u64) -> R<&Entity> {
-        match self.p.entities.get(&id) {
-            Some(e) => Ok(e),
-            None => self.err(id, "reference to a missing instance"),
-        }
-    }
-    fn arg<'b>(&self, id: u64, args: &'b [Value], i: usize) -> R<&'b Value> {
-        match args.get(i) {
-            Some(v) => Ok(v),
-            None => self.err(id, format!("missing attribute {i}")),
-        }
-    }
-    fn num(&self, id: u64, args: &[Value], i: usize) -> R<f64> {
-        match self.arg(id, args, i)?.num() {
-            Some(x) if x.is_finite() => Ok(x),
-            _ => self.err(id, format!("attribute {i} is not a number")),
-        }
-    }
-    /// A degree (or other count): an integer, not a real that would be truncated.
-    fn degree(&self, id: u64, args: &[Value], i: usize) -> R<usize> {
-        let x = self.num(id, args, i)?;
-        if x.fract() != 0.0 || !(1.0..=crate::spline::MAX_DEGREE as f64).contains(&x) {
-            return self.err(
-                id,
-                format!(
-                    "attribute {i} (degree) is {x}, not an integer in 1..={}",
-                    crate::spline::MAX_DEGREE
-                ),
-            );
-        }
-        Ok(x as usize)
-    }
-    fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
-        match self.arg(id, args, i)?.reference() {
-            Some(r) => Ok(r),
-            None => self.err(id, format!("attribute {i} is not a reference")),
-        }
-    }
-    fn point(&self, id: u64) -> R<[f64; 3]> {
-        let a = self
-            .get(id)?
-            .part("CARTESIAN_POINT")
-            .ok_or_else(|| StepError {
-                file: self.file.into(),
-                location: format!("#{id}"),
-                reason: "expected a CARTESIAN_POINT".into(),
-            })?;
-        match self.arg(id, a, 1).map(nums)? {
-            Some(c) if c.len() == 3 && c.iter().all(|x| x.is_finite()) => Ok([c[0], c[1], c[2]]),
-            Some(c) if c.len() == 2 => Ok([c[0], c[1], 0.0]),
-            _ => self.err(id, "point coordinates are not 2 or 3 finite numbers"),
-        }
-    }
-    fn direction(&self, id: u64) -> R<[f64; 3]> {
-        let a = self.get(id)?.part("DIRECTION").ok_or_else(|| StepError {
-            file: self.file.into(),
-            location: format!("#{id}"),
-            reason: "expected a DIRECTION".into(),
-        })?;
-        match self.arg(id, a, 1).map(nums)? {
-            Some(c) if c.len() == 3 => {
-                let l = crate::geom::norm(&[c[0], c[1], c[2]]);
-                if l > 0.0 && l.is_finite() {
-                    Ok([c[0] / l, c[1] / l, c[2] / l])
-                } else {
-                    self.err(id, "zero or non-finite direction")
-                }
-            }
-            _ => self.err(id, "direction is not 3 numbers"),
-        }
-    }
-    fn placement(&self, id: u64) -> R<Frame> {
-        let a = self
-            .get(id)?
-            .part("AXIS2_PLACEMENT_3D")
-            .or_else(|| self.p.entities.get(&id)?.part("AXIS1_PLACEMENT"));
-        let Some(a) = a else {
-            return self.err(id, "expected an AXIS2_PLACEMENT_3D");
-        };
-        let o = self.point(self.reference(id, a, 1)?)?;
-        let z = match a.get(2).and_then(|v| v.reference()) {
-            Some(r) => self.direction(r)?,
-            None => [0.0, 0.0, 1.0],
-        };
-        let xr = match a.get(3).and_then(|v| v.reference()) {
-            Some(r) => self.direction(r)?,
-            None => {
-                if z[0].abs() < 0.9 {
-                    [1.0, 0.0, 0.0]
-                } else {
-                    [0.0, 1.0, 0.0]
-                }
-            }
-        };
-        let x = xr.sub(&z.scale(&crate::geom::dot(&xr, &z)));
-        let l = crate::geom::norm(&x);
-        if l == 0.0 {
-            return self.err(id, "ref_direction parallel to axis");
-        }
-        let x = x.scale(&(1.0 / l));
-        Ok(Frame {
-            o,
-            x,
-            y: crate::geom::cross(&z, &x),
-            z,
-        })
-    }
-    fn knots(&self, id: u64, mults: &Value, knots: &Value) -> R<Vec<f64>> {
-        let (Some(m), Some(k)) = (mults.list(), nums(knots)) else {
-            return self.err(id, "knot multiplicities or knots malformed");
-        };
-        if m.len() != k.len() {
-            return self.err(
-                id,
-                format!("{} multiplicities for {} knots", m.len(), k.len()),
-            );
-        }
-        let mut out = Vec::new();
-        for (mi, ki) in m.iter().zip(&k) {
-            match mi.int() {
-                Some(c) if (1..=64).contains(&c) => {
-                    out.extend(std::iter::repeat_n(*ki, c as usize))
-                }
-                _ => return self.err(id, "knot multiplicity is not a small positive integer"),
-            }
-        }
-        Ok(out)
-    }
-    fn bspline_surface(&self, id: u64, e: &Entity) -> R<NurbsSurface<f64, 3>> {
-        // Simple instances carry the name first; complex ones split the attributes.
-        let (base, k) =
-            match e {
-                Entity::Simple(_, a) => (&a[1.min(a.len())..], &a[8.min(a.len())..]),
-                Entity::Complex(_) => match (
-                    e.part("B_SPLINE_SURFACE"),
-                    e.part("B_SPLINE_SURFACE_WITH_KNOTS"),
-                ) {
-                    (Some(b), Some(k)) => (b, k),
-                    _ => return self.err(
-                        id,
-                        "complex B-spline surface without B_SPLINE_SURFACE and _WITH_KNOTS parts",
-                    ),
-                },
-            };
-        let p = self.degree(id, base, 0)?;
-        let q = self.degree(id, base, 1)?;
-        let rows = self.arg(id, base, 2)?.list().ok_or_else(|| StepError {
-            file: self.file.into(),
-            location: format!("#{id}"),
-            reason: "control points are not a list".into(),
-        })?;
-        let nu = rows.len();
-        let nv = rows.first().and_then(|r| r.list()).map_or(0, |r| r.len());
-        let mut pts = Vec::with_capacity(nu * nv);
-        for r in rows {
-            let Some(r) = r.list() else {
-                return self.err(id, "control point row is not a list");
-            };
-            if r.len() != nv {
-                return self.err(id, "control net is not rectangular");
-            }
-            for c in r {
-                match c.reference() {
-                    Some(pid) => pts.push(self.point(pid)?),
-                    None => return self.err(id, "control point is not a reference"),
-                }
-            }
-        }
-        let ku = self.knots(id, self.arg(id, k, 0)?, self.arg(id, k, 2)?)?;
-        let kv = self.knots(id, self.arg(id, k, 1)?, self.arg(id, k, 3)?)?;
-        let w = match e.part("RATIONAL_B_SPLINE_SURFACE") {
-            Some(rw) => {
-                let Some(wr) = rw.first().and_then(|v| v.list()) else {
-                    return self.err(id, "weights are not a list");
-                };
-                let mut w = Vec::with_capacity(nu * nv);
-                for r in wr {
-                    match nums(r) {
-                        Some(x) if x.len() == nv => w.extend(x),
-                        _ => return self.err(id, "weight row malformed"),
-                    }
-                }
-                w
-            }
-            None => vec![1.0; nu * nv],
-        };
-        NurbsSurface::new(ku, p, kv, q, nu, nv, pts, w).or_else(|e| self.err(id, e.to_string()))
-    }
-    fn bspline_curve(&self, id: u64, e: &Entity) -> R<NurbsCurve<f64, 3>> {
-        let (base, k) = match e {
-            Entity::Simple(_, a) => (&a[1.min(a.len())..], &a[6.min(a.len())..]),
-            Entity::Complex(_) => match (
-                e.part("B_SPLINE_CURVE"),
-                e.part("B_SPLINE_CURVE_WITH_KNOTS"),
-            ) {
-                (Some(b), Some(k)) => (b, k),
-                _ => {
-                    return self.err(
-                        id,
-                        "complex B-spline curve without B_SPLINE_CURVE and _WITH_KNOTS parts",
-                    );
-                }
-            },
-        };
-        let p = self.degree(id, base, 0)?;
-        let Some(cl) = self.arg(id, base, 1)?.list() else {
-            return self.err(id, "control points are not a list");
-        };
-        let pts = cl
-            .iter()
-            .map(|c| {
-                c.reference().map_or_else(
-                    || self.err(id, "control point is not a reference"),
-                    |r| self.point(r),
-                )
-            })
-            .collect::<R<Vec<_>>>()?;
-        let knots = self.knots(id, self.arg(id, k, 0)?, self.arg(id, k, 1)?)?;
-        let w = match e.part("RATIONAL_B_SPLINE_CURVE") {
-            Some(rw) => match rw.first().and_then(nums) {
-                Some(w) => w,
-                None => return self.err(id, "weights malformed"),
-            },
-            None => vec![1.0; pts.len()],
-        };
-        NurbsCurve::new(knots, p, pts, w).or_else(|e| self.err(id, e.to_string()))
-    }
-    /// Cartesian points bounding a face: vertices and curve control points reachable from
-    /// its bounds, plus the bounding squares of circles.
-    fn face_points(&self, face: u64) -> Vec<[f64; 3]> {
-        let mut out = Vec::new();
-        let mut seen = BTreeSet::new();
-        let mut stack: Vec<u64> = self
-            .p
-            .entities
-            .get(&face)
-            .and_then(|e| e.part(e.name()))
-            .and_then(|a| a.get(1))
-            .map(|v| {
-                let mut r = vec![];
-                v.refs(&mut r);
-                r
-            })
-            .unwrap_or_default();
-        while let Some(id) = stack.pop() {
-            if !seen.insert(id) || seen.len() > 100_000 {
-                continue;
-            }
-            let Some(e) = self.p.entities.get(&id) else {
-                continue;
-            };
-            if e.is("CARTESIAN_POINT") {
-                if let Ok(p) = self.point(id) {
-                    out.push(p);
-                }
-                continue;
-            }
-            if let Some(a) = e.part("CIRCLE") {
-                if let (Some(pl), Some(r)) = (
-                    a.get(1).and_then(|v| v.reference()),
-                    a.get(2).and_then(|v| v.num()),
-                ) && let Ok(f) = self.placement(pl)
-                {
-                    for (s, t) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
-                        out.push(f.at(s * r, t * r, 0.0));
-                    }
-                }
-                continue;
-            }
-            let walk = [
-                "FACE_BOUND",
-                "FACE_OUTER_BOUND",
-                "EDGE_LOOP",
-                "ORIENTED_EDGE",
-                "EDGE_CURVE",
-                "VERTEX_POINT",
-                "VERTEX_LOOP",
-                "POLY_LOOP",
-                "B_SPLINE_CURVE",
-                "B_SPLINE_CURVE_WITH_KNOTS",
-                "TRIMMED_CURVE",
-                "SURFACE_CURVE",
-                "SEAM_CURVE",
-            ];
-            if walk.iter().any(|w| e.is(w)) {
-                stack.extend(e.refs());
-            }
-        }
-        out
-    }
-    /// Axial range of points in a frame (`None` without points).
-    fn axial_range(f: &Frame, pts: &[[f64; 3]]) -> Option<(f64, f64)> {
-        let hs: Vec<f64> = pts
-            .iter()
-            .map(|p| crate::geom::dot(&p.sub(&f.o), &f.z))
-            .collect();
-        let lo = hs.iter().cloned().fold(f64::INFINITY, f64::min);
-        let hi = hs.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-        (lo < hi).then_some((lo, hi))
-    }
-    /// The NURBS form of surface `id` (bounded by face `face` when given).
-    fn surface(
-        &self,
-        id: u64,
-        face: Option<u64>,
-    ) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
-        let e = self.get(id)?;
-        let pts = face.map(|f| self.face_points(f)).unwrap_or_default();
-        let conv = |r: Result<NurbsSurface<f64, 3>, crate::spline::SplineError>| {
-            r.or_else(|x| self.err(id, x.to_string()))
-        };
-        if e.is("B_SPLINE_SURFACE_WITH_KNOTS") {
-            return Ok(Some((self.bspline_surface(id, e)?, SurfaceKind::BSpline)));
-        }
-        if let Some(a) = e.part("PLANE") {
-            let f = self.placement(self.reference(id, a, 1)?)?;
-            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-            for p in &pts {
-                let d = p.sub(&f.o);
-                let c = [crate::geom::dot(&d, &f.x), crate::geom::dot(&d, &f.y)];
-                for i in 0..2 {
-                    lo[i] = lo[i].min(c[i]);
-                    hi[i] = hi[i].max(c[i]);
-                }
-            }
-            if !(lo[0] < hi[0] && lo[1] < hi[1]) {
-                (lo, hi) = ([-1.0, -1.0], [1.0, 1.0]);
-            }
-            let s = conv(construct::bilinear(
-                f.at(lo[0], lo[1], 0.0),
-                f.at(hi[0], lo[1], 0.0),
-                f.at(lo[0], hi[1], 0.0),
-                f.at(hi[0], hi[1], 0.0),
-            ))?;
-            return Ok(Some((s, SurfaceKind::Plane)));
-        }
-        if let Some(a) = e.part("CYLINDRICAL_SURFACE") {
-            let f = self.placement(self.reference(id, a, 1)?)?;
-            let r = self.num(id, a, 2)?;
-            let (h0, h1) = Self::axial_range(&f, &pts).unwrap_or((0.0, r.max(1.0)));
-            return Ok(Some((
-                conv(construct::cylinder(&f, r, h0, h1))?,
-                SurfaceKind::Cylinder,
-            )));
-        }
-        if let Some(a) = e.part("CONICAL_SURFACE") {
-            let f = self.placement(self.reference(id, a, 1)?)?;
-            let (r, al) = (self.num(id, a, 2)?, self.num(id, a, 3)? * self.angle_scale);
-            let (h0, h1) = Self::axial_range(&f, &pts).unwrap_or((0.0, 1.0));
-            return Ok(Some((
-                conv(construct::cone(&f, r, al, h0, h1))?,
-                SurfaceKind::Cone,
-            )));
-        }
-        if let Some(a) = e.part("SPHERICAL_SURFACE") {
-            let f = self.placement(self.reference(id, a, 1)?)?;
-            return Ok(Some((
-                conv(construct::sphere(&f, self.num(id, a, 2)?))?,
-                SurfaceKind::Sphere,
-            )));
-        }
-        if let Some(a) = e.part("TOROIDAL_SURFACE") {
-            let f = self.placement(self.reference(id, a, 1)?)?;
-            return Ok(Some((
-                conv(construct::torus(
-                    &f,
-                    self.num(id, a, 2)?,
-                    self.num(id, a, 3)?,
-                ))?,
-                SurfaceKind::Torus,
-            )));
-        }
-        if let Some(a) = e.part("SURFACE_OF_REVOLUTION") {
-            let c = self.reference(id, a, 1)?;
-            let ce = self.get(c)?;
-            if !ce.is("B_SPLINE_CURVE_WITH_KNOTS") {
-                return Ok(None);
-            }
-            let curve = self.bspline_curve(c, ce)?;
-            let ax = self.reference(id, a, 2)?;
-            let aa = self
-                .get(ax)?
-                .part("AXIS1_PLACEMENT")
-                .ok_or_else(|| StepError {
-                    file: self.file.into(),
-                    location: format!("#{ax}"),
-                    reason: "expected AXIS1_PLACEMENT".into(),
-                })?;
-            let o = self.point(self.reference(ax, aa, 1)?)?;
-            let z = match aa.get(2).and_then(|v| v.reference()) {
-                Some(r) => self.direction(r)?,
-                None => [0.0, 0.0, 1.0],
-            };
-            return Ok(Some((
-                conv(construct::revolve_curve(&o, &z, &curve))?,
-                SurfaceKind::Revolution,
-            )));
-        }
-        if let Some(a) = e.part("SURFACE_OF_LINEAR_EXTRUSION") {
-            let c = self.reference(id, a, 1)?;
-            let ce = self.get(c)?;
-            if !ce.is("B_SPLINE_CURVE_WITH_KNOTS") {
-                return Ok(None);
-            }
-            let curve = self.bspline_curve(c, ce)?;
-            let v = self.reference(id, a, 2)?;
-            let va = self.get(v)?.part("VECTOR").ok_or_else(|| StepError {
-                file: self.file.into(),
-                location: format!("#{v}"),
-                reason: "expected VECTOR".into(),
-            })?;
-            let d = self
-                .direction(self.reference(v, va, 1)?)?
-                .scale(&self.num(v, va, 2)?);
-            return Ok(Some((
-                conv(construct::extrude(&curve, &d))?,
-                SurfaceKind::Extrusion,
-            )));
-        }
-        Ok(None)
-    }
 }
 
 /// Surface entities that are recognised but not converted (reported when a bare patch set
@@ -520,10 +76,10 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             Some((*id, a.get(2)?.reference()?))
         })
         .collect();
-    let targets: Vec<(Option<u64>, u64)> = if !faces.is_empty() {
-        faces.iter().map(|(f, s)| (Some(*f), *s)).collect()
-    } else {
-        let mut referenced = BTreeSet::new();
+    // Entities referenced by a surface entity (a bare patch set's surfaces are the ones no
+    // other surface uses, e.g. not the basis of an offset surface).
+    let mut referenced = BTreeSet::new();
+    if faces.is_empty() {
         for e in p.entities.values() {
             if SURFACE_TYPES
                 .iter()
@@ -533,6 +89,10 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
                 referenced.extend(e.refs());
             }
         }
+    }
+    let targets: Vec<(Option<u64>, u64)> = if !faces.is_empty() {
+        faces.iter().map(|(f, s)| (Some(*f), *s)).collect()
+    } else {
         p.entities
             .iter()
             .filter(|(id, e)| SURFACE_TYPES.iter().any(|t| e.is(t)) && !referenced.contains(id))
@@ -543,16 +103,6 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     // dropped silently.
     let mut skipped: BTreeMap<String, Vec<u64>> = BTreeMap::new();
     if faces.is_empty() {
-        let mut referenced = BTreeSet::new();
-        for e in p.entities.values() {
-            if SURFACE_TYPES
-                .iter()
-                .chain(&UNSUPPORTED_SURFACES)
-                .any(|t| e.is(t))
-            {
-                referenced.extend(e.refs());
-            }
-        }
         for (id, e) in &p.entities {
             if let Some(t) = UNSUPPORTED_SURFACES.iter().find(|t| e.is(t))
                 && !SURFACE_TYPES.iter().any(|t| e.is(t))
