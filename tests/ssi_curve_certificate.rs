@@ -462,12 +462,7 @@ fn summary_speaks_of_the_curve() {
         y: [0.0, 0.0, 1.0],
         z: [1.0, 0.0, 0.0],
     };
-    let axis_z = Frame {
-        o: [0.0; 3],
-        x: [1.0, 0.0, 0.0],
-        y: [0.0, 1.0, 0.0],
-        z: [0.0, 0.0, 1.0],
-    };
+    let axis_z = Frame::WORLD;
     let cases = [
         // Transversal: every point proven within tol of the circle.
         (exact_sphere(2.0), plane_z(0.7, 3.0), Some(true)),

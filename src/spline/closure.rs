@@ -127,13 +127,7 @@ mod tests {
 
     #[test]
     fn sphere_has_two_poles_and_a_seam_in_any_frame() {
-        let world = Frame {
-            o: [0.0; 3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        };
-        for f in [world, rotated()] {
+        for f in [Frame::WORLD, rotated()] {
             let c = Closure::of(&sphere(&f, 2.0).unwrap());
             // revolve: u around the axis (closed), v along the profile (poles at both ends).
             assert!(c.seam_u ^ c.seam_v, "{c:?}");

@@ -34,6 +34,14 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// The world frame: origin and the coordinate axes.
+    pub const WORLD: Frame = Frame {
+        o: [0.0; 3],
+        x: [1.0, 0.0, 0.0],
+        y: [0.0, 1.0, 0.0],
+        z: [0.0, 0.0, 1.0],
+    };
+
     /// The point `o + a x + b y + c z`.
     pub fn at(&self, a: f64, b: f64, c: f64) -> [f64; 3] {
         self.o
@@ -92,12 +100,7 @@ pub fn revolve_curve_range(
     a0: f64,
     a1: f64,
 ) -> Result<NurbsSurface<f64, 3>, SplineError> {
-    let unit = Frame {
-        o: [0.0; 3],
-        x: [1.0, 0.0, 0.0],
-        y: [0.0, 1.0, 0.0],
-        z: [0.0, 0.0, 1.0],
-    };
+    let unit = Frame::WORLD;
     let circle = arc(&unit, 1.0, a0, a1)?;
     let (cpts, cws) = circle.points_weights();
     let (pp, pw) = c.points_weights();

@@ -460,12 +460,7 @@ mod tests {
     /// The sphere of radius 2 cut by z = h: radius bounds the distance to the circle.
     #[test]
     fn sphere_and_plane() {
-        let f = Frame {
-            o: [0.0; 3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        };
+        let f = Frame::WORLD;
         let s = sphere(&f, 2.0).unwrap();
         let h = 0.7;
         let a = plane_z(h);
@@ -490,12 +485,7 @@ mod tests {
     /// Where the surfaces touch, or nearly touch without meeting, nothing is certified.
     #[test]
     fn tangency_is_uncertified() {
-        let f = Frame {
-            o: [0.0; 3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        };
+        let f = Frame::WORLD;
         let s = sphere(&f, 2.0).unwrap();
         for h in [2.0, 2.0 + 1e-9, 2.0 - 1e-12] {
             let a = plane_z(h);
