@@ -9,6 +9,15 @@ use num_traits::{One, Signed, Zero};
 use vericad::scalar::lift;
 
 /// The exact value of a finite `f64`.
+/// Cases to run: `small` by default, `large` with `VERICAD_LARGE` set.
+pub fn cases<T>(small: T, large: T) -> T {
+    if std::env::var("VERICAD_LARGE").is_ok() {
+        large
+    } else {
+        small
+    }
+}
+
 pub fn q(x: f64) -> Q {
     lift::<Q>(x)
 }

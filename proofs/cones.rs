@@ -149,11 +149,7 @@ fn cone(rng: &mut Rng, axis: [f64; 3], spread: f64, k: usize, width: f64) -> Vec
 /// orthogonal integer directions.
 #[test]
 fn separation_lemma_random_and_adversarial() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        200_000
-    } else {
-        1_500
-    };
+    let n = cases(1_500, 200_000);
     let mut rng = Rng::new(21);
     let (mut yes, mut no) = (0, 0);
     for i in 0..n {
@@ -298,11 +294,7 @@ pub fn prop_normals_in_cone(h: &IPatch, polynomial: bool, t: [f64; 3], rng: &mut
 /// amount, tested against a direction across their mean normal.
 #[test]
 fn normals_lie_in_the_separated_cone() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        20_000
-    } else {
-        600
-    };
+    let n = cases(600, 20_000);
     let mut rng = Rng::new(31);
     let mut yes = 0;
     for i in 0..n {

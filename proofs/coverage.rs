@@ -187,11 +187,7 @@ fn random_graph_patch(rng: &mut Rng, kind: u64) -> NurbsSurface<f64, 3> {
 /// rational, with the output empty or far away.
 #[test]
 fn missing_branches_against_a_plane() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        2_000
-    } else {
-        90
-    };
+    let n = cases(90, 2_000);
     let mut rng = Rng::new(41);
     let pl = plane();
     let mut checked = 0usize;
@@ -208,11 +204,7 @@ fn missing_branches_against_a_plane() {
 /// (`A(½, ½) = B(s, t)` exactly, all values dyadic so the translation is exact in f64).
 #[test]
 fn missing_branches_between_random_patches() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        1_000
-    } else {
-        40
-    };
+    let n = cases(40, 1_000);
     let mut rng = Rng::new(43);
     for i in 0..n {
         let mk = |rng: &mut Rng| {

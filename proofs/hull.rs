@@ -41,11 +41,7 @@ fn pt(rng: &mut Rng, kind: u64) -> [f64; 3] {
 
 #[test]
 fn dist_upper_bounds_the_exact_distance() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        1_000_000
-    } else {
-        10_000
-    };
+    let n = cases(10_000, 1_000_000);
     let mut rng = Rng::new(3);
     for i in 0..n {
         let kind = i % 6;
@@ -163,11 +159,7 @@ fn random_segments(rng: &mut Rng, ints: bool) -> Vec<([f64; 3], [f64; 3])> {
 /// real coordinates, degenerate boxes, interval control points of positive width.
 #[test]
 fn near_decisions_are_sound() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        100_000
-    } else {
-        500
-    };
+    let n = cases(500, 100_000);
     let mut rng = Rng::new(11);
     let (mut yes_box, mut yes_net) = (0, 0);
     for i in 0..n {
@@ -257,11 +249,7 @@ pub fn prop_separated_along(a: &[V], b: &[V], n: &[f64; 3]) -> bool {
 
 #[test]
 fn separated_along_is_sound() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        200_000
-    } else {
-        2_500
-    };
+    let n = cases(2_500, 200_000);
     let mut rng = Rng::new(5);
     let mut yes = 0;
     for i in 0..n {
@@ -501,11 +489,7 @@ fn random_patch(rng: &mut Rng) -> IPatch {
 /// and tiny (near-underflow) coordinates.
 #[test]
 fn halving_and_hulls_enclose_the_exact_pieces() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        50_000
-    } else {
-        400
-    };
+    let n = cases(400, 50_000);
     let mut rng = Rng::new(9);
     for _ in 0..n {
         let h = random_patch(&mut rng);

@@ -133,11 +133,7 @@ fn interval_ops_enclose_adversarial_pairs() {
 /// products near the Dekker range limits; and operands one ulp apart.
 #[test]
 fn interval_ops_enclose_random() {
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        400_000
-    } else {
-        4_000
-    };
+    let n = cases(4_000, 400_000);
     let mut rng = Rng::new(0x5eed_1234);
     let pool = adversarial();
     for i in 0..n {

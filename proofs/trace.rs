@@ -2,6 +2,7 @@
 //! branches reported as open and closed curves are read off the segment structure by
 //! `trace`; the report's branch count, closedness and end kinds rest on this.
 
+use crate::common::cases;
 use std::collections::{BTreeMap, BTreeSet};
 use vericad::ssi::topology::Topology;
 use vericad::ssi::trace::{check_invariants, trace};
@@ -126,11 +127,7 @@ fn trace_invariants_exhaustive() {
 #[test]
 fn trace_invariants_random_curves() {
     let mut rng = crate::common::Rng::new(77);
-    let n = if std::env::var("VERICAD_LARGE").is_ok() {
-        200_000
-    } else {
-        20_000
-    };
+    let n = cases(20_000, 200_000);
     for _ in 0..n {
         let np = 2 + rng.below(11) as u8;
         let mut perm: Vec<u8> = (0..np).collect();
