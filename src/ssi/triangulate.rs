@@ -271,6 +271,23 @@ pub fn leaf_cells(
     (leaves, unresolved)
 }
 
+/// Give both sides of a closed seam the same border vertices: `first` holds lattice points
+/// keyed by the coordinate across the seam (0 or `top` on its two sides), `second` the same
+/// points with the keys swapped.
+fn mirror_seam(first: &mut BTreeSet<(u64, u64)>, second: &mut BTreeSet<(u64, u64)>, top: u64) {
+    let side: Vec<u64> = first
+        .iter()
+        .filter(|&&(a, _)| a == 0 || a == top)
+        .map(|&(_, b)| b)
+        .collect();
+    for b in side {
+        for a in [0, top] {
+            first.insert((a, b));
+            second.insert((b, a));
+        }
+    }
+}
+
 /// Triangulate the leaves crack-free (see the module comment).
 pub fn triangulate_cells(
     s: &NurbsSurface<f64, 3>,
@@ -295,30 +312,10 @@ pub fn triangulate_cells(
         (lat.knots_v.len().max(1) as u64 - 1) * SPAN,
     );
     if closure.seam_u {
-        let side: Vec<u64> = vert
-            .iter()
-            .filter(|&&(i, _)| i == 0 || i == top.0)
-            .map(|&(_, j)| j)
-            .collect();
-        for j in side {
-            for i in [0, top.0] {
-                vert.insert((i, j));
-                horiz.insert((j, i));
-            }
-        }
+        mirror_seam(&mut vert, &mut horiz, top.0);
     }
     if closure.seam_v {
-        let side: Vec<u64> = horiz
-            .iter()
-            .filter(|&&(j, _)| j == 0 || j == top.1)
-            .map(|&(_, i)| i)
-            .collect();
-        for i in side {
-            for j in [0, top.1] {
-                vert.insert((i, j));
-                horiz.insert((j, i));
-            }
-        }
+        mirror_seam(&mut horiz, &mut vert, top.1);
     }
     let poles: [[f64; 3]; 4] = std::array::from_fn(|k| {
         if closure.degenerate[k] {
