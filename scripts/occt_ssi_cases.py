@@ -388,13 +388,18 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", default="")
+    ap.add_argument("--keep", default="", help="directory to keep each case's a.json, b.json, r.json in")
     args = ap.parse_args()
     tmp = tempfile.mkdtemp()
     rows = []
     for name, truth_text, a, b, frame, truth in cases():
         if args.only not in name:
             continue
-        tv, summ, code, branches, touch = run_vericad(a, b, tmp, args.repeat)
+        work = tmp
+        if args.keep:
+            work = os.path.join(args.keep, "".join(c if c.isalnum() or c in ".-" else "_" for c in name))
+            os.makedirs(work, exist_ok=True)
+        tv, summ, code, branches, touch = run_vericad(a, b, work, args.repeat)
         dv, fv = measure(branches, truth, frame)
         to, done, lines = run_occt(a, b, args.repeat)
         do, fo = measure(lines, truth, frame)
