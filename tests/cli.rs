@@ -321,3 +321,65 @@ fn ssi_checks_outputs_before_the_work() {
     );
     assert!(!out.exists());
 }
+
+/// The JSON result writes a point per line (arrays of numbers inline) and leaves the fitted
+/// cubics out unless `--fits` asks for them; both forms parse as the same points.
+#[test]
+fn ssi_json_is_compact_and_fits_are_on_request() {
+    let d = tmp("fits");
+    // The plane z = 0 and a plane tilted about the x axis: they meet along the x axis.
+    let plane = |z0: f64, z1: f64| {
+        format!(
+            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
+            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
+        )
+    };
+    let (a, b) = (d.join("a.json"), d.join("b.json"));
+    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
+    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    let run = |name: &str, extra: &[&str]| -> (String, serde_json::Value) {
+        let out = d.join(name);
+        let mut args = vec![
+            "ssi",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let (code, _, stderr) = vericad(&args);
+        assert!(code == 0 || code == 3, "{stderr}");
+        let text = std::fs::read_to_string(&out).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        (text, v)
+    };
+    let (text, plain) = run("plain.json", &[]);
+    let (_, full) = run("full.json", &["--fits"]);
+    let branches = |v: &serde_json::Value| -> Vec<serde_json::Value> {
+        v["pairs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|p| p["branches"].as_array().unwrap().clone())
+            .collect()
+    };
+    let (bp, bf) = (branches(&plain), branches(&full));
+    assert!(!bp.is_empty(), "the planes meet");
+    assert_eq!(bp.len(), bf.len());
+    for (x, y) in bp.iter().zip(&bf) {
+        assert!(x["fit"].is_null(), "no fit by default");
+        assert!(
+            y["fit"]["control_points"]
+                .as_array()
+                .is_some_and(|c| !c.is_empty())
+        );
+        assert_eq!(x["points"], y["points"]);
+    }
+    // No line holds a lone coordinate: every point is written on one line.
+    let lone = text
+        .lines()
+        .filter(|l| l.trim().trim_end_matches(',').parse::<f64>().is_ok())
+        .count();
+    assert_eq!(lone, 0);
+}

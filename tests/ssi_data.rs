@@ -194,6 +194,7 @@ fn cli_writes_json_vtk_and_iges() {
         .arg(&vtk)
         .arg("--iges")
         .arg(&iges)
+        .arg("--fits")
         .output()
         .unwrap();
     let v: serde_json::Value =

@@ -126,6 +126,10 @@ pub enum Command {
         /// Write the fitted cubic of every branch as IGES 126 curves here.
         #[arg(long)]
         iges: Option<PathBuf>,
+        /// Keep every branch's fitted cubic (knots, control points in 3D and in both domains)
+        /// in the JSON result; off by default (about four times the size of the points).
+        #[arg(long)]
+        fits: bool,
         #[arg(long)]
         json: bool,
     },
@@ -213,11 +217,13 @@ fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
     let _ = if json {
-        writeln!(
-            out,
-            "{}",
-            serde_json::to_string_pretty(r).unwrap_or_default()
-        )
+        match crate::io::json_text::to_text(r) {
+            Ok(t) => writeln!(out, "{t}"),
+            Err(e) => {
+                eprintln!("error: the JSON report could not be written: {e}");
+                Ok(())
+            }
+        }
     } else {
         write!(out, "{r}")
     };
@@ -311,6 +317,7 @@ pub fn run(cli: Cli) -> i32 {
             out,
             vtk,
             iges,
+            fits,
             json,
         } => {
             use crate::ssi::job;
@@ -330,6 +337,7 @@ pub fn run(cli: Cli) -> i32 {
                 json: out.as_deref(),
                 vtk: vtk.as_deref(),
                 iges: iges.as_deref(),
+                fits,
             };
             match job::run(&file, file2.as_deref(), &prm, threads, outputs) {
                 Ok(r) => {

@@ -2,6 +2,7 @@
 //! [`read_model`] picks the reader from the file's extension.
 
 pub mod iges;
+pub mod json_text;
 pub mod obj;
 pub mod plot3d;
 pub mod step;

@@ -60,6 +60,11 @@ pub struct Outputs<'a> {
     pub vtk: Option<&'a Path>,
     /// The fitted cubic of every branch as IGES 126 curves.
     pub iges: Option<&'a Path>,
+    /// Keep every branch's fitted cubic (`fit`: knots and control points in 3D and in both
+    /// domains, about three control points per branch point) in the returned result and the
+    /// JSON. Off by default: the fits repeat the points' information at four times its size
+    /// (they are always in the IGES output).
+    pub fits: bool,
 }
 
 /// Fail before the work when an output cannot be written.
@@ -69,6 +74,12 @@ fn check_writable(p: &Path) -> Result<(), JobError> {
 }
 
 /// Write through a temporary file and a rename: a failed write keeps the previous file.
+/// A result as readable JSON ([`crate::io::json_text`]).
+fn json_text<T: serde::Serialize>(v: &T) -> Result<String, JobError> {
+    crate::io::json_text::to_text(v)
+        .map_err(|e| JobError::Write("the JSON result".into(), e.to_string()))
+}
+
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
     crate::io::write_atomic(path, text)
         .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
@@ -199,10 +210,7 @@ pub fn run(
     let pool = builder
         .build()
         .map_err(|e| JobError::Threads(e.to_string()))?;
-    let r = pool.install(|| intersect_models(&a, b.as_ref(), prm, &progress))?;
-    if let Some(p) = outputs.json {
-        write(p, &serde_json::to_string_pretty(&r).unwrap_or_default())?;
-    }
+    let mut r = pool.install(|| intersect_models(&a, b.as_ref(), prm, &progress))?;
     if let Some(p) = outputs.vtk {
         write(p, &to_vtp(&r, &a, b.as_ref()))?;
     }
@@ -211,6 +219,14 @@ pub fn run(
             p,
             &crate::io::iges::write::to_string(&curves_model(&r), "vericad ssi"),
         )?;
+    }
+    if !outputs.fits {
+        for br in r.pairs.iter_mut().flat_map(|p| p.branches.iter_mut()) {
+            br.fit = None;
+        }
+    }
+    if let Some(p) = outputs.json {
+        write(p, &json_text(&r)?)?;
     }
     Ok(r)
 }
@@ -370,7 +386,7 @@ pub fn run_certify(
         &progress_printer("foreign points", t0),
     );
     if let Some(p) = json_out {
-        write(p, &serde_json::to_string_pretty(&rep).unwrap_or_default())?;
+        write(p, &json_text(&rep)?)?;
     }
     Ok(rep)
 }

@@ -20,6 +20,8 @@ pub struct Near {
 
 struct Node {
     b: Box3,
+    /// The largest extent of one segment's box per axis, over the node's segments.
+    ext: [f64; 3],
     kids: Option<(u32, u32)>,
     range: (u32, u32),
 }
@@ -73,16 +75,19 @@ impl Near {
     }
     fn build(&mut self, lo: usize, hi: usize) -> u32 {
         let mut b: Box3 = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        let mut ext = [0.0f64; 3];
         for &i in &self.order[lo..hi] {
             let s = seg_box(&self.segs[i as usize]);
             for k in 0..3 {
                 b.0[k] = b.0[k].min(s.0[k]);
                 b.1[k] = b.1[k].max(s.1[k]);
+                ext[k] = ext[k].max(s.1[k] - s.0[k]);
             }
         }
         let id = self.nodes.len() as u32;
         self.nodes.push(Node {
             b,
+            ext,
             kids: None,
             range: (lo as u32, hi as u32),
         });
@@ -145,8 +150,15 @@ impl Near {
         let mut stack = vec![0u32];
         while let Some(i) = stack.pop() {
             let n = &self.nodes[i as usize];
-            // A segment within d of all corners has its box within d of the query box.
-            if (0..3).any(|k| n.b.1[k] < b.0[k] - d || n.b.0[k] > b.1[k] + d) {
+            // A segment within d of all corners has its box within d of the query box, and
+            // the query box (the corners' box) lies in the segment's box grown by d: no
+            // wider on any axis than the segment's extent plus 2d. (A prune only skips
+            // candidates, it never decides "near": rounding here cannot make a false claim.)
+            if (0..3).any(|k| {
+                n.b.1[k] < b.0[k] - d
+                    || n.b.0[k] > b.1[k] + d
+                    || b.1[k] - b.0[k] > n.ext[k] + 2.0 * d
+            }) {
                 continue;
             }
             match n.kids {
