@@ -271,7 +271,21 @@ impl Mul for Interval {
             return Interval::widen(a.min(b), a.max(b));
         }
         // Round-to-nearest products, one ulp outward (rigorous; cheaper than the error-free
-        // transformation for intervals that are not points anyway).
+        // transformation for intervals that are not points anyway). With the signs of both
+        // operands fixed, the extreme products are known (the classical case table); the
+        // comparisons are false for NaN, which falls through to the general case.
+        if x.lo >= 0.0 && y.lo >= 0.0 {
+            return Interval::widen(x.lo * y.lo, x.hi * y.hi);
+        }
+        if x.hi <= 0.0 && y.hi <= 0.0 {
+            return Interval::widen(x.hi * y.hi, x.lo * y.lo);
+        }
+        if x.lo >= 0.0 && y.hi <= 0.0 {
+            return Interval::widen(x.hi * y.lo, x.lo * y.hi);
+        }
+        if x.hi <= 0.0 && y.lo >= 0.0 {
+            return Interval::widen(x.lo * y.hi, x.hi * y.lo);
+        }
         let c = [x.lo * y.lo, x.lo * y.hi, x.hi * y.lo, x.hi * y.hi];
         let lo = c[0].min(c[1]).min(c[2].min(c[3]));
         let hi = c[0].max(c[1]).max(c[2].max(c[3]));

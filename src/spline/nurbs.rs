@@ -249,10 +249,15 @@ impl<S: Scalar, const D: usize> NurbsSurface<S, D> {
 }
 
 impl<S: Scalar> NurbsSurface<S, 3> {
-    /// Unnormalized normal `S_u × S_v` (exact in exact arithmetic).
+    /// Unnormalized normal `S_u × S_v` (exact in exact arithmetic), from the first
+    /// derivatives only (quotient rule, The NURBS Book eq. 4.20).
     pub fn normal(&self, u: &S, v: &S) -> [S; 3] {
-        let d = self.derivatives2(u, v);
-        cross(&d[1], &d[2])
+        let a = self.hom.derivatives(u, v, 1);
+        let inv = S::one() / a[0][0].w.clone();
+        let s = a[0][0].wp.scale(&inv);
+        let su = a[1][0].wp.sub(&s.scale(&a[1][0].w)).scale(&inv);
+        let sv = a[0][1].wp.sub(&s.scale(&a[0][1].w)).scale(&inv);
+        cross(&su, &sv)
     }
 }
 

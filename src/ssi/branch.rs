@@ -15,8 +15,9 @@ use super::touch::touch_out;
 use super::trace::Branch;
 use super::tri_tri::Feature;
 use super::triangulate::SurfaceMesh;
-use crate::geom::{dist, dist_to_segment};
+use crate::geom::{cross, dist, dist_to_segment, norm};
 use crate::spline::NurbsSurface;
+use crate::spline::project::point_d1;
 
 /// The two surfaces of a pair with their meshes and exact forms.
 pub struct PairGeometry<'a> {
@@ -106,16 +107,15 @@ impl Inserter<'_, '_> {
 /// Whether the surfaces meet at `r` at an angle whose sine is below 1/4 (or the normals are
 /// undefined there).
 fn small_angle(g: &PairGeometry, r: &Refined) -> bool {
-    match (
-        g.sa.unit_normal(&r.uv_a[0], &r.uv_a[1]),
-        g.sb.unit_normal(&r.uv_b[0], &r.uv_b[1]),
-    ) {
-        (Some(a), Some(b)) => {
-            let c = crate::geom::cross(&a, &b);
-            (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() < 0.25
-        }
-        _ => true,
+    let (_, su, sv) = point_d1(g.sa, r.uv_a[0], r.uv_a[1]);
+    let (_, rw, rt) = point_d1(g.sb, r.uv_b[0], r.uv_b[1]);
+    let (na, nb) = (cross(&su, &sv), cross(&rw, &rt));
+    let (la, lb) = (norm(&na), norm(&nb));
+    if !(la > 0.0 && lb > 0.0 && la.is_finite() && lb.is_finite()) {
+        return true;
     }
+    let s = norm(&cross(&na, &nb)) / (la * lb);
+    s.is_nan() || s < 0.25
 }
 
 /// The curve certificate of `r` ([`certify_on_curve`]); when its proven distance to the curve
