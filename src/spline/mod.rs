@@ -21,6 +21,7 @@ pub mod bspline_surface;
 pub mod closure;
 pub mod compose;
 pub mod construct;
+pub mod enclosed_bezier;
 pub mod fit;
 pub mod interpolate;
 pub mod knots;

@@ -5,6 +5,7 @@
 //! clamped end control points come out exact.
 
 use crate::scalar::interval::Interval;
+pub use crate::spline::enclosed_bezier::{bspline_blossom, bspline_span_bezier, lerp};
 use arrayvec::ArrayVec;
 
 pub type I = Interval;
@@ -20,13 +21,6 @@ const FAST_CAP: usize = 12;
 
 pub fn ip<const D: usize>(p: &[f64; D]) -> IP<D> {
     std::array::from_fn(|i| I::point(p[i]))
-}
-
-/// `(1 - t) a + t b`, enclosed.
-#[inline]
-pub fn lerp<const D: usize>(a: &IP<D>, b: &IP<D>, t: I) -> IP<D> {
-    let s = I::point(1.0) - t;
-    std::array::from_fn(|i| s * a[i] + t * b[i])
 }
 
 /// Midpoint–radius form of a list of boxes, for the fast path of the Bézier blossoms:
@@ -222,48 +216,6 @@ pub fn split_at<const D: usize>(ctrl: &[IP<D>], t: f64) -> (Vec<IP<D>>, Vec<IP<D
         right[n - r] = boxed(&w[n - r], err);
     }
     (left, right)
-}
-
-/// Blossom of a B-spline curve of degree `p` (knots `knots`, control points `ctrl`) on span
-/// `s` (`knots[s] < knots[s + 1]`), at arguments `xs` (de Boor–Ramshaw recurrence).
-/// `None` when a knot difference is not certified positive (invalid knot vector).
-pub fn bspline_blossom<const D: usize>(
-    knots: &[f64],
-    p: usize,
-    ctrl: &[IP<D>],
-    s: usize,
-    xs: &[I],
-) -> Option<IP<D>> {
-    let mut d: ArrayVec<IP<D>, 32> = (s - p..=s).map(|j| ctrl[j]).collect();
-    for (r, x) in (1..=p).zip(xs) {
-        for j in (s - p + r..=s).rev() {
-            let (uj, ue) = (knots[j], knots[j + p + 1 - r]);
-            let alpha = (*x - I::point(uj)).checked_div(I::point(ue) - I::point(uj))?;
-            let k = j - (s - p);
-            d[k] = lerp(&d[k - 1], &d[k], alpha);
-        }
-    }
-    Some(d[p])
-}
-
-/// The Bézier control points of span `s` of a B-spline curve: blossoms at
-/// `(u_s^(p-k), u_{s+1}^k)`.
-pub fn bspline_span_bezier<const D: usize>(
-    knots: &[f64],
-    p: usize,
-    ctrl: &[IP<D>],
-    s: usize,
-) -> Option<Vec<IP<D>>> {
-    let (a, b) = (I::point(knots[s]), I::point(knots[s + 1]));
-    let mut xs: ArrayVec<I, 32> = ArrayVec::new();
-    (0..=p)
-        .map(|k| {
-            xs.clear();
-            xs.extend(std::iter::repeat_n(a, p - k));
-            xs.extend(std::iter::repeat_n(b, k));
-            bspline_blossom(knots, p, ctrl, s, &xs)
-        })
-        .collect()
 }
 
 /// All polar values `b(x^(n-j), y^j)`, `j = 0..=n`, in f64 on midpoints, sharing work: the

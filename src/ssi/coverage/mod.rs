@@ -39,8 +39,10 @@
 //! are border crossings). The claim is one-sided: that the reported points lie on the true
 //! curve is the point certificate's business.
 //!
-//! Every piece is extracted exactly (rational knot insertion) and then enclosed in intervals;
-//! every halving and every sign is computed in outward-rounded interval arithmetic. The uv
+//! Every piece is extracted with enclosed control points (the interval de Boor–Ramshaw
+//! recurrence on the exact f64 data, or exact rational knot insertion where a knot difference
+//! cannot be certified positive in intervals); every halving and every sign is computed in
+//! outward-rounded interval arithmetic. The uv
 //! labels of pieces (for reports) are rounded midpoints; the pieces themselves are exact
 //! halves.
 
@@ -53,6 +55,7 @@ use super::report::{BranchOut, TouchOut};
 use crate::geom::{Hom, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
 use crate::spline::NurbsSurface;
+use crate::spline::enclosed_bezier::enclosed_bezier_patches;
 use cones::{cones_separated, normal_generators};
 use crossings::search;
 use near::Near;
@@ -203,8 +206,31 @@ fn enclose(x: &Q) -> Interval {
     Interval { lo, hi }
 }
 
-/// The Bézier pieces of a surface, extracted exactly and enclosed.
+/// The Bézier pieces of a surface, enclosed: the interval de Boor–Ramshaw extraction
+/// ([`enclosed_bezier_patches`]: every enclosure contains the exact control point), or, where
+/// a knot difference cannot be certified positive in intervals, the exact rational extraction
+/// ([`roots_exact`]).
 pub(crate) fn roots(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
+    let polynomial = s.is_polynomial();
+    match enclosed_bezier_patches(s) {
+        Some(pieces) => pieces
+            .into_iter()
+            .map(|bp| {
+                let patch = IPatch {
+                    p: bp.p,
+                    q: bp.q,
+                    x: bp.net.iter().map(|h| [h[0], h[1], h[2]]).collect(),
+                    w: bp.net.iter().map(|h| h[3]).collect(),
+                };
+                Cell::new(patch, bp.uv, polynomial)
+            })
+            .collect(),
+        None => roots_exact(s),
+    }
+}
+
+/// The Bézier pieces of a surface, extracted exactly (rational knot insertion) and enclosed.
+pub(crate) fn roots_exact(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
     let exact = s.hom.map(
         |k| lift::<Q>(*k),
         |h| Hom {

@@ -1,0 +1,186 @@
+//! Bézier extraction in interval arithmetic: the control points of a B-spline's polynomial
+//! pieces, *enclosed*. The de Boor–Ramshaw recurrence (the blossom, Ramshaw 1989; The NURBS
+//! Book §5.2) is evaluated in outward-rounded [`Interval`] arithmetic on the f64 knots and
+//! control points taken as exact rationals, so each result contains the exact Bézier control
+//! point — what exact rational knot insertion would give — at f64 cost.
+//!
+//! For a surface the extraction runs along u on every column of the net, then along v on
+//! every row of the result (the tensor-product blossom is the u-blossom of the v-blossoms), on
+//! homogeneous points `(wP, w)`, so rational surfaces are extracted without division.
+
+use super::NurbsSurface;
+use crate::scalar::Interval;
+use arrayvec::ArrayVec;
+
+type I = Interval;
+
+/// `(1 - t) a + t b`, enclosed.
+#[inline]
+pub fn lerp<const D: usize>(a: &[I; D], b: &[I; D], t: I) -> [I; D] {
+    let s = I::point(1.0) - t;
+    std::array::from_fn(|i| s * a[i] + t * b[i])
+}
+
+/// Blossom of a B-spline curve of degree `p` (knots `knots`, control points `ctrl`) on span
+/// `s` (`knots[s] < knots[s + 1]`), at arguments `xs` (de Boor–Ramshaw recurrence).
+/// `None` when a knot difference is not certified positive (invalid knot vector) or the
+/// degree exceeds [`super::MAX_DEGREE`].
+pub fn bspline_blossom<const D: usize>(
+    knots: &[f64],
+    p: usize,
+    ctrl: &[[I; D]],
+    s: usize,
+    xs: &[I],
+) -> Option<[I; D]> {
+    if p > super::MAX_DEGREE || s < p || s >= ctrl.len() || knots.len() < s + p + 2 {
+        return None;
+    }
+    let mut d: ArrayVec<[I; D], 32> = (s - p..=s).map(|j| ctrl[j]).collect();
+    for (r, x) in (1..=p).zip(xs) {
+        for j in (s - p + r..=s).rev() {
+            let (uj, ue) = (knots[j], knots[j + p + 1 - r]);
+            let alpha = (*x - I::point(uj)).checked_div(I::point(ue) - I::point(uj))?;
+            let k = j - (s - p);
+            d[k] = lerp(&d[k - 1], &d[k], alpha);
+        }
+    }
+    Some(d[p])
+}
+
+/// The Bézier control points of span `s` of a B-spline curve: blossoms at
+/// `(u_s^(p-k), u_{s+1}^k)`, `k = 0..=p`.
+pub fn bspline_span_bezier<const D: usize>(
+    knots: &[f64],
+    p: usize,
+    ctrl: &[[I; D]],
+    s: usize,
+) -> Option<Vec<[I; D]>> {
+    let (a, b) = (I::point(*knots.get(s)?), I::point(*knots.get(s + 1)?));
+    let mut xs: ArrayVec<I, 32> = ArrayVec::new();
+    (0..=p)
+        .map(|k| {
+            xs.clear();
+            xs.extend(std::iter::repeat_n(a, p - k));
+            xs.extend(std::iter::repeat_n(b, k));
+            bspline_blossom(knots, p, ctrl, s, &xs)
+        })
+        .collect()
+}
+
+/// One Bézier piece of a surface with enclosed homogeneous control points.
+#[derive(Clone, Debug)]
+pub struct EnclosedPatch {
+    /// The knot span rectangle `[u0, u1, v0, v1]` (knot values, exact).
+    pub uv: [f64; 4],
+    pub p: usize,
+    pub q: usize,
+    /// Homogeneous control points `(wP, w)`, row-major (`i` along u, `j` along v).
+    pub net: Vec<[I; 4]>,
+}
+
+/// Indices `s` of the non-empty spans `[t_s, t_{s+1})` of a clamped knot vector inside the
+/// domain `[t_p, t_{n}]`.
+fn spans(knots: &[f64], p: usize, n: usize) -> Vec<usize> {
+    (p..n).filter(|&s| knots[s] < knots[s + 1]).collect()
+}
+
+/// Every Bézier piece of `s` (one per pair of non-empty knot spans, u-major), enclosed; `None`
+/// when a knot difference cannot be certified positive.
+pub fn enclosed_bezier_patches(s: &NurbsSurface<f64, 3>) -> Option<Vec<EnclosedPatch>> {
+    let h = &s.hom;
+    let (p, q) = h.degrees();
+    let (ku, kv) = (h.ku.knots(), h.kv.knots());
+    let (nu, nv) = (ku.len() - p - 1, kv.len() - q - 1);
+    if nu * nv != h.net.len() {
+        return None;
+    }
+    let hom = |i: usize, j: usize| -> [I; 4] {
+        let c = &h.net[i * nv + j];
+        [c.wp[0], c.wp[1], c.wp[2], c.w].map(I::point)
+    };
+    let (su, sv) = (spans(ku, p, nu), spans(kv, q, nv));
+    let mut out = Vec::with_capacity(su.len() * sv.len());
+    for &a in &su {
+        // Along u on every column j: the u-Bézier points of this span, (p + 1) × nv.
+        let mut cols: Vec<Vec<[I; 4]>> = Vec::with_capacity(nv);
+        for j in 0..nv {
+            let col: Vec<[I; 4]> = (0..nu).map(|i| hom(i, j)).collect();
+            cols.push(bspline_span_bezier(ku, p, &col, a)?);
+        }
+        for &b in &sv {
+            let mut net = vec![[I::point(0.0); 4]; (p + 1) * (q + 1)];
+            for i in 0..=p {
+                let row: Vec<[I; 4]> = (0..nv).map(|j| cols[j][i]).collect();
+                let bz = bspline_span_bezier(kv, q, &row, b)?;
+                net[i * (q + 1)..(i + 1) * (q + 1)].copy_from_slice(&bz);
+            }
+            out.push(EnclosedPatch {
+                uv: [ku[a], ku[a + 1], kv[b], kv[b + 1]],
+                p,
+                q,
+                net,
+            });
+        }
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::lift_point;
+    use crate::scalar::lift;
+    use num_rational::BigRational;
+
+    /// The enclosures contain the exact rational extraction (knot insertion in BigRational,
+    /// an independent algorithm), for a rational surface with non-uniform, repeated knots.
+    #[test]
+    fn enclosures_contain_the_exact_extraction() {
+        use crate::geom::Hom;
+        use crate::spline::{BSplineSurface, KnotVector};
+        let ku = KnotVector::new(vec![0.0, 0.0, 0.0, 0.3, 0.3, 0.7, 1.0, 1.0, 1.0], 2, 6).unwrap();
+        let kv =
+            KnotVector::new(vec![-1.0, -1.0, -1.0, -1.0, 0.1, 2.0, 2.0, 2.0, 2.0], 3, 5).unwrap();
+        let (nu, nv) = (6, 5);
+        let mut net = Vec::new();
+        for i in 0..nu {
+            for j in 0..nv {
+                let w = 0.5 + ((i * 7 + j * 3) % 5) as f64 * 0.37;
+                let pnt = [
+                    i as f64 * 0.9 + 0.1 * j as f64,
+                    j as f64 * 1.1 - 0.3 * (i as f64).sin(),
+                    ((i * j) as f64).cos() / 3.0,
+                ];
+                net.push(Hom::from_point(&pnt, &w));
+            }
+        }
+        let s = NurbsSurface {
+            hom: BSplineSurface { ku, kv, net },
+        };
+        let enc = enclosed_bezier_patches(&s).unwrap();
+        type Q = BigRational;
+        let exact = s.hom.map(
+            |k| lift::<Q>(*k),
+            |h| Hom {
+                wp: lift_point(&h.wp),
+                w: lift(h.w),
+            },
+        );
+        let ex = exact.bezier_patches();
+        assert_eq!(enc.len(), ex.len());
+        assert_eq!(enc.len(), 3 * 2);
+        let inside = |x: &I, q: &Q| lift::<Q>(x.lo) <= *q && *q <= lift::<Q>(x.hi);
+        for (e, x) in enc.iter().zip(&ex) {
+            assert_eq!(lift::<Q>(e.uv[0]), x.u0);
+            assert_eq!(lift::<Q>(e.uv[3]), x.v1);
+            assert_eq!(e.net.len(), x.patch.net.len());
+            for (a, b) in e.net.iter().zip(&x.patch.net) {
+                for c in 0..3 {
+                    assert!(inside(&a[c], &b.wp[c]), "{a:?} vs {b:?}");
+                    assert!(a[c].hi - a[c].lo <= 1e-12 * (1.0 + a[c].lo.abs()));
+                }
+                assert!(inside(&a[3], &b.w));
+            }
+        }
+    }
+}
