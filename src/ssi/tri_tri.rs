@@ -361,6 +361,9 @@ mod filter_tests {
         }
         // The filter does its job on ordinary input and the cases above are not all trivial.
         assert!(decided > 4_000, "decided {decided}, deferred {deferred}");
-        assert!(deferred > 100 && zeros > 100, "deferred {deferred}, zeros {zeros}");
+        assert!(
+            deferred > 100 && zeros > 100,
+            "deferred {deferred}, zeros {zeros}"
+        );
     }
 }

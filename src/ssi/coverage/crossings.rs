@@ -5,7 +5,8 @@
 //! to the depth limit, is returned as a *possible crossing away from the output*.
 
 use super::near::Near;
-use super::patch::{Box3, ICurve, IPatch, box_of, diagonal, disjoint, meet, separated_along};
+use super::patch::{Box3, ICurve, IPatch, V, box_of, diagonal, disjoint, meet, separated_along};
+use std::rc::Rc;
 
 /// What the search established for one border curve against one piece.
 #[derive(Debug, Default)]
@@ -30,23 +31,31 @@ pub(crate) fn search(
     max_boxes: usize,
 ) -> CrossingSearch {
     let mut out = CrossingSearch::default();
-    let mut stack: Vec<(ICurve, IPatch, u32)> = vec![(curve.clone(), patch.clone(), 0)];
-    while let Some((c, s, depth)) = stack.pop() {
+    // A piece with its enclosed Cartesian control points, shared while only the curve splits.
+    let piece = |s: IPatch| {
+        let pts = s.cartesian();
+        Rc::new((s, pts))
+    };
+    let mut stack: Vec<(ICurve, Rc<(IPatch, Option<Vec<V>>)>, u32)> =
+        vec![(curve.clone(), piece(patch.clone()), 0)];
+    while let Some((c, sp, depth)) = stack.pop() {
         out.boxes += 1;
-        let (pc, ps) = match (c.cartesian(), s.cartesian()) {
+        let s = &sp.0;
+        let (pc, ps) = match (c.cartesian(), sp.1.as_deref()) {
             (Some(a), Some(b)) => (a, b),
             // No enclosure (weights not positive, overflow): cannot be excluded.
             (a, b) => {
                 out.open = Some(
-                    a.or(b)
-                        .map(|p| box_of(&p))
+                    a.as_deref()
+                        .or(b)
+                        .map(box_of)
                         .unwrap_or(([f64::NEG_INFINITY; 3], [f64::INFINITY; 3])),
                 );
                 return out;
             }
         };
-        let (hc, hs) = (box_of(&pc), box_of(&ps));
-        if disjoint(&hc, &hs) || separated_along(&pc, &ps, &s.rough_normal()) {
+        let (hc, hs) = (box_of(&pc), box_of(ps));
+        if disjoint(&hc, &hs) || separated_along(&pc, ps, &s.rough_normal()) {
             continue;
         }
         let m = meet(&hc, &hs);
@@ -68,12 +77,12 @@ pub(crate) fn search(
         // along its longer direction.
         if 2.0 * diagonal(&hc) >= diagonal(&hs) {
             let (l, r) = c.halve();
-            stack.push((l, s.clone(), depth + 1));
-            stack.push((r, s, depth + 1));
+            stack.push((l, sp.clone(), depth + 1));
+            stack.push((r, sp, depth + 1));
         } else {
             let (l, r) = s.halve(s.longer_in_u());
-            stack.push((c.clone(), l, depth + 1));
-            stack.push((c, r, depth + 1));
+            stack.push((c.clone(), piece(l), depth + 1));
+            stack.push((c, piece(r), depth + 1));
         }
     }
     out

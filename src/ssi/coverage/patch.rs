@@ -30,11 +30,13 @@ pub fn cartesian(x: &[V], w: &[Interval]) -> Option<Vec<V>> {
             return None;
         }
         let mut c = [Interval::point(0.0); 3];
+        // Weight exactly 1 (polynomial pieces stay so under halving): the point itself.
+        let unit = wi.lo == 1.0 && wi.hi == 1.0;
         for k in 0..3 {
             if !(p[k].is_finite() && p[k].lo <= p[k].hi) {
                 return None;
             }
-            c[k] = p[k].checked_div(*wi)?;
+            c[k] = if unit { p[k] } else { p[k].checked_div(*wi)? };
             if !(c[k].is_finite() && c[k].lo <= c[k].hi) {
                 return None;
             }
