@@ -18,6 +18,7 @@ use super::triangulate::SurfaceMesh;
 use crate::geom::{cross, dist, dist_to_segment, norm};
 use crate::spline::NurbsSurface;
 use crate::spline::project::point_d1;
+use rayon::prelude::*;
 
 /// The two surfaces of a pair with their meshes and exact forms.
 pub struct PairGeometry<'a> {
@@ -273,23 +274,21 @@ pub fn refine_branch(
         .count();
     // Points whose proven distance to the curve exceeds tol/8 move onto the curve (see
     // [`onto_curve`]).
-    let radii: Vec<_> = all
-        .iter_mut()
-        .map(|r| onto_curve(g, r, prm.tol).map(|c| (c.radius, c)))
+    // Per point, independent of the others: on the worker threads (results in point order, so
+    // they do not depend on the thread count).
+    let per_point: Vec<_> = all
+        .par_iter_mut()
+        .with_min_len(64)
+        .map(|r| {
+            let c = onto_curve(g, r, prm.tol).map(|c| c.radius);
+            let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
+            let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
+            (c, da.unwrap_or(f64::INFINITY), db.unwrap_or(f64::INFINITY))
+        })
         .collect();
-    let radii: Vec<_> = radii.into_iter().map(|c| c.map(|(r, _)| r)).collect();
-    let mut da_max = 0.0f64;
-    let mut db_max = 0.0f64;
-    for r in &all {
-        da_max = da_max.max(
-            g.ea.distance_bound(&r.xyz, &r.uv_a)
-                .unwrap_or(f64::INFINITY),
-        );
-        db_max = db_max.max(
-            g.eb.distance_bound(&r.xyz, &r.uv_b)
-                .unwrap_or(f64::INFINITY),
-        );
-    }
+    let da_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.1));
+    let db_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.2));
+    let radii: Vec<_> = per_point.into_iter().map(|p| p.0).collect();
     let ends = if b.closed {
         Vec::new()
     } else {
