@@ -171,26 +171,7 @@ fn rotated(seed: u64) -> Frame {
         0.5 - (0.7 * s).sin(),
         0.2 + (2.1 * s).cos(),
     ];
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    Frame {
-        o: [0.1 * s.cos(), -0.2, 0.3],
-        x: [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y + w * z),
-            2.0 * (x * z - w * y),
-        ],
-        y: [
-            2.0 * (x * y - w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z + w * x),
-        ],
-        z: [
-            2.0 * (x * z + w * y),
-            2.0 * (y * z - w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    }
+    frame_of(q, [0.1 * s.cos(), -0.2, 0.3])
 }
 
 /// Spheres in rotated frames cut by the plane through `o + h·z` normal to the frame's z:
