@@ -112,6 +112,26 @@ fn near_x_axis(p: &[f64; 3], r: f64) -> bool {
     d2 <= q(r) * q(r)
 }
 
+/// Both planes end at x = ±2, so the intersection leaves both domains at the same two points
+/// (a corner of both): the end points are certified from a zero just inside both faces, and
+/// every claim holds against the exact segment.
+#[test]
+fn planes_ending_together_are_certified_to_their_ends() {
+    let tol = 1e-6;
+    for th in [0.3, 1e-1, 1e-2] {
+        let (c, d) = (f64::cos(th), f64::sin(th));
+        let at = |x: f64, t: f64| [x, t * c, t * d];
+        let k = vec![0.0, 0.0, 1.0, 1.0];
+        let pts = vec![at(-2.0, -2.0), at(-2.0, 2.0), at(2.0, -2.0), at(2.0, 2.0)];
+        let b = NurbsSurface::new(k.clone(), 1, k, 1, 2, 2, pts, vec![1.0; 4]).unwrap();
+        let r = run(&flat(false), &b, tol);
+        assert_eq!(r.branches.len(), 1, "{th}");
+        let (cert, total) = check_claims(&r, &near_x_axis);
+        assert_eq!(cert, total, "{th}: every point certified, the ends too");
+        assert!(r.branches[0].dist_curve_max.unwrap() <= tol, "{th}");
+    }
+}
+
 #[test]
 fn planes_meeting_at_small_angles() {
     let tol = 1e-6;

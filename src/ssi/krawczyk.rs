@@ -34,7 +34,10 @@
 //! `sup ||p − q||` over it with upward rounding. The zero is a point of the *faces* only if its
 //! parameters lie in the domains: that is checked (`K(X) ∩ X` inside the closed domains, the
 //! held parameter equal to the border value); a box reaching past a border is retried with the
-//! parameter held on that border.
+//! parameter held on that border. Where the curve leaves both domains at one point (a corner
+//! of both), the plane is moved along the curve by `±δ` (`δ` from `1e-12` to `1e-6` of the
+//! point's scale): any plane isolates *some* zero, and the radius is still measured from `p`,
+//! so it comes out about `δ` when that zero lies inside both domains.
 //!
 //! **Hypotheses.** The surfaces are continuous (interior knot multiplicity at most the
 //! degree, enforced when a surface is built) and their weights do not vanish on the boxes
@@ -401,10 +404,8 @@ pub fn certify_on_curve(
     if !(la > 0.0 && lb > 0.0 && lt > TANGENT_SIN * la * lb && lt.is_finite()) {
         return Err(Uncertified::Tangency);
     }
-    sys.e = Fourth::Plane {
-        n: t.map(|c| c / lt),
-        p: *p,
-    };
+    let n = t.map(|c| c / lt);
+    sys.e = Fourth::Plane { n, p: *p };
     match attempt(&sys, z0) {
         Attempt::Done(c) => Ok(c),
         Attempt::Fail(u) => Err(u),
@@ -415,11 +416,40 @@ pub fn certify_on_curve(
             match attempt(&sys, z) {
                 Attempt::Done(c) => Ok(c),
                 // The zero lies on or near a border where holding the parameter does not
-                // isolate it (a curve along the border, a corner of both domains).
-                Attempt::Fail(_) | Attempt::Outside(..) => Err(Uncertified::OutsideDomain),
+                // isolate it (a curve along the border, a corner of both domains): look for
+                // a zero a little inside, on planes moved along the curve.
+                Attempt::Fail(_) | Attempt::Outside(..) => inside_near(&mut sys, z0, n, p),
             }
         }
     }
+}
+
+/// Where the curve leaves both domains at once (a corner of both, e.g. two faces cut at
+/// the same line), no zero on the plane through `p` has parameters in both domains. A zero
+/// on a parallel plane moved by `±δ` along the curve may: its certificate still measures the
+/// distance from `p` (the plane only selects which zero is isolated), so the radius is about
+/// `δ`. `δ` grows from `1e-12` to `1e-6` of the point's scale; the first success counts (the
+/// radius says how far it had to go).
+fn inside_near(
+    sys: &mut System,
+    z0: [f64; 4],
+    n: [f64; 3],
+    p: &[f64; 3],
+) -> Result<CurveCertificate, Uncertified> {
+    let scale = 1.0 + p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for rel in [1e-12, 1e-10, 1e-9, 3e-9, 1e-8, 3e-8, 1e-7, 3e-7, 1e-6] {
+        for sign in [1.0, -1.0] {
+            let d = sign * rel * scale;
+            sys.e = Fourth::Plane {
+                n,
+                p: std::array::from_fn(|k| p[k] + d * n[k]),
+            };
+            if let Attempt::Done(c) = attempt(sys, z0) {
+                return Ok(c);
+            }
+        }
+    }
+    Err(Uncertified::OutsideDomain)
 }
 
 #[cfg(test)]

@@ -20,6 +20,9 @@ pub(crate) struct CrossingSearch {
     pub open: Option<Box3>,
 }
 
+/// A piece of the surface with its enclosed Cartesian control points.
+type Piece = (IPatch, Option<Vec<V>>);
+
 /// Search `curve` against `patch`: subdivide both until every part is empty or near the
 /// output; stop at `max_depth` levels or `max_boxes` boxes.
 pub(crate) fn search(
@@ -36,8 +39,7 @@ pub(crate) fn search(
         let pts = s.cartesian();
         Rc::new((s, pts))
     };
-    let mut stack: Vec<(ICurve, Rc<(IPatch, Option<Vec<V>>)>, u32)> =
-        vec![(curve.clone(), piece(patch.clone()), 0)];
+    let mut stack: Vec<(ICurve, Rc<Piece>, u32)> = vec![(curve.clone(), piece(patch.clone()), 0)];
     while let Some((c, sp, depth)) = stack.pop() {
         out.boxes += 1;
         let s = &sp.0;
