@@ -7,12 +7,15 @@
 //! *singular region*: every mesh crossing point named by a feature of a region triangle is
 //! merged into one Point for it, so the tracer ends curves there (a branch point when more
 //! than two curve ends meet) instead of following the perturbed mesh topology through it.
+//! Each tangential point's kind is then proven or left uncertified by [`classify`]
+//! ([`super::singular`]): the search itself decides nothing.
 
 use super::branch::PairGeometry;
 use super::cull::{TriTree, triangle_box};
 use super::pair::{tri, unit_normal};
 use super::refine::{RefineParams, RefineStatus, Refined, tangential_point};
 use super::report::TouchOut;
+use super::singular::classify;
 use super::triangulate::SurfaceMesh;
 use crate::geom::dist;
 use std::collections::BTreeSet;
@@ -98,9 +101,11 @@ pub fn region(m: &SurfaceMesh, x: &[f64; 3], r: f64) -> Vec<u32> {
         .collect()
 }
 
-/// The touching point record of a tangential point.
-pub fn touch_out(g: &PairGeometry, r: &Refined, branch_ends: usize) -> TouchOut {
+/// The touching point record of a tangential point, with the proof of its kind
+/// ([`classify`]: a contact is claimed only within `tol`).
+pub fn touch_out(g: &PairGeometry, r: &Refined, branch_ends: usize, tol: f64) -> TouchOut {
     TouchOut {
+        singular: Some(classify(g.sa, g.sb, &r.uv_a, &r.uv_b, tol)),
         point: r.xyz,
         uv_a: Some(r.uv_a),
         uv_b: Some(r.uv_b),
