@@ -40,11 +40,20 @@ fn proven(r: &PairOut) -> Vec<(SingularKind, SingularOut, [f64; 3])> {
 
 /// The surfaces evaluated at the centre of the proven root box both lie within `d` of
 /// `truth`; the root box is inside the isolating box.
-fn check_at(s: &SingularOut, a: &NurbsSurface<f64, 3>, b: &NurbsSurface<f64, 3>, truth: &[f64; 3], d: f64) {
+fn check_at(
+    s: &SingularOut,
+    a: &NurbsSurface<f64, 3>,
+    b: &NurbsSurface<f64, 3>,
+    truth: &[f64; 3],
+    d: f64,
+) {
     let (ra, rb) = (s.root_a.unwrap(), s.root_b.unwrap());
     let (xa, xb) = (s.box_a.unwrap(), s.box_b.unwrap());
     for (r, x) in [(ra, xa), (rb, xb)] {
-        assert!(x[0] <= r[0] && r[1] <= x[1] && x[2] <= r[2] && r[3] <= x[3], "{r:?} {x:?}");
+        assert!(
+            x[0] <= r[0] && r[1] <= x[1] && x[2] <= r[2] && r[3] <= x[3],
+            "{r:?} {x:?}"
+        );
     }
     let c = |r: [f64; 4]| (0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3]));
     let (ua, va) = c(ra);
@@ -153,7 +162,11 @@ fn exact_sphere_touching_a_plane() {
     assert_eq!(got.len(), 1);
     assert_eq!(got[0].0, SingularKind::TouchingPoint);
     check_at(&got[0].1, &s, &p, &[1.0, 2.0, 2.0], 1e-9);
-    assert!(r.touch_points.iter().all(|t| t.singular.as_ref().unwrap().kind != SingularKind::Uncertified));
+    assert!(
+        r.touch_points
+            .iter()
+            .all(|t| t.singular.as_ref().unwrap().kind != SingularKind::Uncertified)
+    );
 }
 
 /// Tangent at (0, 2, 0), where the sphere's parametrisation has knot lines of both directions
@@ -203,12 +216,19 @@ fn transversal_cut_has_no_singular_point() {
     for (seed, h) in [(1u64, 0.5), (2, -1.2), (3, 1.9)] {
         let f = rotated(seed);
         let s = sphere(&f, 2.0).unwrap();
-        let p = plane(f.at(0.0, 0.0, h), f.x.map(|c| 3.0 * c), f.y.map(|c| 3.0 * c));
+        let p = plane(
+            f.at(0.0, 0.0, h),
+            f.x.map(|c| 3.0 * c),
+            f.y.map(|c| 3.0 * c),
+        );
         let r = run(&s, &p);
         assert_eq!(r.branches.len(), 1, "{seed}");
         assert!(proven(&r).is_empty(), "{seed} {h}");
     }
-    let r = run(&exact_sphere(2.0), &plane([0.0, 0.0, 0.7], [3.0, 0.0, 0.0], [0.0, 3.0, 0.0]));
+    let r = run(
+        &exact_sphere(2.0),
+        &plane([0.0, 0.0, 0.7], [3.0, 0.0, 0.0], [0.0, 3.0, 0.0]),
+    );
     assert!(proven(&r).is_empty());
 }
 
@@ -225,7 +245,10 @@ fn plane_above_the_sphere_is_no_contact() {
     assert_eq!(c.kind, SingularKind::Uncertified);
     assert_eq!(c.reason, Some(SingularReason::DistanceAboveTol));
     let d = c.distance.unwrap();
-    assert!(d[0] <= 1e-3 + 1e-12 && d[1] >= 1e-3 - 1e-12 && d[1] - d[0] < 1e-12, "{d:?}");
+    assert!(
+        d[0] <= 1e-3 + 1e-12 && d[1] >= 1e-3 - 1e-12 && d[1] - d[0] < 1e-12,
+        "{d:?}"
+    );
     for f in [rotated(5), rotated(6)] {
         let s = sphere(&f, 2.0).unwrap();
         let top = [f.o[0], f.o[1], f.o[2] + 2.0 + 1e-3];
@@ -252,7 +275,8 @@ fn torus_figure_eight_branch_point() {
         // The inner equator point in direction ψ; the plane tangent there is spanned by the
         // circle's tangent and the axis.
         let q = f.at((big - small) * psi.cos(), (big - small) * psi.sin(), 0.0);
-        let tan: [f64; 3] = std::array::from_fn(|k| 3.5 * (-psi.sin() * f.x[k] + psi.cos() * f.y[k]));
+        let tan: [f64; 3] =
+            std::array::from_fn(|k| 3.5 * (-psi.sin() * f.x[k] + psi.cos() * f.y[k]));
         let p = plane(q, tan, f.z.map(|c| 1.5 * c));
         let r = run(&t, &p);
         let got = proven(&r);
@@ -367,4 +391,61 @@ fn cylinder_on_a_plane_is_uncertified() {
     }
     let r = run(&c, &p);
     assert!(proven(&r).is_empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// The run's summary and report.
+
+fn run_models(a: NurbsSurface<f64, 3>, b: NurbsSurface<f64, 3>) -> vericad::ssi::SsiResult {
+    use vericad::model::{Model, Surface};
+    let m = |s| Model {
+        surfaces: vec![Surface::new("face", s)],
+        ..Default::default()
+    };
+    let prm = SsiParams {
+        tol: TOL,
+        ..Default::default()
+    };
+    vericad::ssi::intersect_models(&m(a), Some(&m(b)), &prm, &|_, _| {}).unwrap()
+}
+
+/// Proven singular points are counted and printed; an uncertified one makes the run
+/// uncertified.
+#[test]
+fn summary_counts_singular_points() {
+    let (a, b) = cylinders(0.3, 0.7);
+    let r = run_models(a, b);
+    assert_eq!(r.summary.singular_points_proven, 2);
+    assert_eq!(r.summary.singular_points_uncertified, 0);
+    let text = r.to_string();
+    assert_eq!(text.matches("branch point, proven").count(), 2, "{text}");
+    assert!(text.contains("singular points: 2 proven"), "{text}");
+
+    let p = plane([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+    let r = run_models(quartic_bowl(), p);
+    assert_eq!(r.summary.singular_points_proven, 0);
+    if r.summary.singular_points_uncertified > 0 {
+        assert!(!r.summary.certified);
+        assert!(r.to_string().contains("uncertified ("));
+    }
+    println!("{r}");
+}
+
+/// The exact sphere touching z = 2 at its north pole, where its parametrisation degenerates
+/// (`S_u = 0`): the tangency system is degenerate in both role assignments, so the point is
+/// left uncertified; a claim, if any, would have to be at the pole.
+#[test]
+fn touching_at_a_pole_is_not_claimed_falsely() {
+    let s = exact_sphere(2.0);
+    let p = plane([0.0, 0.0, 2.0], [3.0, 0.0, 0.0], [0.0, 3.0, 0.0]);
+    let r = run(&s, &p);
+    for t in &r.touch_points {
+        println!("{:?} {:?}", t.point, t.singular);
+    }
+    for (_, c, _) in proven(&r) {
+        check_at(&c, &s, &p, &[0.0, 0.0, 2.0], 1e-9);
+    }
+    let c = classify(&s, &p, &[0.3, 1.0], &[0.5, 0.5], TOL);
+    println!("{c:?}");
+    assert_eq!(c.kind, SingularKind::Uncertified);
 }

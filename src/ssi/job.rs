@@ -286,14 +286,11 @@ impl std::fmt::Display for SsiResult {
             }
             for (j, t) in p.touch_points.iter().enumerate() {
                 let Some(s) = &t.singular else { continue };
-                let at = format!(
-                    "({:.6}, {:.6}, {:.6})",
-                    t.point[0], t.point[1], t.point[2]
-                );
+                let at = format!("({:.6}, {:.6}, {:.6})", t.point[0], t.point[1], t.point[2]);
                 let what = match (s.kind, s.reason) {
                     (SingularKind::TouchingPoint, _) => "touching point, proven".to_string(),
                     (SingularKind::BranchPoint, _) => "branch point, proven".to_string(),
-                    (SingularKind::Uncertified, Some(r)) => format!("uncertified ({r:?})"),
+                    (SingularKind::Uncertified, Some(r)) => format!("uncertified ({})", r.as_str()),
                     (SingularKind::Uncertified, None) => "uncertified".to_string(),
                 };
                 let dist = s

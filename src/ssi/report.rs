@@ -173,6 +173,21 @@ pub enum SingularReason {
     DistanceAboveTol,
 }
 
+impl SingularReason {
+    /// The name used in the JSON output.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SingularReason::NotFinite => "not_finite",
+            SingularReason::Enclosure => "enclosure",
+            SingularReason::Singular => "singular",
+            SingularReason::NoContraction => "no_contraction",
+            SingularReason::OutsideDomain => "outside_domain",
+            SingularReason::TypeUndecided => "type_undecided",
+            SingularReason::DistanceAboveTol => "distance_above_tol",
+        }
+    }
+}
+
 /// The certificate of a singular point (see [`super::singular`] for the theorem).
 #[derive(Clone, Debug, Serialize)]
 pub struct SingularOut {

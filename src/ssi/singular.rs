@@ -135,7 +135,11 @@ pub fn basis_d2(k: &KnotVector<f64>, span: usize, x: I) -> Option<[[I; MAX_ORDER
         }
         Some(d)
     };
-    let n1 = if p >= 1 { step(p, &lev[p - 1])? } else { [z; MAX_ORDER] };
+    let n1 = if p >= 1 {
+        step(p, &lev[p - 1])?
+    } else {
+        [z; MAX_ORDER]
+    };
     let n2 = if p >= 2 {
         step(p, &step(p - 1, &lev[p - 2])?)?
     } else {
@@ -464,6 +468,38 @@ fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
     std::array::from_fn(|i| (0..4).map(|k| m[i][k] * v[k]).sum())
 }
 
+/// Krawczyk's operator of piece `c` (groups `g` of a box holding `x`) for the centre
+/// `y ∈ x` and preconditioner `yinv`, with the Jacobian enclosure over `x`.
+fn krawczyk_op(
+    r: &Roles,
+    g: &BoxGroups,
+    c: &PieceIdx,
+    y: &[f64; 4],
+    yinv: &M4,
+    x: &[I; 4],
+) -> Option<([I; 4], [[I; 4]; 4])> {
+    let (ya, yb) = r.jets(g, c, &y.map(pt))?;
+    let (gy, _) = system(&ya, &yb);
+    let (xa, xb) = r.jets(g, c, x)?;
+    let (_, jx) = system(&xa, &xb);
+    let mut k = [pt(0.0); 4];
+    for i in 0..4 {
+        let mut acc = pt(y[i]);
+        for l in 0..4 {
+            acc = acc - pt(yinv[i][l]) * gy[l];
+        }
+        for col in 0..4 {
+            let mut cij = pt(if i == col { 1.0 } else { 0.0 });
+            for l in 0..4 {
+                cij = cij - pt(yinv[i][l]) * jx[l][col];
+            }
+            acc = acc + cij * (x[col] - pt(y[col]));
+        }
+        k[i] = acc;
+    }
+    Some((k, jx))
+}
+
 /// The proof for one assignment of roles, from the seed `z0`.
 fn prove(r: &Roles, z0: [f64; 4]) -> Result<Proven, SingularReason> {
     if !z0.iter().all(|x| x.is_finite()) {
@@ -511,9 +547,8 @@ fn prove(r: &Roles, z0: [f64; 4]) -> Result<Proven, SingularReason> {
         rad[i] += 64.0 * f64::EPSILON * (y[i].abs() + (r.hi[i] - r.lo[i]));
     }
     for _ in 0..TRIES {
-        let x: [I; 4] = std::array::from_fn(|i| {
-            I::new((pt(y[i]) - pt(rad[i])).lo, (pt(y[i]) + pt(rad[i])).hi)
-        });
+        let x: [I; 4] =
+            std::array::from_fn(|i| I::new((pt(y[i]) - pt(rad[i])).lo, (pt(y[i]) + pt(rad[i])).hi));
         let g = r.box_groups(&x).ok_or(SingularReason::Enclosure)?;
         let pieces = Roles::pieces(&g);
         if pieces.len() > MAX_PIECES {
@@ -523,28 +558,13 @@ fn prove(r: &Roles, z0: [f64; 4]) -> Result<Proven, SingularReason> {
         let mut reach = [0.0f64; 4];
         let mut results = Vec::new();
         for c in &pieces {
-            // The piece's function at y and over X; its own preconditioner.
+            // The piece's function at y; its own preconditioner.
             let (ya, yb) = r.jets(&g, c, &yi).ok_or(SingularReason::Enclosure)?;
-            let (gy, jy) = system(&ya, &yb);
+            let (_, jy) = system(&ya, &yb);
             let yinv =
                 inverse4(jy.map(|row| row.map(|x| x.mid()))).ok_or(SingularReason::Singular)?;
-            let (xa, xb) = r.jets(&g, c, &x).ok_or(SingularReason::NoContraction)?;
-            let (_, jx) = system(&xa, &xb);
-            let mut k = [pt(0.0); 4];
-            for i in 0..4 {
-                let mut acc = pt(y[i]);
-                for l in 0..4 {
-                    acc = acc - pt(yinv[i][l]) * gy[l];
-                }
-                for col in 0..4 {
-                    let mut cij = pt(if i == col { 1.0 } else { 0.0 });
-                    for l in 0..4 {
-                        cij = cij - pt(yinv[i][l]) * jx[l][col];
-                    }
-                    acc = acc + cij * (x[col] - pt(y[col]));
-                }
-                k[i] = acc;
-            }
+            let (k, jx) =
+                krawczyk_op(r, &g, c, &y, &yinv, &x).ok_or(SingularReason::NoContraction)?;
             if !k.iter().all(|v| v.is_finite()) {
                 return Err(SingularReason::NoContraction);
             }
@@ -554,7 +574,7 @@ fn prove(r: &Roles, z0: [f64; 4]) -> Result<Proven, SingularReason> {
                 }
                 reach[i] = reach[i].max((k[i].lo - y[i]).abs().max((k[i].hi - y[i]).abs()));
             }
-            results.push((*c, k, jx));
+            results.push((*c, k, jx, yinv));
         }
         if all_in {
             return conclude(r, &g, &x, &results);
@@ -569,19 +589,42 @@ fn prove(r: &Roles, z0: [f64; 4]) -> Result<Proven, SingularReason> {
     Err(SingularReason::NoContraction)
 }
 
+/// A piece that passed the test: its Krawczyk box `K`, Jacobian enclosure over `X`, and
+/// preconditioner.
+type PieceResult = (PieceIdx, [I; 4], [[I; 4]; 4], M4);
+
 /// After the test passed for every piece: domain check, type, distance at the root.
 fn conclude(
     r: &Roles,
     g: &BoxGroups,
     x: &[I; 4],
-    results: &[(PieceIdx, [I; 4], [[I; 4]; 4])],
+    results: &[PieceResult],
 ) -> Result<Proven, SingularReason> {
     let mut root: Option<[I; 4]> = None;
     let mut hess_sign: Option<i8> = None;
     let mut dist = [f64::INFINITY, 0.0f64];
-    for (c, k, jx) in results {
-        // The zero lies in K(X) ∩ X, which must lie in both closed domains.
-        let z: [I; 4] = std::array::from_fn(|i| I::new(k[i].lo.max(x[i].lo), k[i].hi.min(x[i].hi)));
+    let meet4 = |a: &[I; 4], b: &[I; 4]| -> [I; 4] {
+        std::array::from_fn(|i| I::new(a[i].lo.max(b[i].lo), a[i].hi.min(b[i].hi)))
+    };
+    for (c, k, jx, yinv) in results {
+        // The zero lies in K(X) ∩ X. Any zero in a box Z lies in K(Z) for a centre in Z, so
+        // Z ← K(Z) ∩ Z about Z's midpoint narrows the enclosure (kept if it would empty).
+        let mut z = meet4(k, x);
+        for _ in 0..3 {
+            let m = z.map(|i| i.mid());
+            if !(0..4).all(|i| z[i].lo <= m[i] && m[i] <= z[i].hi) {
+                break;
+            }
+            let Some((kz, _)) = krawczyk_op(r, g, c, &m, yinv, &z) else {
+                break;
+            };
+            let n = meet4(&kz, &z);
+            if !(0..4).all(|i| n[i].lo <= n[i].hi) {
+                break;
+            }
+            z = n;
+        }
+        // The root box must lie in both closed domains.
         if (0..4).any(|i| z[i].lo < r.lo[i] || z[i].hi > r.hi[i]) {
             return Err(SingularReason::OutsideDomain);
         }
@@ -604,9 +647,26 @@ fn conclude(
             return Err(SingularReason::TypeUndecided);
         }
         hess_sign = Some(s);
-        // |S_A − S_B| over the root box, with this piece's functions.
+        // |S_A − S_B| over the root box, with this piece's functions: the direct enclosure
+        // intersected with the mean-value form about the box centre (both hold the value).
         let (ja, jb) = r.jets(g, c, &z).ok_or(SingularReason::Enclosure)?;
-        let d = sub(&ja.s, &jb.s);
+        let m: [I; 4] = z.map(|i| pt(i.mid()));
+        let (ma, mb) = r.jets(g, c, &m).ok_or(SingularReason::Enclosure)?;
+        let mv = |s0: &V, j: &Jet2, k: usize| -> V {
+            let (du, dv) = (z[k] - m[k], z[k + 1] - m[k + 1]);
+            std::array::from_fn(|c| s0[c] + j.su[c] * du + j.sv[c] * dv)
+        };
+        let (ea, eb) = (mv(&ma.s, &ja, 0), mv(&mb.s, &jb, 2));
+        let meet = |x: I, y: I| I::new(x.lo.max(y.lo), x.hi.min(y.hi));
+        let d: V = std::array::from_fn(|k| {
+            let (a, b) = (meet(ja.s[k], ea[k]), meet(jb.s[k], eb[k]));
+            if a.lo > a.hi || b.lo > b.hi {
+                // Both hold the value: cannot happen; keep the direct enclosure.
+                ja.s[k] - jb.s[k]
+            } else {
+                a - b
+            }
+        });
         let (mut lo2, mut hi2) = (0.0f64, 0.0f64);
         for dk in d {
             let m = dk.mag();
@@ -616,7 +676,9 @@ fn conclude(
                 dk.lo.abs().min(dk.hi.abs())
             };
             hi2 = (hi2 + (m * m).next_up()).next_up();
-            lo2 = (lo2 + (mig * mig).next_down().max(0.0)).next_down().max(0.0);
+            lo2 = (lo2 + (mig * mig).next_down().max(0.0))
+                .next_down()
+                .max(0.0);
         }
         dist[0] = dist[0].min(lo2.sqrt().next_down().max(0.0));
         dist[1] = dist[1].max(hi2.sqrt().next_up());
