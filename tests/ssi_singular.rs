@@ -55,7 +55,18 @@ fn check_at(
             "{r:?} {x:?}"
         );
     }
-    let c = |r: [f64; 4]| (0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3]));
+    // Closed surfaces (domains [0, 1] here): a parameter beyond the seam names the point one
+    // period away.
+    let w = |x: f64| {
+        if x < 0.0 {
+            x + 1.0
+        } else if x > 1.0 {
+            x - 1.0
+        } else {
+            x
+        }
+    };
+    let c = |r: [f64; 4]| (w(0.5 * (r[0] + r[1])), w(0.5 * (r[2] + r[3])));
     let (ua, va) = c(ra);
     let (ub, vb) = c(rb);
     let (pa, pb) = (a.eval(&ua, &va), b.eval(&ub, &vb));
@@ -448,4 +459,118 @@ fn touching_at_a_pole_is_not_claimed_falsely() {
     let c = classify(&s, &p, &[0.3, 1.0], &[0.5, 0.5], TOL);
     println!("{c:?}");
     assert_eq!(c.kind, SingularKind::Uncertified);
+}
+
+// ---------------------------------------------------------------------------------------
+// More placements: every claim at the true point.
+
+/// Unit vectors `e1`, `e2` orthogonal to the unit vector `d` and to each other.
+fn tangents(d: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let a = if d[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let cross = |a: &[f64; 3], b: &[f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let e1 = cross(d, &a);
+    let l = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    let e1 = e1.map(|c| c / l);
+    (e1, cross(d, &e1))
+}
+
+/// Spheres touched by planes in many directions, cylinders crossing at many angles, a torus
+/// of other proportions: the kind is proven where the construction has its singular point.
+#[test]
+fn many_placements() {
+    for seed in 7..=12u64 {
+        let f = rotated(seed);
+        let s = sphere(&f, 1.5).unwrap();
+        let t = seed as f64;
+        let d = [
+            t.cos() * (0.3 * t).sin(),
+            t.sin() * (0.3 * t).sin(),
+            (0.3 * t).cos(),
+        ];
+        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let d = d.map(|c| c / l);
+        let q: [f64; 3] = std::array::from_fn(|k| f.o[k] + 1.5 * d[k]);
+        let (e1, e2) = tangents(&d);
+        let p = plane(q, e1.map(|c| 2.5 * c), e2.map(|c| 2.5 * c));
+        let r = run(&s, &p);
+        let got = proven(&r);
+        assert_eq!(got.len(), 1, "sphere {seed}");
+        assert_eq!(got[0].0, SingularKind::TouchingPoint);
+        check_at(&got[0].1, &s, &p, &q, 1e-9);
+    }
+    for (alpha, beta) in [(0.1, 1.3), (2.0, -0.4), (0.785, 2.9)] {
+        let (a, b) = cylinders(alpha, beta);
+        let r = run(&a, &b);
+        let got = proven(&r);
+        assert_eq!(got.len(), 2, "cylinders {alpha} {beta}");
+        for truth in [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]] {
+            let at: Vec<_> = got
+                .iter()
+                .filter(|g| dist(&g.1.root_point.unwrap(), &truth) < 1e-9)
+                .collect();
+            assert_eq!(at.len(), 1, "{truth:?}");
+            assert_eq!(at[0].0, SingularKind::BranchPoint);
+            check_at(&at[0].1, &a, &b, &truth, 1e-9);
+        }
+    }
+    let f = rotated(3);
+    let t = torus(&f, 3.0, 1.0).unwrap();
+    let q = f.at(2.0, 0.0, 0.0);
+    let p = plane(q, f.y.map(|c| 4.5 * c), f.z.map(|c| 1.5 * c));
+    let r = run(&t, &p);
+    for tp in &r.touch_points {
+        println!("{:?} ends {} {:?}", tp.point, tp.branch_ends, tp.singular);
+    }
+    let got = proven(&r);
+    assert_eq!(got.len(), 1);
+    assert_eq!(got[0].0, SingularKind::BranchPoint);
+    check_at(&got[0].1, &t, &p, &q, 1e-9);
+}
+
+/// The figure-eight's branch point on the torus's seam (u = 0, a closed direction): the box
+/// runs across the seam, proven in pieces. The point is a mesh vertex there, found from the
+/// surface normals at the vertices.
+#[test]
+fn branch_point_on_the_seam() {
+    let f = Frame {
+        o: [0.25, -0.5, 0.125],
+        x: [0.3f64.cos(), 0.3f64.sin(), 0.0],
+        y: [-0.3f64.sin(), 0.3f64.cos(), 0.0],
+        z: [0.0, 0.0, 1.0],
+    };
+    let t = torus(&f, 2.0, 1.0).unwrap();
+    let q = f.at(1.0, 0.0, 0.0);
+    let p = plane(q, f.y.map(|c| 3.5 * c), f.z.map(|c| 1.5 * c));
+    for seed_u in [0.0, 1.0, 1e-9, 1.0 - 1e-9] {
+        let c = classify(&t, &p, &[seed_u, 0.5], &[0.5, 0.5], TOL);
+        println!("{seed_u}: {c:?}");
+        assert_eq!(c.kind, SingularKind::BranchPoint, "{c:?}");
+        check_at(&c, &t, &p, &q, 1e-9);
+    }
+    let r = run(&t, &p);
+    println!(
+        "{} branches, ends {:?}",
+        r.branches.len(),
+        r.branches
+            .iter()
+            .map(|b| b.ends.clone())
+            .collect::<Vec<_>>()
+    );
+    for tp in &r.touch_points {
+        println!("{:?} ends {} {:?}", tp.point, tp.branch_ends, tp.singular);
+    }
+    let got = proven(&r);
+    assert_eq!(got.len(), 1);
+    assert_eq!(got[0].0, SingularKind::BranchPoint);
+    check_at(&got[0].1, &t, &p, &q, 1e-9);
 }

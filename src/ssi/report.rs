@@ -199,6 +199,9 @@ pub struct SingularOut {
     /// The enclosure of that root (inside the isolating box).
     pub root_a: Option<[f64; 4]>,
     pub root_b: Option<[f64; 4]>,
+    /// `S_A` at the centre of `root_a` (f64): where the proven point is, which may differ
+    /// slightly from the search's `point`.
+    pub root_point: Option<[f64; 3]>,
     /// Lower and upper bound of `|S_A − S_B|` at the root.
     pub distance: Option<[f64; 2]>,
     /// Smooth pieces the box meets (1: one smooth function per surface; more: cut at knot

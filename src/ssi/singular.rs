@@ -205,15 +205,45 @@ fn piece2(s: &NurbsSurface<f64, 3>, (su, u): (usize, I), (sv, v): (usize, I)) ->
     ok.then_some(o)
 }
 
-/// A span with the part of the parameter interval it covers.
-type Piece = (usize, I);
+/// A span, the part of the parameter interval it covers, and the offset of the copy of the
+/// domain it belongs to: the surface at `x` is the span's function at `x − offset` (offsets
+/// other than 0 only in closed directions).
+type Piece = (usize, I, f64);
+
+/// Whether the surface is closed in direction `dir` (0 = u, 1 = v): clamped knots at both
+/// ends and the first and last rows of homogeneous control points identical, so that
+/// `S(d0, ·) = S(d1, ·)` exactly and the parameter may run on across the seam.
+pub fn closed(s: &NurbsSurface<f64, 3>, dir: usize) -> bool {
+    let h = &s.hom;
+    let k = if dir == 0 { &h.ku } else { &h.kv };
+    let (p, t) = (k.degree(), k.knots());
+    let n = t.len();
+    if n < 2 * (p + 1)
+        || t[..=p].iter().any(|x| *x != t[0])
+        || t[n - p - 1..].iter().any(|x| *x != t[n - 1])
+    {
+        return false;
+    }
+    let (rows, cols) = (h.ku.n_ctrl(), h.kv.n_ctrl());
+    let at = |i: usize, j: usize| &h.net[i * cols + j];
+    let same =
+        |a: &crate::geom::Hom<f64, 3>, b: &crate::geom::Hom<f64, 3>| a.wp == b.wp && a.w == b.w;
+    if dir == 0 {
+        (0..cols).all(|j| same(at(0, j), at(rows - 1, j)))
+    } else {
+        (0..rows).all(|i| same(at(i, 0), at(i, cols - 1)))
+    }
+}
 
 /// The spans the interval `x` meets, in groups joined with continuous first derivatives
 /// (knots of multiplicity below the degree between them); a new group starts at every knot of
-/// multiplicity ≥ the degree. Each group's outer pieces are extended to the ends of `x` (the
-/// polynomial extension of its outermost spans). The outermost spans of the domain extend to
-/// infinity. `None` beyond [`MAX_SPANS`] spans or for degree 0.
-fn groups(k: &KnotVector<f64>, x: I) -> Option<Vec<Vec<Piece>>> {
+/// multiplicity ≥ the degree, and at the seam of a closed direction (`periodic`: the domain
+/// repeated one period to either side). Each group's outer pieces are extended to the ends of
+/// `x` (the polynomial extension of its outermost spans); in an open direction the outermost
+/// spans of the domain extend to infinity. Piece ends are rounded outward, so neighbouring
+/// pieces overlap by an ulp rather than leave a gap. `None` beyond [`MAX_SPANS`] spans, for
+/// degree 0, or when `x` is not covered.
+fn groups(k: &KnotVector<f64>, x: I, periodic: bool) -> Option<Vec<Vec<Piece>>> {
     let t = k.knots();
     let p = k.degree();
     if p == 0 || !(x.is_finite() && x.lo <= x.hi) {
@@ -221,26 +251,47 @@ fn groups(k: &KnotVector<f64>, x: I) -> Option<Vec<Vec<Piece>>> {
     }
     let (d0, d1) = k.domain();
     let (first, last) = (k.find_span(&d0), k.find_span(&d1));
+    let per = d1 - d0;
+    let offsets: &[f64] = if periodic { &[-per, 0.0, per] } else { &[0.0] };
     let thin = x.lo == x.hi;
     let mut out: Vec<Vec<Piece>> = Vec::new();
     let mut count = 0;
-    for s in first..=last {
-        if t[s] >= t[s + 1] {
-            continue;
+    let mut covered = x.lo;
+    for &o in offsets {
+        for s in first..=last {
+            if t[s] >= t[s + 1] {
+                continue;
+            }
+            let (a, b) = ((pt(t[s]) + pt(o)).lo, (pt(t[s + 1]) + pt(o)).hi);
+            let lo = if s == first && !periodic {
+                x.lo
+            } else {
+                x.lo.max(a)
+            };
+            let hi = if s == last && !periodic {
+                x.hi
+            } else {
+                x.hi.min(b)
+            };
+            if !(lo < hi || (thin && lo <= hi)) {
+                continue;
+            }
+            if lo > covered {
+                return None;
+            }
+            covered = covered.max(hi);
+            count += 1;
+            if count > MAX_SPANS {
+                return None;
+            }
+            if out.is_empty() || k.multiplicity(&t[s]) >= p {
+                out.push(Vec::new());
+            }
+            out.last_mut()?.push((s, I::new(lo, hi), o));
         }
-        let lo = if s == first { x.lo } else { x.lo.max(t[s]) };
-        let hi = if s == last { x.hi } else { x.hi.min(t[s + 1]) };
-        if !(lo < hi || (thin && lo <= hi)) {
-            continue;
-        }
-        count += 1;
-        if count > MAX_SPANS {
-            return None;
-        }
-        if out.is_empty() || k.multiplicity(&t[s]) >= p {
-            out.push(Vec::new());
-        }
-        out.last_mut()?.push((s, I::new(lo, hi)));
+    }
+    if covered < x.hi {
+        return None;
     }
     for g in &mut out {
         g[0].1.lo = x.lo;
@@ -253,8 +304,8 @@ fn groups(k: &KnotVector<f64>, x: I) -> Option<Vec<Vec<Piece>>> {
 /// The group's function over `z ⊂ x` (pieces overlapping `z`, cut to it).
 fn restrict(g: &[Piece], z: I) -> Vec<Piece> {
     g.iter()
-        .filter(|(_, r)| r.lo <= z.hi && z.lo <= r.hi)
-        .map(|&(s, r)| (s, I::new(r.lo.max(z.lo), r.hi.min(z.hi))))
+        .filter(|(_, r, _)| r.lo <= z.hi && z.lo <= r.hi)
+        .map(|&(s, r, o)| (s, I::new(r.lo.max(z.lo), r.hi.min(z.hi)), o))
         .collect()
 }
 
@@ -267,7 +318,7 @@ fn group_jet(s: &NurbsSurface<f64, 3>, gu: &[Piece], gv: &[Piece]) -> Option<Jet
     let mut out: Option<Jet2> = None;
     for &a in gu {
         for &b in gv {
-            let j = piece2(s, a, b)?;
+            let j = piece2(s, (a.0, a.1 - pt(a.2)), (b.0, b.1 - pt(b.2)))?;
             out = Some(match out {
                 None => j,
                 Some(o) => Jet2 {
@@ -408,6 +459,8 @@ struct Roles<'a> {
     b: &'a NurbsSurface<f64, 3>,
     lo: [f64; 4],
     hi: [f64; 4],
+    /// Closed directions (the parameter may run on across the seam).
+    per: [bool; 4],
 }
 
 /// Groups of every direction over the box `x`.
@@ -417,10 +470,10 @@ impl Roles<'_> {
     fn box_groups(&self, x: &[I; 4]) -> Option<BoxGroups> {
         let (ha, hb) = (&self.a.hom, &self.b.hom);
         Some([
-            groups(&ha.ku, x[0])?,
-            groups(&ha.kv, x[1])?,
-            groups(&hb.ku, x[2])?,
-            groups(&hb.kv, x[3])?,
+            groups(&ha.ku, x[0], self.per[0])?,
+            groups(&ha.kv, x[1], self.per[1])?,
+            groups(&hb.ku, x[2], self.per[2])?,
+            groups(&hb.kv, x[3], self.per[3])?,
         ])
     }
     fn pieces(g: &BoxGroups) -> Vec<PieceIdx> {
@@ -625,7 +678,7 @@ fn conclude(
             z = n;
         }
         // The root box must lie in both closed domains.
-        if (0..4).any(|i| z[i].lo < r.lo[i] || z[i].hi > r.hi[i]) {
+        if (0..4).any(|i| !r.per[i] && (z[i].lo < r.lo[i] || z[i].hi > r.hi[i])) {
             return Err(SingularReason::OutsideDomain);
         }
         root = Some(match root {
@@ -716,17 +769,33 @@ pub fn classify(
     let (da, db) = (domain(sa), domain(sb));
     // h on A with its foot on B, then the other way round (a parametric degeneracy of one
     // surface — a pole — may spoil one of them).
+    let (pa, pb) = (
+        [closed(sa, 0), closed(sa, 1)],
+        [closed(sb, 0), closed(sb, 1)],
+    );
     let ab = Roles {
         a: sa,
         b: sb,
         lo: [da[0], da[2], db[0], db[2]],
         hi: [da[1], da[3], db[1], db[3]],
+        per: [pa[0], pa[1], pb[0], pb[1]],
     };
     let ba = Roles {
         a: sb,
         b: sa,
         lo: [db[0], db[2], da[0], da[2]],
         hi: [db[1], db[3], da[1], da[3]],
+        per: [pb[0], pb[1], pa[0], pa[1]],
+    };
+    // A parameter of a closed direction beyond the domain names the point one period away.
+    let wrap = |x: f64, lo: f64, hi: f64| {
+        if x < lo {
+            x + (hi - lo)
+        } else if x > hi {
+            x - (hi - lo)
+        } else {
+            x
+        }
     };
     let first = prove(&ab, [uv_a[0], uv_a[1], uv_b[0], uv_b[1]]);
     let (res, swapped) = match first {
@@ -743,6 +812,7 @@ pub fn classify(
             box_b: None,
             root_a: None,
             root_b: None,
+            root_point: None,
             distance: None,
             pieces: 0,
             critical_on: None,
@@ -770,6 +840,10 @@ pub fn classify(
                 box_b: Some(box4(xb.0, xb.1)),
                 root_a: Some(box4(ra.0, ra.1)),
                 root_b: Some(box4(rb.0, rb.1)),
+                root_point: Some(sa.eval(
+                    &wrap(ra.0.mid(), da[0], da[1]),
+                    &wrap(ra.1.mid(), da[2], da[3]),
+                )),
                 distance: Some(p.distance),
                 pieces: p.pieces,
                 critical_on: Some(if swapped { 'b' } else { 'a' }),
@@ -803,8 +877,8 @@ mod tests {
         ] {
             for (u, v) in [(0.1, 0.3), (0.61, 0.12), (0.4, 0.8)] {
                 let g = [
-                    groups(&s.hom.ku, pt(u)).unwrap(),
-                    groups(&s.hom.kv, pt(v)).unwrap(),
+                    groups(&s.hom.ku, pt(u), false).unwrap(),
+                    groups(&s.hom.kv, pt(v), false).unwrap(),
                 ];
                 let j = group_jet(&s, &g[0][0], &g[1][0]).unwrap();
                 let (p, su, sv) = super::super::refine::point_d1(&s, u, v);
@@ -832,15 +906,35 @@ mod tests {
         }
     }
 
+    /// Revolved surfaces are closed around the axis; the sphere's profile runs pole to pole.
+    #[test]
+    fn closed_directions() {
+        let t = torus(&frame(), 2.0, 0.7).unwrap();
+        assert!(closed(&t, 0) && closed(&t, 1));
+        let s = sphere(&frame(), 1.5).unwrap();
+        assert!(closed(&s, 0) && !closed(&s, 1));
+        // Across the seam: two groups (the copy below the domain, the domain itself).
+        let g = groups(&t.hom.ku, I::new(-0.01, 0.01), true).unwrap();
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[0][0].2, -1.0);
+        assert!(groups(&t.hom.ku, I::new(-0.01, 0.01), false).unwrap().len() == 1);
+    }
+
     /// A box across a double knot (the circle's joints) splits into two groups; across a
     /// simple knot of a cubic it stays one.
     #[test]
     fn groups_split_at_c0_knots() {
         let s = torus(&frame(), 2.0, 0.7).unwrap();
-        assert_eq!(groups(&s.hom.kv, I::new(0.49, 0.51)).unwrap().len(), 2);
-        assert_eq!(groups(&s.hom.kv, I::new(0.4, 0.45)).unwrap().len(), 1);
+        assert_eq!(
+            groups(&s.hom.kv, I::new(0.49, 0.51), false).unwrap().len(),
+            2
+        );
+        assert_eq!(
+            groups(&s.hom.kv, I::new(0.4, 0.45), false).unwrap().len(),
+            1
+        );
         let k = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0], 3, 5).unwrap();
-        let g = groups(&k, I::new(0.4, 0.6)).unwrap();
+        let g = groups(&k, I::new(0.4, 0.6), false).unwrap();
         assert_eq!(g.len(), 1);
         assert_eq!(g[0].len(), 2);
     }

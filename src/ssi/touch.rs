@@ -13,11 +13,12 @@
 use super::branch::PairGeometry;
 use super::cull::{TriTree, triangle_box};
 use super::pair::{tri, unit_normal};
-use super::refine::{RefineParams, RefineStatus, Refined, tangential_point};
+use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point};
 use super::report::TouchOut;
 use super::singular::classify;
 use super::triangulate::SurfaceMesh;
-use crate::geom::dist;
+use crate::geom::{cross, dist, norm};
+use crate::spline::NurbsSurface;
 use std::collections::BTreeSet;
 
 /// Most seeds tried per pair.
@@ -57,7 +58,7 @@ pub fn tangential_points(
     let pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
     let mut seeds: BTreeSet<(u32, u32)> = BTreeSet::new();
     let mut seed_tris = Vec::new();
-    for (ta, tb) in pairs {
+    for &(ta, tb) in &pairs {
         if let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb)))
             && (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t
         {
@@ -69,21 +70,62 @@ pub fn tangential_points(
     }
     let step = seed_tris.len().div_ceil(MAX_SEEDS).max(1);
     let mut out: Vec<Refined> = Vec::new();
-    for &(ta, tb) in seed_tris.iter().step_by(step) {
-        let r = tangential_point(
-            g.sa,
-            g.sb,
-            centroid_uv(g.ma, ta),
-            centroid_uv(g.mb, tb),
-            prm,
-        );
+    let mut try_seed = |uv_a: [f64; 2], uv_b: [f64; 2], out: &mut Vec<Refined>| {
+        let r = tangential_point(g.sa, g.sb, uv_a, uv_b, prm);
         if r.status == RefineStatus::Tangential
             && !out.iter().any(|t| dist(&t.xyz, &r.xyz) <= flatness)
         {
             out.push(r);
         }
+    };
+    for &(ta, tb) in seed_tris.iter().step_by(step) {
+        try_seed(centroid_uv(g.ma, ta), centroid_uv(g.mb, tb), &mut out);
+    }
+    // Where a tangential point is a mesh vertex (on knot lines, as at a circle's joints), the
+    // facets around it can all lean by more than the angle while the surface normal at the
+    // vertex is exactly parallel: pairs whose *vertex* normals (true surface normals) are
+    // within the angle seed the search too, from those vertices (a budget of their own).
+    let (na, nb) = (vertex_normals(g.sa, g.ma), vertex_normals(g.sb, g.mb));
+    let mut vseeds: BTreeSet<(u32, u32)> = BTreeSet::new();
+    let mut vertex_pairs = Vec::new();
+    for &(ta, tb) in &pairs {
+        let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);
+        if seeds.contains(&key) || vseeds.contains(&key) {
+            continue;
+        }
+        let (va, vb) = (g.ma.triangles[ta as usize], g.mb.triangles[tb as usize]);
+        let best = va
+            .iter()
+            .flat_map(|&x| vb.iter().map(move |&y| (x, y)))
+            .filter_map(|(x, y)| {
+                let (p, q) = (na[x as usize]?, nb[y as usize]?);
+                Some(((p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).abs(), x, y))
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((c, x, y)) = best
+            && c > cos_t
+        {
+            vseeds.insert(key);
+            vertex_pairs.push((g.ma.uv[x as usize], g.mb.uv[y as usize]));
+        }
+    }
+    let step = vertex_pairs.len().div_ceil(MAX_SEEDS).max(1);
+    for &(uv_a, uv_b) in vertex_pairs.iter().step_by(step) {
+        try_seed(uv_a, uv_b, &mut out);
     }
     out
+}
+
+/// Unit surface normals at the mesh vertices (`None` where the parametrisation degenerates).
+fn vertex_normals(s: &NurbsSurface<f64, 3>, m: &SurfaceMesh) -> Vec<Option<[f64; 3]>> {
+    m.uv.iter()
+        .map(|uv| {
+            let (_, su, sv) = point_d1(s, uv[0], uv[1]);
+            let n = cross(&su, &sv);
+            let l = norm(&n);
+            (l > 0.0 && l.is_finite()).then(|| n.map(|c| c / l))
+        })
+        .collect()
 }
 
 /// Triangles of `m` whose box, grown by `r`, holds `x`: the singular region around a
