@@ -41,7 +41,9 @@
 //! one zero in `X`; every critical point of the normal distance in the closed piece (with the
 //! piece's one-sided derivatives) is that zero; all of them lie in the reported root box. The
 //! claim is per piece (`pieces > 1`); existence of a critical point *on* the cut line is not
-//! claimed beyond that.
+//! claimed beyond that. In a closed direction ([`closed`]: `S(d0, ·) = S(d1, ·)` exactly) the
+//! parameter runs on across the seam into a copy of the domain one period away, and the seam
+//! cuts the box like a C0 knot line.
 //!
 //! **The claim** (`kind` touching_point / branch_point): "in this box, the normal distance
 //! from one surface to the other has a unique critical point (per piece), non-degenerate, of
@@ -50,7 +52,8 @@
 //! nothing is claimed about the intersection away from the root box.
 //!
 //! Hypotheses: weights positive on the box (proven by the interval quotients, refused
-//! otherwise); the root inside both closed parameter domains (checked).
+//! otherwise); the root inside both closed parameter domains (checked in the open
+//! directions). The theorem, its proof and the claim in full: docs/ssi.md, "Singular points".
 
 use super::refine::domain;
 use super::report::{SingularKind, SingularOut, SingularReason};
