@@ -70,7 +70,7 @@ pub fn tangential_points(
     }
     let step = seed_tris.len().div_ceil(MAX_SEEDS).max(1);
     let mut out: Vec<Refined> = Vec::new();
-    let mut try_seed = |uv_a: [f64; 2], uv_b: [f64; 2], out: &mut Vec<Refined>| {
+    let try_seed = |uv_a: [f64; 2], uv_b: [f64; 2], out: &mut Vec<Refined>| {
         let r = tangential_point(g.sa, g.sb, uv_a, uv_b, prm);
         if r.status == RefineStatus::Tangential
             && !out.iter().any(|t| dist(&t.xyz, &r.xyz) <= flatness)
