@@ -909,6 +909,64 @@ mod tests {
         }
     }
 
+    /// Exact rational second derivatives (the same surface lifted to `BigRational`, The NURBS
+    /// Book A4.4) lie in the enclosures over boxes, across knot lines and the seam too (in the
+    /// enclosure of one of the pieces there).
+    #[test]
+    fn enclosures_hold_exact_derivatives() {
+        use crate::geom::{Hom, lift_point};
+        use crate::scalar::lift;
+        use num_rational::BigRational as Q;
+        let q = |x: f64| Q::from_float(x).unwrap();
+        let within = |x: &Q, i: I| q(i.lo) <= *x && *x <= q(i.hi);
+        for s in [
+            torus(&frame(), 2.0, 0.7).unwrap(),
+            sphere(&frame(), 1.5).unwrap(),
+        ] {
+            let e: NurbsSurface<Q, 3> = NurbsSurface {
+                hom: s.hom.map(
+                    |k| lift::<Q>(*k),
+                    |h| Hom {
+                        wp: lift_point(&h.wp),
+                        w: lift(h.w),
+                    },
+                ),
+            };
+            let per = [closed(&s, 0), closed(&s, 1)];
+            for (u0, v0, w) in [
+                (0.1, 0.3, 1e-6),
+                (0.25 - 1e-7, 0.5 - 2e-7, 4e-7),
+                (0.61, 0.12, 1e-3),
+                (-3e-7, 0.7, 1e-6),
+                (0.37, 0.25, 0.0),
+            ] {
+                let x = [I::new(u0, u0 + w), I::new(v0, v0 + w)];
+                let gu = groups(&s.hom.ku, x[0], per[0]).unwrap();
+                let gv = groups(&s.hom.kv, x[1], per[1]).unwrap();
+                let jets: Vec<Jet2> = gu
+                    .iter()
+                    .flat_map(|a| gv.iter().map(move |b| (a, b)))
+                    .map(|(a, b)| group_jet(&s, a, b).unwrap())
+                    .collect();
+                for a in 0..5 {
+                    for b in 0..5 {
+                        let (mut u, v) = (u0 + w * a as f64 / 4.0, v0 + w * b as f64 / 4.0);
+                        if u < 0.0 {
+                            u += 1.0; // the seam: the same point one period on
+                        }
+                        let d = e.derivatives2(&q(u), &q(v));
+                        let ok = jets.iter().any(|j| {
+                            let all = [j.s, j.su, j.sv, j.suu, j.suv, j.svv];
+                            (0..6).all(|m| (0..3).all(|k| within(&d[m][k], all[m][k])))
+                        });
+                        // At u + 1 (beyond the seam) the exact value is that of the last span.
+                        assert!(ok, "{u} {v}");
+                    }
+                }
+            }
+        }
+    }
+
     /// Revolved surfaces are closed around the axis; the sphere's profile runs pole to pole.
     #[test]
     fn closed_directions() {
