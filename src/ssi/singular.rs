@@ -32,18 +32,19 @@
 //! (enclosed). `det J12` is enclosed over `X` directly. The distance at the root,
 //! `|h(z*)| = |S_A − S_B|`, is enclosed over `K(X) ∩ X`.
 //!
-//! **Pieces.** The mean-value form needs `G` continuous and piecewise C¹ on `X`: `S`, `S_u`,
-//! `S_v` continuous, i.e. every knot inside the box of multiplicity below the degree. A box
-//! that meets a knot line of multiplicity ≥ the degree (where the parametrisation is only C0
-//! — the joints of the standard circle, sphere, torus forms) is cut there into closed
-//! *pieces*; on each, the surface is one smooth function, extended analytically over all of
-//! `X`, and the test is run per piece with the same `X`. Each piece's system then has exactly
+//! **Pieces.** The mean-value form needs `G` continuous and piecewise C¹ on `X`, and the
+//! type argument (a Hessian at the root) needs the surfaces C² there: every knot inside the
+//! box of multiplicity at most the degree − 2. A box that meets a knot line of multiplicity
+//! ≥ the degree − 1 (where the parametrisation is not C² — every interior knot of a
+//! quadratic, the C0 joints of the standard circle, sphere, torus forms) is cut there into
+//! closed *pieces*; on each, the surface is one C² function, extended analytically over all
+//! of `X`, and the test is run per piece with the same `X`. Each piece's system then has exactly
 //! one zero in `X`; every critical point of the normal distance in the closed piece (with the
 //! piece's one-sided derivatives) is that zero; all of them lie in the reported root box. The
 //! claim is per piece (`pieces > 1`); existence of a critical point *on* the cut line is not
 //! claimed beyond that. In a closed direction ([`closed`]: `S(d0, ·) = S(d1, ·)` exactly) the
 //! parameter runs on across the seam into a copy of the domain one period away, and the seam
-//! cuts the box like a C0 knot line.
+//! cuts the box like such a knot line.
 //!
 //! **The claim** (`kind` touching_point / branch_point): "in this box, the normal distance
 //! from one surface to the other has a unique critical point (per piece), non-degenerate, of
@@ -238,9 +239,9 @@ pub fn closed(s: &NurbsSurface<f64, 3>, dir: usize) -> bool {
     }
 }
 
-/// The spans the interval `x` meets, in groups joined with continuous first derivatives
-/// (knots of multiplicity below the degree between them); a new group starts at every knot of
-/// multiplicity ≥ the degree, and at the seam of a closed direction (`periodic`: the domain
+/// The spans the interval `x` meets, in groups joined with continuous second derivatives
+/// (knots of multiplicity at most the degree − 2 between them); a new group starts at every
+/// knot of multiplicity ≥ the degree − 1, and at the seam of a closed direction (`periodic`: the domain
 /// repeated one period to either side). Each group's outer pieces are extended to the ends of
 /// `x` (the polynomial extension of its outermost spans); in an open direction the outermost
 /// spans of the domain extend to infinity. Piece ends are rounded outward, so neighbouring
@@ -287,7 +288,7 @@ fn groups(k: &KnotVector<f64>, x: I, periodic: bool) -> Option<Vec<Vec<Piece>>> 
             if count > MAX_SPANS {
                 return None;
             }
-            if out.is_empty() || k.multiplicity(&t[s]) >= p {
+            if out.is_empty() || k.multiplicity(&t[s]) + 1 >= p {
                 out.push(Vec::new());
             }
             out.last_mut()?.push((s, I::new(lo, hi), o));
@@ -316,7 +317,7 @@ fn hull_v(a: V, b: V) -> V {
     std::array::from_fn(|k| a[k].hull(b[k]))
 }
 
-/// Enclosure of one smooth group's function over the pieces (hull across C¹ joins).
+/// Enclosure of one smooth group's function over the pieces (hull across C² joins).
 fn group_jet(s: &NurbsSurface<f64, 3>, gu: &[Piece], gv: &[Piece]) -> Option<Jet2> {
     let mut out: Option<Jet2> = None;
     for &a in gu {
@@ -981,10 +982,18 @@ mod tests {
         assert!(groups(&t.hom.ku, I::new(-0.01, 0.01), false).unwrap().len() == 1);
     }
 
-    /// A box across a double knot (the circle's joints) splits into two groups; across a
-    /// simple knot of a cubic it stays one.
+    /// A box across a double knot (the circle's joints) splits into two groups, and so does
+    /// one across a simple knot of a quadratic (C¹ only); across a simple knot of a cubic (C²)
+    /// it stays one, across a double knot of a cubic it splits.
     #[test]
-    fn groups_split_at_c0_knots() {
+    fn groups_split_where_not_c2() {
+        let k2 = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], 2, 4).unwrap();
+        assert_eq!(groups(&k2, I::new(0.4, 0.6), false).unwrap().len(), 2);
+        let k3 = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0, 1.0], 3, 6);
+        assert_eq!(
+            groups(&k3.unwrap(), I::new(0.4, 0.6), false).unwrap().len(),
+            2
+        );
         let s = torus(&frame(), 2.0, 0.7).unwrap();
         assert_eq!(
             groups(&s.hom.kv, I::new(0.49, 0.51), false).unwrap().len(),
