@@ -75,7 +75,7 @@ fn check_at(
         "{pa:?} {pb:?} vs {truth:?}"
     );
     let dd = s.distance.unwrap();
-    assert!(dd[0] <= dd[1] && dd[1] <= TOL, "{dd:?}");
+    assert!(dd[0] <= dd[1] && dd[1] <= 1e-12, "{dd:?}");
 }
 
 /// The sphere of radius `r` about the origin with exact f64 data (quarter circles as rational
