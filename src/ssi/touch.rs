@@ -85,7 +85,10 @@ pub fn tangential_points(
     // facets around it can all lean by more than the angle while the surface normal at the
     // vertex is exactly parallel: pairs whose *vertex* normals (true surface normals) are
     // within the angle seed the search too, from those vertices (a budget of their own).
-    let (na, nb) = (vertex_normals(g.sa, g.ma), vertex_normals(g.sb, g.mb));
+    // Only pairs whose facets are within three times the angle are looked at (vertex
+    // normals computed on demand, once each).
+    let cos_wide = (3.0 * tangent_angle_deg).min(90.0).to_radians().cos();
+    let (mut na, mut nb) = (vec![None; g.ma.uv.len()], vec![None; g.mb.uv.len()]);
     let mut vseeds: BTreeSet<(u32, u32)> = BTreeSet::new();
     let mut vertex_pairs = Vec::new();
     for &(ta, tb) in &pairs {
@@ -93,20 +96,32 @@ pub fn tangential_points(
         if seeds.contains(&key) || vseeds.contains(&key) {
             continue;
         }
+        let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb))) else {
+            continue;
+        };
+        if (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() <= cos_wide {
+            continue;
+        }
         let (va, vb) = (g.ma.triangles[ta as usize], g.mb.triangles[tb as usize]);
-        let best = va
-            .iter()
-            .flat_map(|&x| vb.iter().map(move |&y| (x, y)))
-            .filter_map(|(x, y)| {
-                let (p, q) = (na[x as usize]?, nb[y as usize]?);
-                Some(((p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).abs(), x, y))
-            })
-            .max_by(|a, b| a.0.total_cmp(&b.0));
-        if let Some((c, x, y)) = best
+        let mut best: Option<(f64, u32, u32)> = None;
+        for &i in &va {
+            let p = *na[i as usize].get_or_insert_with(|| vertex_normal(g.sa, g.ma.uv[i as usize]));
+            for &j in &vb {
+                let q =
+                    *nb[j as usize].get_or_insert_with(|| vertex_normal(g.sb, g.mb.uv[j as usize]));
+                if let (Some(p), Some(q)) = (p, q) {
+                    let c = (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).abs();
+                    if best.is_none_or(|b| c > b.0) {
+                        best = Some((c, i, j));
+                    }
+                }
+            }
+        }
+        if let Some((c, i, j)) = best
             && c > cos_t
         {
             vseeds.insert(key);
-            vertex_pairs.push((g.ma.uv[x as usize], g.mb.uv[y as usize]));
+            vertex_pairs.push((g.ma.uv[i as usize], g.mb.uv[j as usize]));
         }
     }
     let step = vertex_pairs.len().div_ceil(MAX_SEEDS).max(1);
@@ -116,16 +131,12 @@ pub fn tangential_points(
     out
 }
 
-/// Unit surface normals at the mesh vertices (`None` where the parametrisation degenerates).
-fn vertex_normals(s: &NurbsSurface<f64, 3>, m: &SurfaceMesh) -> Vec<Option<[f64; 3]>> {
-    m.uv.iter()
-        .map(|uv| {
-            let (_, su, sv) = point_d1(s, uv[0], uv[1]);
-            let n = cross(&su, &sv);
-            let l = norm(&n);
-            (l > 0.0 && l.is_finite()).then(|| n.map(|c| c / l))
-        })
-        .collect()
+/// Unit surface normal at `uv` (`None` where the parametrisation degenerates).
+fn vertex_normal(s: &NurbsSurface<f64, 3>, uv: [f64; 2]) -> Option<[f64; 3]> {
+    let (_, su, sv) = point_d1(s, uv[0], uv[1]);
+    let n = cross(&su, &sv);
+    let l = norm(&n);
+    (l > 0.0 && l.is_finite()).then(|| n.map(|c| c / l))
 }
 
 /// Triangles of `m` whose box, grown by `r`, holds `x`: the singular region around a
