@@ -74,6 +74,7 @@ fn far_output(far: bool) -> Vec<TouchOut> {
         dist_a: None,
         dist_b: None,
         branch_ends: 0,
+        singular: None,
     }]
 }
 

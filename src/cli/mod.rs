@@ -1,7 +1,7 @@
 //! Command-line interface: parses arguments, calls one library job, prints its report.
 //! Exit codes: 0 success (for `ssi` and `certify-ssi`: everything reported is proven),
 //! 3 finished but not certified (uncertified regions, points or curves not within tol,
-//! missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
+//! uncertified singular points, missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
 //! 1 failure of the computation or of writing outputs.
 
 use clap::{Parser, Subcommand};
@@ -12,7 +12,8 @@ pub const EXIT_BAD_INPUT: i32 = 2;
 /// Exit code for a failed computation or output.
 pub const EXIT_FAILURE: i32 = 1;
 /// The run finished but not everything it reports is proven: `ssi` with uncertified
-/// coverage regions, points not proven within tol, or a partial run; `certify-ssi` with
+/// coverage regions, points not proven within tol, singular points of unproven kind, or a
+/// partial run; `certify-ssi` with
 /// foreign curves not within tol, or vericad branches missing or partly missing from them.
 pub const EXIT_UNCERTIFIED: i32 = 3;
 /// Largest `--threads` accepted (each worker has its own stack).

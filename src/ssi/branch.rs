@@ -223,7 +223,7 @@ pub fn refine_branch(
         )
     };
     if raw.iter().all(|x| *x == raw[0]) {
-        return BranchResult::Touch(touch_out(g, &refine_at(0), 0));
+        return BranchResult::Touch(touch_out(g, &refine_at(0), 0, prm.tol));
     }
     let mut refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
     if !b.closed {

@@ -9,7 +9,7 @@
 
 use super::mesh::intersect_meshes;
 use super::pair::intersect_surfaces;
-use super::report::{PairOut, SsiResult, Summary};
+use super::report::{PairOut, SingularKind, SsiResult, Summary};
 use super::trims::{SAMPLES_PER_CURVE, TrimRegion, clip};
 use super::{SsiError, SsiParams};
 use crate::geom::Aabb;
@@ -48,6 +48,11 @@ fn swap_sides(mut p: PairOut) -> PairOut {
     for t in &mut p.touch_points {
         std::mem::swap(&mut t.uv_a, &mut t.uv_b);
         std::mem::swap(&mut t.dist_a, &mut t.dist_b);
+        if let Some(s) = &mut t.singular {
+            std::mem::swap(&mut s.box_a, &mut s.box_b);
+            std::mem::swap(&mut s.root_a, &mut s.root_b);
+            s.critical_on = s.critical_on.map(|c| if c == 'a' { 'b' } else { 'a' });
+        }
     }
     if let Some(c) = &mut p.coverage {
         std::mem::swap(&mut c.boxes_a, &mut c.boxes_b);
@@ -288,6 +293,16 @@ pub fn intersect_models(
             p.coincident.is_none() && p.coverage.as_ref().is_some_and(|c| c.no_missed_branches)
         });
     let coincident_pairs = pairs.iter().filter(|p| p.coincident.is_some()).count();
+    let singular: Vec<_> = pairs
+        .iter()
+        .flat_map(|p| &p.touch_points)
+        .filter_map(|t| t.singular.as_ref())
+        .collect();
+    let singular_points_uncertified = singular
+        .iter()
+        .filter(|s| s.kind == SingularKind::Uncertified)
+        .count();
+    let singular_points_proven = singular.len() - singular_points_uncertified;
     let matched = pairs
         .iter()
         .filter_map(|p| p.coverage.as_ref())
@@ -318,6 +333,13 @@ pub fn intersect_models(
         },
         "chord midpoints within tol of the true curve are measured after refinement (evidence, not proof)".to_string(),
     ];
+    if !singular.is_empty() {
+        certificate.push(if singular_points_uncertified == 0 {
+            format!("singular points: all {singular_points_proven} proven (touching point or branch point): a unique non-degenerate critical point of the normal distance in the isolating box (Krawczyk's test on the tangency system), its type from the sign of the Hessian determinant, the distance between the surfaces there enclosed within tol")
+        } else {
+            format!("singular points: {singular_points_proven} proven, {singular_points_uncertified} NOT certified (listed per touch point with the reason): their kind is not known")
+        });
+    }
     if prm.respect_trims {
         certificate.push(format!(
             "branches clipped to trim loops ({trimmed_faces} trimmed faces), polygonized with {SAMPLES_PER_CURVE} samples per trim curve: exact decisions against the polygon, evidence against the true trim curves"
@@ -352,8 +374,13 @@ pub fn intersect_models(
         no_missed_branches,
         uncertified_box_pairs: uncertified,
         coincident_pairs,
+        singular_points_proven,
+        singular_points_uncertified,
         partial,
-        certified: all_points_within_tol && !partial && (meshes || no_missed_branches),
+        certified: all_points_within_tol
+            && !partial
+            && (meshes || no_missed_branches)
+            && singular_points_uncertified == 0,
         seconds: t0.elapsed().as_secs_f64(),
         certificate,
     };

@@ -1,7 +1,7 @@
 //! The `ssi` job: read one or two model files, intersect, write the JSON result and optional
 //! VTK / IGES outputs, report progress on long runs.
 
-use super::report::SsiResult;
+use super::report::{SingularKind, SsiResult};
 use super::{SsiError, SsiParams, intersect_models};
 use crate::io::vtk::{Array, PolyData, render};
 use crate::model::{Curve, CurveGeometry, Model};
@@ -262,6 +262,13 @@ impl std::fmt::Display for SsiResult {
                 "NOT all proven within tol of the curve"
             }
         )?;
+        if s.singular_points_proven + s.singular_points_uncertified > 0 {
+            writeln!(
+                f,
+                "  singular points: {} proven (touching or branch point), {} uncertified",
+                s.singular_points_proven, s.singular_points_uncertified
+            )?;
+        }
         for p in self
             .pairs
             .iter()
@@ -291,6 +298,25 @@ impl std::fmt::Display for SsiResult {
                         None => format!("unproven at {} points", b.curve_uncertified_points),
                     },
                     b.ends
+                )?;
+            }
+            for (j, t) in p.touch_points.iter().enumerate() {
+                let Some(s) = &t.singular else { continue };
+                let at = format!("({:.6}, {:.6}, {:.6})", t.point[0], t.point[1], t.point[2]);
+                let what = match (s.kind, s.reason) {
+                    (SingularKind::TouchingPoint, _) => "touching point, proven".to_string(),
+                    (SingularKind::BranchPoint, _) => "branch point, proven".to_string(),
+                    (SingularKind::Uncertified, Some(r)) => format!("uncertified ({})", r.as_str()),
+                    (SingularKind::Uncertified, None) => "uncertified".to_string(),
+                };
+                let dist = s
+                    .distance
+                    .map(|d| format!(", distance at the root ≤ {:.1e}", d[1]))
+                    .unwrap_or_default();
+                writeln!(
+                    f,
+                    "    singular point {j} at {at}: {what}{dist}, {} branch ends",
+                    t.branch_ends
                 )?;
             }
         }

@@ -16,6 +16,7 @@
 //! | coincident faces | [`coincide`] |
 //! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`] (curve points by [`krawczyk`]) |
 //! | tangential contacts | [`touch`] |
+//! | singular points (touching, branch) proven by Krawczyk's test on the tangency system | [`singular`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
 
 pub mod branch;
@@ -35,6 +36,7 @@ pub mod mesh;
 pub mod pair;
 pub mod refine;
 pub mod report;
+pub mod singular;
 pub mod topology;
 pub mod touch;
 pub mod trace;

@@ -177,6 +177,7 @@ pub fn intersect_surfaces(
             &g,
             r,
             topo.uses_of(&SingularRegions::id(k as u32)),
+            prm.tol,
         ));
     }
     for b in &branches {

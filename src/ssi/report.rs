@@ -133,6 +133,83 @@ pub struct TouchOut {
     /// Number of branch ends at this point: 0 for an isolated touching point, more than two
     /// at a branch point of the intersection.
     pub branch_ends: usize,
+    /// The proof of the point's kind ([`super::singular`]), or why there is none (`None` in
+    /// mesh mode).
+    pub singular: Option<SingularOut>,
+}
+
+/// Proven kind of a singular point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SingularKind {
+    /// A unique non-degenerate critical point of the normal distance in the box, an
+    /// extremum, at which the surfaces are within `distance` (≤ tol).
+    TouchingPoint,
+    /// The same, a saddle: two intersection branches cross there when the distance is 0.
+    BranchPoint,
+    /// Not proven; see `reason`.
+    Uncertified,
+}
+
+/// Why a singular point is not proven.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SingularReason {
+    /// A parameter is not finite.
+    NotFinite,
+    /// An interval enclosure failed (a weight enclosure holds 0, overflow, too many spans).
+    Enclosure,
+    /// The `f64` Jacobian of the tangency system is singular: a degenerate contact (higher
+    /// order, or along a curve), or a parametric degeneracy (a pole).
+    Singular,
+    /// No box passed Krawczyk's test (degenerate or nearly degenerate contact).
+    NoContraction,
+    /// The root may lie outside a face's closed parameter domain (or Newton left it).
+    OutsideDomain,
+    /// The sign of the Hessian determinant was not decided.
+    TypeUndecided,
+    /// A unique critical point is proven, but the distance between the surfaces there is not
+    /// proven within tol (a near miss, not a contact).
+    DistanceAboveTol,
+}
+
+impl SingularReason {
+    /// The name used in the JSON output.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            SingularReason::NotFinite => "not_finite",
+            SingularReason::Enclosure => "enclosure",
+            SingularReason::Singular => "singular",
+            SingularReason::NoContraction => "no_contraction",
+            SingularReason::OutsideDomain => "outside_domain",
+            SingularReason::TypeUndecided => "type_undecided",
+            SingularReason::DistanceAboveTol => "distance_above_tol",
+        }
+    }
+}
+
+/// The certificate of a singular point (see [`super::singular`] for the theorem).
+#[derive(Clone, Debug, Serialize)]
+pub struct SingularOut {
+    pub kind: SingularKind,
+    /// The isolating box `[u0, u1, v0, v1]` on A and `[s0, s1, t0, t1]` on B, in which the
+    /// tangency system has a unique root (per piece).
+    pub box_a: Option<[f64; 4]>,
+    pub box_b: Option<[f64; 4]>,
+    /// The enclosure of that root (inside the isolating box).
+    pub root_a: Option<[f64; 4]>,
+    pub root_b: Option<[f64; 4]>,
+    /// `S_A` at the centre of `root_a` (f64): where the proven point is, which may differ
+    /// slightly from the search's `point`.
+    pub root_point: Option<[f64; 3]>,
+    /// Lower and upper bound of `|S_A − S_B|` at the root.
+    pub distance: Option<[f64; 2]>,
+    /// Smooth pieces the box meets (1: one smooth function per surface; more: cut at knot
+    /// lines where the parametrisation is only C0, the claim holds per piece).
+    pub pieces: usize,
+    /// The surface (`a` or `b`) whose parameters the normal distance is a function of.
+    pub critical_on: Option<char>,
+    pub reason: Option<SingularReason>,
 }
 
 /// Counts and diagnostics of one pair.
@@ -205,9 +282,14 @@ pub struct Summary {
     pub uncertified_box_pairs: usize,
     /// Face pairs proven to coincide (see `PairOut::coincident`).
     pub coincident_pairs: usize,
+    /// Tangential points whose kind is proven (touching point or branch point) and those
+    /// left uncertified ([`super::singular`]); any uncertified one makes the run uncertified.
+    pub singular_points_proven: usize,
+    pub singular_points_uncertified: usize,
     pub partial: bool,
     /// Everything above is proven: every point within tol of the intersection curve
-    /// (`all_points_within_tol`), no branch missed (coverage), the run complete. The command exits with 3 when this is false.
+    /// (`all_points_within_tol`), no branch missed (coverage), every singular point's kind
+    /// proven, the run complete. The command exits with 3 when this is false.
     pub certified: bool,
     pub seconds: f64,
     /// Plain words on what is proven (points) and what is not (completeness).

@@ -7,14 +7,18 @@
 //! *singular region*: every mesh crossing point named by a feature of a region triangle is
 //! merged into one Point for it, so the tracer ends curves there (a branch point when more
 //! than two curve ends meet) instead of following the perturbed mesh topology through it.
+//! Each tangential point's kind is then proven or left uncertified by [`classify`]
+//! ([`super::singular`]): the search itself decides nothing.
 
 use super::branch::PairGeometry;
 use super::cull::{TriTree, triangle_box};
 use super::pair::{tri, unit_normal};
-use super::refine::{RefineParams, RefineStatus, Refined, tangential_point};
+use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point};
 use super::report::TouchOut;
+use super::singular::classify;
 use super::triangulate::SurfaceMesh;
-use crate::geom::dist;
+use crate::geom::{cross, dist, norm};
+use crate::spline::NurbsSurface;
 use std::collections::BTreeSet;
 
 /// Most seeds tried per pair.
@@ -54,7 +58,7 @@ pub fn tangential_points(
     let pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
     let mut seeds: BTreeSet<(u32, u32)> = BTreeSet::new();
     let mut seed_tris = Vec::new();
-    for (ta, tb) in pairs {
+    for &(ta, tb) in &pairs {
         if let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb)))
             && (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t
         {
@@ -66,21 +70,73 @@ pub fn tangential_points(
     }
     let step = seed_tris.len().div_ceil(MAX_SEEDS).max(1);
     let mut out: Vec<Refined> = Vec::new();
-    for &(ta, tb) in seed_tris.iter().step_by(step) {
-        let r = tangential_point(
-            g.sa,
-            g.sb,
-            centroid_uv(g.ma, ta),
-            centroid_uv(g.mb, tb),
-            prm,
-        );
+    let try_seed = |uv_a: [f64; 2], uv_b: [f64; 2], out: &mut Vec<Refined>| {
+        let r = tangential_point(g.sa, g.sb, uv_a, uv_b, prm);
         if r.status == RefineStatus::Tangential
             && !out.iter().any(|t| dist(&t.xyz, &r.xyz) <= flatness)
         {
             out.push(r);
         }
+    };
+    for &(ta, tb) in seed_tris.iter().step_by(step) {
+        try_seed(centroid_uv(g.ma, ta), centroid_uv(g.mb, tb), &mut out);
+    }
+    // Where a tangential point is a mesh vertex (on knot lines, as at a circle's joints), the
+    // facets around it can all lean by more than the angle while the surface normal at the
+    // vertex is exactly parallel: pairs whose *vertex* normals (true surface normals) are
+    // within the angle seed the search too, from those vertices (a budget of their own).
+    // Only pairs whose facets are within three times the angle are looked at (vertex
+    // normals computed on demand, once each).
+    let cos_wide = (3.0 * tangent_angle_deg).min(90.0).to_radians().cos();
+    let (mut na, mut nb) = (vec![None; g.ma.uv.len()], vec![None; g.mb.uv.len()]);
+    let mut vseeds: BTreeSet<(u32, u32)> = BTreeSet::new();
+    let mut vertex_pairs = Vec::new();
+    for &(ta, tb) in &pairs {
+        let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);
+        if seeds.contains(&key) || vseeds.contains(&key) {
+            continue;
+        }
+        let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb))) else {
+            continue;
+        };
+        if (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() <= cos_wide {
+            continue;
+        }
+        let (va, vb) = (g.ma.triangles[ta as usize], g.mb.triangles[tb as usize]);
+        let mut best: Option<(f64, u32, u32)> = None;
+        for &i in &va {
+            let p = *na[i as usize].get_or_insert_with(|| vertex_normal(g.sa, g.ma.uv[i as usize]));
+            for &j in &vb {
+                let q =
+                    *nb[j as usize].get_or_insert_with(|| vertex_normal(g.sb, g.mb.uv[j as usize]));
+                if let (Some(p), Some(q)) = (p, q) {
+                    let c = (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).abs();
+                    if best.is_none_or(|b| c > b.0) {
+                        best = Some((c, i, j));
+                    }
+                }
+            }
+        }
+        if let Some((c, i, j)) = best
+            && c > cos_t
+        {
+            vseeds.insert(key);
+            vertex_pairs.push((g.ma.uv[i as usize], g.mb.uv[j as usize]));
+        }
+    }
+    let step = vertex_pairs.len().div_ceil(MAX_SEEDS).max(1);
+    for &(uv_a, uv_b) in vertex_pairs.iter().step_by(step) {
+        try_seed(uv_a, uv_b, &mut out);
     }
     out
+}
+
+/// Unit surface normal at `uv` (`None` where the parametrisation degenerates).
+fn vertex_normal(s: &NurbsSurface<f64, 3>, uv: [f64; 2]) -> Option<[f64; 3]> {
+    let (_, su, sv) = point_d1(s, uv[0], uv[1]);
+    let n = cross(&su, &sv);
+    let l = norm(&n);
+    (l > 0.0 && l.is_finite()).then(|| n.map(|c| c / l))
 }
 
 /// Triangles of `m` whose box, grown by `r`, holds `x`: the singular region around a
@@ -98,9 +154,11 @@ pub fn region(m: &SurfaceMesh, x: &[f64; 3], r: f64) -> Vec<u32> {
         .collect()
 }
 
-/// The touching point record of a tangential point.
-pub fn touch_out(g: &PairGeometry, r: &Refined, branch_ends: usize) -> TouchOut {
+/// The touching point record of a tangential point, with the proof of its kind
+/// ([`classify`]: a contact is claimed only within `tol`).
+pub fn touch_out(g: &PairGeometry, r: &Refined, branch_ends: usize, tol: f64) -> TouchOut {
     TouchOut {
+        singular: Some(classify(g.sa, g.sb, &r.uv_a, &r.uv_b, tol)),
         point: r.xyz,
         uv_a: Some(r.uv_a),
         uv_b: Some(r.uv_b),

@@ -1,0 +1,1011 @@
+//! Singular points of the intersection — touching points and branch points — classified with
+//! a proof, or reported uncertified with the reason (never guessed).
+//!
+//! **The system.** With `A = S_A(u, v)`, `B = S_B(s, t)`, `D = A − B` and the unnormalised
+//! normal `n = B_s × B_t`, the square system in `z = (u, v, s, t)`
+//!
+//! `G1 = D·B_s,  G2 = D·B_t,  G3 = n·A_u,  G4 = n·A_v`.
+//!
+//! `G1 = G2 = 0` makes `B(s, t)` a normal foot of `A(u, v)` on `S_B`: `D = h n̂` with the
+//! signed normal distance `h = D·n̂`, `n̂ = n / |n|`. Near a root `z*` at which
+//! `J_12 = ∂(G1, G2)/∂(s, t)` is non-singular, the foot is a C¹ function `y(x)` of
+//! `x = (u, v)` (implicit function theorem), and `∇h(x) = (A_u·n̂, A_v·n̂)` (the terms of
+//! `∂D` along `B`'s tangent plane and `h n̂·∂n̂ = 0` drop out). So `G = 0` ⟺ `x` is a critical
+//! point of the normal distance `h`, and the surfaces' normals are parallel there.
+//!
+//! **Type.** Write `J = J_G(z*) = [[J11, J12], [J21, J22]]` in the blocks `x`, `y`. The map
+//! `g(x) = (G3, G4)(x, y(x)) = |n(y(x))| ∇h(x)` has `Dg = J21 − J22 J12⁻¹ J11` (the Schur
+//! complement), and at a critical point `Dg = |n| Hess h`. Hence
+//! `det J = det J12 · |n|² · det Hess h`: with `det J12` of proven sign (it is
+//! `det(−metric of S_B + D·second derivatives)`, positive near a contact), the sign of
+//! `det J` is the sign of `det Hess h`: **positive → extremum** of `h` (a touching point when
+//! `h(z*) = 0`), **negative → saddle** (two intersection branches crossing — a branch point —
+//! when `h(z*) = 0`).
+//!
+//! **Proof.** Krawczyk's test ([`super::krawczyk`], same operator) on `G` over a box `X`
+//! around the `f64` Newton solution `y` of `G = 0`: `G(y)` enclosed at the point, the
+//! Jacobian `J_G(X)` over the box from outward-rounded enclosures of `S`, its first and second
+//! partial derivatives ([`basis_d2`], the NURBS Book A2.3 with interval parameters; quotient
+//! rule, eq. 4.20, for the rational surface). `K(X) ⊂ int X` proves a unique zero `z*` of `G`
+//! in `X`, inside `K(X)`, and that every real matrix of `J_G(X)` is non-singular; `J_G(X)` is
+//! connected, so `det` has one sign on it, which is the sign of `det` of its midpoint matrix
+//! (enclosed). `det J12` is enclosed over `X` directly. The distance at the root,
+//! `|h(z*)| = |S_A − S_B|`, is enclosed over `K(X) ∩ X`.
+//!
+//! **Pieces.** The mean-value form needs `G` continuous and piecewise C¹ on `X`, and the
+//! type argument (a Hessian at the root) needs the surfaces C² there: every knot inside the
+//! box of multiplicity at most the degree − 2. A box that meets a knot line of multiplicity
+//! ≥ the degree − 1 (where the parametrisation is not C² — every interior knot of a
+//! quadratic, the C0 joints of the standard circle, sphere, torus forms) is cut there into
+//! closed *pieces*; on each, the surface is one C² function, extended analytically over all
+//! of `X`, and the test is run per piece with the same `X`. Each piece's system then has exactly
+//! one zero in `X`; every critical point of the normal distance in the closed piece (with the
+//! piece's one-sided derivatives) is that zero; all of them lie in the reported root box. The
+//! claim is per piece (`pieces > 1`); existence of a critical point *on* the cut line is not
+//! claimed beyond that. In a closed direction ([`closed`]: `S(d0, ·) = S(d1, ·)` exactly) the
+//! parameter runs on across the seam into a copy of the domain one period away, and the seam
+//! cuts the box like such a knot line.
+//!
+//! **The claim** (`kind` touching_point / branch_point): "in this box, the normal distance
+//! from one surface to the other has a unique critical point (per piece), non-degenerate, of
+//! type extremum / saddle, at which the distance between the surfaces lies in `distance`
+//! (upper end ≤ tol)". `h(z*) = 0` is not claimed (not decidable in floating point), and
+//! nothing is claimed about the intersection away from the root box.
+//!
+//! Hypotheses: weights positive on the box (proven by the interval quotients, refused
+//! otherwise); the root inside both closed parameter domains (checked in the open
+//! directions). The theorem, its proof and the claim in full: docs/ssi.md, "Singular points".
+
+use super::refine::domain;
+use super::report::{SingularKind, SingularOut, SingularReason};
+use crate::scalar::Interval;
+use crate::spline::{KnotVector, NurbsSurface};
+
+type I = Interval;
+type V = [I; 3];
+type M4 = [[f64; 4]; 4];
+
+fn pt(x: f64) -> I {
+    Interval::point(x)
+}
+
+/// Largest order (degree + 1) handled.
+pub const MAX_ORDER: usize = 16;
+/// Most knot spans a box may meet in one direction.
+const MAX_SPANS: usize = 8;
+/// Most pieces (products of smooth groups in the four directions).
+const MAX_PIECES: usize = 16;
+const NEWTON_STEPS: usize = 30;
+const TRIES: usize = 10;
+
+/// Enclosures of `S` and its partial derivatives up to order two over a parameter box.
+#[derive(Clone, Copy, Debug)]
+pub struct Jet2 {
+    pub s: V,
+    pub su: V,
+    pub sv: V,
+    pub suu: V,
+    pub suv: V,
+    pub svv: V,
+}
+
+/// Basis functions `N_{span-p..=span, p}` of span `span` and their first and second
+/// derivatives (`[N, N', N'']`), enclosed for every parameter in `x` (the polynomial of the
+/// span, also beyond it). Cox–de Boor on the levels `0..=p`, derivatives by
+/// `N'_{i,j} = j (N_{i,j-1} / (t_{i+j} − t_i) − N_{i+1,j-1} / (t_{i+j+1} − t_{i+1}))` applied
+/// twice (The NURBS Book eq. 2.9, A2.3); every divisor is a positive knot difference (a
+/// function active on a non-empty span has a support containing it).
+pub fn basis_d2(k: &KnotVector<f64>, span: usize, x: I) -> Option<[[I; MAX_ORDER]; 3]> {
+    let p = k.degree();
+    let t = k.knots();
+    if p >= MAX_ORDER || span < p || span + p >= t.len() {
+        return None;
+    }
+    let z = pt(0.0);
+    let mut lev = [[z; MAX_ORDER]; MAX_ORDER];
+    lev[0][0] = pt(1.0);
+    for j in 1..=p {
+        for a in 0..=j {
+            let i = span + a - j;
+            let mut acc = z;
+            if a >= 1 {
+                let den = pt(t[i + j]) - pt(t[i]);
+                acc = acc + (x - pt(t[i])).checked_div(den)? * lev[j - 1][a - 1];
+            }
+            if a < j {
+                let den = pt(t[i + j + 1]) - pt(t[i + 1]);
+                acc = acc + (pt(t[i + j + 1]) - x).checked_div(den)? * lev[j - 1][a];
+            }
+            lev[j][a] = acc;
+        }
+    }
+    // Derivatives of the level-j functions from `f`, the values (or derivatives) of level j-1.
+    let step = |j: usize, f: &[I; MAX_ORDER]| -> Option<[I; MAX_ORDER]> {
+        let mut d = [z; MAX_ORDER];
+        if j == 0 {
+            return Some(d);
+        }
+        let c = pt(j as f64);
+        for (a, da) in d.iter_mut().enumerate().take(j + 1) {
+            let i = span + a - j;
+            let mut acc = z;
+            if a >= 1 {
+                acc = acc + f[a - 1].checked_div(pt(t[i + j]) - pt(t[i]))?;
+            }
+            if a < j {
+                acc = acc - f[a].checked_div(pt(t[i + j + 1]) - pt(t[i + 1]))?;
+            }
+            *da = c * acc;
+        }
+        Some(d)
+    };
+    let n1 = if p >= 1 {
+        step(p, &lev[p - 1])?
+    } else {
+        [z; MAX_ORDER]
+    };
+    let n2 = if p >= 2 {
+        step(p, &step(p - 1, &lev[p - 2])?)?
+    } else {
+        [z; MAX_ORDER]
+    };
+    Some([lev[p], n1, n2])
+}
+
+/// One span rectangle's function (extended beyond it) over `u × v`.
+fn piece2(s: &NurbsSurface<f64, 3>, (su, u): (usize, I), (sv, v): (usize, I)) -> Option<Jet2> {
+    let h = &s.hom;
+    let bu = basis_d2(&h.ku, su, u)?;
+    let bv = basis_d2(&h.kv, sv, v)?;
+    let (p, q) = (h.ku.degree(), h.kv.degree());
+    let ncols = h.kv.n_ctrl();
+    let z4 = [pt(0.0); 4];
+    // Homogeneous sums: X, X_u, X_v, X_uu, X_uv, X_vv (4 components each, the last is w).
+    let mut a = [z4; 6];
+    for i in 0..=p {
+        let mut r = [z4; 3];
+        for j in 0..=q {
+            let c = h.net.get((su - p + i) * ncols + (sv - q + j))?;
+            let cw = [pt(c.wp[0]), pt(c.wp[1]), pt(c.wp[2]), pt(c.w)];
+            for (d, rd) in r.iter_mut().enumerate() {
+                for m in 0..4 {
+                    rd[m] = rd[m] + bv[d][j] * cw[m];
+                }
+            }
+        }
+        for m in 0..4 {
+            a[0][m] = a[0][m] + bu[0][i] * r[0][m];
+            a[1][m] = a[1][m] + bu[1][i] * r[0][m];
+            a[2][m] = a[2][m] + bu[0][i] * r[1][m];
+            a[3][m] = a[3][m] + bu[2][i] * r[0][m];
+            a[4][m] = a[4][m] + bu[1][i] * r[1][m];
+            a[5][m] = a[5][m] + bu[0][i] * r[2][m];
+        }
+    }
+    let w = a[0][3];
+    let (wu, wv, wuu, wuv, wvv) = (a[1][3], a[2][3], a[3][3], a[4][3], a[5][3]);
+    let two = pt(2.0);
+    let mut o = Jet2 {
+        s: [pt(0.0); 3],
+        su: [pt(0.0); 3],
+        sv: [pt(0.0); 3],
+        suu: [pt(0.0); 3],
+        suv: [pt(0.0); 3],
+        svv: [pt(0.0); 3],
+    };
+    // The NURBS Book eq. 4.20: derivatives of S = X / w.
+    for m in 0..3 {
+        o.s[m] = a[0][m].checked_div(w)?;
+        o.su[m] = (a[1][m] - wu * o.s[m]).checked_div(w)?;
+        o.sv[m] = (a[2][m] - wv * o.s[m]).checked_div(w)?;
+        o.suu[m] = (a[3][m] - two * wu * o.su[m] - wuu * o.s[m]).checked_div(w)?;
+        o.suv[m] = (a[4][m] - wu * o.sv[m] - wv * o.su[m] - wuv * o.s[m]).checked_div(w)?;
+        o.svv[m] = (a[5][m] - two * wv * o.sv[m] - wvv * o.s[m]).checked_div(w)?;
+    }
+    let ok = [o.s, o.su, o.sv, o.suu, o.suv, o.svv]
+        .iter()
+        .flatten()
+        .all(|x| x.is_finite());
+    ok.then_some(o)
+}
+
+/// A span, the part of the parameter interval it covers, and the offset of the copy of the
+/// domain it belongs to: the surface at `x` is the span's function at `x − offset` (offsets
+/// other than 0 only in closed directions).
+type Piece = (usize, I, f64);
+
+/// Whether the surface is closed in direction `dir` (0 = u, 1 = v): clamped knots at both
+/// ends and the first and last rows of homogeneous control points identical, so that
+/// `S(d0, ·) = S(d1, ·)` exactly and the parameter may run on across the seam.
+pub fn closed(s: &NurbsSurface<f64, 3>, dir: usize) -> bool {
+    let h = &s.hom;
+    let k = if dir == 0 { &h.ku } else { &h.kv };
+    let (p, t) = (k.degree(), k.knots());
+    let n = t.len();
+    if n < 2 * (p + 1)
+        || t[..=p].iter().any(|x| *x != t[0])
+        || t[n - p - 1..].iter().any(|x| *x != t[n - 1])
+    {
+        return false;
+    }
+    let (rows, cols) = (h.ku.n_ctrl(), h.kv.n_ctrl());
+    let at = |i: usize, j: usize| &h.net[i * cols + j];
+    let same =
+        |a: &crate::geom::Hom<f64, 3>, b: &crate::geom::Hom<f64, 3>| a.wp == b.wp && a.w == b.w;
+    if dir == 0 {
+        (0..cols).all(|j| same(at(0, j), at(rows - 1, j)))
+    } else {
+        (0..rows).all(|i| same(at(i, 0), at(i, cols - 1)))
+    }
+}
+
+/// The spans the interval `x` meets, in groups joined with continuous second derivatives
+/// (knots of multiplicity at most the degree − 2 between them); a new group starts at every
+/// knot of multiplicity ≥ the degree − 1, and at the seam of a closed direction (`periodic`: the domain
+/// repeated one period to either side). Each group's outer pieces are extended to the ends of
+/// `x` (the polynomial extension of its outermost spans); in an open direction the outermost
+/// spans of the domain extend to infinity. Piece ends are rounded outward, so neighbouring
+/// pieces overlap by an ulp rather than leave a gap. `None` beyond [`MAX_SPANS`] spans, for
+/// degree 0, or when `x` is not covered.
+fn groups(k: &KnotVector<f64>, x: I, periodic: bool) -> Option<Vec<Vec<Piece>>> {
+    let t = k.knots();
+    let p = k.degree();
+    if p == 0 || !(x.is_finite() && x.lo <= x.hi) {
+        return None;
+    }
+    let (d0, d1) = k.domain();
+    let (first, last) = (k.find_span(&d0), k.find_span(&d1));
+    let per = d1 - d0;
+    let offsets: &[f64] = if periodic { &[-per, 0.0, per] } else { &[0.0] };
+    let thin = x.lo == x.hi;
+    let mut out: Vec<Vec<Piece>> = Vec::new();
+    let mut count = 0;
+    let mut covered = x.lo;
+    for &o in offsets {
+        for s in first..=last {
+            if t[s] >= t[s + 1] {
+                continue;
+            }
+            let (a, b) = ((pt(t[s]) + pt(o)).lo, (pt(t[s + 1]) + pt(o)).hi);
+            let lo = if s == first && !periodic {
+                x.lo
+            } else {
+                x.lo.max(a)
+            };
+            let hi = if s == last && !periodic {
+                x.hi
+            } else {
+                x.hi.min(b)
+            };
+            if !(lo < hi || (thin && lo <= hi)) {
+                continue;
+            }
+            if lo > covered {
+                return None;
+            }
+            covered = covered.max(hi);
+            count += 1;
+            if count > MAX_SPANS {
+                return None;
+            }
+            if out.is_empty() || k.multiplicity(&t[s]) + 1 >= p {
+                out.push(Vec::new());
+            }
+            out.last_mut()?.push((s, I::new(lo, hi), o));
+        }
+    }
+    if covered < x.hi {
+        return None;
+    }
+    for g in &mut out {
+        g[0].1.lo = x.lo;
+        let n = g.len() - 1;
+        g[n].1.hi = x.hi;
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+/// The group's function over `z ⊂ x` (pieces overlapping `z`, cut to it).
+fn restrict(g: &[Piece], z: I) -> Vec<Piece> {
+    g.iter()
+        .filter(|(_, r, _)| r.lo <= z.hi && z.lo <= r.hi)
+        .map(|&(s, r, o)| (s, I::new(r.lo.max(z.lo), r.hi.min(z.hi)), o))
+        .collect()
+}
+
+fn hull_v(a: V, b: V) -> V {
+    std::array::from_fn(|k| a[k].hull(b[k]))
+}
+
+/// Enclosure of one smooth group's function over the pieces (hull across C² joins).
+fn group_jet(s: &NurbsSurface<f64, 3>, gu: &[Piece], gv: &[Piece]) -> Option<Jet2> {
+    let mut out: Option<Jet2> = None;
+    for &a in gu {
+        for &b in gv {
+            let j = piece2(s, (a.0, a.1 - pt(a.2)), (b.0, b.1 - pt(b.2)))?;
+            out = Some(match out {
+                None => j,
+                Some(o) => Jet2 {
+                    s: hull_v(o.s, j.s),
+                    su: hull_v(o.su, j.su),
+                    sv: hull_v(o.sv, j.sv),
+                    suu: hull_v(o.suu, j.suu),
+                    suv: hull_v(o.suv, j.suv),
+                    svv: hull_v(o.svv, j.svv),
+                },
+            });
+        }
+    }
+    out
+}
+
+fn dot(a: &V, b: &V) -> I {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: &V, b: &V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn add(a: &V, b: &V) -> V {
+    std::array::from_fn(|k| a[k] + b[k])
+}
+fn sub(a: &V, b: &V) -> V {
+    std::array::from_fn(|k| a[k] - b[k])
+}
+
+/// `G` and its Jacobian from the jets of the distance surface `a` (parameters `u, v`) and the
+/// foot surface `b` (`s, t`).
+pub fn system(a: &Jet2, b: &Jet2) -> ([I; 4], [[I; 4]; 4]) {
+    let d = sub(&a.s, &b.s);
+    let n = cross(&b.su, &b.sv);
+    let ns = add(&cross(&b.suu, &b.sv), &cross(&b.su, &b.suv));
+    let nt = add(&cross(&b.suv, &b.sv), &cross(&b.su, &b.svv));
+    let g = [
+        dot(&d, &b.su),
+        dot(&d, &b.sv),
+        dot(&n, &a.su),
+        dot(&n, &a.sv),
+    ];
+    let j = [
+        [
+            dot(&a.su, &b.su),
+            dot(&a.sv, &b.su),
+            dot(&d, &b.suu) - dot(&b.su, &b.su),
+            dot(&d, &b.suv) - dot(&b.sv, &b.su),
+        ],
+        [
+            dot(&a.su, &b.sv),
+            dot(&a.sv, &b.sv),
+            dot(&d, &b.suv) - dot(&b.su, &b.sv),
+            dot(&d, &b.svv) - dot(&b.sv, &b.sv),
+        ],
+        [
+            dot(&n, &a.suu),
+            dot(&n, &a.suv),
+            dot(&ns, &a.su),
+            dot(&nt, &a.su),
+        ],
+        [
+            dot(&n, &a.suv),
+            dot(&n, &a.svv),
+            dot(&ns, &a.sv),
+            dot(&nt, &a.sv),
+        ],
+    ];
+    (g, j)
+}
+
+/// Inverse of a 4 × 4 matrix (Gauss–Jordan, partial pivoting); `None` if singular.
+fn inverse4(mut a: M4) -> Option<M4> {
+    let mut inv: M4 = std::array::from_fn(|i| std::array::from_fn(|j| (i == j) as u8 as f64));
+    for c in 0..4 {
+        let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
+        if a[p][c] == 0.0 || a[p][c].is_nan() {
+            return None;
+        }
+        a.swap(c, p);
+        inv.swap(c, p);
+        let d = a[c][c];
+        for k in 0..4 {
+            a[c][k] /= d;
+            inv[c][k] /= d;
+        }
+        for r in 0..4 {
+            if r != c {
+                let f = a[r][c];
+                for k in 0..4 {
+                    a[r][k] -= f * a[c][k];
+                    inv[r][k] -= f * inv[c][k];
+                }
+            }
+        }
+    }
+    inv.iter().flatten().all(|x| x.is_finite()).then_some(inv)
+}
+
+/// Enclosure of the determinant of a real 4 × 4 matrix (Laplace expansion in intervals).
+fn det4(m: &M4) -> I {
+    let e = |i: usize, j: usize| pt(m[i][j]);
+    let det3 = |r: [usize; 3], c: [usize; 3]| {
+        e(r[0], c[0]) * (e(r[1], c[1]) * e(r[2], c[2]) - e(r[1], c[2]) * e(r[2], c[1]))
+            - e(r[0], c[1]) * (e(r[1], c[0]) * e(r[2], c[2]) - e(r[1], c[2]) * e(r[2], c[0]))
+            + e(r[0], c[2]) * (e(r[1], c[0]) * e(r[2], c[1]) - e(r[1], c[1]) * e(r[2], c[0]))
+    };
+    let mut acc = pt(0.0);
+    for j in 0..4 {
+        let cols: Vec<usize> = (0..4).filter(|&c| c != j).collect();
+        let minor = det3([1, 2, 3], [cols[0], cols[1], cols[2]]);
+        let term = e(0, j) * minor;
+        acc = if j % 2 == 0 { acc + term } else { acc - term };
+    }
+    acc
+}
+
+fn sign(x: I) -> Option<i8> {
+    if x.is_pos() {
+        Some(1)
+    } else if x.is_neg() {
+        Some(-1)
+    } else {
+        None
+    }
+}
+
+/// One piece of the box: a smooth group in each of the four directions.
+type PieceIdx = [usize; 4];
+
+/// The two surfaces in their roles: `h` is a function on `a`'s parameters, its foot on `b`.
+struct Roles<'a> {
+    a: &'a NurbsSurface<f64, 3>,
+    b: &'a NurbsSurface<f64, 3>,
+    lo: [f64; 4],
+    hi: [f64; 4],
+    /// Closed directions (the parameter may run on across the seam).
+    per: [bool; 4],
+}
+
+/// Groups of every direction over the box `x`.
+type BoxGroups = [Vec<Vec<Piece>>; 4];
+
+impl Roles<'_> {
+    fn box_groups(&self, x: &[I; 4]) -> Option<BoxGroups> {
+        let (ha, hb) = (&self.a.hom, &self.b.hom);
+        Some([
+            groups(&ha.ku, x[0], self.per[0])?,
+            groups(&ha.kv, x[1], self.per[1])?,
+            groups(&hb.ku, x[2], self.per[2])?,
+            groups(&hb.kv, x[3], self.per[3])?,
+        ])
+    }
+    fn pieces(g: &BoxGroups) -> Vec<PieceIdx> {
+        let mut out = Vec::new();
+        for i in 0..g[0].len() {
+            for j in 0..g[1].len() {
+                for k in 0..g[2].len() {
+                    for l in 0..g[3].len() {
+                        out.push([i, j, k, l]);
+                    }
+                }
+            }
+        }
+        out
+    }
+    /// Jets of piece `c` over the sub-box `z ⊂ X`.
+    fn jets(&self, g: &BoxGroups, c: &PieceIdx, z: &[I; 4]) -> Option<(Jet2, Jet2)> {
+        let r = |d: usize| restrict(&g[d][c[d]], z[d]);
+        Some((
+            group_jet(self.a, &r(0), &r(1))?,
+            group_jet(self.b, &r(2), &r(3))?,
+        ))
+    }
+    /// `G` and `J_G` in `f64` at `y` (the first piece there; only steers).
+    fn eval_f64(&self, y: &[f64; 4]) -> Option<([f64; 4], M4)> {
+        let z: [I; 4] = y.map(pt);
+        let g = self.box_groups(&z)?;
+        let (ja, jb) = self.jets(&g, &[0; 4], &z)?;
+        let (gv, jm) = system(&ja, &jb);
+        let f = gv.map(|x| x.mid());
+        let j = jm.map(|r| r.map(|x| x.mid()));
+        (f.iter().chain(j.iter().flatten()).all(|x| x.is_finite())).then_some((f, j))
+    }
+}
+
+struct Proven {
+    x: [I; 4],
+    root: [I; 4],
+    pieces: usize,
+    saddle: bool,
+    distance: [f64; 2],
+}
+
+fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
+    std::array::from_fn(|i| (0..4).map(|k| m[i][k] * v[k]).sum())
+}
+
+/// Krawczyk's operator of piece `c` (groups `g` of a box holding `x`) for the centre
+/// `y ∈ x` and preconditioner `yinv`, with the Jacobian enclosure over `x`.
+fn krawczyk_op(
+    r: &Roles,
+    g: &BoxGroups,
+    c: &PieceIdx,
+    y: &[f64; 4],
+    yinv: &M4,
+    x: &[I; 4],
+) -> Option<([I; 4], [[I; 4]; 4])> {
+    let (ya, yb) = r.jets(g, c, &y.map(pt))?;
+    let (gy, _) = system(&ya, &yb);
+    let (xa, xb) = r.jets(g, c, x)?;
+    let (_, jx) = system(&xa, &xb);
+    let mut k = [pt(0.0); 4];
+    for i in 0..4 {
+        let mut acc = pt(y[i]);
+        for l in 0..4 {
+            acc = acc - pt(yinv[i][l]) * gy[l];
+        }
+        for col in 0..4 {
+            let mut cij = pt(if i == col { 1.0 } else { 0.0 });
+            for l in 0..4 {
+                cij = cij - pt(yinv[i][l]) * jx[l][col];
+            }
+            acc = acc + cij * (x[col] - pt(y[col]));
+        }
+        k[i] = acc;
+    }
+    Some((k, jx))
+}
+
+/// The proof for one assignment of roles, from the seed `z0`.
+fn prove(r: &Roles, z0: [f64; 4]) -> Result<Proven, SingularReason> {
+    if !z0.iter().all(|x| x.is_finite()) {
+        return Err(SingularReason::NotFinite);
+    }
+    // Newton on G in f64 from the seed.
+    let mut y = z0;
+    for _ in 0..NEWTON_STEPS {
+        let (f, j) = r.eval_f64(&y).ok_or(SingularReason::Enclosure)?;
+        let ji = inverse4(j).ok_or(SingularReason::Singular)?;
+        let d = mul4(&ji, &f);
+        let next: [f64; 4] = std::array::from_fn(|i| y[i] - d[i]);
+        if !next.iter().all(|x| x.is_finite()) {
+            return Err(SingularReason::NoContraction);
+        }
+        y = next;
+        if (0..4).all(|i| d[i].abs() <= 1e-14 * (r.hi[i] - r.lo[i] + y[i].abs())) {
+            break;
+        }
+    }
+    // Newton left the faces: nothing isolated near the seed.
+    if !(0..4).all(|i| {
+        let w = r.hi[i] - r.lo[i];
+        y[i] >= r.lo[i] - 0.05 * w && y[i] <= r.hi[i] + 0.05 * w
+    }) {
+        return Err(SingularReason::OutsideDomain);
+    }
+    let yi: [I; 4] = y.map(pt);
+    let gy = r.box_groups(&yi).ok_or(SingularReason::Enclosure)?;
+    // Starting radius: twice the enclosed Newton correction (largest over the pieces at y)
+    // plus a few ulps of the scale.
+    let mut rad = [0.0f64; 4];
+    for c in Roles::pieces(&gy) {
+        let (ja, jb) = r.jets(&gy, &c, &yi).ok_or(SingularReason::Enclosure)?;
+        let (g, j) = system(&ja, &jb);
+        let Some(yinv) = inverse4(j.map(|row| row.map(|x| x.mid()))) else {
+            return Err(SingularReason::Singular);
+        };
+        for i in 0..4 {
+            let corr = (0..4).fold(pt(0.0), |acc, l| acc + pt(yinv[i][l]) * g[l]);
+            rad[i] = rad[i].max(2.0 * corr.mag());
+        }
+    }
+    for i in 0..4 {
+        rad[i] += 64.0 * f64::EPSILON * (y[i].abs() + (r.hi[i] - r.lo[i]));
+    }
+    for _ in 0..TRIES {
+        let x: [I; 4] =
+            std::array::from_fn(|i| I::new((pt(y[i]) - pt(rad[i])).lo, (pt(y[i]) + pt(rad[i])).hi));
+        let g = r.box_groups(&x).ok_or(SingularReason::Enclosure)?;
+        let pieces = Roles::pieces(&g);
+        if pieces.len() > MAX_PIECES {
+            return Err(SingularReason::Enclosure);
+        }
+        let mut all_in = true;
+        let mut reach = [0.0f64; 4];
+        let mut results = Vec::new();
+        for c in &pieces {
+            // The piece's function at y; its own preconditioner.
+            let (ya, yb) = r.jets(&g, c, &yi).ok_or(SingularReason::Enclosure)?;
+            let (_, jy) = system(&ya, &yb);
+            let yinv =
+                inverse4(jy.map(|row| row.map(|x| x.mid()))).ok_or(SingularReason::Singular)?;
+            let (k, jx) =
+                krawczyk_op(r, &g, c, &y, &yinv, &x).ok_or(SingularReason::NoContraction)?;
+            if !k.iter().all(|v| v.is_finite()) {
+                return Err(SingularReason::NoContraction);
+            }
+            for i in 0..4 {
+                if !(k[i].lo > x[i].lo && k[i].hi < x[i].hi) {
+                    all_in = false;
+                }
+                reach[i] = reach[i].max((k[i].lo - y[i]).abs().max((k[i].hi - y[i]).abs()));
+            }
+            results.push((*c, k, jx, yinv));
+        }
+        if all_in {
+            return conclude(r, &g, &x, &results);
+        }
+        for i in 0..4 {
+            rad[i] = (2.0 * rad[i]).max(1.25 * reach[i]);
+        }
+        if !(0..4).all(|i| rad[i].is_finite() && rad[i] <= 0.05 * (r.hi[i] - r.lo[i])) {
+            break;
+        }
+    }
+    Err(SingularReason::NoContraction)
+}
+
+/// A piece that passed the test: its Krawczyk box `K`, Jacobian enclosure over `X`, and
+/// preconditioner.
+type PieceResult = (PieceIdx, [I; 4], [[I; 4]; 4], M4);
+
+/// After the test passed for every piece: domain check, type, distance at the root.
+fn conclude(
+    r: &Roles,
+    g: &BoxGroups,
+    x: &[I; 4],
+    results: &[PieceResult],
+) -> Result<Proven, SingularReason> {
+    let mut root: Option<[I; 4]> = None;
+    let mut hess_sign: Option<i8> = None;
+    let mut dist = [f64::INFINITY, 0.0f64];
+    let meet4 = |a: &[I; 4], b: &[I; 4]| -> [I; 4] {
+        std::array::from_fn(|i| I::new(a[i].lo.max(b[i].lo), a[i].hi.min(b[i].hi)))
+    };
+    for (c, k, jx, yinv) in results {
+        // The zero lies in K(X) ∩ X. Any zero in a box Z lies in K(Z) for a centre in Z, so
+        // Z ← K(Z) ∩ Z about Z's midpoint narrows the enclosure (kept if it would empty).
+        let mut z = meet4(k, x);
+        for _ in 0..3 {
+            let m = z.map(|i| i.mid());
+            if !(0..4).all(|i| z[i].lo <= m[i] && m[i] <= z[i].hi) {
+                break;
+            }
+            let Some((kz, _)) = krawczyk_op(r, g, c, &m, yinv, &z) else {
+                break;
+            };
+            let n = meet4(&kz, &z);
+            if !(0..4).all(|i| n[i].lo <= n[i].hi) {
+                break;
+            }
+            z = n;
+        }
+        // The root box must lie in both closed domains.
+        if (0..4).any(|i| !r.per[i] && (z[i].lo < r.lo[i] || z[i].hi > r.hi[i])) {
+            return Err(SingularReason::OutsideDomain);
+        }
+        root = Some(match root {
+            None => z,
+            Some(o) => std::array::from_fn(|i| o[i].hull(z[i])),
+        });
+        // Sign of det J over J(X): constant (every matrix in it is non-singular); that of the
+        // midpoint matrix, enclosed.
+        let mid: M4 = jx.map(|row| row.map(|e| e.mid()));
+        if !(0..4).all(|i| (0..4).all(|l| jx[i][l].lo <= mid[i][l] && mid[i][l] <= jx[i][l].hi)) {
+            return Err(SingularReason::TypeUndecided);
+        }
+        let s_det = sign(det4(&mid)).ok_or(SingularReason::TypeUndecided)?;
+        // det J12 = det ∂(G1, G2)/∂(s, t) over X.
+        let j12 = jx[0][2] * jx[1][3] - jx[0][3] * jx[1][2];
+        let s12 = sign(j12).ok_or(SingularReason::TypeUndecided)?;
+        let s = s_det * s12;
+        if hess_sign.is_some_and(|h| h != s) {
+            return Err(SingularReason::TypeUndecided);
+        }
+        hess_sign = Some(s);
+        // |S_A − S_B| over the root box, with this piece's functions: the direct enclosure
+        // intersected with the mean-value form about the box centre (both hold the value).
+        let (ja, jb) = r.jets(g, c, &z).ok_or(SingularReason::Enclosure)?;
+        let m: [I; 4] = z.map(|i| pt(i.mid()));
+        let (ma, mb) = r.jets(g, c, &m).ok_or(SingularReason::Enclosure)?;
+        let mv = |s0: &V, j: &Jet2, k: usize| -> V {
+            let (du, dv) = (z[k] - m[k], z[k + 1] - m[k + 1]);
+            std::array::from_fn(|c| s0[c] + j.su[c] * du + j.sv[c] * dv)
+        };
+        let (ea, eb) = (mv(&ma.s, &ja, 0), mv(&mb.s, &jb, 2));
+        let meet = |x: I, y: I| I::new(x.lo.max(y.lo), x.hi.min(y.hi));
+        let d: V = std::array::from_fn(|k| {
+            let (a, b) = (meet(ja.s[k], ea[k]), meet(jb.s[k], eb[k]));
+            if a.lo > a.hi || b.lo > b.hi {
+                // Both hold the value: cannot happen; keep the direct enclosure.
+                ja.s[k] - jb.s[k]
+            } else {
+                a - b
+            }
+        });
+        let (mut lo2, mut hi2) = (0.0f64, 0.0f64);
+        for dk in d {
+            let m = dk.mag();
+            let mig = if dk.contains_zero() {
+                0.0
+            } else {
+                dk.lo.abs().min(dk.hi.abs())
+            };
+            hi2 = (hi2 + (m * m).next_up()).next_up();
+            lo2 = (lo2 + (mig * mig).next_down().max(0.0))
+                .next_down()
+                .max(0.0);
+        }
+        dist[0] = dist[0].min(lo2.sqrt().next_down().max(0.0));
+        dist[1] = dist[1].max(hi2.sqrt().next_up());
+    }
+    let (Some(root), Some(h)) = (root, hess_sign) else {
+        return Err(SingularReason::Enclosure);
+    };
+    if !dist[1].is_finite() {
+        return Err(SingularReason::Enclosure);
+    }
+    Ok(Proven {
+        x: *x,
+        root,
+        pieces: results.len(),
+        saddle: h < 0,
+        distance: dist,
+    })
+}
+
+fn box4(a: I, b: I) -> [f64; 4] {
+    [a.lo, a.hi, b.lo, b.hi]
+}
+
+/// Classify the singular point near the parameters `uv_a` on `sa`, `uv_b` on `sb` (a
+/// tangential point found by [`super::refine::tangential_point`]): proven touching point or
+/// branch point, or uncertified with the reason (see the module comment). `tol`: largest
+/// distance between the surfaces at the root for which a contact is claimed.
+pub fn classify(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    uv_a: &[f64; 2],
+    uv_b: &[f64; 2],
+    tol: f64,
+) -> SingularOut {
+    let (da, db) = (domain(sa), domain(sb));
+    // h on A with its foot on B, then the other way round (a parametric degeneracy of one
+    // surface — a pole — may spoil one of them).
+    let (pa, pb) = (
+        [closed(sa, 0), closed(sa, 1)],
+        [closed(sb, 0), closed(sb, 1)],
+    );
+    let ab = Roles {
+        a: sa,
+        b: sb,
+        lo: [da[0], da[2], db[0], db[2]],
+        hi: [da[1], da[3], db[1], db[3]],
+        per: [pa[0], pa[1], pb[0], pb[1]],
+    };
+    let ba = Roles {
+        a: sb,
+        b: sa,
+        lo: [db[0], db[2], da[0], da[2]],
+        hi: [db[1], db[3], da[1], da[3]],
+        per: [pb[0], pb[1], pa[0], pa[1]],
+    };
+    // A parameter of a closed direction beyond the domain names the point one period away.
+    let wrap = |x: f64, lo: f64, hi: f64| {
+        if x < lo {
+            x + (hi - lo)
+        } else if x > hi {
+            x - (hi - lo)
+        } else {
+            x
+        }
+    };
+    let first = prove(&ab, [uv_a[0], uv_a[1], uv_b[0], uv_b[1]]);
+    let (res, swapped) = match first {
+        Ok(p) => (Ok(p), false),
+        Err(e) => match prove(&ba, [uv_b[0], uv_b[1], uv_a[0], uv_a[1]]) {
+            Ok(p) => (Ok(p), true),
+            Err(_) => (Err(e), false),
+        },
+    };
+    match res {
+        Err(reason) => SingularOut {
+            kind: SingularKind::Uncertified,
+            box_a: None,
+            box_b: None,
+            root_a: None,
+            root_b: None,
+            root_point: None,
+            distance: None,
+            pieces: 0,
+            critical_on: None,
+            reason: Some(reason),
+        },
+        Ok(p) => {
+            let (xa, xb) = if swapped {
+                ((p.x[2], p.x[3]), (p.x[0], p.x[1]))
+            } else {
+                ((p.x[0], p.x[1]), (p.x[2], p.x[3]))
+            };
+            let (ra, rb) = if swapped {
+                ((p.root[2], p.root[3]), (p.root[0], p.root[1]))
+            } else {
+                ((p.root[0], p.root[1]), (p.root[2], p.root[3]))
+            };
+            let within = p.distance[1] <= tol;
+            SingularOut {
+                kind: match (within, p.saddle) {
+                    (false, _) => SingularKind::Uncertified,
+                    (true, false) => SingularKind::TouchingPoint,
+                    (true, true) => SingularKind::BranchPoint,
+                },
+                box_a: Some(box4(xa.0, xa.1)),
+                box_b: Some(box4(xb.0, xb.1)),
+                root_a: Some(box4(ra.0, ra.1)),
+                root_b: Some(box4(rb.0, rb.1)),
+                root_point: Some(sa.eval(
+                    &wrap(ra.0.mid(), da[0], da[1]),
+                    &wrap(ra.1.mid(), da[2], da[3]),
+                )),
+                distance: Some(p.distance),
+                pieces: p.pieces,
+                critical_on: Some(if swapped { 'b' } else { 'a' }),
+                reason: (!within).then_some(SingularReason::DistanceAboveTol),
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::{Frame, sphere, torus};
+
+    fn frame() -> Frame {
+        Frame {
+            o: [0.1, -0.2, 0.3],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 0.6, 0.8],
+            z: [0.0, -0.8, 0.6],
+        }
+    }
+
+    /// Thin enclosures hold the f64 evaluation and central differences of the first
+    /// derivatives (second derivatives), away from knot lines.
+    #[test]
+    fn second_derivatives_match_differences() {
+        for s in [
+            torus(&frame(), 2.0, 0.7).unwrap(),
+            sphere(&frame(), 1.5).unwrap(),
+        ] {
+            for (u, v) in [(0.1, 0.3), (0.61, 0.12), (0.4, 0.8)] {
+                let g = [
+                    groups(&s.hom.ku, pt(u), false).unwrap(),
+                    groups(&s.hom.kv, pt(v), false).unwrap(),
+                ];
+                let j = group_jet(&s, &g[0][0], &g[1][0]).unwrap();
+                let (p, su, sv) = super::super::refine::point_d1(&s, u, v);
+                let e = 1e-6;
+                let d1 = |u: f64, v: f64| {
+                    let (_, a, b) = super::super::refine::point_d1(&s, u, v);
+                    (a, b)
+                };
+                let (up, um) = (d1(u + e, v), d1(u - e, v));
+                let (vp, vm) = (d1(u, v + e), d1(u, v - e));
+                for k in 0..3 {
+                    let near = |x: f64, i: I, t: f64| i.lo - t <= x && x <= i.hi + t;
+                    assert!(near(p[k], j.s[k], 1e-12));
+                    assert!(near(su[k], j.su[k], 1e-11));
+                    assert!(near(sv[k], j.sv[k], 1e-11));
+                    let fd_uu = (up.0[k] - um.0[k]) / (2.0 * e);
+                    let fd_uv = (vp.0[k] - vm.0[k]) / (2.0 * e);
+                    let fd_vv = (vp.1[k] - vm.1[k]) / (2.0 * e);
+                    assert!(near(fd_uu, j.suu[k], 1e-4), "{u} {v} {k}");
+                    assert!(near(fd_uv, j.suv[k], 1e-4), "{u} {v} {k}");
+                    assert!(near(fd_vv, j.svv[k], 1e-4), "{u} {v} {k}");
+                    assert!(j.suu[k].hi - j.suu[k].lo < 1e-9);
+                }
+            }
+        }
+    }
+
+    /// Exact rational second derivatives (the same surface lifted to `BigRational`, The NURBS
+    /// Book A4.4) lie in the enclosures over boxes, across knot lines and the seam too (in the
+    /// enclosure of one of the pieces there).
+    #[test]
+    fn enclosures_hold_exact_derivatives() {
+        use crate::geom::{Hom, lift_point};
+        use crate::scalar::lift;
+        use num_rational::BigRational as Q;
+        let q = |x: f64| Q::from_float(x).unwrap();
+        let within = |x: &Q, i: I| q(i.lo) <= *x && *x <= q(i.hi);
+        for s in [
+            torus(&frame(), 2.0, 0.7).unwrap(),
+            sphere(&frame(), 1.5).unwrap(),
+        ] {
+            let e: NurbsSurface<Q, 3> = NurbsSurface {
+                hom: s.hom.map(
+                    |k| lift::<Q>(*k),
+                    |h| Hom {
+                        wp: lift_point(&h.wp),
+                        w: lift(h.w),
+                    },
+                ),
+            };
+            let per = [closed(&s, 0), closed(&s, 1)];
+            for (u0, v0, w) in [
+                (0.1, 0.3, 1e-6),
+                (0.25 - 1e-7, 0.5 - 2e-7, 4e-7),
+                (0.61, 0.12, 1e-3),
+                (-3e-7, 0.7, 1e-6),
+                (0.37, 0.25, 0.0),
+            ] {
+                let x = [I::new(u0, u0 + w), I::new(v0, v0 + w)];
+                let gu = groups(&s.hom.ku, x[0], per[0]).unwrap();
+                let gv = groups(&s.hom.kv, x[1], per[1]).unwrap();
+                let jets: Vec<Jet2> = gu
+                    .iter()
+                    .flat_map(|a| gv.iter().map(move |b| (a, b)))
+                    .map(|(a, b)| group_jet(&s, a, b).unwrap())
+                    .collect();
+                for a in 0..5 {
+                    for b in 0..5 {
+                        let (mut u, v) = (u0 + w * a as f64 / 4.0, v0 + w * b as f64 / 4.0);
+                        if u < 0.0 {
+                            u += 1.0; // the seam: the same point one period on
+                        }
+                        let d = e.derivatives2(&q(u), &q(v));
+                        let ok = jets.iter().any(|j| {
+                            let all = [j.s, j.su, j.sv, j.suu, j.suv, j.svv];
+                            (0..6).all(|m| (0..3).all(|k| within(&d[m][k], all[m][k])))
+                        });
+                        // At u + 1 (beyond the seam) the exact value is that of the last span.
+                        assert!(ok, "{u} {v}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Revolved surfaces are closed around the axis; the sphere's profile runs pole to pole.
+    #[test]
+    fn closed_directions() {
+        let t = torus(&frame(), 2.0, 0.7).unwrap();
+        assert!(closed(&t, 0) && closed(&t, 1));
+        let s = sphere(&frame(), 1.5).unwrap();
+        assert!(closed(&s, 0) && !closed(&s, 1));
+        // Across the seam: two groups (the copy below the domain, the domain itself).
+        let g = groups(&t.hom.ku, I::new(-0.01, 0.01), true).unwrap();
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[0][0].2, -1.0);
+        assert!(groups(&t.hom.ku, I::new(-0.01, 0.01), false).unwrap().len() == 1);
+    }
+
+    /// A box across a double knot (the circle's joints) splits into two groups, and so does
+    /// one across a simple knot of a quadratic (C¹ only); across a simple knot of a cubic (C²)
+    /// it stays one, across a double knot of a cubic it splits.
+    #[test]
+    fn groups_split_where_not_c2() {
+        let k2 = KnotVector::new(vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0], 2, 4).unwrap();
+        assert_eq!(groups(&k2, I::new(0.4, 0.6), false).unwrap().len(), 2);
+        let k3 = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0, 1.0], 3, 6);
+        assert_eq!(
+            groups(&k3.unwrap(), I::new(0.4, 0.6), false).unwrap().len(),
+            2
+        );
+        let s = torus(&frame(), 2.0, 0.7).unwrap();
+        assert_eq!(
+            groups(&s.hom.kv, I::new(0.49, 0.51), false).unwrap().len(),
+            2
+        );
+        assert_eq!(
+            groups(&s.hom.kv, I::new(0.4, 0.45), false).unwrap().len(),
+            1
+        );
+        let k = KnotVector::new(vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0], 3, 5).unwrap();
+        let g = groups(&k, I::new(0.4, 0.6), false).unwrap();
+        assert_eq!(g.len(), 1);
+        assert_eq!(g[0].len(), 2);
+    }
+}
