@@ -53,6 +53,9 @@ pub struct ModelInfo {
     pub source_entities: std::collections::BTreeMap<String, usize>,
     /// Triangulations: (name, vertices, triangles).
     pub triangulations: Vec<(String, usize, usize)>,
+    /// Counts of the B-rep (faces, loops, edges, vertices, shells, solids), when the source
+    /// has topology.
+    pub topology: Option<crate::brep::BrepCounts>,
 }
 
 /// Summarize a model.
@@ -152,6 +155,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
             .iter()
             .map(|t| (t.name.clone(), t.vertices.len(), t.triangles.len()))
             .collect(),
+        topology: m.brep.as_ref().map(|b| b.counts()),
     }
 }
 
@@ -189,6 +193,9 @@ impl std::fmt::Display for ModelInfo {
                 shown.join(", "),
                 if top.len() > 12 { ", ..." } else { "" }
             )?;
+        }
+        if let Some(t) = &self.topology {
+            write!(f, "{t}")?;
         }
         for (n, v, t) in &self.triangulations {
             writeln!(

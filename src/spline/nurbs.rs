@@ -121,6 +121,12 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
             hom: BSplineCurve::new(knots, degree, h)?,
         })
     }
+    /// The same curve traversed the other way (see [`BSplineCurve::reversed`]).
+    pub fn reversed(&self) -> Self {
+        NurbsCurve {
+            hom: self.hom.reversed(),
+        }
+    }
     /// Point at `t`.
     pub fn eval(&self, t: &S) -> [S; D] {
         project(&self.hom.eval(t))

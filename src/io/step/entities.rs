@@ -22,7 +22,7 @@ fn nums(v: &Value) -> Option<Vec<f64>> {
 }
 
 impl Reader<'_> {
-    fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
+    pub(super) fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
         Err(StepError {
             file: self.file.into(),
             location: format!("#{id}"),
@@ -35,13 +35,13 @@ impl Reader<'_> {
             None => self.err(id, "reference to a missing instance"),
         }
     }
-    fn arg<'b>(&self, id: u64, args: &'b [Value], i: usize) -> R<&'b Value> {
+    pub(super) fn arg<'b>(&self, id: u64, args: &'b [Value], i: usize) -> R<&'b Value> {
         match args.get(i) {
             Some(v) => Ok(v),
             None => self.err(id, format!("missing attribute {i}")),
         }
     }
-    fn num(&self, id: u64, args: &[Value], i: usize) -> R<f64> {
+    pub(super) fn num(&self, id: u64, args: &[Value], i: usize) -> R<f64> {
         match self.arg(id, args, i)?.num() {
             Some(x) if x.is_finite() => Ok(x),
             _ => self.err(id, format!("attribute {i} is not a number")),
@@ -61,13 +61,13 @@ impl Reader<'_> {
         }
         Ok(x as usize)
     }
-    fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
+    pub(super) fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
         match self.arg(id, args, i)?.reference() {
             Some(r) => Ok(r),
             None => self.err(id, format!("attribute {i} is not a reference")),
         }
     }
-    fn point(&self, id: u64) -> R<[f64; 3]> {
+    pub(super) fn point(&self, id: u64) -> R<[f64; 3]> {
         let a = self
             .get(id)?
             .part("CARTESIAN_POINT")
@@ -82,7 +82,7 @@ impl Reader<'_> {
             _ => self.err(id, "point coordinates are not 2 or 3 finite numbers"),
         }
     }
-    fn direction(&self, id: u64) -> R<[f64; 3]> {
+    pub(super) fn direction(&self, id: u64) -> R<[f64; 3]> {
         let a = self.get(id)?.part("DIRECTION").ok_or_else(|| StepError {
             file: self.file.into(),
             location: format!("#{id}"),
@@ -100,7 +100,7 @@ impl Reader<'_> {
             _ => self.err(id, "direction is not 3 numbers"),
         }
     }
-    fn placement(&self, id: u64) -> R<Frame> {
+    pub(super) fn placement(&self, id: u64) -> R<Frame> {
         let a = self
             .get(id)?
             .part("AXIS2_PLACEMENT_3D")
