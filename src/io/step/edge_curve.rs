@@ -112,7 +112,10 @@ pub(super) fn edge_curve(
     }
     Err(CurveFault {
         id: geometry,
-        ty: r.get(geometry).map_or("(missing)", |e| e.name()).to_string(),
+        ty: r
+            .get(geometry)
+            .map_or("(missing)", |e| e.name())
+            .to_string(),
         kind: IssueKind::TooDeep(MAX_DEPTH),
         unsupported: false,
     })
@@ -140,12 +143,15 @@ fn basis_curve(
             .map_err(s)?
             .part("VECTOR")
             .ok_or_else(|| invalid(v, "VECTOR", "the line's direction is not a VECTOR"))?;
-        let d = r
-            .direction(r.reference(v, va, 1).map_err(s)?)
-            .map_err(s)?;
+        let d = r.direction(r.reference(v, va, 1).map_err(s)?).map_err(s)?;
         let at = |p: &[f64; 3]| o.add(&d.scale(&dot(&p.sub(&o), &d)));
-        let c = NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![at(a), at(b)], vec![1.0; 2])
-            .map_err(spline)?;
+        let c = NurbsCurve::new(
+            vec![0.0, 0.0, 1.0, 1.0],
+            1,
+            vec![at(a), at(b)],
+            vec![1.0; 2],
+        )
+        .map_err(spline)?;
         (CurveKind::Line, c)
     } else if let Some(args) = e.part("CIRCLE").or_else(|| e.part("ELLIPSE")) {
         let f = r
@@ -168,7 +174,10 @@ fn basis_curve(
         }
         let unit = construct::arc(&Frame::WORLD, 1.0, a0, a0 + sweep).map_err(spline)?;
         let (pts, ws) = unit.points_weights();
-        let pts = pts.iter().map(|p| f.at(ra * p[0], rb * p[1], 0.0)).collect();
+        let pts = pts
+            .iter()
+            .map(|p| f.at(ra * p[0], rb * p[1], 0.0))
+            .collect();
         let c = NurbsCurve::new(unit.hom.knots.knots().to_vec(), 2, pts, ws).map_err(spline)?;
         let k = if e.is("ELLIPSE") {
             CurveKind::Ellipse
@@ -233,7 +242,11 @@ fn closest_parameter(c: &NurbsCurve<f64, 3>, p: &[f64; 3]) -> f64 {
         }
         t = nt;
     }
-    if dist(&c.eval(&t), p) <= best.0 { t } else { best.1 }
+    if dist(&c.eval(&t), p) <= best.0 {
+        t
+    } else {
+        best.1
+    }
 }
 
 /// The sub-curve of `c` from the point nearest `a` to the point nearest `b` (the whole curve
@@ -254,7 +267,8 @@ fn bspline_range(
             t
         }
     };
-    let closed = dist(&c.eval(&d0), &c.eval(&d1)) <= 1e-9 * (1.0 + a.iter().map(|x| x.abs()).fold(0.0, f64::max));
+    let closed = dist(&c.eval(&d0), &c.eval(&d1))
+        <= 1e-9 * (1.0 + a.iter().map(|x| x.abs()).fold(0.0, f64::max));
     let (mut ta, mut tb) = (snap(closest_parameter(c, a)), snap(closest_parameter(c, b)));
     if closed && a == b {
         return Ok(c.clone());

@@ -150,7 +150,12 @@ impl<'a> TopologyReader<'a> {
         let p = self.r.p;
         for (id, e) in &p.entities {
             if e.is("ADVANCED_FACE") || e.is("FACE_SURFACE") {
-                self.face(*id, e, surface_of.get(id).copied(), unsupported_surface.get(id));
+                self.face(
+                    *id,
+                    e,
+                    surface_of.get(id).copied(),
+                    unsupported_surface.get(id),
+                );
             }
         }
         for (id, e) in &p.entities {
@@ -338,6 +343,8 @@ impl<'a> TopologyReader<'a> {
         let mut id = oid;
         let mut forward = true;
         let mut from = (owner, "EDGE_LOOP".to_string());
+        // Oriented edges on the way, tallied once the edge is read.
+        let mut chain = Vec::new();
         for _ in 0..MAX_DEPTH {
             let (e, ty) = self.expect(
                 (from.0, &from.1.clone()),
@@ -348,6 +355,9 @@ impl<'a> TopologyReader<'a> {
             )?;
             if ty == "EDGE_CURVE" {
                 let edge = self.edge(id, e, face)?;
+                for c in chain {
+                    self.converted(c, "ORIENTED_EDGE");
+                }
                 return Some(OrientedEdge { edge, forward });
             }
             let a = e.part("ORIENTED_EDGE").unwrap_or(&[]);
@@ -363,12 +373,17 @@ impl<'a> TopologyReader<'a> {
                 );
                 return None;
             };
-            self.converted(id, "ORIENTED_EDGE");
+            chain.push(id);
             forward ^= o == "F";
             from = (id, "ORIENTED_EDGE".into());
             id = next;
         }
-        self.invalid(oid, "ORIENTED_EDGE", Some(face), IssueKind::TooDeep(MAX_DEPTH));
+        self.invalid(
+            oid,
+            "ORIENTED_EDGE",
+            Some(face),
+            IssueKind::TooDeep(MAX_DEPTH),
+        );
         None
     }
 
@@ -452,8 +467,10 @@ impl<'a> TopologyReader<'a> {
         );
         let mut found = Found::default();
         let curve = edge_curve::edge_curve(self.r, g, &p0, &p1, same_sense, &mut found);
-        for (cid, ty) in &found.types {
-            self.converted(*cid, ty);
+        if curve.is_ok() {
+            for (cid, ty) in &found.types {
+                self.converted(*cid, ty);
+            }
         }
         for f in found.faults {
             self.curve_fault(f, face);
@@ -517,7 +534,12 @@ impl<'a> TopologyReader<'a> {
         let mut faces = Vec::with_capacity(list.len());
         for v in list {
             let Some(fid) = v.reference() else {
-                self.invalid(id, &ty, None, IssueKind::Malformed("a face is not a reference".into()));
+                self.invalid(
+                    id,
+                    &ty,
+                    None,
+                    IssueKind::Malformed("a face is not a reference".into()),
+                );
                 return None;
             };
             let (fe, fty) = self.expect(
@@ -529,7 +551,10 @@ impl<'a> TopologyReader<'a> {
             )?;
             let (target, orientation) = if fty == "ORIENTED_FACE" {
                 let a = fe.part("ORIENTED_FACE").unwrap_or(&[]);
-                match (a.get(2).and_then(Value::reference), a.get(3).and_then(Value::enumeration)) {
+                match (
+                    a.get(2).and_then(Value::reference),
+                    a.get(3).and_then(Value::enumeration),
+                ) {
                     (Some(t), Some(o)) => {
                         self.converted(fid, "ORIENTED_FACE");
                         (t, o != "F")
@@ -539,7 +564,9 @@ impl<'a> TopologyReader<'a> {
                             fid,
                             "ORIENTED_FACE",
                             None,
-                            IssueKind::Malformed("expected (name, *, face_element, orientation)".into()),
+                            IssueKind::Malformed(
+                                "expected (name, *, face_element, orientation)".into(),
+                            ),
                         );
                         return None;
                     }
@@ -557,7 +584,13 @@ impl<'a> TopologyReader<'a> {
                         IssueKind::WrongType {
                             attribute: format!("face #{target}"),
                             expected: "a face that was read (ADVANCED_FACE or FACE_SURFACE)".into(),
-                            found: self.r.p.entities.get(&target).map_or("(missing)", |e| e.name()).to_string(),
+                            found: self
+                                .r
+                                .p
+                                .entities
+                                .get(&target)
+                                .map_or("(missing)", |e| e.name())
+                                .to_string(),
                         },
                     );
                     return None;
@@ -581,20 +614,31 @@ impl<'a> TopologyReader<'a> {
             .part("MANIFOLD_SOLID_BREP")
             .and_then(|a| a.get(1)?.reference());
         let Some(outer) = outer else {
-            self.invalid(id, &ty, None, IssueKind::Malformed("outer is not a reference".into()));
+            self.invalid(
+                id,
+                &ty,
+                None,
+                IssueKind::Malformed("outer is not a reference".into()),
+            );
             return;
         };
         let Some(_) = self.expect((id, &ty), outer, "outer", &["CLOSED_SHELL"], None) else {
             return;
         };
         let Some(outer) = self.shell(outer) else {
-            self.invalid(id, &ty, None, IssueKind::Malformed("its outer shell was refused".into()));
+            self.invalid(
+                id,
+                &ty,
+                None,
+                IssueKind::Malformed("its outer shell was refused".into()),
+            );
             return;
         };
         let mut voids = Vec::new();
         if let Some(list) = e.part("BREP_WITH_VOIDS").and_then(|a| a.last()?.list()) {
             for v in list.iter().filter_map(Value::reference) {
-                let Some((ve, _)) = self.expect((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
+                let Some((ve, _)) =
+                    self.expect((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
                 else {
                     return;
                 };
@@ -608,7 +652,12 @@ impl<'a> TopologyReader<'a> {
                         voids.push(s);
                     }
                     None => {
-                        self.invalid(v, "ORIENTED_CLOSED_SHELL", None, IssueKind::Malformed("closed_shell_element was refused".into()));
+                        self.invalid(
+                            v,
+                            "ORIENTED_CLOSED_SHELL",
+                            None,
+                            IssueKind::Malformed("closed_shell_element was refused".into()),
+                        );
                         return;
                     }
                 }
