@@ -20,5 +20,6 @@ pub mod repair;
 pub mod scalar;
 pub mod spline;
 pub mod ssi;
+pub mod tessellate;
 
 pub use scalar::{RealScalar, Scalar, Sign};

@@ -438,7 +438,11 @@ pub fn run(cli: Cli) -> i32 {
         }
         Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
-                print(&crate::model::info::summarize(&m), json);
+                let mut info = crate::model::info::summarize(&m);
+                if let Some(b) = &m.brep {
+                    info.face_areas = crate::tessellate::face_areas(&m, b);
+                }
+                print(&info, json);
                 0
             }
             Err(e) => bad(e),

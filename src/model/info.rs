@@ -56,6 +56,17 @@ pub struct ModelInfo {
     /// Counts of the B-rep (faces, loops, edges, vertices, shells, solids), when the source
     /// has topology.
     pub topology: Option<crate::brep::BrepCounts>,
+    /// Trimmed area of each B-rep face (filled by callers that triangulate the faces).
+    pub face_areas: Vec<FaceArea>,
+}
+
+/// The trimmed area of one face, or why there is none.
+#[derive(Clone, Debug, Serialize)]
+pub struct FaceArea {
+    /// Source id of the face.
+    pub face: String,
+    pub area: Option<f64>,
+    pub note: Option<String>,
 }
 
 /// Summarize a model.
@@ -156,6 +167,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
             .map(|t| (t.name.clone(), t.vertices.len(), t.triangles.len()))
             .collect(),
         topology: m.brep.as_ref().map(|b| b.counts()),
+        face_areas: vec![],
     }
 }
 
@@ -196,6 +208,26 @@ impl std::fmt::Display for ModelInfo {
         }
         if let Some(t) = &self.topology {
             write!(f, "{t}")?;
+        }
+        if !self.face_areas.is_empty() {
+            let total: f64 = self.face_areas.iter().filter_map(|a| a.area).sum();
+            writeln!(
+                f,
+                "  trimmed area: {total} ({} of {} faces)",
+                self.face_areas.iter().filter(|a| a.area.is_some()).count(),
+                self.face_areas.len()
+            )?;
+            for a in &self.face_areas {
+                match (a.area, &a.note) {
+                    (Some(x), _) => writeln!(f, "  face {:<8} trimmed area {x}", a.face)?,
+                    (None, n) => writeln!(
+                        f,
+                        "  face {:<8} no area: {}",
+                        a.face,
+                        n.as_deref().unwrap_or("")
+                    )?,
+                }
+            }
         }
         for (n, v, t) in &self.triangulations {
             writeln!(
