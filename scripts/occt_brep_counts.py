@@ -18,6 +18,11 @@ that join two loops of a closed surface into one wire, and adds degenerate edges
                edges == edges and vertices == vertices.
 Files without topology (bare patch sets) compare faces with vericad's surfaces only.
 
+Trimmed areas: each face's area from `vericad info --json` (converted to mm^2) beside Open
+CASCADE's BRepGProp surface area (adaptive, relative precision 1e-9), faces matched by their
+order in the file's shells (the order Open CASCADE builds them in). The largest relative
+difference per file is printed; above AREA_TOLERANCE it is a failure.
+
 Usage: cargo build --release && python3 scripts/occt_brep_counts.py [FILES...]
 """
 import glob, json, os, re, subprocess, sys
@@ -29,6 +34,8 @@ ROOT = os.path.join(HERE, "..")
 TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
 VERICAD = os.path.join(TARGET, "release", "vericad")
 T = o.TopAbs.TopAbs_ShapeEnum
+AREA_TOLERANCE = 2e-4
+MM2 = {"m": 1e6, "mm": 1.0, "cm": 100.0, "inch": 645.16, "foot": 92903.04}
 
 
 def shapes(shape, kind):
@@ -76,7 +83,13 @@ def occt_counts(path):
             b = verts.FindIndex(o.TopExp.TopExp.LastVertex_s(e))
             parent[root(a)] = root(b)
         components += len({root(v) for v in list(parent)})
+    areas = []
+    for fi in range(1, faces.Extent() + 1):
+        g = o.GProp.GProp_GProps()
+        o.BRepGProp.BRepGProp.SurfaceProperties_s(faces.FindKey(fi), g, 1e-9)
+        areas.append(g.Mass())
     return {
+        "areas": areas,
         "solids": shapes(s, T.TopAbs_SOLID).Extent(),
         "shells": shapes(s, T.TopAbs_SHELL).Extent(),
         "faces": faces.Extent(),
@@ -87,6 +100,14 @@ def occt_counts(path):
         "seams": len(seams),
         "components": components,
     }
+
+
+def shell_face_order(path):
+    text = re.sub(r"\s+", " ", open(path, encoding="latin-1").read())
+    order = []
+    for faces in re.findall(r"(?:CLOSED|OPEN)_SHELL\s*\(\s*'[^']*'\s*,\s*\(([^)]*)\)", text):
+        order += ["#" + x for x in re.findall(r"#(\d+)", faces)]
+    return order
 
 
 def vertex_points_in_file(path):
@@ -133,12 +154,28 @@ def main(files):
         occ = "%d faces, %d wires, %d edges (%d seams, %d degenerate), %d vertices, %d components" % (
             oc["faces"], oc["wires"], oc["edges"], oc["seams"], oc["degenerate"], oc["vertices"],
             oc["components"])
+        area = "—"
+        if t is not None and info.get("face_areas"):
+            va = {a["face"]: a["area"] for a in info["face_areas"]}
+            scale = MM2.get(info.get("unit") or "mm", 1.0)
+            worst = 0.0
+            for f, ao in zip(shell_face_order(path), oc["areas"]):
+                av = va.get(f)
+                rel = abs(av * scale - ao) / ao if av is not None else float("inf")
+                if rel > worst:
+                    worst, worst_face = rel, f
+            total = sum(a for a in va.values() if a is not None) * scale
+            area = "%.10g vs %.10g mm²; largest face difference %.1e (%s)" % (
+                total, sum(oc["areas"]), worst, worst_face)
+            if worst > AREA_TOLERANCE:
+                failures.append(f"{name}: face {worst_face} area differs by {worst:.1e}")
+            compared += 1
         bad = [f"{k} {a} vs {b}" for k, a, b in checks if a != b]
         compared += len(checks)
         failures += [f"{name}: {b}" for b in bad]
-        rows.append((name, v, occ, ", ".join(k for k, _, _ in checks), "DIFFERS: " + "; ".join(bad) if bad else "equal"))
-    print("| file | vericad | Open CASCADE 8 | compared | result |")
-    print("|---|---|---|---|---|")
+        rows.append((name, v, occ, ", ".join(k for k, _, _ in checks), "DIFFERS: " + "; ".join(bad) if bad else "equal", area))
+    print("| file | vericad | Open CASCADE 8 | counts compared | counts | trimmed area (vericad vs Open CASCADE) |")
+    print("|---|---|---|---|---|---|")
     for r in rows:
         print("| " + " | ".join(r) + " |")
     if compared == 0:

@@ -10,12 +10,34 @@ use crate::spline::NurbsSurface;
 use crate::spline::closure::Closure;
 use crate::spline::project::{descend, project};
 
-/// A boundary point of a face: where it lies in the (unwrapped) parameter plane and which
-/// mesh vertex it is.
+/// A boundary point of a face: where it lies in the (unwrapped) parameter plane, which mesh
+/// vertex it is, and, when the boundary segment to the next point follows an edge, the
+/// parameter point of the edge's middle between the two (for the area between chord and
+/// curve).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoundaryPoint {
     pub uv: [f64; 2],
     pub vertex: usize,
+    pub mid: Option<[f64; 2]>,
+}
+
+impl BoundaryPoint {
+    /// A point on a cut or pole line (straight in the parameter plane: no middle point).
+    pub fn straight(uv: [f64; 2], vertex: usize) -> Self {
+        BoundaryPoint {
+            uv,
+            vertex,
+            mid: None,
+        }
+    }
+    /// Moved by `s` in parameter direction `d` (with its middle point).
+    pub fn shifted(mut self, d: usize, s: f64) -> Self {
+        self.uv[d] += s;
+        if let Some(m) = &mut self.mid {
+            m[d] += s;
+        }
+        self
+    }
 }
 
 /// The surface of a face with what the domain construction needs of it.
@@ -93,7 +115,14 @@ pub struct Ring {
 /// second traversal of a seam edge of the face, whose copy lies one period from the first:
 /// there the parameter jumps by a period (the sign that brings the loop's winding towards
 /// zero) instead of continuing.
-pub fn ring(fs: &FaceSurface, pts: &[(usize, [f64; 3])], breaks: &[bool]) -> Ring {
+///
+/// `mids[i]`: the edge's point halfway (in its parameter) between points `i` and `i + 1`.
+pub fn ring(
+    fs: &FaceSurface,
+    pts: &[(usize, [f64; 3])],
+    mids: &[Option<[f64; 3]>],
+    breaks: &[bool],
+) -> Ring {
     let mut raw: Vec<(usize, [f64; 2], Option<usize>)> = Vec::with_capacity(pts.len());
     let mut prev = None;
     for (v, x) in pts {
@@ -155,13 +184,35 @@ pub fn ring(fs: &FaceSurface, pts: &[(usize, [f64; 3])], breaks: &[bool]) -> Rin
             winding[d] = unwrap(&mut raw, &jumps).0;
         }
     }
-    // Pole points: the free coordinate runs from the previous point's to the next one's.
+    // Middle points, projected near their segment and unwrapped next to its start.
     let n = raw.len();
+    let mid_uv = |i: usize| -> Option<[f64; 2]> {
+        let x = mids.get(i).copied().flatten()?;
+        let (a, b) = (raw[i].1, raw[(i + 1) % n].1);
+        let start = if raw[i].2.is_some() { b } else { a };
+        let mut m = fs.project(&x, Some(start));
+        for d in 0..2 {
+            if let Some(per) = fs.period[d] {
+                m[d] += ((start[d] - m[d]) / per).round() * per;
+            }
+        }
+        // A middle point is only used where it sits between its ends (not across a pole).
+        let spread = (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
+        let off = (m[0] - (a[0] + b[0]) / 2.0)
+            .abs()
+            .max((m[1] - (a[1] + b[1]) / 2.0).abs());
+        (raw[i].2.is_none() && raw[(i + 1) % n].2.is_none() && off <= spread).then_some(m)
+    };
+    // Pole points: the free coordinate runs from the previous point's to the next one's.
     let mut points = Vec::with_capacity(n + 4);
     for i in 0..n {
         let (v, uv, free) = raw[i];
         let Some(d) = free else {
-            points.push(BoundaryPoint { uv, vertex: v });
+            points.push(BoundaryPoint {
+                uv,
+                vertex: v,
+                mid: mid_uv(i),
+            });
             continue;
         };
         let find = |step: isize| {
@@ -173,10 +224,10 @@ pub fn ring(fs: &FaceSurface, pts: &[(usize, [f64; 3])], breaks: &[bool]) -> Rin
         let (a, b) = (find(-1).unwrap_or(uv[d]), find(1).unwrap_or(uv[d]));
         let mut p = uv;
         p[d] = a;
-        points.push(BoundaryPoint { uv: p, vertex: v });
+        points.push(BoundaryPoint::straight(p, v));
         if b != a {
             p[d] = b;
-            points.push(BoundaryPoint { uv: p, vertex: v });
+            points.push(BoundaryPoint::straight(p, v));
         }
     }
     Ring { points, winding }
@@ -207,10 +258,7 @@ pub fn cut_points(
         .map(|i| {
             let t = i as f64 / (count + 1) as f64;
             let uv = [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t];
-            BoundaryPoint {
-                uv,
-                vertex: add(fs.eval(&uv)),
-            }
+            BoundaryPoint::straight(uv, add(fs.eval(&uv)))
         })
         .collect()
 }
@@ -229,7 +277,7 @@ pub fn join_band(
     let per = fs.period[d].unwrap_or(0.0);
     let kb = b.winding[d] as f64;
     let a0 = a.points[0];
-    let mut a_end = a0;
+    let mut a_end = BoundaryPoint::straight(a0.uv, a0.vertex);
     a_end.uv[d] += a.winding[d] as f64 * per;
     // The point of b nearest (in d, modulo the period) to a's closing copy, shifted there.
     let (j, shift) = b
@@ -250,11 +298,7 @@ pub fn join_band(
     let nb = b.points.len();
     let mut out: Vec<BoundaryPoint> = a.points.clone();
     out.push(a_end);
-    let bj = {
-        let mut p = b.points[j];
-        p.uv[d] += shift;
-        p
-    };
+    let bj = b.points[j].shifted(d, shift);
     let cut = cut_points(fs, a_end.uv, bj.uv, cuts, add);
     out.extend(cut.iter().copied());
     // Around b from j back to j (one period on), then the cut's copy back to a's start.
@@ -264,20 +308,16 @@ pub fn join_band(
         if k > 0 && i == 0 {
             unwrap = kb * per;
         }
-        let mut p = b.points[i];
-        p.uv[d] += shift + unwrap;
+        let mut p = b.points[i].shifted(d, shift + unwrap);
         if k == nb {
-            p.uv[d] = bj.uv[d] + kb * per;
+            p = BoundaryPoint::straight(bj.uv, bj.vertex).shifted(d, kb * per);
         }
         out.push(p);
     }
     let back = out.last().map_or(bj.uv, |p| p.uv);
     for c in cut.iter().rev() {
         let t = [c.uv[0] - bj.uv[0] + back[0], c.uv[1] - bj.uv[1] + back[1]];
-        out.push(BoundaryPoint {
-            uv: t,
-            vertex: c.vertex,
-        });
+        out.push(BoundaryPoint::straight(t, c.vertex));
     }
     out
 }
@@ -296,7 +336,7 @@ pub fn join_pole(
 ) -> Vec<BoundaryPoint> {
     let per = fs.period[d].unwrap_or(0.0);
     let a0 = a.points[0];
-    let mut a_end = a0;
+    let mut a_end = BoundaryPoint::straight(a0.uv, a0.vertex);
     a_end.uv[d] += a.winding[d] as f64 * per;
     let pole_coord = fs.domain[side];
     let mut p_end = a_end.uv;
@@ -311,18 +351,12 @@ pub fn join_pole(
         let t = i as f64 / steps as f64;
         let mut uv = p_end;
         uv[d] = a_end.uv[d] + (a0.uv[d] - a_end.uv[d]) * t;
-        out.push(BoundaryPoint {
-            uv,
-            vertex: pole_vertex,
-        });
+        out.push(BoundaryPoint::straight(uv, pole_vertex));
     }
     for c in cut.iter().rev() {
         let mut uv = c.uv;
         uv[d] -= a.winding[d] as f64 * per;
-        out.push(BoundaryPoint {
-            uv,
-            vertex: c.vertex,
-        });
+        out.push(BoundaryPoint::straight(uv, c.vertex));
     }
     out
 }
@@ -352,7 +386,7 @@ pub fn shift_into(fs: &FaceSurface, r: &mut [BoundaryPoint], lo: [f64; 2]) {
         if let (Some(per), Some(p0)) = (fs.period[d], r.first()) {
             let s = ((p0.uv[d] - lo[d]) / per).floor() * per;
             for p in r.iter_mut() {
-                p.uv[d] -= s;
+                *p = p.shifted(d, -s);
             }
         }
     }

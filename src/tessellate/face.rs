@@ -226,6 +226,9 @@ fn triangulate(
         Ok::<_, FaceError>(hd)
     };
     let mut segments = Vec::new();
+    // Middle points of the boundary segments that follow edges, by CDT vertex pair.
+    let mut middles: std::collections::HashMap<(usize, usize), [f64; 2]> =
+        std::collections::HashMap::new();
     for p in polys {
         let handles = p
             .iter()
@@ -241,6 +244,10 @@ fn triangulate(
             }
             cdt.add_constraint(a, b);
             segments.push((p[i].uv, p[(i + 1) % p.len()].uv));
+            if let Some(m) = p[i].mid {
+                middles.insert((a.index(), b.index()), m);
+                middles.insert((b.index(), a.index()), m);
+            }
         }
     }
     // Interior grid points, at least 0.35 cells from the boundary: rows scanned for
@@ -329,6 +336,16 @@ fn triangulate(
         let [a, b, c] = f.vertices().map(|v| v.fix().index());
         let (pa, pb, pc) = (info[a].1, info[b].1, info[c].1);
         area += triangle_area(fs, &pa, &pb, &pc);
+        // The sliver between a boundary chord and the curve it stands for: a parabola
+        // through the chord's ends and the curve's middle point bounds (4/3) the triangle of
+        // the three, weighted by |S_u × S_v| there. Interior lies left of the CCW edges.
+        for (p, q) in [(a, b), (b, c), (c, a)] {
+            if let Some(m) = middles.get(&(p, q)) {
+                let (x, y) = (info[p].1, info[q].1);
+                let cr = (y[0] - x[0]) * (m[1] - x[1]) - (y[1] - x[1]) * (m[0] - x[0]);
+                area -= 2.0 / 3.0 * cr * jacobian(fs, m);
+            }
+        }
         let (va, vb, vc) = (info[a].0, info[b].0, info[c].0);
         if va == vb || vb == vc || va == vc {
             continue;
@@ -345,6 +362,20 @@ fn triangulate(
     Ok(FaceMesh { triangles, area })
 }
 
+/// `|S_u × S_v|` at a parameter point (periodic parameters reduced, others clamped).
+fn jacobian(fs: &FaceSurface, uv: &[f64; 2]) -> f64 {
+    let mut p = *uv;
+    for d in 0..2 {
+        let (lo, hi) = (fs.domain[2 * d], fs.domain[2 * d + 1]);
+        p[d] = match fs.period[d] {
+            Some(per) => (lo + (p[d] - lo).rem_euclid(per)).min(hi),
+            None => p[d].clamp(lo, hi),
+        };
+    }
+    let (_, su, sv) = crate::spline::project::point_d1(fs.s, p[0], p[1]);
+    norm(&cross(&su, &sv))
+}
+
 /// `∫∫ |S_u × S_v| du dv` over a parameter triangle: the 3-point rule at
 /// `(1/6, 1/6), (2/3, 1/6), (1/6, 2/3)` (exact for quadratics).
 fn triangle_area(fs: &FaceSurface, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> f64 {
@@ -359,16 +390,7 @@ fn triangle_area(fs: &FaceSurface, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> 
             a[0] + s * (b[0] - a[0]) + t * (c[0] - a[0]),
             a[1] + s * (b[1] - a[1]) + t * (c[1] - a[1]),
         ];
-        let mut p = uv;
-        for d in 0..2 {
-            let (lo, hi) = (fs.domain[2 * d], fs.domain[2 * d + 1]);
-            p[d] = match fs.period[d] {
-                Some(per) => (lo + (p[d] - lo).rem_euclid(per)).min(hi),
-                None => p[d].clamp(lo, hi),
-            };
-        }
-        let (_, su, sv) = crate::spline::project::point_d1(fs.s, p[0], p[1]);
-        sum += norm(&cross(&su, &sv)) / 3.0;
+        sum += jacobian(fs, &uv) / 3.0;
     }
     sum * jac
 }

@@ -113,9 +113,12 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
     };
     // Edge samples: mesh vertices from the start vertex to the end vertex.
     let mut samples: Vec<Option<Vec<(usize, [f64; 3])>>> = Vec::with_capacity(brep.edges.len());
+    // The curve's point halfway (in its parameter) between consecutive samples.
+    let mut halves: Vec<Vec<[f64; 3]>> = Vec::with_capacity(brep.edges.len());
     for e in &brep.edges {
         let Some(c) = &e.curve else {
             samples.push(None);
+            halves.push(vec![]);
             continue;
         };
         let (t0, t1) = c.nurbs.hom.domain();
@@ -131,6 +134,14 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         }
         s.push((e.end, brep.vertices[e.end].point));
         samples.push(Some(s));
+        halves.push(
+            (0..n)
+                .map(|i| {
+                    c.nurbs
+                        .eval(&(t0 + (t1 - t0) * (i as f64 + 0.5) / n as f64))
+                })
+                .collect(),
+        );
     }
     let mut faces = Vec::with_capacity(brep.faces.len());
     for f in &brep.faces {
@@ -150,6 +161,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
                 LoopKind::Edges(es) => {
                     let mut pts: Vec<(usize, [f64; 3])> = Vec::new();
                     let mut breaks: Vec<bool> = Vec::new();
+                    let mut mids: Vec<Option<[f64; 3]>> = Vec::new();
                     let order: Vec<_> = if l.orientation {
                         es.iter().map(|o| (o.edge, o.forward)).collect()
                     } else {
@@ -162,13 +174,15 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
                         };
                         let n = s.len();
                         let second = !traversed.insert(e);
+                        let hv = &halves[e];
                         for k in 0..n - 1 {
                             pts.push(if fwd { s[k] } else { s[n - 1 - k] });
+                            mids.push(Some(if fwd { hv[k] } else { hv[n - 2 - k] }));
                             breaks.push(second && k == 0);
                         }
                     }
                     if !pts.is_empty() {
-                        rings.push(domain::ring(&fs, &pts, &breaks));
+                        rings.push(domain::ring(&fs, &pts, &mids, &breaks));
                     }
                 }
             }
