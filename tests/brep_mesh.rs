@@ -28,7 +28,20 @@ fn edge_uses(tris: &[[u32; 3]]) -> (BTreeMap<(u32, u32), usize>, BTreeMap<(u32, 
     (und, dir)
 }
 
-fn watertight(name: &str) {
+/// Signed volume enclosed by a triangulation (divergence theorem; positive when the
+/// triangles face outward).
+fn volume(t: &vericad::model::Triangulation) -> f64 {
+    t.triangles
+        .iter()
+        .map(|tri| {
+            let [a, b, c] = tri.map(|i| t.vertices[i as usize]);
+            let cr = vericad::geom::cross(&b, &c);
+            vericad::geom::dot(&a, &cr) / 6.0
+        })
+        .sum()
+}
+
+fn watertight(name: &str) -> f64 {
     let m = model(name);
     let b = m.brep.as_ref().unwrap();
     assert!(
@@ -56,21 +69,37 @@ fn watertight(name: &str) {
         "directed edges used twice (inconsistent orientation): {:?}",
         &twice[..twice.len().min(10)]
     );
+    volume(&mesh.triangulation)
+}
+
+/// Volumes of the files' solids from Open CASCADE 8.0.1 (`BRepGProp::VolumeProperties`,
+/// relative precision 1e-9, in mm³): the mesh volume (chordal, default sampling) must be close
+/// and positive (faces oriented outward).
+fn close_to(name: &str, mesh_volume_mm3: f64, occt: f64, rel: f64) {
+    let d = (mesh_volume_mm3 - occt).abs() / occt;
+    assert!(
+        d < rel,
+        "{name}: mesh volume {mesh_volume_mm3} vs Open CASCADE {occt}: {d:e}"
+    );
 }
 
 #[test]
 fn abc_is_watertight() {
-    watertight("abc-0000.step");
+    let v = watertight("abc-0000.step") * 1e9; // m³ to mm³
+    // Chords of at most 15° of turn cut 1.1% off this part's mostly curved solids.
+    close_to("abc-0000.step", v, 3166280.0220566047, 2e-2);
 }
 
 #[test]
 fn t20_is_watertight() {
-    watertight("gmsh-t20_data.step");
+    let v = watertight("gmsh-t20_data.step");
+    close_to("gmsh-t20_data.step", v, 18384.504524105512, 1e-2);
 }
 
 #[test]
 fn periodic_is_watertight() {
-    watertight("gmsh-periodic_u_cst.step");
+    let v = watertight("gmsh-periodic_u_cst.step");
+    close_to("gmsh-periodic_u_cst.step", v, 13429.869097403192, 1e-2);
 }
 
 #[test]
@@ -100,4 +129,86 @@ fn abc_converts_to_a_watertight_stl() {
         und.len()
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A STEP file of one face: `face` and `bounds` around the sphere or plane below.
+fn one_face(data: &str) -> vericad::model::Model {
+    let text = format!(
+        "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;
+#1=CARTESIAN_POINT('',(0.,0.,0.));
+#2=DIRECTION('',(0.,0.,1.));
+#3=DIRECTION('',(1.,0.,0.));
+#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);
+#5=PLANE('',#4);
+#6=SPHERICAL_SURFACE('',#4,2.);
+#10=CARTESIAN_POINT('',(2.,0.,0.));
+#11=VERTEX_POINT('',#10);
+#12=CIRCLE('',#4,2.);
+#13=EDGE_CURVE('',#11,#11,#12,.T.);
+#14=ORIENTED_EDGE('',*,*,#13,.T.);
+#15=EDGE_LOOP('',(#14));
+#16=FACE_OUTER_BOUND('',#15,.T.);
+#20=CARTESIAN_POINT('',(0.,0.,2.));
+#21=VERTEX_POINT('',#20);
+#22=VERTEX_LOOP('',#21);
+#23=FACE_BOUND('',#22,.T.);
+{data}
+ENDSEC;\nEND-ISO-10303-21;\n"
+    );
+    step::from_str(&text, "one-face.step").unwrap()
+}
+
+fn area_of(m: &vericad::model::Model) -> f64 {
+    let b = m.brep.as_ref().unwrap();
+    let a = vericad::tessellate::face_areas(m, b);
+    assert_eq!(a.len(), 1);
+    a[0].area.unwrap_or_else(|| panic!("{:?}", a[0].note))
+}
+
+#[test]
+fn a_disc_has_area_pi_r_squared() {
+    let m = one_face("#30=ADVANCED_FACE('',(#16),#5,.T.);");
+    let a = area_of(&m);
+    let exact = std::f64::consts::PI * 4.0;
+    assert!((a - exact).abs() / exact < 1e-9, "{a} vs {exact}");
+}
+
+#[test]
+fn a_hemisphere_to_its_pole_has_area_two_pi_r_squared() {
+    // Walking the equator counter-clockwise about +z with the outward normal, the face is
+    // on the left: the upper hemisphere, closed at the pole (0, 0, 2) by the vertex loop.
+    let m = one_face("#30=ADVANCED_FACE('',(#16,#23),#6,.T.);");
+    let a = area_of(&m);
+    let exact = 2.0 * std::f64::consts::PI * 4.0;
+    assert!((a - exact).abs() / exact < 1e-6, "{a} vs {exact}");
+    let b = m.brep.as_ref().unwrap();
+    let mesh = mesh_brep(&m, b, &MeshParams::default());
+    let t = &mesh.triangulation;
+    assert!(t.vertices.iter().all(|p| p[2] >= -1e-12), "upper half only");
+    // Outward: the volume of the hemisphere closed by its base disc is positive, and the
+    // triangles' normals point away from the centre.
+    for tri in &t.triangles {
+        let [a, b, c] = tri.map(|i| t.vertices[i as usize]);
+        let n = vericad::geom::cross(
+            &vericad::geom::Point::sub(&b, &a),
+            &vericad::geom::Point::sub(&c, &a),
+        );
+        let centroid = [
+            (a[0] + b[0] + c[0]) / 3.0,
+            (a[1] + b[1] + c[1]) / 3.0,
+            (a[2] + b[2] + c[2]) / 3.0,
+        ];
+        assert!(vericad::geom::dot(&n, &centroid) > 0.0);
+    }
+    // The reversed face (same_sense .F.) without the vertex loop: the lower hemisphere,
+    // closed at the south pole.
+    let m = one_face("#30=ADVANCED_FACE('',(#16),#6,.F.);");
+    let a = area_of(&m);
+    assert!((a - exact).abs() / exact < 1e-6, "{a} vs {exact}");
+    let b = m.brep.as_ref().unwrap();
+    let mesh = mesh_brep(&m, b, &MeshParams::default());
+    assert!(
+        mesh.triangulation.vertices.iter().all(|p| p[2] <= 1e-12),
+        "lower half only"
+    );
 }
