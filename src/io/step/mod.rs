@@ -35,15 +35,15 @@ pub struct StepError {
 
 /// Surface entities that are recognised but not converted (reported when a bare patch set
 /// holds them).
-const UNSUPPORTED_SURFACES: [&str; 4] = [
-    "RECTANGULAR_TRIMMED_SURFACE",
+const UNSUPPORTED_SURFACES: [&str; 3] = [
     "OFFSET_SURFACE",
     "CURVE_BOUNDED_SURFACE",
     "DEGENERATE_TOROIDAL_SURFACE",
 ];
 
-const SURFACE_TYPES: [&str; 8] = [
+const SURFACE_TYPES: [&str; 9] = [
     "B_SPLINE_SURFACE_WITH_KNOTS",
+    "RECTANGULAR_TRIMMED_SURFACE",
     "PLANE",
     "CYLINDRICAL_SURFACE",
     "CONICAL_SURFACE",
