@@ -424,3 +424,58 @@ fn an_unsupported_edge_curve_is_counted_with_its_id() {
     assert!(issues(&b).contains("face #70: #90: curve of type POLYLINE is not supported"));
     assert_eq!(b.counts().edges_without_curve, 1);
 }
+
+mod random_graphs {
+    //! Random entity graphs of topology and edge-geometry instances referring to each other at
+    //! random (dangling references, cycles, wrong types, self-references): reading, checking,
+    //! counting and triangulating never panic and end at once.
+    use proptest::prelude::*;
+    use vericad::io::step;
+
+    /// Instance `id` of kind `k` with references `r` (ids, possibly missing or cyclic).
+    fn instance(id: u32, k: u8, r: &[u32]) -> String {
+        let a = |i: usize| r[i % r.len()];
+        match k % 14 {
+            0 => format!("#{id}=VERTEX_POINT('',#{});", [1, 2, 3][a(0) as usize % 3]),
+            1 => format!("#{id}=EDGE_CURVE('',#{},#{},#{},.T.);", a(0), a(1), a(2)),
+            2 => format!("#{id}=ORIENTED_EDGE('',*,*,#{},.F.);", a(0)),
+            3 => format!("#{id}=EDGE_LOOP('',(#{},#{},#{}));", a(0), a(1), a(2)),
+            4 => format!("#{id}=FACE_OUTER_BOUND('',#{},.T.);", a(0)),
+            5 => format!("#{id}=ADVANCED_FACE('',(#{},#{}),#{},.T.);", a(0), a(1), [4, 5][a(2) as usize % 2]),
+            6 => format!("#{id}=CLOSED_SHELL('',(#{},#{}));", a(0), a(1)),
+            7 => format!("#{id}=MANIFOLD_SOLID_BREP('',#{});", a(0)),
+            8 => format!("#{id}=TRIMMED_CURVE('',#{},(),(),.F.,.UNSPECIFIED.);", a(0)),
+            9 => format!("#{id}=SURFACE_CURVE('',#{},(#{}),.CURVE_3D.);", a(0), a(1)),
+            10 => format!("#{id}=VERTEX_LOOP('',#{});", a(0)),
+            11 => format!("#{id}=PCURVE('',#{},#{});", a(0), a(1)),
+            12 => format!("#{id}=ORIENTED_FACE('',*,#{},.F.);", a(0)),
+            _ => format!("#{id}=CIRCLE('',#7,{}.);", 1 + a(0) % 3),
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn random_topology_never_panics(kinds in proptest::collection::vec((any::<u8>(), proptest::collection::vec(1u32..45, 3)), 1..30)) {
+            let mut data = String::from(
+                "#1=CARTESIAN_POINT('',(1.,0.,0.));\n#2=CARTESIAN_POINT('',(0.,1.,0.));\n#3=CARTESIAN_POINT('',(0.,0.,1.));\n\
+                 #6=DIRECTION('',(0.,0.,1.));\n#8=DIRECTION('',(1.,0.,0.));\n#7=AXIS2_PLACEMENT_3D('',#1,#6,#8);\n\
+                 #4=PLANE('',#7);\n#5=SPHERICAL_SURFACE('',#7,1.);\n",
+            );
+            for (i, (k, r)) in kinds.iter().enumerate() {
+                data += &instance(10 + i as u32, *k, r);
+                data.push('\n');
+            }
+            let text = format!("ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n{data}ENDSEC;\nEND-ISO-10303-21;\n");
+            let start = std::time::Instant::now();
+            if let Ok(m) = step::from_str(&text, "random.step")
+                && let Some(b) = &m.brep
+            {
+                let _ = b.check();
+                let _ = b.counts();
+                let _ = vericad::tessellate::mesh_brep(&m, b, &vericad::tessellate::MeshParams::default());
+            }
+            prop_assert!(start.elapsed().as_secs_f64() < 5.0);
+        }
+    }
+}
