@@ -77,6 +77,7 @@ fn watertight(name: &str) -> f64 {
 /// and positive (faces oriented outward).
 fn close_to(name: &str, mesh_volume_mm3: f64, occt: f64, rel: f64) {
     let d = (mesh_volume_mm3 - occt).abs() / occt;
+    eprintln!("{name}: mesh volume {mesh_volume_mm3} mm³, Open CASCADE {occt}: {d:e}");
     assert!(
         d < rel,
         "{name}: mesh volume {mesh_volume_mm3} vs Open CASCADE {occt}: {d:e}"
