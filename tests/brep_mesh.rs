@@ -14,8 +14,11 @@ fn model(name: &str) -> vericad::model::Model {
     step::read(&p).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
+/// Uses of each mesh edge `(a, b)`.
+type Uses = BTreeMap<(u32, u32), usize>;
+
 /// Uses of each undirected mesh edge, and of each directed one.
-fn edge_uses(tris: &[[u32; 3]]) -> (BTreeMap<(u32, u32), usize>, BTreeMap<(u32, u32), usize>) {
+fn edge_uses(tris: &[[u32; 3]]) -> (Uses, Uses) {
     let mut und = BTreeMap::new();
     let mut dir = BTreeMap::new();
     for t in tris {

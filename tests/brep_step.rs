@@ -441,7 +441,12 @@ mod random_graphs {
             2 => format!("#{id}=ORIENTED_EDGE('',*,*,#{},.F.);", a(0)),
             3 => format!("#{id}=EDGE_LOOP('',(#{},#{},#{}));", a(0), a(1), a(2)),
             4 => format!("#{id}=FACE_OUTER_BOUND('',#{},.T.);", a(0)),
-            5 => format!("#{id}=ADVANCED_FACE('',(#{},#{}),#{},.T.);", a(0), a(1), [4, 5][a(2) as usize % 2]),
+            5 => format!(
+                "#{id}=ADVANCED_FACE('',(#{},#{}),#{},.T.);",
+                a(0),
+                a(1),
+                [4, 5][a(2) as usize % 2]
+            ),
             6 => format!("#{id}=CLOSED_SHELL('',(#{},#{}));", a(0), a(1)),
             7 => format!("#{id}=MANIFOLD_SOLID_BREP('',#{});", a(0)),
             8 => format!("#{id}=TRIMMED_CURVE('',#{},(),(),.F.,.UNSPECIFIED.);", a(0)),

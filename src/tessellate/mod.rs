@@ -102,6 +102,9 @@ fn segments(pts: &[[f64; 3]], h: f64, max_turn: f64) -> usize {
     ((len / h).ceil().max((turn / max_turn).ceil())).clamp(1.0, 2000.0) as usize
 }
 
+/// A sample point of an edge: its mesh vertex and position.
+type Sample = (usize, [f64; 3]);
+
 /// Triangulate every face of `brep` (surfaces from `model`).
 pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
     let size = bbox_diagonal(brep);
@@ -112,7 +115,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         triangles: vec![],
     };
     // Edge samples: mesh vertices from the start vertex to the end vertex.
-    let mut samples: Vec<Option<Vec<(usize, [f64; 3])>>> = Vec::with_capacity(brep.edges.len());
+    let mut samples: Vec<Option<Vec<Sample>>> = Vec::with_capacity(brep.edges.len());
     // The curve's point halfway (in its parameter) between consecutive samples.
     let mut halves: Vec<Vec<[f64; 3]>> = Vec::with_capacity(brep.edges.len());
     for e in &brep.edges {
