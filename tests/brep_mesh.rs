@@ -216,3 +216,33 @@ fn a_hemisphere_to_its_pole_has_area_two_pi_r_squared() {
         "lower half only"
     );
 }
+
+/// The z component of the first triangle's normal.
+fn normal_z(m: &vericad::model::Model) -> f64 {
+    let mesh = mesh_brep(m, m.brep.as_ref().unwrap(), &MeshParams::default());
+    let t = &mesh.triangulation;
+    let [a, b, c] = t.triangles[0].map(|i| t.vertices[i as usize]);
+    vericad::geom::cross(
+        &vericad::geom::Point::sub(&b, &a),
+        &vericad::geom::Point::sub(&c, &a),
+    )[2]
+}
+
+#[test]
+fn faces_turn_with_same_sense_and_with_oriented_faces_in_the_shell() {
+    // The disc's loop runs counter-clockwise about +z: with same_sense .T. on the plane
+    // (normal +z) the triangles face +z; same_sense .F. and a shell's ORIENTED_FACE .F. each
+    // turn them over.
+    let up = one_face("#30=ADVANCED_FACE('',(#16),#5,.T.);\n#31=OPEN_SHELL('',(#30));");
+    assert!(normal_z(&up) > 0.0);
+    let down = one_face("#30=ADVANCED_FACE('',(#16),#5,.F.);\n#31=OPEN_SHELL('',(#30));");
+    assert!(normal_z(&down) < 0.0);
+    let turned = one_face(
+        "#30=ADVANCED_FACE('',(#16),#5,.T.);\n#32=ORIENTED_FACE('',*,#30,.F.);\n#31=OPEN_SHELL('',(#32));",
+    );
+    assert!(normal_z(&turned) < 0.0);
+    assert_eq!(
+        turned.brep.as_ref().unwrap().shells[0].faces,
+        vec![(0, false)]
+    );
+}

@@ -146,8 +146,18 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
                 .collect(),
         );
     }
+    // Faces a shell uses reversed (`oriented_face` with orientation .F.): their triangles
+    // turn the other way (the region is the face's own).
+    let mut reversed_in_shell = vec![false; brep.faces.len()];
+    for sh in &brep.shells {
+        for (fi, o) in &sh.faces {
+            if !o {
+                reversed_in_shell[*fi] = true;
+            }
+        }
+    }
     let mut faces = Vec::with_capacity(brep.faces.len());
-    for f in &brep.faces {
+    for (fi, f) in brep.faces.iter().enumerate() {
         let Some(si) = f.surface else {
             faces.push(Err("no surface".to_string()));
             continue;
@@ -209,8 +219,11 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
             &mut add,
         ) {
             Ok(m) => {
-                t.triangles
-                    .extend(m.triangles.iter().map(|x| x.map(|i| i as u32)));
+                let flip = reversed_in_shell[fi];
+                t.triangles.extend(m.triangles.iter().map(|x| {
+                    let x = x.map(|i| i as u32);
+                    if flip { [x[0], x[2], x[1]] } else { x }
+                }));
                 faces.push(Ok((first..t.triangles.len(), m.area)));
             }
             Err(e) => faces.push(Err(e.to_string())),
