@@ -33,12 +33,12 @@ impl Default for MeshParams {
 }
 
 impl MeshParams {
-    /// The finer sampling used for trimmed areas (edge length 1/400 of the diagonal, at
-    /// most 1° of turn per segment).
+    /// The finer sampling used for trimmed areas (edge length 1/150 of the diagonal, at
+    /// most 3° of turn per segment).
     pub fn for_area() -> Self {
         MeshParams {
-            relative_edge: 1.0 / 400.0,
-            max_turn: std::f64::consts::PI / 180.0,
+            relative_edge: 1.0 / 150.0,
+            max_turn: std::f64::consts::PI / 60.0,
         }
     }
 }
