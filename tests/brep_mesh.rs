@@ -246,3 +246,23 @@ fn faces_turn_with_same_sense_and_with_oriented_faces_in_the_shell() {
         vec![(0, false)]
     );
 }
+
+#[test]
+fn trimmed_areas_agree_with_open_cascade() {
+    // Total face areas from Open CASCADE 8.0.1 (`BRepGProp::SurfaceProperties`, relative
+    // precision 1e-9, mm²) for the public files with topology.
+    for (name, to_mm2, occt) in [
+        ("abc-0000.step", 1e6, 404864.5993),
+        ("gmsh-periodic_u_cst.step", 1.0, 27087.80537),
+        ("gmsh-t20_data.step", 1.0, 6365.476297),
+    ] {
+        let m = model(name);
+        let a: f64 = vericad::tessellate::face_areas(&m, m.brep.as_ref().unwrap())
+            .iter()
+            .map(|f| f.area.unwrap())
+            .sum::<f64>()
+            * to_mm2;
+        let d = (a - occt).abs() / occt;
+        assert!(d < 1e-5, "{name}: {a} vs {occt}: {d:e}");
+    }
+}

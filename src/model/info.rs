@@ -56,6 +56,9 @@ pub struct ModelInfo {
     /// Counts of the B-rep (faces, loops, edges, vertices, shells, solids), when the source
     /// has topology.
     pub topology: Option<crate::brep::BrepCounts>,
+    /// What the reader did with each topology and edge-geometry entity (converted,
+    /// unsupported, invalid, not read; with ids) and the topology issues.
+    pub topology_report: Option<crate::brep::BrepReport>,
     /// Trimmed area of each B-rep face (filled by callers that triangulate the faces).
     pub face_areas: Vec<FaceArea>,
 }
@@ -167,6 +170,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
             .map(|t| (t.name.clone(), t.vertices.len(), t.triangles.len()))
             .collect(),
         topology: m.brep.as_ref().map(|b| b.counts()),
+        topology_report: m.brep.as_ref().map(|b| b.report.clone()),
         face_areas: vec![],
     }
 }
@@ -208,6 +212,15 @@ impl std::fmt::Display for ModelInfo {
         }
         if let Some(t) = &self.topology {
             write!(f, "{t}")?;
+        }
+        if let Some(r) = &self.topology_report {
+            let converted: Vec<String> = r
+                .entities
+                .iter()
+                .filter(|(_, t)| t.converted > 0)
+                .map(|(k, t)| format!("{k} {}", t.converted))
+                .collect();
+            writeln!(f, "  topology entities converted: {}", converted.join(", "))?;
         }
         if !self.face_areas.is_empty() {
             let total: f64 = self.face_areas.iter().filter_map(|a| a.area).sum();
