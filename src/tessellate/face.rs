@@ -64,7 +64,7 @@ fn resolution(
     }
     let by_len = (len / h).ceil();
     let by_turn = (turn / max_turn).ceil();
-    by_len.max(by_turn).clamp(1.0, 400.0) as usize
+    (by_len.max(by_turn).clamp(1.0, 400.0) as usize).max(1)
 }
 
 /// Triangulate a face. `rings`: its loops in the parameter plane; `vertex_loop`: the mesh

@@ -128,7 +128,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         let probe: Vec<[f64; 3]> = (0..=256)
             .map(|i| c.nurbs.eval(&(t0 + (t1 - t0) * i as f64 / 256.0)))
             .collect();
-        let n = segments(&probe, h, params.max_turn);
+        let n = segments(&probe, h, params.max_turn).max(1);
         let mut s = vec![(e.start, brep.vertices[e.start].point)];
         for i in 1..n {
             let p = c.nurbs.eval(&(t0 + (t1 - t0) * i as f64 / n as f64));
