@@ -138,6 +138,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         patch_sets: vec![],
         triangulations: vec![],
         source_entities: Default::default(),
+        brep: None,
         warnings: vec![],
     };
     let curve_path = out_dir.join("demo-exact-curve.json");

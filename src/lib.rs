@@ -6,6 +6,7 @@
 // Index loops mirror the published algorithms (The NURBS Book, de Casteljau); keep them.
 #![allow(clippy::needless_range_loop)]
 
+pub mod brep;
 pub mod cli;
 pub mod curve_on_surface;
 pub mod demo;
@@ -19,5 +20,6 @@ pub mod repair;
 pub mod scalar;
 pub mod spline;
 pub mod ssi;
+pub mod tessellate;
 
 pub use scalar::{RealScalar, Scalar, Sign};

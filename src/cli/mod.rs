@@ -434,12 +434,30 @@ pub fn run(cli: Cli) -> i32 {
                     for w in warnings {
                         eprintln!("warning: {w}");
                     }
-                    println!(
-                        "wrote {} ({} surfaces, {} curves)",
-                        output.display(),
-                        m.surfaces.len(),
-                        m.curves.len()
+                    let ext = format.clone().unwrap_or_else(|| {
+                        output
+                            .extension()
+                            .and_then(|e| e.to_str())
+                            .unwrap_or("")
+                            .to_string()
+                    });
+                    let mesh_format = matches!(
+                        ext.to_ascii_lowercase().as_str(),
+                        "stl" | "stl-binary" | "vtp" | "obj"
                     );
+                    match m.brep.as_ref().filter(|_| mesh_format) {
+                        Some(b) => println!(
+                            "wrote {} ({} B-rep faces triangulated inside their trims)",
+                            output.display(),
+                            b.faces.len()
+                        ),
+                        None => println!(
+                            "wrote {} ({} surfaces, {} curves)",
+                            output.display(),
+                            m.surfaces.len(),
+                            m.curves.len()
+                        ),
+                    }
                     0
                 }
                 Err(e @ crate::io::WriteError::Io(..)) => {
@@ -451,7 +469,11 @@ pub fn run(cli: Cli) -> i32 {
         }
         Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
-                print(&crate::model::info::summarize(&m), json);
+                let mut info = crate::model::info::summarize(&m);
+                if let Some(b) = &m.brep {
+                    info.face_areas = crate::tessellate::face_areas(&m, b);
+                }
+                print(&info, json);
                 0
             }
             Err(e) => bad(e),

@@ -131,6 +131,34 @@ pub fn write_model(
     write_model_as(path, m, None)
 }
 
+/// The model as mesh formats see it: the B-rep's faces triangulated inside their trims (one
+/// triangulation, shared edges with shared vertices), no surfaces; and a line for every face
+/// left out.
+fn trimmed_mesh_model(
+    m: &crate::model::Model,
+    b: &crate::brep::Brep,
+) -> (crate::model::Model, Vec<String>) {
+    let mesh = crate::tessellate::mesh_brep(m, b, &crate::tessellate::MeshParams::default());
+    let mut notes = mesh.issues(b);
+    let ok = mesh.faces.iter().filter(|f| f.is_ok()).count();
+    if ok < b.faces.len() {
+        notes.push(format!(
+            "{} of {} faces triangulated; the others are missing from the output",
+            ok,
+            b.faces.len()
+        ));
+    }
+    let mut triangulations = vec![mesh.triangulation];
+    triangulations.extend(m.triangulations.iter().cloned());
+    let out = crate::model::Model {
+        unit: m.unit.clone(),
+        triangulations,
+        warnings: m.warnings.clone(),
+        ..Default::default()
+    };
+    (out, notes)
+}
+
 /// Format names accepted by `--format`.
 pub const FORMAT_NAMES: &str = "json, step, iges, stl, stl-binary, vtp, obj";
 
@@ -151,6 +179,20 @@ pub fn write_model_as(
             .unwrap_or("")
             .to_ascii_lowercase(),
     };
+    if let Some(b) = &m.brep {
+        if matches!(ext.as_str(), "stl" | "stl-binary" | "vtp" | "obj") {
+            // Mesh formats get the faces triangulated inside their trims.
+            let (meshed, mut notes) = trimmed_mesh_model(m, b);
+            warnings.append(&mut notes);
+            let mut rest = write_model_as(path, &meshed, Some(&ext))?;
+            warnings.append(&mut rest);
+            return Ok(warnings);
+        }
+        warnings.push(format!(
+            "the B-rep topology ({} faces, their loops, edges and vertices) is not written: this writer stores the faces' surfaces, untrimmed",
+            b.faces.len()
+        ));
+    }
     let name0 = path.display().to_string();
     if ext == "stl-binary" {
         let t = m

@@ -53,6 +53,23 @@ pub struct ModelInfo {
     pub source_entities: std::collections::BTreeMap<String, usize>,
     /// Triangulations: (name, vertices, triangles).
     pub triangulations: Vec<(String, usize, usize)>,
+    /// Counts of the B-rep (faces, loops, edges, vertices, shells, solids), when the source
+    /// has topology.
+    pub topology: Option<crate::brep::BrepCounts>,
+    /// What the reader did with each topology and edge-geometry entity (converted,
+    /// unsupported, invalid, not read; with ids) and the topology issues.
+    pub topology_report: Option<crate::brep::BrepReport>,
+    /// Trimmed area of each B-rep face (filled by callers that triangulate the faces).
+    pub face_areas: Vec<FaceArea>,
+}
+
+/// The trimmed area of one face, or why there is none.
+#[derive(Clone, Debug, Serialize)]
+pub struct FaceArea {
+    /// Source id of the face.
+    pub face: String,
+    pub area: Option<f64>,
+    pub note: Option<String>,
 }
 
 /// Summarize a model.
@@ -152,6 +169,9 @@ pub fn summarize(m: &Model) -> ModelInfo {
             .iter()
             .map(|t| (t.name.clone(), t.vertices.len(), t.triangles.len()))
             .collect(),
+        topology: m.brep.as_ref().map(|b| b.counts()),
+        topology_report: m.brep.as_ref().map(|b| b.report.clone()),
+        face_areas: vec![],
     }
 }
 
@@ -189,6 +209,38 @@ impl std::fmt::Display for ModelInfo {
                 shown.join(", "),
                 if top.len() > 12 { ", ..." } else { "" }
             )?;
+        }
+        if let Some(t) = &self.topology {
+            write!(f, "{t}")?;
+        }
+        if let Some(r) = &self.topology_report {
+            let converted: Vec<String> = r
+                .entities
+                .iter()
+                .filter(|(_, t)| t.converted > 0)
+                .map(|(k, t)| format!("{k} {}", t.converted))
+                .collect();
+            writeln!(f, "  topology entities converted: {}", converted.join(", "))?;
+        }
+        if !self.face_areas.is_empty() {
+            let total: f64 = self.face_areas.iter().filter_map(|a| a.area).sum();
+            writeln!(
+                f,
+                "  trimmed area: {total} ({} of {} faces)",
+                self.face_areas.iter().filter(|a| a.area.is_some()).count(),
+                self.face_areas.len()
+            )?;
+            for a in &self.face_areas {
+                match (a.area, &a.note) {
+                    (Some(x), _) => writeln!(f, "  face {:<8} trimmed area {x}", a.face)?,
+                    (None, n) => writeln!(
+                        f,
+                        "  face {:<8} no area: {}",
+                        a.face,
+                        n.as_deref().unwrap_or("")
+                    )?,
+                }
+            }
         }
         for (n, v, t) in &self.triangulations {
             writeln!(

@@ -371,6 +371,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
         triangulations: vec![],
         source_entities: Default::default(),
         warnings: vec![],
+        brep: None,
     })
 }
 

@@ -153,6 +153,8 @@ pub struct Model {
     pub source_entities: std::collections::BTreeMap<String, usize>,
     /// What a reader skipped or approximated, counted and named (never silent).
     pub warnings: Vec<String>,
+    /// Faces, loops, edges, vertices, shells and solids, when the source has topology.
+    pub brep: Option<crate::brep::Brep>,
 }
 
 /// Canonical short name of a length unit (`"m"`, `"mm"`, `"cm"`, `"km"`, `"um"`, `"inch"`,

@@ -239,6 +239,28 @@ impl<P: Point> BSplineCurve<P> {
         })
     }
 
+    /// The same curve traversed the other way over the same domain: `C'(t) = C(a + b − t)`
+    /// (knots mirrored, control points reversed). Exact for exact scalars; in f64 each
+    /// mirrored knot `a + b − t` is rounded once (exact when the knots are small dyadic
+    /// numbers, as in the constructions of this crate).
+    pub fn reversed(&self) -> Self {
+        let (a, b) = self.domain();
+        let ab = a + b;
+        let k: Vec<P::S> = self
+            .knots
+            .knots()
+            .iter()
+            .rev()
+            .map(|t| ab.clone() - t.clone())
+            .collect();
+        let mut control = self.control.clone();
+        control.reverse();
+        BSplineCurve {
+            knots: KnotVector::new_unchecked(k, self.degree()),
+            control,
+        }
+    }
+
     /// Map every control point (e.g. to convert backends).
     pub fn map<Q: Point>(
         &self,

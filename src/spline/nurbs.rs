@@ -121,6 +121,12 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
             hom: BSplineCurve::new(knots, degree, h)?,
         })
     }
+    /// The same curve traversed the other way (see [`BSplineCurve::reversed`]).
+    pub fn reversed(&self) -> Self {
+        NurbsCurve {
+            hom: self.hom.reversed(),
+        }
+    }
     /// Point at `t`.
     pub fn eval(&self, t: &S) -> [S; D] {
         project(&self.hom.eval(t))
@@ -365,5 +371,38 @@ mod tests {
         let n = s.normal(&u, &v);
         let p = s.eval(&u, &v);
         assert_eq!(cross(&n, &p), [q(0.), q(0.), q(0.)]);
+    }
+
+    #[test]
+    fn reversed_curve_runs_backwards_over_the_same_domain() {
+        // A rational quadratic with interior knots on [1, 4]: C'(t) = C(5 - t), exactly in
+        // rationals (the mirrored knots are exact), to rounding in f64.
+        let knots = vec![1.0, 1.0, 1.0, 2.0, 3.5, 4.0, 4.0, 4.0];
+        let pts = vec![[0.0, 0.0], [1.0, 2.0], [3.0, 1.0], [4.0, 3.0], [6.0, 0.5]];
+        let w = vec![1.0, 0.5, 2.0, 0.75, 1.0];
+        let c = NurbsCurve::new(knots, 2, pts, w).unwrap();
+        let r = c.reversed();
+        assert_eq!(r.hom.domain(), (1.0, 4.0));
+        for i in 0..=30 {
+            let t = 1.0 + 3.0 * i as f64 / 30.0;
+            let (a, b) = (r.eval(&t), c.eval(&(5.0 - t)));
+            assert!(
+                (a[0] - b[0]).abs() < 1e-14 && (a[1] - b[1]).abs() < 1e-14,
+                "{t}"
+            );
+        }
+        let q: NurbsCurve<num_rational::BigRational, 2> = NurbsCurve {
+            hom: c.hom.map(
+                |k| crate::scalar::lift(*k),
+                |h| crate::geom::Hom {
+                    wp: h.wp.map(crate::scalar::lift),
+                    w: crate::scalar::lift(h.w),
+                },
+            ),
+        };
+        let rq = q.reversed();
+        let t = crate::scalar::lift::<num_rational::BigRational>(1.3);
+        let five = crate::scalar::lift::<num_rational::BigRational>(5.0);
+        assert_eq!(rq.eval(&t), q.eval(&(five - t.clone())));
     }
 }

@@ -22,7 +22,7 @@ fn nums(v: &Value) -> Option<Vec<f64>> {
 }
 
 impl Reader<'_> {
-    fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
+    pub(super) fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
         Err(StepError {
             file: self.file.into(),
             location: format!("#{id}"),
@@ -35,13 +35,13 @@ impl Reader<'_> {
             None => self.err(id, "reference to a missing instance"),
         }
     }
-    fn arg<'b>(&self, id: u64, args: &'b [Value], i: usize) -> R<&'b Value> {
+    pub(super) fn arg<'b>(&self, id: u64, args: &'b [Value], i: usize) -> R<&'b Value> {
         match args.get(i) {
             Some(v) => Ok(v),
             None => self.err(id, format!("missing attribute {i}")),
         }
     }
-    fn num(&self, id: u64, args: &[Value], i: usize) -> R<f64> {
+    pub(super) fn num(&self, id: u64, args: &[Value], i: usize) -> R<f64> {
         match self.arg(id, args, i)?.num() {
             Some(x) if x.is_finite() => Ok(x),
             _ => self.err(id, format!("attribute {i} is not a number")),
@@ -61,13 +61,13 @@ impl Reader<'_> {
         }
         Ok(x as usize)
     }
-    fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
+    pub(super) fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
         match self.arg(id, args, i)?.reference() {
             Some(r) => Ok(r),
             None => self.err(id, format!("attribute {i} is not a reference")),
         }
     }
-    fn point(&self, id: u64) -> R<[f64; 3]> {
+    pub(super) fn point(&self, id: u64) -> R<[f64; 3]> {
         let a = self
             .get(id)?
             .part("CARTESIAN_POINT")
@@ -82,7 +82,7 @@ impl Reader<'_> {
             _ => self.err(id, "point coordinates are not 2 or 3 finite numbers"),
         }
     }
-    fn direction(&self, id: u64) -> R<[f64; 3]> {
+    pub(super) fn direction(&self, id: u64) -> R<[f64; 3]> {
         let a = self.get(id)?.part("DIRECTION").ok_or_else(|| StepError {
             file: self.file.into(),
             location: format!("#{id}"),
@@ -100,7 +100,7 @@ impl Reader<'_> {
             _ => self.err(id, "direction is not 3 numbers"),
         }
     }
-    fn placement(&self, id: u64) -> R<Frame> {
+    pub(super) fn placement(&self, id: u64) -> R<Frame> {
         let a = self
             .get(id)?
             .part("AXIS2_PLACEMENT_3D")
@@ -343,6 +343,9 @@ impl Reader<'_> {
         if e.is("B_SPLINE_SURFACE_WITH_KNOTS") {
             return Ok(Some((self.bspline_surface(id, e)?, SurfaceKind::BSpline)));
         }
+        if let Some(a) = e.part("RECTANGULAR_TRIMMED_SURFACE") {
+            return self.rectangular_trimmed(id, a);
+        }
         if let Some(a) = e.part("PLANE") {
             let f = self.placement(self.reference(id, a, 1)?)?;
             let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -450,4 +453,112 @@ impl Reader<'_> {
         }
         Ok(None)
     }
+
+    /// `rectangular_trimmed_surface`: the basis surface over `[u1, u2] × [v1, v2]` of its own
+    /// parametrization (ISO 10303-42), exactly: a B-spline basis by knot insertion
+    /// (sub-patch), a plane as the bilinear patch of the rectangle, cylinders, cones, spheres
+    /// and tori as the revolution of their profile segment or arc over the angle range.
+    /// Angles in the file's plane-angle unit; a decreasing periodic range wraps once. Other
+    /// bases: `None` (reported unsupported).
+    fn rectangular_trimmed(
+        &self,
+        id: u64,
+        a: &[Value],
+    ) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
+        let basis = self.reference(id, a, 1)?;
+        let [u1, u2, v1, v2] = [2, 3, 4, 5].map(|i| self.num(id, a, i));
+        let (u1, u2, v1, v2) = (u1?, u2?, v1?, v2?);
+        let be = self.get(basis)?;
+        let conv = |r: Result<NurbsSurface<f64, 3>, crate::spline::SplineError>| {
+            r.or_else(|x| self.err(id, x.to_string()))
+        };
+        let sorted = |a: f64, b: f64| if a <= b { (a, b) } else { (b, a) };
+        // Angle ranges in radians, increasing (a decreasing range wraps once around).
+        let angles = |a: f64, b: f64| {
+            let (a, b) = (a * self.angle_scale, b * self.angle_scale);
+            if b > a {
+                (a, b)
+            } else {
+                (a, b + std::f64::consts::TAU)
+            }
+        };
+        if be.is("B_SPLINE_SURFACE_WITH_KNOTS") {
+            let s = self.bspline_surface(basis, be)?;
+            let ((ua, ub), (va, vb)) = (sorted(u1, u2), sorted(v1, v2));
+            let hom = s
+                .hom
+                .sub_patch(&ua, &ub, &va, &vb)
+                .or_else(|x| self.err(id, x.to_string()))?;
+            return Ok(Some((NurbsSurface { hom }, SurfaceKind::BSpline)));
+        }
+        let line = |p: [f64; 3], q: [f64; 3]| {
+            NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![p, q], vec![1.0; 2])
+                .or_else(|x| self.err(id, x.to_string()))
+        };
+        if let Some(b) = be.part("PLANE") {
+            let f = self.placement(self.reference(basis, b, 1)?)?;
+            let ((ua, ub), (va, vb)) = (sorted(u1, u2), sorted(v1, v2));
+            let s = conv(construct::bilinear(
+                f.at(ua, va, 0.0),
+                f.at(ub, va, 0.0),
+                f.at(ua, vb, 0.0),
+                f.at(ub, vb, 0.0),
+            ))?;
+            return Ok(Some((s, SurfaceKind::Plane)));
+        }
+        let (kind, f, profile, (ua, ub)) = if let Some(b) = be.part("CYLINDRICAL_SURFACE") {
+            let f = self.placement(self.reference(basis, b, 1)?)?;
+            let r = self.num(basis, b, 2)?;
+            let (va, vb) = sorted(v1, v2);
+            let p = line(f.at(r, 0.0, va), f.at(r, 0.0, vb))?;
+            (SurfaceKind::Cylinder, f, p, angles(u1, u2))
+        } else if let Some(b) = be.part("CONICAL_SURFACE") {
+            let f = self.placement(self.reference(basis, b, 1)?)?;
+            let (r, t) = (
+                self.num(basis, b, 2)?,
+                (self.num(basis, b, 3)? * self.angle_scale).tan(),
+            );
+            let (va, vb) = sorted(v1, v2);
+            let p = line(f.at(r + va * t, 0.0, va), f.at(r + vb * t, 0.0, vb))?;
+            (SurfaceKind::Cone, f, p, angles(u1, u2))
+        } else if let Some(b) = be.part("SPHERICAL_SURFACE") {
+            let f = self.placement(self.reference(basis, b, 1)?)?;
+            let r = self.num(basis, b, 2)?;
+            let (va, vb) = sorted(v1 * self.angle_scale, v2 * self.angle_scale);
+            let meridian = Frame {
+                o: f.o,
+                x: f.x,
+                y: f.z,
+                z: f.y.scale(&-1.0),
+            };
+            let p = conv_curve(self, id, construct::arc(&meridian, r, va, vb))?;
+            (SurfaceKind::Sphere, f, p, angles(u1, u2))
+        } else if let Some(b) = be.part("TOROIDAL_SURFACE") {
+            let f = self.placement(self.reference(basis, b, 1)?)?;
+            let (major, minor) = (self.num(basis, b, 2)?, self.num(basis, b, 3)?);
+            let (va, vb) = angles(v1, v2);
+            let tube = Frame {
+                o: f.at(major, 0.0, 0.0),
+                x: f.x,
+                y: f.z,
+                z: f.y.scale(&-1.0),
+            };
+            let p = conv_curve(self, id, construct::arc(&tube, minor, va, vb))?;
+            (SurfaceKind::Torus, f, p, angles(u1, u2))
+        } else {
+            return Ok(None);
+        };
+        // The profile lies at angle 0 (the placement's x direction); revolve_curve_range
+        // measures its angles from there.
+        let s = conv(construct::revolve_curve_range(&f.o, &f.z, &profile, ua, ub))?;
+        Ok(Some((s, kind)))
+    }
+}
+
+fn conv_curve(
+    r: &Reader,
+    id: u64,
+    c: Result<NurbsCurve<f64, 3>, crate::spline::SplineError>,
+) -> R<NurbsCurve<f64, 3>> {
+    c.or_else(|x| r.err(id, x.to_string()))
 }

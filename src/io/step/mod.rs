@@ -10,8 +10,10 @@
 //! rectangle in the plane; cylinders and cones: the axial range, full turn); spheres and tori
 //! are full. Anything skipped is counted in the model's warnings.
 
+mod edge_curve;
 mod entities;
 pub mod part21;
+mod topology;
 mod units;
 use entities::Reader;
 use units::unit;
@@ -33,15 +35,15 @@ pub struct StepError {
 
 /// Surface entities that are recognised but not converted (reported when a bare patch set
 /// holds them).
-const UNSUPPORTED_SURFACES: [&str; 4] = [
-    "RECTANGULAR_TRIMMED_SURFACE",
+const UNSUPPORTED_SURFACES: [&str; 3] = [
     "OFFSET_SURFACE",
     "CURVE_BOUNDED_SURFACE",
     "DEGENERATE_TOROIDAL_SURFACE",
 ];
 
-const SURFACE_TYPES: [&str; 8] = [
+const SURFACE_TYPES: [&str; 9] = [
     "B_SPLINE_SURFACE_WITH_KNOTS",
+    "RECTANGULAR_TRIMMED_SURFACE",
     "PLANE",
     "CYLINDRICAL_SURFACE",
     "CONICAL_SURFACE",
@@ -50,6 +52,44 @@ const SURFACE_TYPES: [&str; 8] = [
     "SURFACE_OF_REVOLUTION",
     "SURFACE_OF_LINEAR_EXTRUSION",
 ];
+
+/// Topology issues listed one per warning; the rest are counted (all are in the B-rep report).
+const MAX_LISTED_ISSUES: usize = 50;
+
+/// Largest vertex-to-curve distance accepted without a report: the file's length
+/// uncertainty (`uncertainty_measure_with_unit` of a `length_measure`), but at least `1e-9`
+/// times the diagonal of the box of all 3D points (files declare uncertainties like
+/// `1e-17` that f64 coordinates cannot meet).
+fn vertex_tolerance(p: &part21::Part21) -> f64 {
+    let mut unc: f64 = 0.0;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for e in p.entities.values() {
+        if let Some(a) = e.part("UNCERTAINTY_MEASURE_WITH_UNIT")
+            && let Some(part21::Value::Typed(t, v)) = a.first()
+            && t == "LENGTH_MEASURE"
+            && let Some(x) = v.first().and_then(|x| x.num())
+            && x.is_finite()
+        {
+            unc = unc.max(x);
+        }
+        if let Some(a) = e.part("CARTESIAN_POINT")
+            && let Some(c) = a.get(1).and_then(|v| v.list())
+            && c.len() == 3
+        {
+            for (i, x) in c.iter().enumerate() {
+                if let Some(x) = x.num() {
+                    lo[i] = lo[i].min(x);
+                    hi[i] = hi[i].max(x);
+                }
+            }
+        }
+    }
+    let d: f64 = (0..3)
+        .map(|i| (hi[i] - lo[i]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    unc.max(1e-9 * if d.is_finite() { d } else { 0.0 })
+}
 
 /// Read STEP text. `file` names the source in errors and warnings.
 pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
@@ -112,9 +152,16 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             }
         }
     }
+    // Model surface index of each face (for the B-rep), and the type of each face surface
+    // that could not be converted.
+    let mut surface_of: BTreeMap<u64, usize> = BTreeMap::new();
+    let mut unsupported_surface: BTreeMap<u64, String> = BTreeMap::new();
     for (face, sid) in targets {
         match r.surface(sid, face)? {
             Some((nurbs, kind)) => {
+                if let Some(f) = face {
+                    surface_of.insert(f, model.surfaces.len());
+                }
                 let reversed = face
                     .and_then(|f| p.entities.get(&f))
                     .and_then(|e| e.part("ADVANCED_FACE").or_else(|| e.part("FACE_SURFACE")))
@@ -129,11 +176,30 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
                     ..Surface::new("", nurbs)
                 })
             }
-            None => skipped
-                .entry(r.get(sid)?.name().to_string())
-                .or_default()
-                .push(face.unwrap_or(sid)),
+            None => {
+                let ty = r.get(sid)?.name().to_string();
+                if let Some(f) = face {
+                    unsupported_surface.insert(f, ty.clone());
+                }
+                skipped.entry(ty).or_default().push(face.unwrap_or(sid))
+            }
         }
+    }
+    if !faces.is_empty() {
+        let brep = topology::TopologyReader::new(&r, vertex_tolerance(&p))
+            .read(&surface_of, &unsupported_surface);
+        model.warnings.extend(brep.report.summary_lines());
+        let n = brep.report.issues.len();
+        for i in brep.report.issues.iter().take(MAX_LISTED_ISSUES) {
+            model.warnings.push(format!("topology: {i}"));
+        }
+        if n > MAX_LISTED_ISSUES {
+            model.warnings.push(format!(
+                "topology: {} more issue(s) in the B-rep report",
+                n - MAX_LISTED_ISSUES
+            ));
+        }
+        model.brep = Some(brep);
     }
     // Free B-spline curves (not referenced by edges or surfaces are still listed); one
     // that cannot be read is reported with its id and reason.

@@ -1,0 +1,181 @@
+//! Boundary representation: faces bounded by loops of oriented edges, edges shared between
+//! faces with their 3D curve and, where the source has them, one parameter-space curve
+//! (pcurve) per face, vertices, shells and solids (ISO 10303-42 topology: `face`,
+//! `face_bound`, `edge_loop`, `vertex_loop`, `oriented_edge`, `edge_curve`, `vertex_point`,
+//! `closed_shell`/`open_shell`, `manifold_solid_brep`).
+//!
+//! Every item keeps its source id (`"#12"` for a STEP instance) so that every report names
+//! the entity it is about. Geometry stays with the [`crate::model::Model`]: a face refers
+//! to its surface by index into `Model::surfaces`. What a reader could not convert is in
+//! [`BrepReport`], counted per entity type with the ids, and faults of the topology (open
+//! loops, dangling references, wrong entity types) are [`TopologyIssue`]s naming the face and
+//! the entity.
+
+pub mod check;
+pub mod counts;
+pub mod report;
+
+use crate::spline::NurbsCurve;
+pub use counts::BrepCounts;
+pub use report::{BrepReport, IssueKind, TopologyIssue};
+
+/// A vertex (`vertex_point`): a point in space.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Vertex {
+    /// Source id, e.g. `"#31"`.
+    pub source: String,
+    pub point: [f64; 3],
+}
+
+/// What an edge's 3D curve was in the source (all are held as exact NURBS forms).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub enum CurveKind {
+    Line,
+    Circle,
+    Ellipse,
+    BSpline,
+    RationalBSpline,
+}
+
+/// The 3D curve of an edge, restricted to the edge and running from its start vertex to its
+/// end vertex.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeCurve {
+    /// Source id of the geometric curve (the basis curve of a `trimmed_curve` or the
+    /// `curve_3d` of a `surface_curve`), e.g. `"#40"`.
+    pub source: String,
+    pub kind: CurveKind,
+    /// The curve from the start vertex to the end vertex (exact NURBS form of the source
+    /// curve over the edge's range).
+    pub nurbs: NurbsCurve<f64, 3>,
+    /// Largest distance between a vertex and the curve end it bounds (the source curve's
+    /// endpoints over the edge's range), in the model's length unit.
+    pub vertex_gap: f64,
+}
+
+/// A curve in the parameter plane of a surface, as the source gives it (`pcurve`): in the
+/// parametrization of the source surface entity, which for analytic surfaces differs from
+/// the NURBS form in the model (angles versus rational parameters).
+#[derive(Clone, Debug, PartialEq)]
+pub enum PCurveGeometry {
+    /// An unbounded line `origin + t·direction` (2D `line`; `direction` includes the
+    /// vector's magnitude).
+    Line {
+        origin: [f64; 2],
+        direction: [f64; 2],
+    },
+    /// A 2D B-spline (possibly rational) over its own domain.
+    Nurbs(NurbsCurve<f64, 2>),
+}
+
+/// A pcurve of an edge on one surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PCurve {
+    /// Source id of the `pcurve`.
+    pub source: String,
+    /// Source id of the surface it lies on (the `basis_surface`).
+    pub surface_source: String,
+    pub geometry: PCurveGeometry,
+}
+
+/// An edge (`edge_curve`): two vertices and the curve joining them; shared by the faces
+/// whose loops use it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Edge {
+    pub source: String,
+    /// Index into [`Brep::vertices`].
+    pub start: usize,
+    pub end: usize,
+    /// `None` when the source curve could not be converted (then a line in the report).
+    pub curve: Option<EdgeCurve>,
+    /// Pcurves from the source (`surface_curve`/`seam_curve`), one per surface.
+    pub pcurves: Vec<PCurve>,
+}
+
+/// An edge as a loop uses it (`oriented_edge`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OrientedEdge {
+    /// Index into [`Brep::edges`].
+    pub edge: usize,
+    /// Traversed from start to end (`orientation = .T.`).
+    pub forward: bool,
+}
+
+/// The contents of a loop.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoopKind {
+    /// An `edge_loop`: oriented edges, each ending where the next begins.
+    Edges(Vec<OrientedEdge>),
+    /// A `vertex_loop`: a single vertex (a degenerate boundary such as a cone's apex or a
+    /// sphere's pole). Index into [`Brep::vertices`].
+    Vertex(usize),
+}
+
+/// A boundary of a face (`face_bound` / `face_outer_bound` with its loop).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Loop {
+    /// Source id of the bound.
+    pub source: String,
+    /// Source id of the loop.
+    pub loop_source: String,
+    /// Declared the outer boundary (`face_outer_bound`).
+    pub outer: bool,
+    /// The bound's `orientation`: `false` reverses the loop.
+    pub orientation: bool,
+    pub kind: LoopKind,
+}
+
+/// A face (`advanced_face` / `face_surface`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Face {
+    pub source: String,
+    /// Index into `Model::surfaces`; `None` when the surface could not be converted.
+    pub surface: Option<usize>,
+    /// Source id of the face geometry.
+    pub surface_source: String,
+    /// `same_sense`: the face normal agrees with the surface normal `S_u × S_v`.
+    pub same_sense: bool,
+    pub loops: Vec<Loop>,
+}
+
+/// A shell (`closed_shell` / `open_shell`): faces, each with its orientation in the shell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Shell {
+    pub source: String,
+    /// Declared closed (`closed_shell`).
+    pub closed: bool,
+    /// `(index into Brep::faces, orientation)`; `false` for an `oriented_face` reversing it.
+    pub faces: Vec<(usize, bool)>,
+}
+
+/// A solid (`manifold_solid_brep` or `brep_with_voids`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solid {
+    pub source: String,
+    /// Index into [`Brep::shells`].
+    pub outer: usize,
+    pub voids: Vec<usize>,
+}
+
+/// A boundary representation read from a file.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Brep {
+    pub vertices: Vec<Vertex>,
+    pub edges: Vec<Edge>,
+    pub faces: Vec<Face>,
+    pub shells: Vec<Shell>,
+    pub solids: Vec<Solid>,
+    /// What was read, converted, unsupported or invalid, and the topology faults.
+    pub report: BrepReport,
+}
+
+impl Edge {
+    /// The vertex where the edge begins when traversed `forward` (else its end).
+    pub fn first_vertex(&self, forward: bool) -> usize {
+        if forward { self.start } else { self.end }
+    }
+    /// The vertex where the edge ends when traversed `forward`.
+    pub fn last_vertex(&self, forward: bool) -> usize {
+        if forward { self.end } else { self.start }
+    }
+}

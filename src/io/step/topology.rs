@@ -1,0 +1,673 @@
+//! STEP topology (ISO 10303-42) into a [`Brep`]: `advanced_face`/`face_surface` with their
+//! `face_bound`/`face_outer_bound`s, `edge_loop`s of `oriented_edge`s over `edge_curve`s
+//! (shared: each instance becomes one edge), `vertex_point`s, `vertex_loop`s,
+//! `closed_shell`/`open_shell` (faces possibly `oriented_face`s), `manifold_solid_brep` and
+//! `brep_with_voids`. Every instance is tallied in the report as converted, unsupported or
+//! invalid; a fault is a [`crate::brep::TopologyIssue`] naming the face and the entity, and
+//! the rest of the model is still read. Topology instances no face, shell or solid reaches
+//! are listed as not read.
+
+use super::edge_curve::{self, CurveFault, Found, MAX_DEPTH};
+use super::entities::Reader;
+use super::part21::{Entity, Value};
+use crate::brep::{
+    Brep, Edge, Face, IssueKind, Loop, LoopKind, OrientedEdge, Shell, Solid, Vertex,
+};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Topology entity types this reader walks or reports.
+const TOPOLOGY_TYPES: [&str; 20] = [
+    "ADVANCED_FACE",
+    "FACE_SURFACE",
+    "FACE_BOUND",
+    "FACE_OUTER_BOUND",
+    "EDGE_LOOP",
+    "VERTEX_LOOP",
+    "POLY_LOOP",
+    "ORIENTED_EDGE",
+    "EDGE_CURVE",
+    "SUBEDGE",
+    "VERTEX_POINT",
+    "ORIENTED_FACE",
+    "CLOSED_SHELL",
+    "OPEN_SHELL",
+    "ORIENTED_CLOSED_SHELL",
+    "MANIFOLD_SOLID_BREP",
+    "BREP_WITH_VOIDS",
+    "SHELL_BASED_SURFACE_MODEL",
+    "FACETED_BREP",
+    "PCURVE",
+];
+
+/// Builds a [`Brep`] from the parsed file.
+pub(super) struct TopologyReader<'a> {
+    r: &'a Reader<'a>,
+    brep: Brep,
+    vertices: BTreeMap<u64, usize>,
+    /// `None`: the instance was refused (already reported).
+    edges: BTreeMap<u64, Option<usize>>,
+    faces: BTreeMap<u64, usize>,
+    shells: BTreeMap<u64, Option<usize>>,
+    /// Instances tallied (each once).
+    seen: BTreeSet<u64>,
+    /// Vertex-to-curve distances above this are reported.
+    tolerance: f64,
+}
+
+/// The type name of an instance for the report (the first of `names` it contains, else its
+/// own name).
+fn type_of(e: &Entity, names: &[&str]) -> String {
+    names
+        .iter()
+        .find(|n| e.is(n))
+        .map_or_else(|| e.name().to_string(), |n| n.to_string())
+}
+
+impl<'a> TopologyReader<'a> {
+    /// `tolerance`: largest vertex-to-curve distance accepted silently (model units).
+    pub(super) fn new(r: &'a Reader<'a>, tolerance: f64) -> Self {
+        TopologyReader {
+            r,
+            brep: Brep::default(),
+            vertices: BTreeMap::new(),
+            edges: BTreeMap::new(),
+            faces: BTreeMap::new(),
+            shells: BTreeMap::new(),
+            seen: BTreeSet::new(),
+            tolerance,
+        }
+    }
+
+    fn converted(&mut self, id: u64, ty: &str) {
+        if self.seen.insert(id) {
+            self.brep.report.converted(ty);
+        }
+    }
+    fn invalid(&mut self, id: u64, ty: &str, face: Option<u64>, kind: IssueKind) {
+        if self.seen.insert(id) {
+            let face = face.map(|f| format!("#{f}"));
+            self.brep
+                .report
+                .invalid(ty, &format!("#{id}"), face.as_deref(), kind);
+        }
+    }
+    fn unsupported(&mut self, id: u64, ty: &str, face: Option<u64>, kind: IssueKind) {
+        if self.seen.insert(id) {
+            self.brep.report.unsupported(ty, &format!("#{id}"));
+            let face = face.map(|f| format!("#{f}"));
+            self.brep
+                .report
+                .issue(&format!("#{id}"), face.as_deref(), kind);
+        }
+    }
+    /// The instance `id` when it is (or contains) one of `types`; otherwise the fault is
+    /// reported against `owner` and `None` returned.
+    fn expect(
+        &mut self,
+        owner: (u64, &str),
+        id: u64,
+        attribute: &str,
+        types: &[&str],
+        face: Option<u64>,
+    ) -> Option<(&'a Entity, String)> {
+        let Some(e) = self.r.p.entities.get(&id) else {
+            self.invalid(
+                owner.0,
+                owner.1,
+                face,
+                IssueKind::DanglingReference {
+                    to: format!("#{id}"),
+                },
+            );
+            return None;
+        };
+        match types.iter().find(|t| e.is(t)) {
+            Some(t) => Some((e, t.to_string())),
+            None => {
+                self.invalid(
+                    owner.0,
+                    owner.1,
+                    face,
+                    IssueKind::WrongType {
+                        attribute: format!("{attribute} #{id}"),
+                        expected: types.join(" or "),
+                        found: e.name().to_string(),
+                    },
+                );
+                None
+            }
+        }
+    }
+
+    /// Read every face, shell and solid of the file. `surface_of`: the model surface index
+    /// of each face whose surface was converted; `unsupported_surface`: the type of the
+    /// surface of each face whose surface was not.
+    pub(super) fn read(
+        mut self,
+        surface_of: &BTreeMap<u64, usize>,
+        unsupported_surface: &BTreeMap<u64, String>,
+    ) -> Brep {
+        let p = self.r.p;
+        for (id, e) in &p.entities {
+            if e.is("ADVANCED_FACE") || e.is("FACE_SURFACE") {
+                self.face(
+                    *id,
+                    e,
+                    surface_of.get(id).copied(),
+                    unsupported_surface.get(id),
+                );
+            }
+        }
+        for (id, e) in &p.entities {
+            if e.is("CLOSED_SHELL") || e.is("OPEN_SHELL") {
+                self.shell(*id);
+            }
+        }
+        for (id, e) in &p.entities {
+            if e.is("MANIFOLD_SOLID_BREP") || e.is("BREP_WITH_VOIDS") {
+                self.solid(*id, e);
+            } else if let Some(a) = e.part("SHELL_BASED_SURFACE_MODEL") {
+                // A set of shells, each read above.
+                let ok = a
+                    .get(1)
+                    .and_then(Value::list)
+                    .is_some_and(|l| l.iter().all(|v| v.reference().is_some()));
+                if ok {
+                    self.converted(*id, "SHELL_BASED_SURFACE_MODEL");
+                } else {
+                    self.invalid(
+                        *id,
+                        "SHELL_BASED_SURFACE_MODEL",
+                        None,
+                        IssueKind::Malformed("sbsm_boundary is not a list of references".into()),
+                    );
+                }
+            }
+        }
+        // Topology instances nothing reached: listed, not dropped silently.
+        for (id, e) in &p.entities {
+            if self.seen.contains(id) {
+                continue;
+            }
+            if let Some(t) = TOPOLOGY_TYPES.iter().find(|t| e.is(t)) {
+                self.brep
+                    .report
+                    .entities
+                    .entry(t.to_string())
+                    .or_default()
+                    .not_read
+                    .push(format!("#{id}"));
+            }
+        }
+        let issues = self.brep.check();
+        self.brep.report.issues.extend(issues);
+        self.brep
+    }
+
+    fn face(&mut self, id: u64, e: &Entity, surface: Option<usize>, unsupported: Option<&String>) {
+        let ty = type_of(e, &["ADVANCED_FACE", "FACE_SURFACE"]);
+        let a = e.part(&ty).unwrap_or(&[]);
+        let (Some(bounds), Some(sid)) = (
+            a.get(1).and_then(Value::list),
+            a.get(2).and_then(Value::reference),
+        ) else {
+            self.invalid(
+                id,
+                &ty,
+                Some(id),
+                IssueKind::Malformed("expected (name, bounds, face_geometry, same_sense)".into()),
+            );
+            return;
+        };
+        if let Some(st) = unsupported {
+            self.brep.report.issue(
+                &format!("#{sid}"),
+                Some(&format!("#{id}")),
+                IssueKind::UnsupportedSurface(st.clone()),
+            );
+        }
+        let mut loops = Vec::new();
+        for b in bounds {
+            let Some(bid) = b.reference() else {
+                self.invalid(
+                    id,
+                    &ty,
+                    Some(id),
+                    IssueKind::Malformed("a bound is not a reference".into()),
+                );
+                return;
+            };
+            if let Some(l) = self.bound(id, bid) {
+                loops.push(l);
+            }
+        }
+        self.converted(id, &ty);
+        self.faces.insert(id, self.brep.faces.len());
+        self.brep.faces.push(Face {
+            source: format!("#{id}"),
+            surface,
+            surface_source: format!("#{sid}"),
+            same_sense: a.get(3).and_then(Value::enumeration) != Some("F"),
+            loops,
+        });
+    }
+
+    fn bound(&mut self, face: u64, bid: u64) -> Option<Loop> {
+        let (e, ty) = self.expect(
+            (face, "ADVANCED_FACE"),
+            bid,
+            "bound",
+            &["FACE_OUTER_BOUND", "FACE_BOUND"],
+            Some(face),
+        )?;
+        let a = e.part(&ty).unwrap_or(&[]);
+        let Some(lid) = a.get(1).and_then(Value::reference) else {
+            self.invalid(
+                bid,
+                &ty,
+                Some(face),
+                IssueKind::Malformed("bound is not a reference".into()),
+            );
+            return None;
+        };
+        let orientation = a.get(2).and_then(Value::enumeration) != Some("F");
+        let (le, lty) = self.expect(
+            (bid, &ty),
+            lid,
+            "bound",
+            &["EDGE_LOOP", "VERTEX_LOOP", "POLY_LOOP"],
+            Some(face),
+        )?;
+        let kind = match lty.as_str() {
+            "VERTEX_LOOP" => {
+                let v = le.part("VERTEX_LOOP").and_then(|a| a.get(1)?.reference());
+                let vi = v.and_then(|v| self.vertex(lid, "VERTEX_LOOP", v, Some(face)));
+                let Some(vi) = vi else {
+                    self.invalid(
+                        lid,
+                        "VERTEX_LOOP",
+                        Some(face),
+                        IssueKind::Malformed("loop_vertex is not a VERTEX_POINT".into()),
+                    );
+                    return None;
+                };
+                LoopKind::Vertex(vi)
+            }
+            "EDGE_LOOP" => {
+                let list = le
+                    .part("EDGE_LOOP")
+                    .and_then(|a| a.get(1))
+                    .and_then(Value::list)
+                    .unwrap_or(&[]);
+                let mut es = Vec::with_capacity(list.len());
+                for v in list {
+                    let oe = v.reference().and_then(|o| self.oriented_edge(lid, o, face));
+                    match oe {
+                        Some(oe) => es.push(oe),
+                        None => {
+                            self.invalid(
+                                lid,
+                                "EDGE_LOOP",
+                                Some(face),
+                                IssueKind::Malformed("an edge of the loop was refused".into()),
+                            );
+                            return None;
+                        }
+                    }
+                }
+                LoopKind::Edges(es)
+            }
+            _ => {
+                self.unsupported(
+                    lid,
+                    &lty,
+                    Some(face),
+                    IssueKind::Malformed(format!("{lty} bounds are not supported")),
+                );
+                return None;
+            }
+        };
+        self.converted(lid, &lty);
+        self.converted(bid, &ty);
+        Some(Loop {
+            source: format!("#{bid}"),
+            loop_source: format!("#{lid}"),
+            outer: ty == "FACE_OUTER_BOUND",
+            orientation,
+            kind,
+        })
+    }
+
+    /// An `oriented_edge` (possibly of another oriented edge, orientations composed).
+    fn oriented_edge(&mut self, owner: u64, oid: u64, face: u64) -> Option<OrientedEdge> {
+        let mut id = oid;
+        let mut forward = true;
+        let mut from = (owner, "EDGE_LOOP".to_string());
+        // Oriented edges on the way, tallied once the edge is read.
+        let mut chain = Vec::new();
+        for _ in 0..MAX_DEPTH {
+            let (e, ty) = self.expect(
+                (from.0, &from.1.clone()),
+                id,
+                "edge",
+                &["ORIENTED_EDGE", "EDGE_CURVE"],
+                Some(face),
+            )?;
+            if ty == "EDGE_CURVE" {
+                let edge = self.edge(id, e, face)?;
+                for c in chain {
+                    self.converted(c, "ORIENTED_EDGE");
+                }
+                return Some(OrientedEdge { edge, forward });
+            }
+            let a = e.part("ORIENTED_EDGE").unwrap_or(&[]);
+            let (Some(next), Some(o)) = (
+                a.get(3).and_then(Value::reference),
+                a.get(4).and_then(Value::enumeration),
+            ) else {
+                self.invalid(
+                    id,
+                    "ORIENTED_EDGE",
+                    Some(face),
+                    IssueKind::Malformed("expected (name, *, *, edge_element, orientation)".into()),
+                );
+                return None;
+            };
+            chain.push(id);
+            forward ^= o == "F";
+            from = (id, "ORIENTED_EDGE".into());
+            id = next;
+        }
+        self.invalid(
+            oid,
+            "ORIENTED_EDGE",
+            Some(face),
+            IssueKind::TooDeep(MAX_DEPTH),
+        );
+        None
+    }
+
+    fn vertex(&mut self, owner: u64, owner_ty: &str, vid: u64, face: Option<u64>) -> Option<usize> {
+        if let Some(i) = self.vertices.get(&vid) {
+            return Some(*i);
+        }
+        let (e, _) = self.expect((owner, owner_ty), vid, "vertex", &["VERTEX_POINT"], face)?;
+        let point = e
+            .part("VERTEX_POINT")
+            .and_then(|a| a.get(1)?.reference())
+            .map(|p| self.r.point(p));
+        match point {
+            Some(Ok(point)) => {
+                self.converted(vid, "VERTEX_POINT");
+                let i = self.brep.vertices.len();
+                self.brep.vertices.push(Vertex {
+                    source: format!("#{vid}"),
+                    point,
+                });
+                self.vertices.insert(vid, i);
+                Some(i)
+            }
+            Some(Err(err)) => {
+                self.invalid(
+                    vid,
+                    "VERTEX_POINT",
+                    face,
+                    IssueKind::Malformed(format!("{}: {}", err.location, err.reason)),
+                );
+                None
+            }
+            None => {
+                self.invalid(
+                    vid,
+                    "VERTEX_POINT",
+                    face,
+                    IssueKind::Malformed("vertex_geometry is not a reference".into()),
+                );
+                None
+            }
+        }
+    }
+
+    fn edge(&mut self, id: u64, e: &Entity, face: u64) -> Option<usize> {
+        if let Some(i) = self.edges.get(&id) {
+            return *i;
+        }
+        self.edges.insert(id, None);
+        let a = e.part("EDGE_CURVE").unwrap_or(&[]);
+        let (Some(v0), Some(v1), Some(g)) = (
+            a.get(1).and_then(Value::reference),
+            a.get(2).and_then(Value::reference),
+            a.get(3).and_then(Value::reference),
+        ) else {
+            self.invalid(
+                id,
+                "EDGE_CURVE",
+                Some(face),
+                IssueKind::Malformed(
+                    "expected (name, edge_start, edge_end, edge_geometry, same_sense)".into(),
+                ),
+            );
+            return None;
+        };
+        let start = self.vertex(id, "EDGE_CURVE", v0, Some(face));
+        let end = self.vertex(id, "EDGE_CURVE", v1, Some(face));
+        let (Some(start), Some(end)) = (start, end) else {
+            self.invalid(
+                id,
+                "EDGE_CURVE",
+                Some(face),
+                IssueKind::Malformed("a vertex was refused".into()),
+            );
+            return None;
+        };
+        let same_sense = a.get(4).and_then(Value::enumeration) != Some("F");
+        let (p0, p1) = (
+            self.brep.vertices[start].point,
+            self.brep.vertices[end].point,
+        );
+        let mut found = Found::default();
+        let curve = edge_curve::edge_curve(self.r, g, &p0, &p1, same_sense, &mut found);
+        if curve.is_ok() {
+            for (cid, ty) in &found.types {
+                self.converted(*cid, ty);
+            }
+        }
+        for f in found.faults {
+            self.curve_fault(f, face);
+        }
+        let curve = match curve {
+            Ok(c) => {
+                if c.vertex_gap > self.tolerance {
+                    self.brep.report.issue(
+                        &format!("#{id}"),
+                        Some(&format!("#{face}")),
+                        IssueKind::VertexOffCurve {
+                            distance: c.vertex_gap,
+                            tolerance: self.tolerance,
+                        },
+                    );
+                }
+                Some(c)
+            }
+            Err(f) => {
+                self.curve_fault(f, face);
+                None
+            }
+        };
+        self.converted(id, "EDGE_CURVE");
+        let i = self.brep.edges.len();
+        self.brep.edges.push(Edge {
+            source: format!("#{id}"),
+            start,
+            end,
+            curve,
+            pcurves: found.pcurves,
+        });
+        self.edges.insert(id, Some(i));
+        Some(i)
+    }
+
+    fn curve_fault(&mut self, f: CurveFault, face: u64) {
+        if f.unsupported {
+            self.unsupported(f.id, &f.ty, Some(face), f.kind);
+        } else {
+            self.invalid(f.id, &f.ty, Some(face), f.kind);
+        }
+    }
+
+    fn shell(&mut self, id: u64) -> Option<usize> {
+        if let Some(s) = self.shells.get(&id) {
+            return *s;
+        }
+        self.shells.insert(id, None);
+        let e = self.r.p.entities.get(&id)?;
+        let ty = type_of(e, &["CLOSED_SHELL", "OPEN_SHELL"]);
+        let Some(list) = e.part(&ty).and_then(|a| a.get(1)).and_then(Value::list) else {
+            self.invalid(
+                id,
+                &ty,
+                None,
+                IssueKind::Malformed("cfs_faces is not a list".into()),
+            );
+            return None;
+        };
+        let mut faces = Vec::with_capacity(list.len());
+        for v in list {
+            let Some(fid) = v.reference() else {
+                self.invalid(
+                    id,
+                    &ty,
+                    None,
+                    IssueKind::Malformed("a face is not a reference".into()),
+                );
+                return None;
+            };
+            let (fe, fty) = self.expect(
+                (id, &ty),
+                fid,
+                "face",
+                &["ADVANCED_FACE", "FACE_SURFACE", "ORIENTED_FACE"],
+                None,
+            )?;
+            let (target, orientation) = if fty == "ORIENTED_FACE" {
+                let a = fe.part("ORIENTED_FACE").unwrap_or(&[]);
+                match (
+                    a.get(2).and_then(Value::reference),
+                    a.get(3).and_then(Value::enumeration),
+                ) {
+                    (Some(t), Some(o)) => {
+                        self.converted(fid, "ORIENTED_FACE");
+                        (t, o != "F")
+                    }
+                    _ => {
+                        self.invalid(
+                            fid,
+                            "ORIENTED_FACE",
+                            None,
+                            IssueKind::Malformed(
+                                "expected (name, *, face_element, orientation)".into(),
+                            ),
+                        );
+                        return None;
+                    }
+                }
+            } else {
+                (fid, true)
+            };
+            match self.faces.get(&target) {
+                Some(fi) => faces.push((*fi, orientation)),
+                None => {
+                    self.invalid(
+                        id,
+                        &ty,
+                        None,
+                        IssueKind::WrongType {
+                            attribute: format!("face #{target}"),
+                            expected: "a face that was read (ADVANCED_FACE or FACE_SURFACE)".into(),
+                            found: self
+                                .r
+                                .p
+                                .entities
+                                .get(&target)
+                                .map_or("(missing)", |e| e.name())
+                                .to_string(),
+                        },
+                    );
+                    return None;
+                }
+            }
+        }
+        self.converted(id, &ty);
+        let i = self.brep.shells.len();
+        self.brep.shells.push(Shell {
+            source: format!("#{id}"),
+            closed: ty == "CLOSED_SHELL",
+            faces,
+        });
+        self.shells.insert(id, Some(i));
+        Some(i)
+    }
+
+    fn solid(&mut self, id: u64, e: &Entity) {
+        let ty = type_of(e, &["BREP_WITH_VOIDS", "MANIFOLD_SOLID_BREP"]);
+        let outer = e
+            .part("MANIFOLD_SOLID_BREP")
+            .and_then(|a| a.get(1)?.reference());
+        let Some(outer) = outer else {
+            self.invalid(
+                id,
+                &ty,
+                None,
+                IssueKind::Malformed("outer is not a reference".into()),
+            );
+            return;
+        };
+        let Some(_) = self.expect((id, &ty), outer, "outer", &["CLOSED_SHELL"], None) else {
+            return;
+        };
+        let Some(outer) = self.shell(outer) else {
+            self.invalid(
+                id,
+                &ty,
+                None,
+                IssueKind::Malformed("its outer shell was refused".into()),
+            );
+            return;
+        };
+        let mut voids = Vec::new();
+        if let Some(list) = e.part("BREP_WITH_VOIDS").and_then(|a| a.last()?.list()) {
+            for v in list.iter().filter_map(Value::reference) {
+                let Some((ve, _)) =
+                    self.expect((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
+                else {
+                    return;
+                };
+                let inner = ve
+                    .part("ORIENTED_CLOSED_SHELL")
+                    .and_then(|a| a.get(2)?.reference())
+                    .and_then(|s| self.shell(s));
+                match inner {
+                    Some(s) => {
+                        self.converted(v, "ORIENTED_CLOSED_SHELL");
+                        voids.push(s);
+                    }
+                    None => {
+                        self.invalid(
+                            v,
+                            "ORIENTED_CLOSED_SHELL",
+                            None,
+                            IssueKind::Malformed("closed_shell_element was refused".into()),
+                        );
+                        return;
+                    }
+                }
+            }
+        }
+        self.converted(id, &ty);
+        self.brep.solids.push(Solid {
+            source: format!("#{id}"),
+            outer,
+            voids,
+        });
+    }
+}

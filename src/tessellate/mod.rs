@@ -1,0 +1,251 @@
+//! Trimmed tessellation of a B-rep: every edge sampled once (its samples are the vertices
+//! both faces use along it, so the mesh has no cracks), every face triangulated inside its
+//! loops in its surface's parameter plane ([`face`]), and the face's trimmed area.
+//!
+//! The loops' parameter points come from projecting the edge samples onto the face's surface
+//! (the files at hand carry no pcurves); seams and poles are handled in [`domain`]. This is
+//! an approximation for viewing and meshing, not a certified quantity: its chordal error is
+//! what the sampling gives (edge length `h`, at most π/12 of turn per segment).
+
+pub mod domain;
+pub mod face;
+
+use crate::brep::{Brep, LoopKind};
+use crate::model::{Model, Triangulation};
+use domain::FaceSurface;
+
+/// Sampling parameters.
+#[derive(Clone, Copy, Debug)]
+pub struct MeshParams {
+    /// Target edge length as a fraction of the model's bounding-box diagonal.
+    pub relative_edge: f64,
+    /// Largest turn of a curve or iso-curve over one segment (radians).
+    pub max_turn: f64,
+}
+
+impl Default for MeshParams {
+    fn default() -> Self {
+        MeshParams {
+            relative_edge: 1.0 / 40.0,
+            max_turn: std::f64::consts::PI / 12.0,
+        }
+    }
+}
+
+impl MeshParams {
+    /// The finer sampling used for trimmed areas (edge length 1/150 of the diagonal, at
+    /// most 3° of turn per segment).
+    pub fn for_area() -> Self {
+        MeshParams {
+            relative_edge: 1.0 / 150.0,
+            max_turn: std::f64::consts::PI / 60.0,
+        }
+    }
+}
+
+/// The triangulation of a B-rep with what it could not triangulate.
+#[derive(Clone, Debug, Default)]
+pub struct BrepMesh {
+    pub triangulation: Triangulation,
+    /// Per B-rep face: its triangles (a range of `triangulation.triangles`) and trimmed area,
+    /// or why it has none.
+    pub faces: Vec<Result<(std::ops::Range<usize>, f64), String>>,
+}
+
+impl BrepMesh {
+    /// One line per face without triangles, naming the face.
+    pub fn issues(&self, brep: &Brep) -> Vec<String> {
+        self.faces
+            .iter()
+            .zip(&brep.faces)
+            .filter_map(|(r, f)| {
+                r.as_ref()
+                    .err()
+                    .map(|e| format!("face {}: not triangulated: {e}", f.source))
+            })
+            .collect()
+    }
+}
+
+fn bbox_diagonal(brep: &Brep) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for v in &brep.vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(v.point[k]);
+            hi[k] = hi[k].max(v.point[k]);
+        }
+    }
+    let d = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    if d.is_finite() && d > 0.0 { d } else { 1.0 }
+}
+
+/// Number of segments for a curve sampled at `pts`: length over `h`, turn over `max_turn`.
+fn segments(pts: &[[f64; 3]], h: f64, max_turn: f64) -> usize {
+    let len: f64 = pts
+        .windows(2)
+        .map(|w| crate::geom::dist(&w[0], &w[1]))
+        .sum();
+    let mut turn = 0.0;
+    for w in pts.windows(3) {
+        let (a, b) = (
+            crate::geom::Point::sub(&w[1], &w[0]),
+            crate::geom::Point::sub(&w[2], &w[1]),
+        );
+        let (la, lb) = (crate::geom::norm(&a), crate::geom::norm(&b));
+        if la > 0.0 && lb > 0.0 {
+            turn += (crate::geom::dot(&a, &b) / (la * lb))
+                .clamp(-1.0, 1.0)
+                .acos();
+        }
+    }
+    ((len / h).ceil().max((turn / max_turn).ceil())).clamp(1.0, 2000.0) as usize
+}
+
+/// A sample point of an edge: its mesh vertex and position.
+type Sample = (usize, [f64; 3]);
+
+/// Triangulate every face of `brep` (surfaces from `model`).
+pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
+    let size = bbox_diagonal(brep);
+    let h = size * params.relative_edge;
+    let mut t = Triangulation {
+        name: "trimmed faces".into(),
+        vertices: brep.vertices.iter().map(|v| v.point).collect(),
+        triangles: vec![],
+    };
+    // Edge samples: mesh vertices from the start vertex to the end vertex.
+    let mut samples: Vec<Option<Vec<Sample>>> = Vec::with_capacity(brep.edges.len());
+    // The curve's point halfway (in its parameter) between consecutive samples.
+    let mut halves: Vec<Vec<[f64; 3]>> = Vec::with_capacity(brep.edges.len());
+    for e in &brep.edges {
+        let Some(c) = &e.curve else {
+            samples.push(None);
+            halves.push(vec![]);
+            continue;
+        };
+        let (t0, t1) = c.nurbs.hom.domain();
+        let probe: Vec<[f64; 3]> = (0..=256)
+            .map(|i| c.nurbs.eval(&(t0 + (t1 - t0) * i as f64 / 256.0)))
+            .collect();
+        let n = segments(&probe, h, params.max_turn).max(1);
+        let mut s = vec![(e.start, brep.vertices[e.start].point)];
+        for i in 1..n {
+            let p = c.nurbs.eval(&(t0 + (t1 - t0) * i as f64 / n as f64));
+            t.vertices.push(p);
+            s.push((t.vertices.len() - 1, p));
+        }
+        s.push((e.end, brep.vertices[e.end].point));
+        samples.push(Some(s));
+        halves.push(
+            (0..n)
+                .map(|i| {
+                    c.nurbs
+                        .eval(&(t0 + (t1 - t0) * (i as f64 + 0.5) / n as f64))
+                })
+                .collect(),
+        );
+    }
+    // Faces a shell uses reversed (`oriented_face` with orientation .F.): their triangles
+    // turn the other way (the region is the face's own).
+    let mut reversed_in_shell = vec![false; brep.faces.len()];
+    for sh in &brep.shells {
+        for (fi, o) in &sh.faces {
+            if !o {
+                reversed_in_shell[*fi] = true;
+            }
+        }
+    }
+    let mut faces = Vec::with_capacity(brep.faces.len());
+    for (fi, f) in brep.faces.iter().enumerate() {
+        let Some(si) = f.surface else {
+            faces.push(Err("no surface".to_string()));
+            continue;
+        };
+        let fs = FaceSurface::new(&model.surfaces[si].nurbs, size);
+        let mut rings = Vec::new();
+        let mut vertex_loop = None;
+        let mut fault = None;
+        // Edges already traversed by this face's loops (a second traversal is a seam copy).
+        let mut traversed = std::collections::BTreeSet::new();
+        for l in &f.loops {
+            match &l.kind {
+                LoopKind::Vertex(v) => vertex_loop = Some(*v),
+                LoopKind::Edges(es) => {
+                    let mut pts: Vec<(usize, [f64; 3])> = Vec::new();
+                    let mut breaks: Vec<bool> = Vec::new();
+                    let mut mids: Vec<Option<[f64; 3]>> = Vec::new();
+                    let order: Vec<_> = if l.orientation {
+                        es.iter().map(|o| (o.edge, o.forward)).collect()
+                    } else {
+                        es.iter().rev().map(|o| (o.edge, !o.forward)).collect()
+                    };
+                    for (e, fwd) in order {
+                        let Some(s) = &samples[e] else {
+                            fault = Some(format!("edge {} has no curve", brep.edges[e].source));
+                            break;
+                        };
+                        let n = s.len();
+                        let second = !traversed.insert(e);
+                        let hv = &halves[e];
+                        for k in 0..n - 1 {
+                            pts.push(if fwd { s[k] } else { s[n - 1 - k] });
+                            mids.push(Some(if fwd { hv[k] } else { hv[n - 2 - k] }));
+                            breaks.push(second && k == 0);
+                        }
+                    }
+                    if !pts.is_empty() {
+                        rings.push(domain::ring(&fs, &pts, &mids, &breaks));
+                    }
+                }
+            }
+        }
+        if let Some(e) = fault {
+            faces.push(Err(e));
+            continue;
+        }
+        let first = t.triangles.len();
+        let mut add = |p: [f64; 3]| {
+            t.vertices.push(p);
+            t.vertices.len() - 1
+        };
+        match face::mesh_face(
+            &fs,
+            rings,
+            vertex_loop,
+            f.same_sense,
+            h,
+            params.max_turn,
+            &mut add,
+        ) {
+            Ok(m) => {
+                let flip = reversed_in_shell[fi];
+                t.triangles.extend(m.triangles.iter().map(|x| {
+                    let x = x.map(|i| i as u32);
+                    if flip { [x[0], x[2], x[1]] } else { x }
+                }));
+                faces.push(Ok((first..t.triangles.len(), m.area)));
+            }
+            Err(e) => faces.push(Err(e.to_string())),
+        }
+    }
+    BrepMesh {
+        triangulation: t,
+        faces,
+    }
+}
+
+/// The trimmed area of every face of `brep`, from the fine sampling
+/// ([`MeshParams::for_area`]): `∫∫ |S_u × S_v| du dv` over the parameter triangles.
+pub fn face_areas(model: &Model, brep: &Brep) -> Vec<crate::model::info::FaceArea> {
+    let mesh = mesh_brep(model, brep, &MeshParams::for_area());
+    brep.faces
+        .iter()
+        .zip(mesh.faces)
+        .map(|(f, r)| crate::model::info::FaceArea {
+            face: f.source.clone(),
+            area: r.as_ref().ok().map(|x| x.1),
+            note: r.err(),
+        })
+        .collect()
+}
