@@ -201,6 +201,36 @@ fn curve_on_surface_fuzz_artifacts_return() {
     }
 }
 
+/// The domain curve with control points (0.25, 0.75), (−0.25, −0.25), (0.25, 0.75) runs along
+/// a straight line and back: zero speed at t = 1/2 (a cusp, on the edge u = 0) and a reversal
+/// where the closed curve joins itself. Neither corner can be removed by splitting; each side
+/// of each corner is split at most `MAX_SPLIT_DEPTH` times, not thousands of times.
+#[test]
+fn a_curve_doubling_back_leaves_two_corners_after_bounded_splitting() {
+    use vericad::curve_on_surface::g1::MAX_SPLIT_DEPTH;
+    let s = accepted("yang.json").surfaces[0].nurbs.clone();
+    let c = match &accepted("cusp-closed.json").curves[0].geometry {
+        vericad::model::CurveGeometry::Domain(d) => d.clone(),
+        _ => panic!("not a domain curve"),
+    };
+    let prm = vericad::curve_on_surface::Params {
+        eps_d: 1e-2,
+        ..Default::default()
+    };
+    let r = within(MINUTE, move || {
+        vericad::curve_on_surface::approximate(&s, &c, &prm)
+    })
+    .expect("curve on surface returns")
+    .expect("a result");
+    assert_eq!(r.certificate.unresolved_junctions, 2);
+    assert!(
+        r.steps.g1.splits <= 2 * 2 * MAX_SPLIT_DEPTH as usize,
+        "{} splits",
+        r.steps.g1.splits
+    );
+    assert!(r.certificate.hausdorff_bound <= 1e-2);
+}
+
 #[test]
 fn nested_composite_curves_exhaust_a_budget() {
     let e = refused("composite-fanout-1e6.igs");
