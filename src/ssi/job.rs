@@ -46,6 +46,7 @@ impl JobError {
                         | SsiError::Parameter(..)
                         | SsiError::Empty
                         | SsiError::FaceIndex { .. }
+                        | SsiError::Input(_)
                 )
         )
     }

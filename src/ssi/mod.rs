@@ -58,6 +58,10 @@ pub enum SsiError {
     Empty,
     #[error("internal topology check failed: {0}")]
     Topology(String),
+    /// Geometry the intersection cannot compute with: not finite (a model built in code
+    /// without [`crate::model::Model::validate`]) or outside the coordinate range.
+    #[error("{0}")]
+    Input(String),
 }
 
 /// Parameters of an intersection run.
