@@ -456,3 +456,47 @@ fn absurd_thread_counts_are_bad_input() {
     assert_eq!(code, 2, "{err}");
     assert_has(&err, &["--threads"]);
 }
+
+/// The normal of a surface with coordinates near 1e300: S_u = (2e300, 0, 2e300) and
+/// S_v = (0, 2e300, 0) at the centre, so the unit normal is (−1, 0, 1)/√2 — not NaN from
+/// an overflowing cross product.
+#[test]
+fn eval_normal_of_huge_coordinates_is_finite() {
+    let m = accepted("huge-1e300.step");
+    let r = vericad::model::eval::eval_surface(&m, 0, &[0.5, 0.5]).unwrap();
+    let n = r.normal.expect("a normal");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    for (x, y) in n.iter().zip([-h, 0.0, h]) {
+        assert!((x - y).abs() < 1e-15, "{n:?}");
+    }
+    assert!(r.f64_error.is_finite());
+}
+
+/// Models built in code bypass the readers' checks; the intersection re-checks them and
+/// refuses a non-finite control point or one beyond the coordinate range with a typed error
+/// naming the surface, instead of panicking in an exact lift.
+#[test]
+fn ssi_refuses_models_built_in_code_with_non_finite_or_huge_points() {
+    use vericad::ssi::{SsiError, SsiParams, intersect_models, intersect_pair_canonical};
+    let good = accepted("plane-z0.step");
+    for (bad, want) in [(f64::NAN, "not finite"), (1e200, "supported range")] {
+        let mut m = good.clone();
+        m.surfaces[0].nurbs.hom.net[1].wp[2] = bad;
+        let r = intersect_models(&good, Some(&m), &SsiParams::default(), &|_, _| {});
+        match r {
+            Err(SsiError::Input(e)) => assert_has(&e, &["surface 0"]),
+            other => panic!("{bad}: {:?}", other.map(|r| r.summary.branches)),
+        }
+        let r = intersect_pair_canonical(
+            &good.surfaces[0].nurbs,
+            &m.surfaces[0].nurbs,
+            (0, 1),
+            &SsiParams::default(),
+            None,
+        );
+        match r {
+            Err(SsiError::Input(e)) => assert_has(&e, &["surface 1", want]),
+            other => panic!("{bad}: {:?}", other.map(|r| r.branches.len())),
+        }
+    }
+}
