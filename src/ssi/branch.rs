@@ -50,6 +50,9 @@ struct Inserter<'a, 'g> {
     inserted: usize,
     max_dev: f64,
     refused: usize,
+    /// Asked before each insertion; once it says stop, nothing more is inserted.
+    stop: &'a dyn Fn() -> bool,
+    stopped: bool,
 }
 
 impl Inserter<'_, '_> {
@@ -63,6 +66,10 @@ impl Inserter<'_, '_> {
         depth: u32,
         out: &mut Vec<Refined>,
     ) {
+        if self.stopped || (self.stop)() {
+            self.stopped = true;
+            return;
+        }
         let (da, db) = (domain(self.g.sa), domain(self.g.sb));
         let (ga, gb) = match (
             average_uv(&p.uv_a, &q.uv_a, &da),
@@ -184,7 +191,9 @@ fn border_edge(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> bool {
     border_line(f, m, d).is_some()
 }
 
-/// Refine, certify and fit one traced branch.
+/// Refine, certify and fit one traced branch. `stop(done, total)` is asked before every
+/// point of each step (refinement, insertion, certification; a point costs far more than
+/// the question); `None` when it said stop.
 pub fn refine_branch(
     t: &Topology,
     b: &Branch,
@@ -192,7 +201,9 @@ pub fn refine_branch(
     prm: &RefineParams,
     max_insert_depth: u32,
     singular: &[Refined],
-) -> BranchResult {
+    stop: &dyn Fn(usize, usize) -> bool,
+) -> Option<BranchResult> {
+    let check = |k: usize, n: usize| stop(k, n);
     let raw: Vec<[f64; 3]> = b.points.iter().map(|&p| t.points[p as usize].xyz).collect();
     let mut pts_in_order = b.points.clone();
     if b.closed {
@@ -222,9 +233,16 @@ pub fn refine_branch(
         )
     };
     if raw.iter().all(|x| *x == raw[0]) {
-        return BranchResult::Touch(touch_out(g, &refine_at(0), 0));
+        return Some(BranchResult::Touch(touch_out(g, &refine_at(0), 0)));
     }
-    let mut refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
+    let n = pts_in_order.len();
+    let mut refined: Vec<Refined> = Vec::with_capacity(n);
+    for k in 0..n {
+        if check(k, n) {
+            return None;
+        }
+        refined.push(refine_at(k));
+    }
     if !b.closed {
         // Ends on a face boundary: put them on it.
         let last = refined.len() - 1;
@@ -247,16 +265,24 @@ pub fn refine_branch(
         inserted: 0,
         max_dev: 0.0,
         refused: 0,
+        stop: &|| stop(0, 0),
+        stopped: false,
     };
     let mut all: Vec<Refined> = Vec::with_capacity(refined.len() * 2);
     let n = refined.len();
     let spans = if b.closed { n } else { n - 1 };
     for k in 0..n {
+        if check(k, n) {
+            return None;
+        }
         all.push(refined[k]);
         if k < spans {
             let q = refined[(k + 1) % n];
             ins.between(&refined[k], &q, seg_of(k), 0, &mut all);
         }
+    }
+    if ins.stopped {
+        return None;
     }
     let tangential = all
         .iter()
@@ -273,14 +299,20 @@ pub fn refine_branch(
         .count();
     // Points whose proven distance to the curve exceeds tol/8 move onto the curve (see
     // [`onto_curve`]).
-    let radii: Vec<_> = all
-        .iter_mut()
-        .map(|r| onto_curve(g, r, prm.tol).map(|c| (c.radius, c)))
-        .collect();
-    let radii: Vec<_> = radii.into_iter().map(|c| c.map(|(r, _)| r)).collect();
+    let total = all.len();
+    let mut radii = Vec::with_capacity(total);
+    for (k, r) in all.iter_mut().enumerate() {
+        if check(k, total) {
+            return None;
+        }
+        radii.push(onto_curve(g, r, prm.tol).map(|c| c.radius));
+    }
     let mut da_max = 0.0f64;
     let mut db_max = 0.0f64;
-    for r in &all {
+    for (k, r) in all.iter().enumerate() {
+        if check(k, total) {
+            return None;
+        }
         da_max = da_max.max(
             g.ea.distance_bound(&r.xyz, &r.uv_a)
                 .unwrap_or(f64::INFINITY),
@@ -343,5 +375,5 @@ pub fn refine_branch(
         curve_uncertified: Vec::new(),
     };
     out.set_curve_radii(radii);
-    BranchResult::Curve(out)
+    Some(BranchResult::Curve(out))
 }

@@ -271,7 +271,7 @@ pub fn intersect_models(
     let results: Vec<Option<Result<PairOut, SsiError>>> = jobs
         .par_iter()
         .map(|&(i, j)| {
-            if deadline.is_some_and(|d| Instant::now() > d) {
+            if prm.control.stop(deadline) {
                 return None;
             }
             let r = match work((i, j)) {
@@ -369,7 +369,13 @@ pub fn intersect_models(
     }
     if partial {
         certificate.push(format!(
-            "PARTIAL: stopped by the time limit; {not_run} pairs not run"
+            "PARTIAL: stopped by {}; {not_run} pairs not run, {} pairs stopped before their end",
+            if prm.control.cancelled() {
+                "cancellation"
+            } else {
+                "the time limit"
+            },
+            pairs.iter().filter(|p| !p.complete).count()
         ));
     }
     let summary = Summary {

@@ -22,6 +22,7 @@ pub mod branch;
 pub mod certify;
 pub mod closest;
 pub mod coincide;
+pub mod control;
 pub mod coverage;
 pub mod cull;
 pub mod driver;
@@ -94,6 +95,8 @@ pub struct SsiParams {
     pub coverage_max_boxes: usize,
     /// Clip branches to the faces' trimming loops.
     pub respect_trims: bool,
+    /// Cancel flag and progress from inside face pairs ([`control`]).
+    pub control: control::Control,
 }
 
 impl Default for SsiParams {
@@ -113,6 +116,7 @@ impl Default for SsiParams {
             coverage_max_depth: 24,
             coverage_max_boxes: 200_000,
             respect_trims: false,
+            control: control::Control::default(),
         }
     }
 }
