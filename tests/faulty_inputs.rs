@@ -500,3 +500,66 @@ fn ssi_refuses_models_built_in_code_with_non_finite_or_huge_points() {
         }
     }
 }
+
+/// abc-0000.step has 10 faces whose orientation is reversed (`same_sense = .F.`); the STEP
+/// and IGES writers store surfaces, not faces, and say so for each of them.
+#[test]
+fn writers_report_the_face_orientation_they_cannot_hold() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
+    let m = read_model(&src).unwrap();
+    assert_eq!(m.surfaces.iter().filter(|s| s.reversed).count(), 10);
+    let d = tmp("orientation");
+    for ext in ["step", "igs"] {
+        let w = vericad::io::write_model(&d.join(format!("abc.{ext}")), &m).unwrap();
+        assert!(
+            w.iter()
+                .any(|x| x.contains("10 reversed face(s)") && x.contains("orientation")),
+            "{ext}: {w:?}"
+        );
+    }
+    // JSON keeps it.
+    let out = d.join("abc.json");
+    let w = vericad::io::write_model(&out, &m).unwrap();
+    assert!(w.iter().all(|x| !x.contains("reversed")), "{w:?}");
+    let back = read_model(&out).unwrap();
+    assert_eq!(back.surfaces.iter().filter(|s| s.reversed).count(), 10);
+}
+
+/// IGES keeps units without a flag of their own by name (Global parameter 15, flag 3).
+#[test]
+fn iges_writer_keeps_units() {
+    for unit in ["mile", "mil", "inch", "foot", "m", "mm"] {
+        let mut m = accepted("ok-bilinear.step");
+        m.unit = Some(unit.into());
+        let out = tmp("iges-units").join(format!("{unit}.igs"));
+        let w = vericad::io::write_model(&out, &m).unwrap();
+        assert!(w.iter().all(|x| !x.contains("unit")), "{w:?}");
+        assert_eq!(
+            read_model(&out).unwrap().unit.as_deref(),
+            Some(unit),
+            "{unit}"
+        );
+    }
+}
+
+/// A foreign polyline without points is refused (exit 2) naming the curve, not certified
+/// vacuously as "within tol".
+#[test]
+fn certify_ssi_refuses_an_empty_polyline() {
+    let d = tmp("empty-polyline");
+    let curves = d.join("curves.json");
+    std::fs::write(&curves, "[[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], []]").unwrap();
+    let (code, out, err) = vericad(
+        &[
+            "certify-ssi",
+            data("plane-z0.step").to_str().unwrap(),
+            data("ok-bilinear.step").to_str().unwrap(),
+            "--curves",
+            curves.to_str().unwrap(),
+        ],
+        MINUTE,
+    )
+    .expect("certify-ssi returns");
+    assert_eq!(code, 2, "{out}{err}");
+    assert_has(&err, &["curve 1", "no points"]);
+}
