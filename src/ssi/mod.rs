@@ -17,6 +17,7 @@
 //! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`] (curve points by [`krawczyk`]) |
 //! | tangential contacts | [`touch`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
+//! | cancel flag and progress inside a pair | [`control`] |
 
 pub mod branch;
 pub mod certify;
