@@ -361,7 +361,7 @@ pub(crate) fn build_topology(
     let mut topo = Topology::new();
     let mut contacts = Vec::new();
     for (k, &(ta, tb)) in pairs.iter().enumerate() {
-        if k % CHECK_EVERY == 0 && stop(k, pairs.len()) {
+        if k.is_multiple_of(CHECK_EVERY) && stop(k, pairs.len()) {
             return None;
         }
         let ((pa, va), (pb, vb)) = (a(ta), b(tb));

@@ -332,7 +332,7 @@ pub fn coverage(
         }
     };
     while let Some((a, b, da, db)) = stack.pop() {
-        if boxes % 256 == 0
+        if out.pairs_examined.is_multiple_of(256)
             && (prm.deadline.is_some_and(|t| Instant::now() > t)
                 || prm
                     .cancel
