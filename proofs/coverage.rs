@@ -20,6 +20,7 @@ fn params() -> CoverageParams {
         max_crossing_depth: 24,
         max_boxes: 4_000,
         deadline: None,
+        cancel: None,
     }
 }
 

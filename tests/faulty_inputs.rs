@@ -201,6 +201,36 @@ fn curve_on_surface_fuzz_artifacts_return() {
     }
 }
 
+/// The domain curve with control points (0.25, 0.75), (−0.25, −0.25), (0.25, 0.75) runs along
+/// a straight line and back: zero speed at t = 1/2 (a cusp, on the edge u = 0) and a reversal
+/// where the closed curve joins itself. Neither corner can be removed by splitting; each side
+/// of each corner is split at most `MAX_SPLIT_DEPTH` times, not thousands of times.
+#[test]
+fn a_curve_doubling_back_leaves_two_corners_after_bounded_splitting() {
+    use vericad::curve_on_surface::g1::MAX_SPLIT_DEPTH;
+    let s = accepted("yang.json").surfaces[0].nurbs.clone();
+    let c = match &accepted("cusp-closed.json").curves[0].geometry {
+        vericad::model::CurveGeometry::Domain(d) => d.clone(),
+        _ => panic!("not a domain curve"),
+    };
+    let prm = vericad::curve_on_surface::Params {
+        eps_d: 1e-2,
+        ..Default::default()
+    };
+    let r = within(MINUTE, move || {
+        vericad::curve_on_surface::approximate(&s, &c, &prm)
+    })
+    .expect("curve on surface returns")
+    .expect("a result");
+    assert_eq!(r.certificate.unresolved_junctions, 2);
+    assert!(
+        r.steps.g1.splits <= 2 * 2 * MAX_SPLIT_DEPTH as usize,
+        "{} splits",
+        r.steps.g1.splits
+    );
+    assert!(r.certificate.hausdorff_bound <= 1e-2);
+}
+
 #[test]
 fn nested_composite_curves_exhaust_a_budget() {
     let e = refused("composite-fanout-1e6.igs");
@@ -421,4 +451,111 @@ fn absurd_thread_counts_are_bad_input() {
         vericad(&["ssi", f.to_str().unwrap(), "--threads", "100000"], MINUTE).expect("ssi returns");
     assert_eq!(code, 2, "{err}");
     assert_has(&err, &["--threads"]);
+}
+
+/// The normal of a surface with coordinates near 1e300: S_u = (2e300, 0, 2e300) and
+/// S_v = (0, 2e300, 0) at the centre, so the unit normal is (−1, 0, 1)/√2 — not NaN from
+/// an overflowing cross product.
+#[test]
+fn eval_normal_of_huge_coordinates_is_finite() {
+    let m = accepted("huge-1e300.step");
+    let r = vericad::model::eval::eval_surface(&m, 0, &[0.5, 0.5]).unwrap();
+    let n = r.normal.expect("a normal");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    for (x, y) in n.iter().zip([-h, 0.0, h]) {
+        assert!((x - y).abs() < 1e-15, "{n:?}");
+    }
+    assert!(r.f64_error.is_finite());
+}
+
+/// Models built in code bypass the readers' checks; the intersection re-checks them and
+/// refuses a non-finite control point or one beyond the coordinate range with a typed error
+/// naming the surface, instead of panicking in an exact lift.
+#[test]
+fn ssi_refuses_models_built_in_code_with_non_finite_or_huge_points() {
+    use vericad::ssi::{SsiError, SsiParams, intersect_models, intersect_pair_canonical};
+    let good = accepted("plane-z0.step");
+    for (bad, want) in [(f64::NAN, "not finite"), (1e200, "supported range")] {
+        let mut m = good.clone();
+        m.surfaces[0].nurbs.hom.net[1].wp[2] = bad;
+        let r = intersect_models(&good, Some(&m), &SsiParams::default(), &|_, _| {});
+        match r {
+            Err(SsiError::Input(e)) => assert_has(&e, &["surface 0"]),
+            other => panic!("{bad}: {:?}", other.map(|r| r.summary.branches)),
+        }
+        let r = intersect_pair_canonical(
+            &good.surfaces[0].nurbs,
+            &m.surfaces[0].nurbs,
+            (0, 1),
+            &SsiParams::default(),
+            None,
+        );
+        match r {
+            Err(SsiError::Input(e)) => assert_has(&e, &["surface 1", want]),
+            other => panic!("{bad}: {:?}", other.map(|r| r.branches.len())),
+        }
+    }
+}
+
+/// abc-0000.step has 10 faces whose orientation is reversed (`same_sense = .F.`); the STEP
+/// and IGES writers store surfaces, not faces, and say so for each of them.
+#[test]
+fn writers_report_the_face_orientation_they_cannot_hold() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
+    let m = read_model(&src).unwrap();
+    assert_eq!(m.surfaces.iter().filter(|s| s.reversed).count(), 10);
+    let d = tmp("orientation");
+    for ext in ["step", "igs"] {
+        let w = vericad::io::write_model(&d.join(format!("abc.{ext}")), &m).unwrap();
+        assert!(
+            w.iter()
+                .any(|x| x.contains("10 reversed face(s)") && x.contains("orientation")),
+            "{ext}: {w:?}"
+        );
+    }
+    // JSON keeps it.
+    let out = d.join("abc.json");
+    let w = vericad::io::write_model(&out, &m).unwrap();
+    assert!(w.iter().all(|x| !x.contains("reversed")), "{w:?}");
+    let back = read_model(&out).unwrap();
+    assert_eq!(back.surfaces.iter().filter(|s| s.reversed).count(), 10);
+}
+
+/// IGES keeps units without a flag of their own by name (Global parameter 15, flag 3).
+#[test]
+fn iges_writer_keeps_units() {
+    for unit in ["mile", "mil", "inch", "foot", "m", "mm"] {
+        let mut m = accepted("ok-bilinear.step");
+        m.unit = Some(unit.into());
+        let out = tmp("iges-units").join(format!("{unit}.igs"));
+        let w = vericad::io::write_model(&out, &m).unwrap();
+        assert!(w.iter().all(|x| !x.contains("unit")), "{w:?}");
+        assert_eq!(
+            read_model(&out).unwrap().unit.as_deref(),
+            Some(unit),
+            "{unit}"
+        );
+    }
+}
+
+/// A foreign polyline without points is refused (exit 2) naming the curve, not certified
+/// vacuously as "within tol".
+#[test]
+fn certify_ssi_refuses_an_empty_polyline() {
+    let d = tmp("empty-polyline");
+    let curves = d.join("curves.json");
+    std::fs::write(&curves, "[[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], []]").unwrap();
+    let (code, out, err) = vericad(
+        &[
+            "certify-ssi",
+            data("plane-z0.step").to_str().unwrap(),
+            data("ok-bilinear.step").to_str().unwrap(),
+            "--curves",
+            curves.to_str().unwrap(),
+        ],
+        MINUTE,
+    )
+    .expect("certify-ssi returns");
+    assert_eq!(code, 2, "{out}{err}");
+    assert_has(&err, &["curve 1", "no points"]);
 }

@@ -156,3 +156,96 @@ fn repair_on_random_patch_soups() {
     }
     assert!(connected > 0, "the soups do connect somewhere");
 }
+
+/// Every file under `dir` (recursively), sorted.
+fn files_under(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            files_under(&p, out);
+        } else {
+            out.push(p);
+        }
+    }
+}
+
+/// Every fuzz target over its committed seed corpus (`fuzz/seeds/<target>`, plus the test
+/// data each target is run with: `fuzz/README.md`), each input on a thread of its own with
+/// a time limit, so a hang fails the test as well as a panic.
+#[test]
+fn every_fuzz_target_survives_its_seed_corpus() {
+    use std::time::Duration;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    type Entry = fn(&[u8]);
+    let targets: [(&str, Entry, &[&str]); 8] = [
+        (
+            "readers",
+            fuzz_entry::readers,
+            &["tests/data/faulty", "tests/data/public"],
+        ),
+        (
+            "model_json",
+            fuzz_entry::model_json,
+            &["tests/data/malformed", "src/models"],
+        ),
+        (
+            "curve_on_surface",
+            fuzz_entry::curve_on_surface,
+            &["tests/data/faulty/fuzz-artifacts/curve_on_surface"],
+        ),
+        ("single_sided", fuzz_entry::single_sided_test, &[]),
+        ("tri_tri", fuzz_entry::tri_tri_test, &[]),
+        (
+            "ssi_meshes",
+            |d| {
+                fuzz_entry::ssi_meshes(d);
+            },
+            &[],
+        ),
+        (
+            "ssi_surfaces",
+            |d| {
+                fuzz_entry::ssi_surfaces(d);
+            },
+            &[],
+        ),
+        (
+            "repair_soup",
+            |d| {
+                fuzz_entry::repair_soup(d);
+            },
+            &[],
+        ),
+    ];
+    // Every cargo-fuzz target has an entry here.
+    let declared = std::fs::read_to_string(root.join("fuzz/Cargo.toml")).unwrap();
+    let n_bins = declared.matches("[[bin]]").count();
+    assert_eq!(
+        n_bins,
+        targets.len(),
+        "a fuzz target without its corpus test"
+    );
+    for (name, entry, extra) in targets {
+        assert!(declared.contains(&format!("name = \"{name}\"")), "{name}");
+        let mut files = Vec::new();
+        let seeds = root.join("fuzz/seeds").join(name);
+        if seeds.is_dir() {
+            files_under(&seeds, &mut files);
+        }
+        for d in extra {
+            files_under(&root.join(d), &mut files);
+        }
+        files.sort();
+        assert!(files.len() >= 4, "{name}: {} seeds", files.len());
+        for f in files {
+            let bytes = std::fs::read(&f).unwrap();
+            let (tx, rx) = std::sync::mpsc::channel();
+            std::thread::spawn(move || {
+                let ok = std::panic::catch_unwind(|| entry(&bytes)).is_ok();
+                let _ = tx.send(ok);
+            });
+            let r = rx.recv_timeout(Duration::from_secs(120));
+            assert_eq!(r, Ok(true), "{name}: {} panicked or hung", f.display());
+        }
+    }
+}

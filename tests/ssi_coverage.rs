@@ -41,6 +41,7 @@ fn cparams(d: f64) -> CoverageParams {
         max_crossing_depth: 96,
         max_boxes: 400_000,
         deadline: None,
+        cancel: None,
     }
 }
 

@@ -19,6 +19,11 @@ type Q = BigRational;
 
 /// Smallest parameter length (relative to the piece) a segment is split down to for ε_T.
 const MIN_PARAM_LEN: f64 = 1e-10;
+/// Most ε_T splits in the line of descent of one segment. A junction still above ε_T after
+/// this many splits on either side is a corner (of D, of S, or a cusp where D doubles back
+/// with zero speed): splitting cannot remove it, and without the cap the splits at such a
+/// point grow the segment count by thousands before [`MIN_PARAM_LEN`] stops them.
+pub const MAX_SPLIT_DEPTH: u32 = 24;
 
 /// End tangent (`at_end`) or start tangent of the image of the chord `a → b` on a patch
 /// over `rect = [u0, u1, v0, v1]`: `(Δu / (u1 - u0)) S_s + (Δv / (v1 - v0)) S_r` (eq. 20).
@@ -194,8 +199,11 @@ where
             n.saturating_sub(1)
         }
     };
-    // Tangents per segment, computed once per segment (splits replace them).
+    // Tangents per segment, computed once per segment (splits replace them), and the number
+    // of ε_T splits each segment descends from.
     let mut tan: Vec<Option<([f64; 3], [f64; 3])>> = segs.iter().map(&ops.tangents).collect();
+    let mut depth: Vec<u32> = vec![0; segs.len()];
+    let splittable = |s: &S, d: u32| d < MAX_SPLIT_DEPTH && (ops.param_len)(s) > MIN_PARAM_LEN;
     loop {
         let n = segs.len();
         let mut split = vec![false; n];
@@ -217,9 +225,9 @@ where
                     j
                 };
                 let other = if k == i { j } else { i };
-                if (ops.param_len)(&segs[k]) > MIN_PARAM_LEN {
+                if splittable(&segs[k], depth[k]) {
                     split[k] = true;
-                } else if (ops.param_len)(&segs[other]) > MIN_PARAM_LEN {
+                } else if splittable(&segs[other], depth[other]) {
                     split[other] = true;
                 } else {
                     unresolved += 1;
@@ -234,25 +242,29 @@ where
         }
         let mut out = Vec::with_capacity(n * 2);
         let mut out_tan = Vec::with_capacity(n * 2);
+        let mut out_depth = Vec::with_capacity(n * 2);
         let mut failed = 0;
-        for ((s, sp), t) in segs.into_iter().zip(split).zip(tan) {
+        for (((s, sp), t), d) in segs.into_iter().zip(split).zip(tan).zip(depth) {
             match if sp { (ops.split)(&s) } else { None } {
                 Some((l, r)) => {
                     stats.splits += 1;
                     out_tan.push((ops.tangents)(&l));
                     out_tan.push((ops.tangents)(&r));
+                    out_depth.extend([d + 1, d + 1]);
                     out.push(l);
                     out.push(r);
                 }
                 None => {
                     failed += usize::from(sp);
                     out_tan.push(t);
+                    out_depth.push(d);
                     out.push(s);
                 }
             }
         }
         segs = out;
         tan = out_tan;
+        depth = out_depth;
         if segs.len() == n {
             // No split was possible: those junctions stay.
             stats.unresolved_junctions = unresolved + failed;

@@ -57,15 +57,32 @@ fn lift_curve<const D: usize>(c: &BSplineCurve<Hom<f64, D>>) -> BSplineCurve<Hom
     )
 }
 
+/// Largest `|a_i − e_i|`, rounded up; infinite where the f64 evaluation overflowed.
 fn err_of<const D: usize>(a: &[f64; D], e: &[BigRational; D]) -> f64 {
     (0..D)
-        .map(|i| {
-            (lift::<BigRational>(a[i]) - e[i].clone())
-                .abs()
-                .to_f64()
-                .next_up()
+        .map(|i| match BigRational::from_f64(a[i]) {
+            Ok(x) => (x - e[i].clone()).abs().to_f64().next_up(),
+            Err(_) => f64::INFINITY,
         })
         .fold(0.0, f64::max)
+}
+
+/// `S_u × S_v` normalized, with each derivative scaled to unit largest component first, so
+/// that huge finite coordinates (up to the f64 limit) give a unit normal, not an overflow
+/// to NaN; `None` where the normal vanishes.
+fn unit_normal(su: &[f64; 3], sv: &[f64; 3]) -> Option<[f64; 3]> {
+    let scaled = |x: &[f64; 3]| {
+        let m = x.iter().fold(0.0f64, |a, c| a.max(c.abs()));
+        (m > 0.0 && m.is_finite()).then(|| x.map(|c| c / m))
+    };
+    let (a, b) = (scaled(su)?, scaled(sv)?);
+    let n = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    (l > 0.0).then(|| n.map(|c| c / l))
 }
 
 /// Evaluate surface `index` at `(u, v)`.
@@ -94,7 +111,7 @@ pub fn eval_surface(m: &Model, index: usize, uv: &[f64]) -> Result<EvalReport, E
         exact_point: to_f64_point(&exact).to_vec(),
         f64_error: err_of(&d[0], &exact),
         derivatives: vec![d[1].to_vec(), d[2].to_vec()],
-        normal: s.nurbs.unit_normal(&uv[0], &uv[1]).map(|n| n.to_vec()),
+        normal: unit_normal(&d[1], &d[2]).map(|n| n.to_vec()),
     })
 }
 

@@ -15,8 +15,9 @@ pub struct SurfaceInfo {
     pub kind: super::SurfaceKind,
     pub source: Option<String>,
     pub domain: [f64; 4],
-    /// Bounding box of the control net (contains the surface: convex hull property).
-    pub bbox: [[f64; 3]; 2],
+    /// Bounding box of the control net (contains the surface: convex hull property); `None`
+    /// for a net with no finite box (a model built without [`super::Model::validate`]).
+    pub bbox: Option<[[f64; 3]; 2]>,
 }
 
 /// Summary of one curve.
@@ -81,13 +82,14 @@ pub fn summarize(m: &Model) -> ModelInfo {
         .enumerate()
         .map(|(index, s)| {
             let (pts, _) = s.nurbs.points_weights();
-            let b = Aabb::of_points(pts.iter()).expect("validated surfaces have control points");
-            match &mut all {
-                Some(a) => {
+            let b = Aabb::of_points(pts.iter());
+            match (&mut all, &b) {
+                (Some(a), Some(b)) => {
                     a.include(&b.min);
                     a.include(&b.max);
                 }
-                None => all = Some(b.clone()),
+                (None, Some(b)) => all = Some(b.clone()),
+                (_, None) => {}
             }
             let h = &s.nurbs.hom;
             let (u0, u1, v0, v1) = h.domain();
@@ -100,7 +102,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
                 kind: s.kind,
                 source: s.source.clone(),
                 domain: [u0, u1, v0, v1],
-                bbox: [b.min, b.max],
+                bbox: b.map(|b| [b.min, b.max]),
             }
         })
         .collect();

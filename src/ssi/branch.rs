@@ -52,6 +52,9 @@ struct Inserter<'a, 'g> {
     inserted: usize,
     max_dev: f64,
     refused: usize,
+    /// Asked before each insertion; once it says stop, nothing more is inserted.
+    stop: &'a dyn Fn() -> bool,
+    stopped: bool,
 }
 
 impl Inserter<'_, '_> {
@@ -65,6 +68,10 @@ impl Inserter<'_, '_> {
         depth: u32,
         out: &mut Vec<Refined>,
     ) {
+        if self.stopped || (self.stop)() {
+            self.stopped = true;
+            return;
+        }
         let (da, db) = (domain(self.g.sa), domain(self.g.sb));
         let (ga, gb) = match (
             average_uv(&p.uv_a, &q.uv_a, &da),
@@ -185,7 +192,9 @@ fn border_edge(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> bool {
     border_line(f, m, d).is_some()
 }
 
-/// Refine, certify and fit one traced branch.
+/// Refine, certify and fit one traced branch. `stop(done, total)` is asked before every
+/// point of each step (refinement, insertion, certification; a point costs far more than
+/// the question); `None` when it said stop.
 pub fn refine_branch(
     t: &Topology,
     b: &Branch,
@@ -193,7 +202,9 @@ pub fn refine_branch(
     prm: &RefineParams,
     max_insert_depth: u32,
     singular: &[Refined],
-) -> BranchResult {
+    stop: &dyn Fn(usize, usize) -> bool,
+) -> Option<BranchResult> {
+    let check = |k: usize, n: usize| stop(k, n);
     let raw: Vec<[f64; 3]> = b.points.iter().map(|&p| t.points[p as usize].xyz).collect();
     let mut pts_in_order = b.points.clone();
     if b.closed {
@@ -223,9 +234,16 @@ pub fn refine_branch(
         )
     };
     if raw.iter().all(|x| *x == raw[0]) {
-        return BranchResult::Touch(touch_out(g, &refine_at(0), 0, prm.tol));
+        return Some(BranchResult::Touch(touch_out(g, &refine_at(0), 0, prm.tol)));
     }
-    let mut refined: Vec<Refined> = (0..pts_in_order.len()).map(refine_at).collect();
+    let n = pts_in_order.len();
+    let mut refined: Vec<Refined> = Vec::with_capacity(n);
+    for k in 0..n {
+        if check(k, n) {
+            return None;
+        }
+        refined.push(refine_at(k));
+    }
     if !b.closed {
         // Ends on a face boundary: put them on it.
         let last = refined.len() - 1;
@@ -248,16 +266,24 @@ pub fn refine_branch(
         inserted: 0,
         max_dev: 0.0,
         refused: 0,
+        stop: &|| stop(0, 0),
+        stopped: false,
     };
     let mut all: Vec<Refined> = Vec::with_capacity(refined.len() * 2);
     let n = refined.len();
     let spans = if b.closed { n } else { n - 1 };
     for k in 0..n {
+        if check(k, n) {
+            return None;
+        }
         all.push(refined[k]);
         if k < spans {
             let q = refined[(k + 1) % n];
             ins.between(&refined[k], &q, seg_of(k), 0, &mut all);
         }
+    }
+    if ins.stopped {
+        return None;
     }
     let tangential = all
         .iter()
@@ -274,18 +300,21 @@ pub fn refine_branch(
         .count();
     // Points whose proven distance to the curve exceeds tol/8 move onto the curve (see
     // [`onto_curve`]).
-    // Per point, independent of the others: on the worker threads (results in point order, so
-    // they do not depend on the thread count).
-    let per_point: Vec<_> = all
-        .par_iter_mut()
-        .with_min_len(64)
-        .map(|r| {
+    // Per point, independent of the others: on the worker threads, a chunk at a time between
+    // cancellation checks (results in point order, so they do not depend on the thread count).
+    let total = all.len();
+    let mut per_point = Vec::with_capacity(total);
+    for (c, chunk) in all.chunks_mut(1024).enumerate() {
+        if check(c * 1024, total) {
+            return None;
+        }
+        per_point.par_extend(chunk.par_iter_mut().with_min_len(64).map(|r| {
             let c = onto_curve(g, r, prm.tol).map(|c| c.radius);
             let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
             let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
             (c, da.unwrap_or(f64::INFINITY), db.unwrap_or(f64::INFINITY))
-        })
-        .collect();
+        }));
+    }
     let da_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.1));
     let db_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.2));
     let radii: Vec<_> = per_point.into_iter().map(|p| p.0).collect();
@@ -342,5 +371,5 @@ pub fn refine_branch(
         curve_uncertified: Vec::new(),
     };
     out.set_curve_radii(radii);
-    BranchResult::Curve(out)
+    Some(BranchResult::Curve(out))
 }

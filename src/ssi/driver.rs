@@ -13,6 +13,7 @@ use super::report::{PairOut, SingularKind, SsiResult, Summary};
 use super::trims::{SAMPLES_PER_CURVE, TrimRegion, clip};
 use super::{SsiError, SsiParams};
 use crate::geom::Aabb;
+use crate::model::check::{MAX_COORDINATE, check_surface};
 use crate::model::{Model, Triangulation};
 use crate::spline::NurbsSurface;
 use rayon::prelude::*;
@@ -69,8 +70,41 @@ fn swap_sides(mut p: PairOut) -> PairOut {
     p
 }
 
+/// A surface the intersection can compute with: finite (the constructor rules, re-checked
+/// for nets changed in code) and within [`MAX_COORDINATE`], so that exact lifts and squared
+/// distances never meet an infinity.
+fn check_input(s: &NurbsSurface<f64, 3>, what: &dyn Fn() -> String) -> Result<(), SsiError> {
+    check_surface(s).map_err(|e| SsiError::Input(format!("{}: {e}", what())))?;
+    let big = s
+        .hom
+        .net
+        .iter()
+        .flat_map(|h| h.wp.map(|x| x / h.w))
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    if big > MAX_COORDINATE {
+        return Err(SsiError::Input(format!(
+            "{}: coordinate {big:e} is outside the supported range |x| <= 2^500 (about 3.3e150): squared distances would overflow f64",
+            what()
+        )));
+    }
+    Ok(())
+}
+
 /// Intersect two surfaces in their canonical order, reporting in the caller's order.
 pub fn intersect_pair_canonical(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    ids: (usize, usize),
+    prm: &SsiParams,
+    deadline: Option<Instant>,
+) -> Result<PairOut, SsiError> {
+    check_input(sa, &|| format!("surface {}", ids.0))?;
+    check_input(sb, &|| format!("surface {}", ids.1))?;
+    pair_canonical(sa, sb, ids, prm, deadline)
+}
+
+/// [`intersect_pair_canonical`] on surfaces checked already.
+fn pair_canonical(
     sa: &NurbsSurface<f64, 3>,
     sb: &NurbsSurface<f64, 3>,
     ids: (usize, usize),
@@ -199,6 +233,11 @@ pub fn intersect_models(
     if na == 0 || (b.is_some() && nb == 0) {
         return Err(SsiError::Empty);
     }
+    for m in std::iter::once(a).chain(b) {
+        m.validate().map_err(SsiError::Input)?;
+        m.check_coordinate_range()
+            .map_err(|e| SsiError::Input(e.to_string()))?;
+    }
     let other = b.unwrap_or(a);
     let work = |(i, j): (usize, usize)| -> Work {
         if meshes {
@@ -237,11 +276,11 @@ pub fn intersect_models(
     let results: Vec<Option<Result<PairOut, SsiError>>> = jobs
         .par_iter()
         .map(|&(i, j)| {
-            if deadline.is_some_and(|d| Instant::now() > d) {
+            if prm.control.stop(deadline) {
                 return None;
             }
             let r = match work((i, j)) {
-                Work::Surfaces(x, y) => intersect_pair_canonical(x, y, (i, j), prm, deadline),
+                Work::Surfaces(x, y) => pair_canonical(x, y, (i, j), prm, deadline),
                 Work::Meshes(x, y) => intersect_meshes(x, y, (i, j)),
             };
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
@@ -352,7 +391,13 @@ pub fn intersect_models(
     }
     if partial {
         certificate.push(format!(
-            "PARTIAL: stopped by the time limit; {not_run} pairs not run"
+            "PARTIAL: stopped by {}; {not_run} pairs not run, {} pairs stopped before their end",
+            if prm.control.cancelled() {
+                "cancellation"
+            } else {
+                "the time limit"
+            },
+            pairs.iter().filter(|p| !p.complete).count()
         ));
     }
     let summary = Summary {

@@ -32,6 +32,10 @@ pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, String>
                     let pts: Vec<[f64; 3]> = serde_json::from_value(p.clone()).map_err(|e| {
                         format!("{}: curve {i}: expected [[x,y,z],...]: {e}", path.display())
                     })?;
+                    if pts.is_empty() {
+                        // Nothing to check: certifying it would be vacuous.
+                        return Err(format!("{}: curve {i}: no points", path.display()));
+                    }
                     if pts.iter().flatten().any(|c| !c.is_finite()) {
                         return Err(format!(
                             "{}: curve {i}: non-finite coordinate",

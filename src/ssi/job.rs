@@ -46,6 +46,7 @@ impl JobError {
                         | SsiError::Parameter(..)
                         | SsiError::Empty
                         | SsiError::FaceIndex { .. }
+                        | SsiError::Input(_)
                 )
         )
     }
@@ -203,6 +204,25 @@ pub fn run(
             eprintln!("ssi: {done}/{total} face pairs ({el:.1} s)");
         }
     };
+    // Inside a long face pair too, at most once a second.
+    let mut prm = prm.clone();
+    if prm.control.progress.is_none() {
+        let last = std::sync::Mutex::new(0.0f64);
+        prm.control.progress = Some(std::sync::Arc::new(move |s: &super::control::Stage| {
+            let el = t0.elapsed().as_secs_f64();
+            if let Ok(mut l) = last.lock()
+                && el > 1.0
+                && el - *l >= 1.0
+            {
+                *l = el;
+                eprintln!(
+                    "ssi: faces ({}, {}): {} {}/{} ({el:.1} s)",
+                    s.pair.0, s.pair.1, s.step, s.done, s.total
+                );
+            }
+        }));
+    }
+    let prm = &prm;
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(n) = threads {
         builder = builder.num_threads(n);

@@ -61,13 +61,16 @@ pub fn intersect_meshes(
         candidate_pairs: pairs.len(),
         ..Default::default()
     };
-    let (mut topo, contacts) = build_topology(
+    let Some((mut topo, contacts)) = build_topology(
         &pairs,
         &|t| (tri(a, t), a.triangles[t as usize]),
         &|t| (tri(b, t), b.triangles[t as usize]),
         &mut stats,
         &|e| e,
-    );
+        &|_, _| false,
+    ) else {
+        return Err(SsiError::Topology("mesh intersection stopped".into()));
+    };
     let branches = trace(&mut topo);
     check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
     let (ea, eb) = (edge_use(a), edge_use(b));

@@ -18,11 +18,13 @@
 //! | tangential contacts | [`touch`] |
 //! | singular points (touching, branch) proven by Krawczyk's test on the tangency system | [`singular`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
+//! | cancel flag and progress inside a pair | [`control`] |
 
 pub mod branch;
 pub mod certify;
 pub mod closest;
 pub mod coincide;
+pub mod control;
 pub mod coverage;
 pub mod cull;
 pub mod driver;
@@ -60,6 +62,10 @@ pub enum SsiError {
     Empty,
     #[error("internal topology check failed: {0}")]
     Topology(String),
+    /// Geometry the intersection cannot compute with: not finite (a model built in code
+    /// without [`crate::model::Model::validate`]) or outside the coordinate range.
+    #[error("{0}")]
+    Input(String),
 }
 
 /// Parameters of an intersection run.
@@ -92,6 +98,8 @@ pub struct SsiParams {
     pub coverage_max_boxes: usize,
     /// Clip branches to the faces' trimming loops.
     pub respect_trims: bool,
+    /// Cancel flag and progress from inside face pairs ([`control`]).
+    pub control: control::Control,
 }
 
 impl Default for SsiParams {
@@ -111,6 +119,7 @@ impl Default for SsiParams {
             coverage_max_depth: 24,
             coverage_max_boxes: 200_000,
             respect_trims: false,
+            control: control::Control::default(),
         }
     }
 }

@@ -3,6 +3,7 @@
 use super::branch::{BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
 use super::coincide::coincidence;
+use super::control::CHECK_EVERY;
 use super::coverage::{CoverageParams, coverage};
 use super::cull::{TriTree, triangle_box};
 use super::refine::RefineParams;
@@ -112,7 +113,24 @@ pub fn intersect_surfaces(
     deadline: Option<Instant>,
 ) -> Result<PairOut, SsiError> {
     let t0 = Instant::now();
+    let ctl = &prm.control;
+    let stop = || ctl.stop(deadline);
     let mut stats = PairStats::default();
+    // What a pair stopped (time limit, cancel) before its branches are traced returns.
+    let stopped = |mut stats: PairStats| {
+        stats.seconds = t0.elapsed().as_secs_f64();
+        Ok(PairOut {
+            a: ids.0,
+            b: ids.1,
+            branches: Vec::new(),
+            touch_points: Vec::new(),
+            contacts: Vec::new(),
+            stats,
+            coverage: None,
+            complete: false,
+            coincident: None,
+        })
+    };
     if let Some(c) = coincidence(sa, sb) {
         stats.seconds = t0.elapsed().as_secs_f64();
         return Ok(PairOut {
@@ -127,11 +145,15 @@ pub fn intersect_surfaces(
             coincident: Some(c),
         });
     }
+    ctl.report(ids, "triangulate", 0, 2);
     let (ma, mb) = meshes(sa, sb, prm, &mut stats);
     stats.triangles_a = ma.triangles.len();
     stats.triangles_b = mb.triangles.len();
     stats.unresolved_cells_a = ma.unresolved_cells;
     stats.unresolved_cells_b = mb.unresolved_cells;
+    if stop() {
+        return stopped(stats);
+    }
     let ea = ExactSurface::new(sa);
     let eb = ExactSurface::new(sb);
     let g = PairGeometry {
@@ -148,17 +170,28 @@ pub fn intersect_surfaces(
         tangent_sin: prm.refine_tangent_sin,
     };
     let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
+    ctl.report(ids, "tangential points", 0, 0);
     let singular = tangential_points(&g, flat, prm.tangent_angle_deg, &rp);
+    if stop() {
+        return stopped(stats);
+    }
     let regions = SingularRegions::new(&ma, &mb, &singular, flat);
+    ctl.report(ids, "candidate triangle pairs", 0, 0);
     let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
     stats.candidate_pairs = pairs.len();
-    let (mut topo, contacts) = build_topology(
+    let Some((mut topo, contacts)) = build_topology(
         &pairs,
         &|t| (tri(&ma, t), ma.topo_triangle(t)),
         &|t| (tri(&mb, t), mb.topo_triangle(t)),
         &mut stats,
         &|e| regions.merge(e, &singular),
-    );
+        &|done, total| {
+            ctl.report(ids, "triangle intersections", done, total);
+            stop()
+        },
+    ) else {
+        return stopped(stats);
+    };
     let branches = trace(&mut topo);
     check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
     let mut out = PairOut {
@@ -180,23 +213,37 @@ pub fn intersect_surfaces(
             prm.tol,
         ));
     }
-    for b in &branches {
-        if deadline.is_some_and(|d| Instant::now() > d) {
+    for (k, b) in branches.iter().enumerate() {
+        ctl.report(ids, "refine branches", k, branches.len());
+        if stop() {
             out.complete = false;
             break;
         }
-        match refine_branch(&topo, b, &g, &rp, prm.max_insert_depth, &singular) {
-            BranchResult::Curve(c) => out.branches.push(c),
-            BranchResult::Touch(t) => out.touch_points.push(t),
+        let step = |done: usize, total: usize| {
+            ctl.report(ids, "certify branch points", done, total);
+            stop()
+        };
+        match refine_branch(&topo, b, &g, &rp, prm.max_insert_depth, &singular, &step) {
+            Some(BranchResult::Curve(c)) => out.branches.push(c),
+            Some(BranchResult::Touch(t)) => out.touch_points.push(t),
+            None => {
+                out.complete = false;
+                break;
+            }
         }
     }
+    if out.complete && prm.coverage && stop() {
+        out.complete = false;
+    }
     if out.complete && prm.coverage {
+        ctl.report(ids, "coverage", 0, 0);
         let cp = CoverageParams {
             match_distance: prm.coverage_match.unwrap_or(10.0 * prm.tol),
             max_pair_depth: prm.coverage_max_depth,
             max_crossing_depth: 96,
             max_boxes: prm.coverage_max_boxes,
             deadline,
+            cancel: ctl.cancel.clone(),
         };
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
     }
@@ -302,17 +349,22 @@ pub(crate) type TriangleOf<'a> = &'a dyn Fn(u32) -> ([[f64; 3]; 3], [u32; 3]);
 
 /// Steps 4–5 over the candidate pairs: exact triangle intersections into the Point / PointUse /
 /// Segment structure (each end passed through `merge`), counting into `stats`; the first 100
-/// non-transversal contacts are listed.
+/// non-transversal contacts are listed. `stop(done, total)` is asked every
+/// [`CHECK_EVERY`] pairs; `None` when it said stop (the topology is incomplete then).
 pub(crate) fn build_topology(
     pairs: &[(u32, u32)],
     a: TriangleOf,
     b: TriangleOf,
     stats: &mut PairStats,
     merge: &dyn Fn((PointId, ConstructedPoint)) -> (PointId, ConstructedPoint),
-) -> (Topology, Vec<ContactOut>) {
+    stop: &dyn Fn(usize, usize) -> bool,
+) -> Option<(Topology, Vec<ContactOut>)> {
     let mut topo = Topology::new();
     let mut contacts = Vec::new();
-    for &(ta, tb) in pairs {
+    for (k, &(ta, tb)) in pairs.iter().enumerate() {
+        if k.is_multiple_of(CHECK_EVERY) && stop(k, pairs.len()) {
+            return None;
+        }
         let ((pa, va), (pb, vb)) = (a(ta), b(tb));
         let o = intersect_pair(&pa, &va, ta, &pb, &vb, tb);
         stats.degenerate_triangle_pairs += o.degenerate as usize;
@@ -335,5 +387,5 @@ pub(crate) fn build_topology(
     stats.segments = topo.segments.len();
     stats.points = topo.points.len();
     stats.duplicate_segments = topo.duplicate_segments;
-    (topo, contacts)
+    Some((topo, contacts))
 }

@@ -80,8 +80,7 @@ impl<'a> FCells<'a> {
             return Ok(x);
         }
         let built = self.build(c)?;
-        let _ = self.cells[c].set(built);
-        Ok(self.cells[c].get().expect("just set"))
+        Ok(self.cells[c].get_or_init(|| built))
     }
 
     fn build(&self, c: usize) -> Result<FCell, CellError> {

@@ -245,7 +245,17 @@ pub fn split(
                     global(t0 + (t1 - t0) / 2.0)
                 )));
             }
-            cell_of.push(cells.locate(&mid(&m)).expect("inside the domain"));
+            // The exact test says inside; a cell the f64 lookup cannot find is left to the
+            // exact rerun.
+            match cells.locate(&mid(&m)) {
+                Some(c) => cell_of.push(c),
+                None => {
+                    return Err(FloatError::Undecided(format!(
+                        "the cell of the domain curve at t = {}",
+                        global(t0 + (t1 - t0) / 2.0)
+                    )));
+                }
+            }
         }
         for (idx, v) in verts.iter_mut().enumerate() {
             for k in [idx.wrapping_sub(1), idx] {

@@ -102,7 +102,7 @@ impl<'a> TopologyReader<'a> {
     }
     /// The instance `id` when it is (or contains) one of `types`; otherwise the fault is
     /// reported against `owner` and `None` returned.
-    fn expect(
+    fn referenced(
         &mut self,
         owner: (u64, &str),
         id: u64,
@@ -253,7 +253,7 @@ impl<'a> TopologyReader<'a> {
     }
 
     fn bound(&mut self, face: u64, bid: u64) -> Option<Loop> {
-        let (e, ty) = self.expect(
+        let (e, ty) = self.referenced(
             (face, "ADVANCED_FACE"),
             bid,
             "bound",
@@ -271,7 +271,7 @@ impl<'a> TopologyReader<'a> {
             return None;
         };
         let orientation = a.get(2).and_then(Value::enumeration) != Some("F");
-        let (le, lty) = self.expect(
+        let (le, lty) = self.referenced(
             (bid, &ty),
             lid,
             "bound",
@@ -346,7 +346,7 @@ impl<'a> TopologyReader<'a> {
         // Oriented edges on the way, tallied once the edge is read.
         let mut chain = Vec::new();
         for _ in 0..MAX_DEPTH {
-            let (e, ty) = self.expect(
+            let (e, ty) = self.referenced(
                 (from.0, &from.1.clone()),
                 id,
                 "edge",
@@ -391,7 +391,7 @@ impl<'a> TopologyReader<'a> {
         if let Some(i) = self.vertices.get(&vid) {
             return Some(*i);
         }
-        let (e, _) = self.expect((owner, owner_ty), vid, "vertex", &["VERTEX_POINT"], face)?;
+        let (e, _) = self.referenced((owner, owner_ty), vid, "vertex", &["VERTEX_POINT"], face)?;
         let point = e
             .part("VERTEX_POINT")
             .and_then(|a| a.get(1)?.reference())
@@ -542,7 +542,7 @@ impl<'a> TopologyReader<'a> {
                 );
                 return None;
             };
-            let (fe, fty) = self.expect(
+            let (fe, fty) = self.referenced(
                 (id, &ty),
                 fid,
                 "face",
@@ -622,7 +622,7 @@ impl<'a> TopologyReader<'a> {
             );
             return;
         };
-        let Some(_) = self.expect((id, &ty), outer, "outer", &["CLOSED_SHELL"], None) else {
+        let Some(_) = self.referenced((id, &ty), outer, "outer", &["CLOSED_SHELL"], None) else {
             return;
         };
         let Some(outer) = self.shell(outer) else {
@@ -638,7 +638,7 @@ impl<'a> TopologyReader<'a> {
         if let Some(list) = e.part("BREP_WITH_VOIDS").and_then(|a| a.last()?.list()) {
             for v in list.iter().filter_map(Value::reference) {
                 let Some((ve, _)) =
-                    self.expect((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
+                    self.referenced((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
                 else {
                     return;
                 };

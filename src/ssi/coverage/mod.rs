@@ -80,6 +80,9 @@ pub struct CoverageParams {
     /// Boxes examined in all, per face pair (pairs and crossing boxes).
     pub max_boxes: usize,
     pub deadline: Option<Instant>,
+    /// Set from another thread to stop: past it (or the deadline) the pairs not yet examined
+    /// are listed as budget-limited without being examined.
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
 /// Why a pair of parameter boxes is not certified.
@@ -355,6 +358,17 @@ pub fn coverage(
         }
     };
     while let Some((a, b, da, db)) = stack.pop() {
+        if out.pairs_examined.is_multiple_of(256)
+            && (prm.deadline.is_some_and(|t| Instant::now() > t)
+                || prm
+                    .cancel
+                    .as_ref()
+                    .is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed)))
+        {
+            uncertified(&mut out, &a, &b, Reason::Budget, None);
+            out.uncertified += stack.len();
+            break;
+        }
         out.pairs_examined += 1;
         boxes += 1;
         // Past the box or time budget, or with 100 undecided pairs listed already (the pair of
