@@ -15,6 +15,7 @@ pub mod geom;
 pub mod io;
 pub mod model;
 pub mod predicates;
+pub mod reparam;
 pub mod repair;
 pub mod scalar;
 pub mod spline;
