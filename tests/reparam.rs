@@ -50,7 +50,11 @@ fn plane_with_nonuniform_knots_and_weights_becomes_its_chord_length_map() {
     let r = reparametrize(&s, &p).unwrap();
     let rep = &r.report;
     // Before: strongly non-uniform.
-    assert!(rep.spacing_before.max > 3.0 && rep.spacing_before.min < 0.3, "{:?}", rep.spacing_before);
+    assert!(
+        rep.spacing_before.max > 3.0 && rep.spacing_before.min < 0.3,
+        "{:?}",
+        rep.spacing_before
+    );
     // After: the new surface is the analytic chord-length map (4ξ, 2η, 0).
     let mut worst: f64 = 0.0;
     for (xi, eta) in lattice(50) {
@@ -58,7 +62,11 @@ fn plane_with_nonuniform_knots_and_weights_becomes_its_chord_length_map() {
         worst = worst.max((x[0] - 4.0 * xi).hypot(x[1] - 2.0 * eta).hypot(x[2]));
     }
     assert!(worst < 1e-6, "distance to the chord-length map {worst:e}");
-    assert!(rep.spacing_after.max_deviation < 1e-4, "{:?}", rep.spacing_after);
+    assert!(
+        rep.spacing_after.max_deviation < 1e-4,
+        "{:?}",
+        rep.spacing_after
+    );
     assert!(rep.within_tol && rep.deviation.e_max <= p.tol);
     assert!(rep.relaxation.converged && (rep.relaxation.moves as f64) <= rep.relaxation.move_bound);
 }
@@ -104,8 +112,16 @@ fn tilted_plane_with_coupled_distortion() {
         off = off.max(d.abs());
     }
     assert!(off <= p.tol, "off the plane by {off:e}");
-    assert!(rep.spacing_before.max_deviation > 0.5, "{:?}", rep.spacing_before);
-    assert!(rep.spacing_after.max_deviation < 0.05, "{:?}", rep.spacing_after);
+    assert!(
+        rep.spacing_before.max_deviation > 0.5,
+        "{:?}",
+        rep.spacing_before
+    );
+    assert!(
+        rep.spacing_after.max_deviation < 0.05,
+        "{:?}",
+        rep.spacing_after
+    );
     assert!(rep.relaxation.moves > 0 && (rep.relaxation.moves as f64) <= rep.relaxation.move_bound);
     assert!(rep.within_tol, "{:?}", rep.deviation);
 }
@@ -117,7 +133,11 @@ fn tilted_plane_with_coupled_distortion() {
 #[test]
 fn cylinder_patch_with_nonuniform_weights() {
     let (rad, h, rho) = (2.0, 3.0, 5.0);
-    let arc = [([rad, 0.0], 1.0), ([rad, rad], rho * FRAC_1_SQRT_2), ([0.0, rad], rho * rho)];
+    let arc = [
+        ([rad, 0.0], 1.0),
+        ([rad, rad], rho * FRAC_1_SQRT_2),
+        ([0.0, rad], rho * rho),
+    ];
     let zs = [0.0, 0.05, 0.3, h];
     let wz = [1.0, 4.0, 0.5, 1.0];
     let mut pts = vec![];
@@ -156,9 +176,20 @@ fn cylinder_patch_with_nonuniform_weights() {
     }
     assert!(radial <= p.tol, "off the cylinder by {radial:e}");
     // Chord-length targets on an arc differ from arc length by O(Δθ²): a few 1e-3 of r.
-    assert!(to_map < 0.02 * rad, "distance to the chord-length map {to_map:e}");
-    assert!(rep.spacing_before.max_deviation > 1.0, "{:?}", rep.spacing_before);
-    assert!(rep.spacing_after.max_deviation < 0.03, "{:?}", rep.spacing_after);
+    assert!(
+        to_map < 0.02 * rad,
+        "distance to the chord-length map {to_map:e}"
+    );
+    assert!(
+        rep.spacing_before.max_deviation > 1.0,
+        "{:?}",
+        rep.spacing_before
+    );
+    assert!(
+        rep.spacing_after.max_deviation < 0.03,
+        "{:?}",
+        rep.spacing_after
+    );
     assert!(rep.within_tol);
 }
 
@@ -166,7 +197,8 @@ fn cylinder_patch_with_nonuniform_weights() {
 /// pole. It is handled: the pole side takes the opposite side's fractions.
 #[test]
 fn sphere_patch_with_a_pole() {
-    let sph = vericad::spline::construct::sphere(&vericad::spline::construct::Frame::WORLD, 1.5).unwrap();
+    let sph =
+        vericad::spline::construct::sphere(&vericad::spline::construct::Frame::WORLD, 1.5).unwrap();
     let hom = sph.hom.sub_patch(&0.0, &0.25, &0.5, &1.0).unwrap();
     let s = NurbsSurface { hom };
     let p = Params {
@@ -192,7 +224,8 @@ fn sphere_patch_with_a_pole() {
 
 #[test]
 fn full_sphere_with_two_opposite_poles_is_refused() {
-    let s = vericad::spline::construct::sphere(&vericad::spline::construct::Frame::WORLD, 1.0).unwrap();
+    let s =
+        vericad::spline::construct::sphere(&vericad::spline::construct::Frame::WORLD, 1.0).unwrap();
     assert!(matches!(
         reparametrize(&s, &Params::default()),
         Err(ReparamError::Collapsed(_))
@@ -201,8 +234,13 @@ fn full_sphere_with_two_opposite_poles_is_refused() {
 
 #[test]
 fn closed_cylinder_stays_closed() {
-    let s = vericad::spline::construct::cylinder(&vericad::spline::construct::Frame::WORLD, 1.0, 0.0, 2.0)
-        .unwrap();
+    let s = vericad::spline::construct::cylinder(
+        &vericad::spline::construct::Frame::WORLD,
+        1.0,
+        0.0,
+        2.0,
+    )
+    .unwrap();
     let p = Params {
         tol: 1e-4,
         ..Params::default()
@@ -213,7 +251,10 @@ fn closed_cylinder_stays_closed() {
         let eta = k as f64 / 10.0;
         let a = r.surface.eval(&0.0, &eta);
         let b = r.surface.eval(&1.0, &eta);
-        assert!(vericad::geom::dist(&a, &b) < 1e-12, "seam opens at η = {eta}");
+        assert!(
+            vericad::geom::dist(&a, &b) < 1e-12,
+            "seam opens at η = {eta}"
+        );
     }
     let mut off: f64 = 0.0;
     for (xi, eta) in lattice(60) {
@@ -232,20 +273,31 @@ fn bad_tolerances_are_refused() {
             tol,
             ..Params::default()
         };
-        assert!(matches!(reparametrize(&s, &p), Err(ReparamError::Tolerance(_))), "{tol}");
+        assert!(
+            matches!(reparametrize(&s, &p), Err(ReparamError::Tolerance(_))),
+            "{tol}"
+        );
     }
     let p = Params {
         delta: 0.0,
         ..Params::default()
     };
-    assert!(matches!(reparametrize(&s, &p), Err(ReparamError::Parameter { name: "delta", .. })));
+    assert!(matches!(
+        reparametrize(&s, &p),
+        Err(ReparamError::Parameter { name: "delta", .. })
+    ));
 }
 
 #[test]
 fn tolerance_not_reached_is_reported_not_hidden() {
     // A quarter cylinder at ε = 1e-9 with no line insertion allowed.
-    let s = vericad::spline::construct::cylinder(&vericad::spline::construct::Frame::WORLD, 1.0, 0.0, 1.0)
-        .unwrap();
+    let s = vericad::spline::construct::cylinder(
+        &vericad::spline::construct::Frame::WORLD,
+        1.0,
+        0.0,
+        1.0,
+    )
+    .unwrap();
     let p = Params {
         tol: 1e-12,
         max_pieces: 8,
@@ -261,10 +313,13 @@ fn tolerance_not_reached_is_reported_not_hidden() {
 /// the table in docs/reparam.md is this output.
 #[test]
 fn t20_faces() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/gmsh-t20_data.step");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/gmsh-t20_data.step");
     let m = vericad::io::read_model(&path).unwrap();
     let p = Params::default();
-    eprintln!("| face | kind | ctrl before | spacing before | spacing after | E_max | ctrl after | lines | s |");
+    eprintln!(
+        "| face | kind | ctrl before | spacing before | spacing after | E_max | ctrl after | lines | s |"
+    );
     for (k, f) in m.surfaces.iter().enumerate() {
         match reparametrize(&f.nurbs, &p) {
             Ok(r) => {
@@ -292,36 +347,90 @@ fn t20_faces() {
     }
 }
 
+fn vericad(args: &[&str]) -> (i32, String, String) {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into(),
+        String::from_utf8_lossy(&o.stderr).into(),
+    )
+}
+
 #[test]
-#[ignore]
-fn scratch_timing() {
-    let o = [1.0, -2.0, 0.5];
-    let e1 = [0.6, 0.8, 0.0];
-    let e2 = [0.0, 0.0, 1.0];
-    let mut pts = vec![];
-    let mut w = vec![];
-    for i in 0..5 {
-        for j in 0..5 {
-            let (a, b) = (i as f64 / 4.0, j as f64 / 4.0);
-            let x = 3.0 * (a * a * (0.4 + 0.6 * b) + 0.1 * a * (1.0 - b));
-            let y = 2.0 * (b * b * (0.5 + 0.5 * a) + 0.2 * b * (1.0 - a));
-            pts.push([
-                o[0] + x * e1[0] + y * e2[0],
-                o[1] + x * e1[1] + y * e2[1],
-                o[2] + x * e1[2] + y * e2[2],
-            ]);
-            w.push(1.0 + 2.0 * a * (1.0 - b));
-        }
-    }
-    let k = vec![0.0, 0.0, 0.0, 0.0, 0.3, 1.0, 1.0, 1.0, 1.0];
-    let s = NurbsSurface::new(k.clone(), 3, k, 3, 5, 5, pts, w).unwrap();
-    let p = Params { tol: 1e-5, ..Params::default() };
-    let t0 = std::time::Instant::now();
-    let r = vericad::reparam::reparametrize_with_progress(&s, &p, &mut |st, n| {
-        eprintln!("{:8.3} s {st} {n}", t0.elapsed().as_secs_f64())
-    })
-    .unwrap();
-    eprintln!("{:#?}", r.report.relaxation);
-    eprintln!("{:#?}", r.report.deviation);
-    eprintln!("lines {:?} -> {:?}; spacing {} {} -> {} {}", r.report.lines_initial, r.report.lines_final, r.report.spacing_before.min, r.report.spacing_before.max, r.report.spacing_after.min, r.report.spacing_after.max);
+fn cli_exit_codes_and_outputs() {
+    let dir = std::env::temp_dir().join(format!("vericad-reparam-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/public/gmsh-t20_data.step"
+    );
+    let face = format!("{data}:3");
+    let f = |n: &str| dir.join(n).display().to_string();
+    // Bad tolerance: exit 2 before any work.
+    let (code, _, err) = vericad(&["reparam", &face, "--tol", "-1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("tolerance"), "{err}");
+    let (code, _, err) = vericad(&["reparam", &face, "--tol", "NaN"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = vericad(&["reparam", &format!("{data}:999")]);
+    assert_eq!(code, 2, "{err}");
+    // Success: every output written, report says within tol.
+    let (code, out, err) = vericad(&[
+        "reparam",
+        &face,
+        "--tol",
+        "1e-4",
+        "--out",
+        &f("new.igs"),
+        "--report",
+        &f("r.json"),
+        "--svg",
+        &f("g.svg"),
+        "--vtk",
+        &f("g.vtp"),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let rep: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(f("r.json")).unwrap()).unwrap();
+    assert_eq!(rep["within_tol"], true);
+    assert!(
+        rep["faces"][0]["result"]["deviation"]["e_max"]
+            .as_f64()
+            .unwrap()
+            <= 1e-4
+    );
+    let back = vericad::io::read_model(std::path::Path::new(&f("new.igs"))).unwrap();
+    assert_eq!(back.surfaces.len(), 1);
+    assert!(
+        std::fs::read_to_string(f("g.svg"))
+            .unwrap()
+            .contains("<polyline")
+    );
+    assert!(
+        std::fs::read_to_string(f("g.vtp"))
+            .unwrap()
+            .contains("spacing_ratio")
+    );
+    // ε not reached within the allowed lines: exit 3, and the report says so.
+    let (code, out, _) = vericad(&[
+        "reparam",
+        &face,
+        "--tol",
+        "1e-12",
+        "--max-lines",
+        "0",
+        "--json",
+    ]);
+    assert_eq!(code, 3, "{out}");
+    assert!(
+        out.contains("\"within_tol\": false") || out.contains("\"within_tol\":false"),
+        "{out}"
+    );
+    // An unwritable output is refused before the work.
+    let (code, _, err) = vericad(&["reparam", &face, "--out", "/nonexistent-dir/x.igs"]);
+    assert_eq!(code, 1, "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

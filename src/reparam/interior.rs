@@ -157,7 +157,9 @@ impl Grid {
 
     /// `P`: the sum of the penalties of all interior points.
     pub fn total_penalty(&self) -> f64 {
-        self.interior_points().map(|(i, j)| self.penalty(i, j, None)).sum()
+        self.interior_points()
+            .map(|(i, j)| self.penalty(i, j, None))
+            .sum()
     }
 
     /// φ: the domain point of S for parameters `(ξ, η)` of the new surface, bilinear in each
@@ -201,7 +203,10 @@ impl Grid {
                             }
                         })
                         .collect();
-                    let xs = col.iter().map(|&p| eval(s, p)).collect::<Result<Vec<_>, _>>()?;
+                    let xs = col
+                        .iter()
+                        .map(|&p| eval(s, p))
+                        .collect::<Result<Vec<_>, _>>()?;
                     self.xi.insert(k + 1, f);
                     self.uv.insert(k + 1, col);
                     self.x.insert(k + 1, xs);
@@ -250,7 +255,11 @@ const LINE_SAMPLES: usize = 16;
 /// `1e-12` of the domain. Points stay on S (they move in the domain). An addition to the
 /// paper: it puts the relaxation's start near the target, line by line, so that the
 /// relaxation (which propagates one neighbour at a time) only polishes.
-pub fn redistribute(s: &NurbsSurface<f64, 3>, g: &mut Grid, sweeps: usize) -> Result<(), ReparamError> {
+pub fn redistribute(
+    s: &NurbsSurface<f64, 3>,
+    g: &mut Grid,
+    sweeps: usize,
+) -> Result<(), ReparamError> {
     let (u0, u1, v0, v1) = s.hom.domain();
     let (n, m) = (g.xi.len(), g.eta.len());
     for _ in 0..sweeps {
@@ -265,12 +274,19 @@ pub fn redistribute(s: &NurbsSurface<f64, 3>, g: &mut Grid, sweeps: usize) -> Re
                 for k in 0..len - 1 {
                     let (a, b) = (idx(k), idx(k + 1));
                     for q in 0..LINE_SAMPLES {
-                        dom.push(lerp2(g.uv[a.0][a.1], g.uv[b.0][b.1], q as f64 / LINE_SAMPLES as f64));
+                        dom.push(lerp2(
+                            g.uv[a.0][a.1],
+                            g.uv[b.0][b.1],
+                            q as f64 / LINE_SAMPLES as f64,
+                        ));
                     }
                 }
                 let last = idx(len - 1);
                 dom.push(g.uv[last.0][last.1]);
-                let pts = dom.iter().map(|&p| eval(s, p)).collect::<Result<Vec<_>, _>>()?;
+                let pts = dom
+                    .iter()
+                    .map(|&p| eval(s, p))
+                    .collect::<Result<Vec<_>, _>>()?;
                 let mut cum = vec![0.0];
                 for w in pts.windows(2) {
                     cum.push(cum.last().unwrap_or(&0.0) + dist(&w[0], &w[1]));
@@ -286,12 +302,20 @@ pub fn redistribute(s: &NurbsSurface<f64, 3>, g: &mut Grid, sweeps: usize) -> Re
                         q += 1;
                     }
                     let span = cum[q + 1] - cum[q];
-                    let a = if span > 0.0 { ((targets[k] - cum[q]) / span).clamp(0.0, 1.0) } else { 0.0 };
+                    let a = if span > 0.0 {
+                        ((targets[k] - cum[q]) / span).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
                     let mut p = lerp2(dom[q], dom[q + 1], a);
                     p = [p[0].clamp(u0, u1), p[1].clamp(v0, v1)];
                     let (i, j) = idx(k);
                     let old = g.uv[i][j];
-                    moved = moved.max(((p[0] - old[0]) / (u1 - u0)).abs().max(((p[1] - old[1]) / (v1 - v0)).abs()));
+                    moved = moved.max(
+                        ((p[0] - old[0]) / (u1 - u0))
+                            .abs()
+                            .max(((p[1] - old[1]) / (v1 - v0)).abs()),
+                    );
                     g.uv[i][j] = p;
                     g.x[i][j] = eval(s, p)?;
                 }
@@ -358,40 +382,64 @@ fn newton(
         }
         let dl = c.sub(a).scale(&(1.0 / l));
         let dr = c.sub(b).scale(&(1.0 / r));
-        let grad = dl.scale(&r).sub(&dr.scale(&l)).scale(&(1.0 / ((l + r) * (l + r))));
+        let grad = dl
+            .scale(&r)
+            .sub(&dr.scale(&l))
+            .scale(&(1.0 / ((l + r) * (l + r))));
         Some((l / (l + r) - target, grad))
     };
     // Residual l/(l+r) − target of a neighbour y whose first distance l = |y − y_prev| is
     // fixed and second r = |c − y| moves (`first = false`), or whose first distance
     // l = |y − c| moves and second r = |y_next − y| is fixed (`first = true`).
-    let nbr = |y: &[f64; 3], other: &[f64; 3], target: f64, first: bool| -> Option<(f64, [f64; 3])> {
-        let dc = dist(&c, y);
-        let fixed = dist(y, other);
-        if dc <= 0.0 || fixed <= 0.0 {
-            return None;
-        }
-        let e = c.sub(y).scale(&(1.0 / dc));
-        let t = dc + fixed;
-        Some(if first {
-            (dc / t - target, e.scale(&(fixed / (t * t))))
-        } else {
-            (fixed / t - target, e.scale(&(-fixed / (t * t))))
-        })
-    };
+    let nbr =
+        |y: &[f64; 3], other: &[f64; 3], target: f64, first: bool| -> Option<(f64, [f64; 3])> {
+            let dc = dist(&c, y);
+            let fixed = dist(y, other);
+            if dc <= 0.0 || fixed <= 0.0 {
+                return None;
+            }
+            let e = c.sub(y).scale(&(1.0 / dc));
+            let t = dc + fixed;
+            Some(if first {
+                (dc / t - target, e.scale(&(fixed / (t * t))))
+            } else {
+                (fixed / t - target, e.scale(&(-fixed / (t * t))))
+            })
+        };
     let ratio = |t: &[f64], k: usize| (t[k] - t[k - 1]) / (t[k + 1] - t[k - 1]);
     res.push(near(&g.x[i - 1][j], &g.x[i + 1][j], ratio(&g.xi, i))?);
     res.push(near(&g.x[i][j - 1], &g.x[i][j + 1], ratio(&g.eta, j))?);
     if i >= 2 && g.is_interior(i - 1, j) {
-        res.extend(nbr(&g.x[i - 1][j], &g.x[i - 2][j], ratio(&g.xi, i - 1), false));
+        res.extend(nbr(
+            &g.x[i - 1][j],
+            &g.x[i - 2][j],
+            ratio(&g.xi, i - 1),
+            false,
+        ));
     }
     if i + 2 < n && g.is_interior(i + 1, j) {
-        res.extend(nbr(&g.x[i + 1][j], &g.x[i + 2][j], ratio(&g.xi, i + 1), true));
+        res.extend(nbr(
+            &g.x[i + 1][j],
+            &g.x[i + 2][j],
+            ratio(&g.xi, i + 1),
+            true,
+        ));
     }
     if j >= 2 && g.is_interior(i, j - 1) {
-        res.extend(nbr(&g.x[i][j - 1], &g.x[i][j - 2], ratio(&g.eta, j - 1), false));
+        res.extend(nbr(
+            &g.x[i][j - 1],
+            &g.x[i][j - 2],
+            ratio(&g.eta, j - 1),
+            false,
+        ));
     }
     if j + 2 < m && g.is_interior(i, j + 1) {
-        res.extend(nbr(&g.x[i][j + 1], &g.x[i][j + 2], ratio(&g.eta, j + 1), true));
+        res.extend(nbr(
+            &g.x[i][j + 1],
+            &g.x[i][j + 2],
+            ratio(&g.eta, j + 1),
+            true,
+        ));
     }
     let (mut a11, mut a12, mut a22, mut b1, mut b2) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for (f, gr) in &res {
@@ -520,7 +568,14 @@ pub fn relax(
                     .collect();
                 let dec = old - (own + others.iter().sum::<f64>());
                 let len = (((q[0] - c[0]) / du).powi(2) + ((q[1] - c[1]) / dv).powi(2)).sqrt();
-                Some(Candidate { dec, q, xq, own, others, len })
+                Some(Candidate {
+                    dec,
+                    q,
+                    xq,
+                    own,
+                    others,
+                    len,
+                })
             };
             // First the Newton step on the point's own two ratio conditions (a finite move
             // like any other, accepted by the same rule), then the pattern of 8 steps.

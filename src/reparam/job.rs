@@ -84,7 +84,10 @@ fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), JobError> {
 /// Run the job on `spec` (`FILE` or `FILE:FACE`).
 pub fn run(spec: &str, params: &Params, out: Outputs) -> Result<JobReport, JobError> {
     params.validate().map_err(JobError::Params)?;
-    for p in [out.model, out.report, out.svg, out.vtk].into_iter().flatten() {
+    for p in [out.model, out.report, out.svg, out.vtk]
+        .into_iter()
+        .flatten()
+    {
         crate::io::check_writable(p)
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
     }

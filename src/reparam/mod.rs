@@ -111,9 +111,7 @@ impl Params {
         if !(self.tol > 0.0 && self.tol.is_finite()) {
             return Err(ReparamError::Tolerance(self.tol));
         }
-        let bad = |name, value: f64, why| {
-            Err(ReparamError::Parameter { name, value, why })
-        };
+        let bad = |name, value: f64, why| Err(ReparamError::Parameter { name, value, why });
         if !(self.max_turn > 0.0 && self.max_turn <= std::f64::consts::PI) {
             return bad("max_turn", self.max_turn, "must lie in (0, π]");
         }
@@ -145,7 +143,11 @@ impl Params {
             );
         }
         if self.quality_grid < 2 || self.quality_grid > 1000 {
-            return bad("quality_grid", self.quality_grid as f64, "must lie in 2..=1000");
+            return bad(
+                "quality_grid",
+                self.quality_grid as f64,
+                "must lie in 2..=1000",
+            );
         }
         Ok(())
     }
@@ -258,10 +260,18 @@ pub fn reparametrize_with_progress(
         .map(|c| (!c.pole).then(|| c.interpolation_fractions(params)))
         .collect();
     // Step 2: reconcile v = v0 with v = v1 (→ ξ) and u = u0 with u = u1 (→ η).
-    let xi = reconcile::reconcile(fractions[0].as_deref(), fractions[1].as_deref(), params.merge)
-        .ok_or(ReparamError::Collapsed("v (the borders v = v0 and v = v1)"))?;
-    let eta = reconcile::reconcile(fractions[2].as_deref(), fractions[3].as_deref(), params.merge)
-        .ok_or(ReparamError::Collapsed("u (the borders u = u0 and u = u1)"))?;
+    let xi = reconcile::reconcile(
+        fractions[0].as_deref(),
+        fractions[1].as_deref(),
+        params.merge,
+    )
+    .ok_or(ReparamError::Collapsed("v (the borders v = v0 and v = v1)"))?;
+    let eta = reconcile::reconcile(
+        fractions[2].as_deref(),
+        fractions[3].as_deref(),
+        params.merge,
+    )
+    .ok_or(ReparamError::Collapsed("u (the borders u = u0 and u = u1)"))?;
     let lines_initial = [xi.len(), eta.len()];
     // Step 3: interior points.
     let mut grid = interior::Grid::initial(s, &sides, xi, eta)?;

@@ -147,7 +147,9 @@ pub fn svg(panels: &[Panel], n: usize) -> String {
 }
 
 fn escape(t: &str) -> String {
-    t.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    t.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// The VTK PolyData document for faces `(face index, S, R)` (see the module documentation;
@@ -179,7 +181,11 @@ pub fn vtk(faces: &[(usize, &NurbsSurface<f64, 3>, &NurbsSurface<f64, 3>)], n: u
             }
         }
     }
-    for (name, values) in [("face", face), ("surface", surface), ("spacing_ratio", ratio)] {
+    for (name, values) in [
+        ("face", face),
+        ("surface", surface),
+        ("spacing_ratio", ratio),
+    ] {
         pd.cell_data.push(Array {
             name: name.into(),
             values,

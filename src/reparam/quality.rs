@@ -12,7 +12,19 @@ use serde::Serialize;
 
 /// Histogram bin edges of the spacing ratio.
 pub const BINS: [f64; 13] = [
-    0.0, 0.5, 0.8, 0.9, 0.95, 0.98, 1.02, 1.05, 1.1, 1.25, 2.0, 5.0, f64::INFINITY,
+    0.0,
+    0.5,
+    0.8,
+    0.9,
+    0.95,
+    0.98,
+    1.02,
+    1.05,
+    1.1,
+    1.25,
+    2.0,
+    5.0,
+    f64::INFINITY,
 ];
 
 /// One histogram bin `[lo, hi)`.
@@ -52,7 +64,10 @@ pub fn ratios(s: &NurbsSurface<f64, 3>, n: usize) -> Vec<Vec<f64>> {
         })
         .collect();
     let line = |p: Vec<[f64; 3]>| {
-        let d: Vec<f64> = p.windows(2).map(|w| crate::geom::dist(&w[0], &w[1])).collect();
+        let d: Vec<f64> = p
+            .windows(2)
+            .map(|w| crate::geom::dist(&w[0], &w[1]))
+            .collect();
         let total: f64 = d.iter().sum();
         if total > 0.0 && total.is_finite() {
             d.iter().map(|x| x * n as f64 / total).collect()
@@ -130,7 +145,14 @@ mod tests {
             1,
             3,
             2,
-            vec![[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0]],
+            vec![
+                [0.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ],
             vec![1.0; 6],
         )
         .unwrap();

@@ -24,7 +24,10 @@ pub fn reconcile(a: Option<&[f64]>, b: Option<&[f64]>, merge: f64) -> Option<Vec
     if sets.is_empty() {
         return None;
     }
-    let gap = sets.iter().map(|f| min_gap(f)).fold(f64::INFINITY, f64::min);
+    let gap = sets
+        .iter()
+        .map(|f| min_gap(f))
+        .fold(f64::INFINITY, f64::min);
     let tol = merge * gap;
     let mut all: Vec<f64> = sets.iter().flat_map(|f| f.iter().copied()).collect();
     all.sort_by(f64::total_cmp);

@@ -34,6 +34,15 @@ pub fn interpolate(g: &Grid) -> Result<NurbsSurface<f64, 3>, ReparamError> {
         net.extend_from_slice(&c.control);
         kv = c.knots.knots().to_vec();
     }
-    NurbsSurface::new(ku, 3.min(n - 1), kv, 3.min(m - 1), n, m, net, vec![1.0; n * m])
-        .map_err(fail)
+    NurbsSurface::new(
+        ku,
+        3.min(n - 1),
+        kv,
+        3.min(m - 1),
+        n,
+        m,
+        net,
+        vec![1.0; n * m],
+    )
+    .map_err(fail)
 }
