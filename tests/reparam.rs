@@ -49,6 +49,7 @@ fn plane_with_nonuniform_knots_and_weights_becomes_its_chord_length_map() {
     };
     let r = reparametrize(&s, &p).unwrap();
     let rep = &r.report;
+    eprintln!("separable plane: {rep:#?}");
     // Before: strongly non-uniform.
     assert!(
         rep.spacing_before.max > 3.0 && rep.spacing_before.min < 0.3,

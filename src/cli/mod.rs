@@ -214,7 +214,7 @@ pub enum Command {
         #[arg(long)]
         vtk: Option<PathBuf>,
         /// Most parameter lines inserted per face.
-        #[arg(long, default_value_t = 120)]
+        #[arg(long, default_value_t = 500)]
         max_lines: usize,
         #[arg(long)]
         json: bool,

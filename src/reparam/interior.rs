@@ -2,7 +2,10 @@
 //!
 //! **Initial guess.** The parameters of the boundary points are marked on the domain
 //! rectangle of S, corresponding points of opposite borders are joined by straight lines,
-//! and the line intersections are the first interior points ([`Grid::initial`]).
+//! and the line intersections are the first interior points ([`Grid::initial`]). Then (not
+//! in the paper) [`redistribute`] moves the points of each row and column along it to their
+//! arc-length fractions: without it the relaxation, which propagates one neighbour at a
+//! time, needed millions of moves on a 13 × 16 grid.
 //!
 //! **Relaxation** ([`relax`]). Each interior point `x_ij = S(u_ij, v_ij)` has the *penalty*
 //! `p_ij = (d_l/(d_l+d_r) − α_i)² + (d_d/(d_d+d_u) − β_j)²`, where `d_l, d_r, d_d, d_u` are
@@ -10,8 +13,9 @@
 //! `β_j` likewise with η, are the ratios the chord-length parametrization asks (EQUATIONS.md
 //! §A, property (1): parameter intervals proportional to chord lengths). `p_ij = 0` at every
 //! point exactly when every row and column of the grid is chord-length spaced at `(ξ, η)`.
-//! Points move in the domain only (so their images stay on S), by a pattern search of
-//! finite steps; points are processed in descending penalty; a point is visited again only
+//! Points move in the domain only (so their images stay on S), by finite steps (first the
+//! Gauss–Newton step of the local penalty sum, then a pattern of 8 steps, halving); points
+//! are processed in descending penalty; a point is visited again only
 //! if a neighbour moved since its last visit; the relaxation stops when no point moves.
 //!
 //! **Termination (a theorem).** Let `P` be the sum of the stored penalties (each in
@@ -22,8 +26,8 @@
 //! exact `P` drops by at least `δ − γ` with `γ = 2·10⁻¹⁴ > 91u`; since `P ≥ 0`, the number of
 //! accepted moves is at most `P_start / (δ − γ)` ([`RelaxStats::move_bound`]). A point is
 //! dirty initially or after a neighbour's visit moved it, so visits are at most
-//! `#interior + 4 · moves`, and a visit ends after at most `log₂(h_0 / h_min) + 1` failed
-//! steps past its moves. The move budget [`Params::max_moves`] is enforced anyway; reaching
+//! `#interior + 4 · moves`, and a visit ends after at most 11 failed step halvings (the step
+//! floor is `max(10⁻³ h_0, h_min)`) past its moves. The move budget [`Params::max_moves`] is enforced anyway; reaching
 //! it marks the relaxation not converged.
 
 use super::boundary::BoundaryCurve;

@@ -99,7 +99,7 @@ impl Default for Params {
             sweeps: 30,
             min_step: 1e-9,
             samples_per_cell: 4,
-            max_lines: 120,
+            max_lines: 500,
             quality_grid: 20,
         }
     }

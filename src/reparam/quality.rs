@@ -5,7 +5,8 @@
 //! `ρ_k = (|x_{k+1} − x_k| / Σ_l |x_{l+1} − x_l|) / (1 / N)`: the physical spacing over the
 //! parametric spacing, each normalised by the line's total. `ρ ≡ 1` on a line exactly when
 //! its uniform parameter steps have equal chords (EQUATIONS.md §A, property (1)). Lines of
-//! zero length (a pole) are skipped and counted.
+//! zero length (a pole: shorter than 1e-9 of the longest line, the rest being rounding noise)
+//! are skipped and counted.
 
 use crate::spline::NurbsSurface;
 use serde::Serialize;
@@ -63,26 +64,36 @@ pub fn ratios(s: &NurbsSurface<f64, 3>, n: usize) -> Vec<Vec<f64>> {
                 .collect()
         })
         .collect();
-    let line = |p: Vec<[f64; 3]>| {
-        let d: Vec<f64> = p
-            .windows(2)
-            .map(|w| crate::geom::dist(&w[0], &w[1]))
-            .collect();
-        let total: f64 = d.iter().sum();
-        if total > 0.0 && total.is_finite() {
-            d.iter().map(|x| x * n as f64 / total).collect()
-        } else {
-            vec![]
-        }
-    };
-    let mut out = vec![];
-    for i in 0..=n {
-        out.push(line(pts[i].clone()));
-    }
+    let mut lines: Vec<Vec<[f64; 3]>> = pts.clone();
     for j in 0..=n {
-        out.push(line((0..=n).map(|i| pts[i][j]).collect()));
+        lines.push((0..=n).map(|i| pts[i][j]).collect());
     }
-    out
+    let steps: Vec<Vec<f64>> = lines
+        .iter()
+        .map(|p| {
+            p.windows(2)
+                .map(|w| crate::geom::dist(&w[0], &w[1]))
+                .collect()
+        })
+        .collect();
+    let totals: Vec<f64> = steps.iter().map(|d| d.iter().sum()).collect();
+    // A line shorter than 1e-9 of the longest is a pole (its length is rounding noise).
+    let longest = totals
+        .iter()
+        .copied()
+        .filter(|t| t.is_finite())
+        .fold(0.0, f64::max);
+    steps
+        .iter()
+        .zip(&totals)
+        .map(|(d, &total)| {
+            if total > 1e-9 * longest && total.is_finite() {
+                d.iter().map(|x| x * n as f64 / total).collect()
+            } else {
+                vec![]
+            }
+        })
+        .collect()
 }
 
 /// The statistics of [`ratios`].
