@@ -435,3 +435,51 @@ fn cli_exit_codes_and_outputs() {
     assert_eq!(code, 1, "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The benchmark's 50 × 50 net (clustered knots t², weights 0.5..2): the spacing ratio goes
+/// to within 1% of 1 and E_max ≤ ε.
+#[test]
+fn fifty_by_fifty_net() {
+    let n = 50;
+    let inner = n - 3;
+    let mut k = vec![0.0; 4];
+    for i in 1..inner {
+        let t = i as f64 / inner as f64;
+        k.push(t * t);
+    }
+    k.extend([1.0; 4]);
+    let mut pts = vec![];
+    let mut w = vec![];
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
+            pts.push([10.0 * a, 8.0 * b, 0.8 * (3.0 * a).sin() * (2.0 * b).cos()]);
+            w.push(1.25 + 0.75 * (7.0 * a + 5.0 * b).sin());
+        }
+    }
+    let s = NurbsSurface::new(k.clone(), 3, k, 3, n, n, pts, w).unwrap();
+    let p = Params {
+        tol: 1e-3,
+        ..Params::default()
+    };
+    let r = reparametrize(&s, &p).unwrap();
+    let q = &r.report;
+    eprintln!(
+        "50x50: spacing {:.3}–{:.3} → {:.4}–{:.4}, E_max {:.2e}, {}×{} control points, {:.3} s",
+        q.spacing_before.min,
+        q.spacing_before.max,
+        q.spacing_after.min,
+        q.spacing_after.max,
+        q.deviation.e_max,
+        q.control_points_after[0],
+        q.control_points_after[1],
+        q.seconds
+    );
+    assert!(q.spacing_before.max_deviation > 0.5);
+    assert!(
+        q.spacing_after.max_deviation < 0.01,
+        "{:?}",
+        q.spacing_after
+    );
+    assert!(q.within_tol);
+}

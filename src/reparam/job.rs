@@ -91,8 +91,12 @@ pub fn run(spec: &str, params: &Params, out: Outputs) -> Result<JobReport, JobEr
         crate::io::check_writable(p)
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
     }
+    use crate::io::Format;
     if let Some(p) = out.model
-        && crate::io::format_of(p).is_none()
+        && !matches!(
+            crate::io::format_of(p),
+            Some(Format::Iges | Format::Step | Format::Json)
+        )
     {
         return Err(JobError::Select(
             p.display().to_string(),

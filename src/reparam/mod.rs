@@ -163,7 +163,9 @@ pub struct Relaxation {
     /// The proven bound on accepted moves: `Σ_rounds P_start / (δ − γ)` (see
     /// [`interior::relax`]).
     pub move_bound: f64,
-    /// Total penalty of the grid before the first and after the last relaxation.
+    /// Total penalty `P` of the paper's initial guess (domain line intersections).
+    pub penalty_line_intersections: f64,
+    /// `P` before the first relaxation (after the row/column sweeps) and after the last.
     pub penalty_initial: f64,
     pub penalty_final: f64,
     /// Every relaxation stopped because no point could move, not by the move budget.
@@ -277,6 +279,7 @@ pub fn reparametrize_with_progress(
     let mut grid = interior::Grid::initial(s, &sides, xi, eta)?;
     let mut relaxation = Relaxation {
         converged: true,
+        penalty_line_intersections: grid.total_penalty(),
         ..Default::default()
     };
     interior::redistribute(s, &mut grid, params.sweeps)?;
