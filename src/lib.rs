@@ -17,6 +17,7 @@ pub mod io;
 pub mod model;
 pub mod predicates;
 pub mod repair;
+pub mod reparam;
 pub mod scalar;
 pub mod spline;
 pub mod ssi;

@@ -196,6 +196,34 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Reparametrize NURBS faces to chord length within a tolerance (RCA, Razdan): boundary
+    /// points by arc length and curvature, reconciled opposite boundaries, relaxed interior
+    /// points, a C2 bicubic, and parameter lines inserted until the measured E_max ≤ tol.
+    /// Exit 0 when every face is within tol at the samples, 3 when some face is not.
+    Reparam {
+        /// Model file, optionally `:FACE` (default: every face).
+        model: String,
+        /// ε: largest deviation E_max between the new and the given surface (model units).
+        #[arg(long, default_value_t = 1e-4, allow_hyphen_values = true)]
+        tol: f64,
+        /// The new surfaces (format from the extension: .igs, .step, .json).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// JSON report.
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// SVG: a uniform parameter grid on the given and the new surface, side by side.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// VTK PolyData (.vtp): both surfaces and grids, with spacing ratios.
+        #[arg(long)]
+        vtk: Option<PathBuf>,
+        /// Most parameter lines inserted per face.
+        #[arg(long, default_value_t = 500)]
+        max_lines: usize,
+        #[arg(long)]
+        json: bool,
+    },
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file (native JSON).
@@ -419,6 +447,39 @@ pub fn run(cli: Cli) -> i32 {
                 json,
                 |e| e.is_bad_input(),
             )
+        }
+        Command::Reparam {
+            model,
+            tol,
+            out,
+            report,
+            svg,
+            vtk,
+            max_lines,
+            json,
+        } => {
+            let params = crate::reparam::Params {
+                tol,
+                max_lines,
+                ..Default::default()
+            };
+            let outputs = crate::reparam::job::Outputs {
+                model: out.as_deref(),
+                report: report.as_deref(),
+                svg: svg.as_deref(),
+                vtk: vtk.as_deref(),
+            };
+            match crate::reparam::job::run(&model, &params, outputs) {
+                Ok(r) => {
+                    print(&r, json);
+                    if r.within_tol { 0 } else { EXIT_UNCERTIFIED }
+                }
+                Err(e) if e.is_bad_input() => bad(e),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    EXIT_FAILURE
+                }
+            }
         }
         Command::Convert {
             input,

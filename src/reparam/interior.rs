@@ -1,0 +1,634 @@
+//! Step 3 of the RCA parametrization (§2, "Finding interior interpolation points").
+//!
+//! **Initial guess.** The parameters of the boundary points are marked on the domain
+//! rectangle of S, corresponding points of opposite borders are joined by straight lines,
+//! and the line intersections are the first interior points ([`Grid::initial`]). Then (not
+//! in the paper) [`redistribute`] moves the points of each row and column along it to their
+//! arc-length fractions: without it the relaxation, which propagates one neighbour at a
+//! time, needed millions of moves on a 13 × 16 grid.
+//!
+//! **Relaxation** ([`relax`]). Each interior point `x_ij = S(u_ij, v_ij)` has the *penalty*
+//! `p_ij = (d_l/(d_l+d_r) − α_i)² + (d_d/(d_d+d_u) − β_j)²`, where `d_l, d_r, d_d, d_u` are
+//! the distances to its four neighbours and `α_i = (ξ_i − ξ_{i−1})/(ξ_{i+1} − ξ_{i−1})`,
+//! `β_j` likewise with η, are the ratios the chord-length parametrization asks (EQUATIONS.md
+//! §A, property (1): parameter intervals proportional to chord lengths). `p_ij = 0` at every
+//! point exactly when every row and column of the grid is chord-length spaced at `(ξ, η)`.
+//! Points move in the domain only (so their images stay on S), by finite steps (first the
+//! Gauss–Newton step of the local penalty sum, then a pattern of 8 steps, halving); points
+//! are processed in descending penalty; a point is visited again only
+//! if a neighbour moved since its last visit; the relaxation stops when no point moves.
+//!
+//! **Termination (a theorem).** Let `P` be the sum of the stored penalties (each in
+//! `[0, 2]`). A move of `x_ij` changes only `p_ij` and the penalties of its (at most four)
+//! interior neighbours, and it is accepted only when the floating-point sum of those (≤ 5)
+//! stored values drops by at least `δ`. Each such sum of non-negative terms ≤ 2.02 has a
+//! rounding error below `4u · 10.1`, the difference one below `u · 10.1` (`u = 2⁻⁵³`), so the
+//! exact `P` drops by at least `δ − γ` with `γ = 2·10⁻¹⁴ > 91u`; since `P ≥ 0`, the number of
+//! accepted moves is at most `P_start / (δ − γ)` ([`RelaxStats::move_bound`]). A point is
+//! dirty initially or after a neighbour's visit moved it, so visits are at most
+//! `#interior + 4 · moves`, and a visit ends after at most 11 failed step halvings (the step
+//! floor is `max(10⁻³ h_0, h_min)`) past its moves. The move budget [`Params::max_moves`] is enforced anyway; reaching
+//! it marks the relaxation not converged.
+
+use super::boundary::BoundaryCurve;
+use super::{Params, ReparamError};
+use crate::geom::dist;
+use crate::spline::NurbsSurface;
+use std::collections::BinaryHeap;
+
+/// Rounding allowance of the penalty decrease test (see the module documentation).
+pub const GAMMA: f64 = 2e-14;
+
+/// The grid of interpolation points: parameters `ξ_i` (u) and `η_j` (v) of the new
+/// surface, the domain points `(u, v)` of S and their images `x = S(u, v)`, indexed `[i][j]`.
+#[derive(Clone, Debug)]
+pub struct Grid {
+    pub xi: Vec<f64>,
+    pub eta: Vec<f64>,
+    pub uv: Vec<Vec<[f64; 2]>>,
+    pub x: Vec<Vec<[f64; 3]>>,
+}
+
+/// A parameter line to insert: `ξ = const` or `η = const`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Line {
+    Xi(f64),
+    Eta(f64),
+}
+
+fn eval(s: &NurbsSurface<f64, 3>, uv: [f64; 2]) -> Result<[f64; 3], ReparamError> {
+    let p = s.eval(&uv[0], &uv[1]);
+    if p.iter().all(|c| c.is_finite()) {
+        Ok(p)
+    } else {
+        Err(ReparamError::NotFinite(uv[0], uv[1]))
+    }
+}
+
+fn lerp2(a: [f64; 2], b: [f64; 2], t: f64) -> [f64; 2] {
+    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+}
+
+/// Index `k` with `t[k] ≤ x ≤ t[k+1]`, and the local coordinate in that interval.
+pub fn locate(t: &[f64], x: f64) -> (usize, f64) {
+    let k = t.partition_point(|&y| y <= x).clamp(1, t.len() - 1) - 1;
+    let a = ((x - t[k]) / (t[k + 1] - t[k])).clamp(0.0, 1.0);
+    (k, a)
+}
+
+impl Grid {
+    /// Boundary points at their arc-length fractions `ξ_i`, `η_j` (steps 1–2), interior
+    /// points at the intersections of the domain lines joining corresponding boundary
+    /// parameters (Figure 4).
+    pub fn initial(
+        s: &NurbsSurface<f64, 3>,
+        sides: &[BoundaryCurve; 4],
+        xi: Vec<f64>,
+        eta: Vec<f64>,
+    ) -> Result<Grid, ReparamError> {
+        let (n, m) = (xi.len(), eta.len());
+        let bottom: Vec<[f64; 2]> = xi
+            .iter()
+            .map(|&f| sides[0].domain_point(sides[0].param_at_fraction(s, f)))
+            .collect();
+        let top: Vec<[f64; 2]> = xi
+            .iter()
+            .map(|&f| sides[1].domain_point(sides[1].param_at_fraction(s, f)))
+            .collect();
+        let left: Vec<[f64; 2]> = eta
+            .iter()
+            .map(|&f| sides[2].domain_point(sides[2].param_at_fraction(s, f)))
+            .collect();
+        let right: Vec<[f64; 2]> = eta
+            .iter()
+            .map(|&f| sides[3].domain_point(sides[3].param_at_fraction(s, f)))
+            .collect();
+        let mut uv = vec![vec![[0.0; 2]; m]; n];
+        for i in 0..n {
+            for j in 0..m {
+                uv[i][j] = if j == 0 {
+                    bottom[i]
+                } else if j == m - 1 {
+                    top[i]
+                } else if i == 0 {
+                    left[j]
+                } else if i == n - 1 {
+                    right[j]
+                } else {
+                    intersect(bottom[i], top[i], left[j], right[j], xi[i], eta[j])
+                };
+            }
+        }
+        let x = uv
+            .iter()
+            .map(|row| row.iter().map(|&p| eval(s, p)).collect())
+            .collect::<Result<Vec<Vec<_>>, _>>()?;
+        Ok(Grid { xi, eta, uv, x })
+    }
+
+    /// Interior points `(i, j)`, `0 < i < n−1`, `0 < j < m−1`.
+    pub fn interior_points(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let (n, m) = (self.xi.len(), self.eta.len());
+        (1..n.saturating_sub(1)).flat_map(move |i| (1..m.saturating_sub(1)).map(move |j| (i, j)))
+    }
+
+    fn is_interior(&self, i: usize, j: usize) -> bool {
+        i > 0 && j > 0 && i + 1 < self.xi.len() && j + 1 < self.eta.len()
+    }
+
+    /// The penalty of interior point `(i, j)`, with the point `at` replaced by `p` if given.
+    pub fn penalty(&self, i: usize, j: usize, sub: Option<((usize, usize), &[f64; 3])>) -> f64 {
+        let x = |a: usize, b: usize| match sub {
+            Some((k, p)) if k == (a, b) => p,
+            _ => &self.x[a][b],
+        };
+        let term = |dl: f64, dr: f64, target: f64| {
+            let s = dl + dr;
+            if s > 0.0 {
+                let r = dl / s - target;
+                r * r
+            } else {
+                0.0
+            }
+        };
+        let (xi, eta) = (&self.xi, &self.eta);
+        let alpha = (xi[i] - xi[i - 1]) / (xi[i + 1] - xi[i - 1]);
+        let beta = (eta[j] - eta[j - 1]) / (eta[j + 1] - eta[j - 1]);
+        let c = x(i, j);
+        term(dist(c, x(i - 1, j)), dist(x(i + 1, j), c), alpha)
+            + term(dist(c, x(i, j - 1)), dist(x(i, j + 1), c), beta)
+    }
+
+    /// `P`: the sum of the penalties of all interior points.
+    pub fn total_penalty(&self) -> f64 {
+        self.interior_points()
+            .map(|(i, j)| self.penalty(i, j, None))
+            .sum()
+    }
+
+    /// φ: the domain point of S for parameters `(ξ, η)` of the new surface, bilinear in each
+    /// grid cell; and the cell `(i, j)`.
+    pub fn map(&self, xi: f64, eta: f64) -> ([f64; 2], (usize, usize)) {
+        let (i, a) = locate(&self.xi, xi);
+        let (j, b) = locate(&self.eta, eta);
+        let p0 = lerp2(self.uv[i][j], self.uv[i + 1][j], a);
+        let p1 = lerp2(self.uv[i][j + 1], self.uv[i + 1][j + 1], a);
+        (lerp2(p0, p1, b), (i, j))
+    }
+
+    /// Insert parameter lines (step 4's refinement): boundary points at their arc-length
+    /// fractions, interior points first on the current grid's φ (then relaxed by [`relax`]).
+    /// Returns the points to relax: the new ones and their neighbours (whose target ratios
+    /// changed).
+    pub fn insert_lines(
+        &mut self,
+        s: &NurbsSurface<f64, 3>,
+        sides: &[BoundaryCurve; 4],
+        lines: &[Line],
+    ) -> Result<Vec<(usize, usize)>, ReparamError> {
+        let mut new_xi = vec![];
+        let mut new_eta = vec![];
+        for line in lines {
+            match *line {
+                Line::Xi(f) => {
+                    let (k, a) = locate(&self.xi, f);
+                    if a <= 0.0 || a >= 1.0 {
+                        continue;
+                    }
+                    let m = self.eta.len();
+                    let col: Vec<[f64; 2]> = (0..m)
+                        .map(|j| {
+                            if j == 0 {
+                                sides[0].domain_point(sides[0].param_at_fraction(s, f))
+                            } else if j == m - 1 {
+                                sides[1].domain_point(sides[1].param_at_fraction(s, f))
+                            } else {
+                                lerp2(self.uv[k][j], self.uv[k + 1][j], a)
+                            }
+                        })
+                        .collect();
+                    let xs = col
+                        .iter()
+                        .map(|&p| eval(s, p))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    self.xi.insert(k + 1, f);
+                    self.uv.insert(k + 1, col);
+                    self.x.insert(k + 1, xs);
+                    new_xi.push(f);
+                }
+                Line::Eta(f) => {
+                    let (k, a) = locate(&self.eta, f);
+                    if a <= 0.0 || a >= 1.0 {
+                        continue;
+                    }
+                    let n = self.xi.len();
+                    for i in 0..n {
+                        let p = if i == 0 {
+                            sides[2].domain_point(sides[2].param_at_fraction(s, f))
+                        } else if i == n - 1 {
+                            sides[3].domain_point(sides[3].param_at_fraction(s, f))
+                        } else {
+                            lerp2(self.uv[i][k], self.uv[i][k + 1], a)
+                        };
+                        let x = eval(s, p)?;
+                        self.uv[i].insert(k + 1, p);
+                        self.x[i].insert(k + 1, x);
+                    }
+                    self.eta.insert(k + 1, f);
+                    new_eta.push(f);
+                }
+            }
+        }
+        let touched = |t: &[f64], new: &[f64], k: usize| {
+            (k.saturating_sub(1)..=(k + 1).min(t.len() - 1)).any(|q| new.contains(&t[q]))
+        };
+        Ok(self
+            .interior_points()
+            .filter(|&(i, j)| touched(&self.xi, &new_xi, i) || touched(&self.eta, &new_eta, j))
+            .collect())
+    }
+}
+
+/// Sub-samples per grid step of a line in [`redistribute`].
+const LINE_SAMPLES: usize = 16;
+
+/// Move the interior points of every row (then every column) along the domain polyline
+/// through the line's current points, so that their arc lengths on S (of the polyline's
+/// image, sampled `LINE_SAMPLES` times per step) are the fractions `ξ_i` (`η_j`) of the
+/// line's length; `sweeps` alternations, stopping early when no point moves by more than
+/// `1e-12` of the domain. Points stay on S (they move in the domain). An addition to the
+/// paper: it puts the relaxation's start near the target, line by line, so that the
+/// relaxation (which propagates one neighbour at a time) only polishes.
+pub fn redistribute(
+    s: &NurbsSurface<f64, 3>,
+    g: &mut Grid,
+    sweeps: usize,
+) -> Result<(), ReparamError> {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    let (n, m) = (g.xi.len(), g.eta.len());
+    for _ in 0..sweeps {
+        let mut moved: f64 = 0.0;
+        for dir in 0..2 {
+            let lines = if dir == 0 { m } else { n };
+            for l in 1..lines.saturating_sub(1) {
+                let idx = |k: usize| if dir == 0 { (k, l) } else { (l, k) };
+                let t = if dir == 0 { &g.xi } else { &g.eta };
+                let len = t.len();
+                let mut dom = vec![];
+                for k in 0..len - 1 {
+                    let (a, b) = (idx(k), idx(k + 1));
+                    for q in 0..LINE_SAMPLES {
+                        dom.push(lerp2(
+                            g.uv[a.0][a.1],
+                            g.uv[b.0][b.1],
+                            q as f64 / LINE_SAMPLES as f64,
+                        ));
+                    }
+                }
+                let last = idx(len - 1);
+                dom.push(g.uv[last.0][last.1]);
+                let pts = dom
+                    .iter()
+                    .map(|&p| eval(s, p))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let mut cum = vec![0.0];
+                for w in pts.windows(2) {
+                    cum.push(cum.last().unwrap_or(&0.0) + dist(&w[0], &w[1]));
+                }
+                let total = *cum.last().unwrap_or(&0.0);
+                if !(total > 0.0 && total.is_finite()) {
+                    continue;
+                }
+                let targets: Vec<f64> = t.iter().map(|x| x * total).collect();
+                let mut q = 0;
+                for k in 1..len - 1 {
+                    while q + 2 < cum.len() && cum[q + 1] < targets[k] {
+                        q += 1;
+                    }
+                    let span = cum[q + 1] - cum[q];
+                    let a = if span > 0.0 {
+                        ((targets[k] - cum[q]) / span).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let mut p = lerp2(dom[q], dom[q + 1], a);
+                    p = [p[0].clamp(u0, u1), p[1].clamp(v0, v1)];
+                    let (i, j) = idx(k);
+                    let old = g.uv[i][j];
+                    moved = moved.max(
+                        ((p[0] - old[0]) / (u1 - u0))
+                            .abs()
+                            .max(((p[1] - old[1]) / (v1 - v0)).abs()),
+                    );
+                    g.uv[i][j] = p;
+                    g.x[i][j] = eval(s, p)?;
+                }
+            }
+        }
+        if moved <= 1e-12 {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// Intersection of the domain segments `b–t` (joining the two points of parameter ξ on
+/// `v = v0` and `v = v1`) and `l–r` (parameter η on `u = u0` and `u = u1`). The segments
+/// span the rectangle in crossing directions, so they meet once; a numerically parallel pair
+/// (possible only at a corner) falls back to the parameters' bilinear position.
+fn intersect(b: [f64; 2], t: [f64; 2], l: [f64; 2], r: [f64; 2], xi: f64, eta: f64) -> [f64; 2] {
+    let d1 = [t[0] - b[0], t[1] - b[1]];
+    let d2 = [r[0] - l[0], r[1] - l[1]];
+    let det = d1[0] * (-d2[1]) - d1[1] * (-d2[0]);
+    let rhs = [l[0] - b[0], l[1] - b[1]];
+    let scale = (d1[0].abs() + d1[1].abs()) * (d2[0].abs() + d2[1].abs());
+    if det.abs() <= 1e-12 * scale {
+        let p0 = lerp2(b, t, eta);
+        let p1 = lerp2(l, r, xi);
+        return [(p0[0] + p1[0]) / 2.0, (p0[1] + p1[1]) / 2.0];
+    }
+    let a = ((rhs[0] * (-d2[1]) - rhs[1] * (-d2[0])) / det).clamp(0.0, 1.0);
+    lerp2(b, t, a)
+}
+
+struct Candidate {
+    dec: f64,
+    q: [f64; 2],
+    xq: [f64; 3],
+    own: f64,
+    others: Vec<f64>,
+    len: f64,
+}
+
+/// The Gauss–Newton step for the local penalty sum of point `(i, j)`: the ratio residuals
+/// of the point itself (`d_l/(d_l+d_r) − α_i`, `d_d/(d_d+d_u) − β_j`) and those of its
+/// interior neighbours that involve it, linearized in the domain (chain rule through `S_u`,
+/// `S_v`); shortened to at most `cap` (normalized). `None` where the normal equations are
+/// singular.
+fn newton(
+    s: &NurbsSurface<f64, 3>,
+    g: &Grid,
+    i: usize,
+    j: usize,
+    cap: f64,
+    scale: [f64; 2],
+) -> Option<[f64; 2]> {
+    use crate::geom::{Point, dot};
+    let [u, v] = g.uv[i][j];
+    let (c, su, sv) = crate::spline::project::point_d1(s, u, v);
+    let (n, m) = (g.xi.len(), g.eta.len());
+    let mut res: Vec<(f64, [f64; 3])> = Vec::with_capacity(6);
+    // d/dc of l/(l+r), l = |c − a| (c at the near end of the first distance).
+    let near = |a: &[f64; 3], b: &[f64; 3], target: f64| -> Option<(f64, [f64; 3])> {
+        let (l, r) = (dist(&c, a), dist(b, &c));
+        if l <= 0.0 || r <= 0.0 {
+            return None;
+        }
+        let dl = c.sub(a).scale(&(1.0 / l));
+        let dr = c.sub(b).scale(&(1.0 / r));
+        let grad = dl
+            .scale(&r)
+            .sub(&dr.scale(&l))
+            .scale(&(1.0 / ((l + r) * (l + r))));
+        Some((l / (l + r) - target, grad))
+    };
+    // Residual l/(l+r) − target of a neighbour y whose first distance l = |y − y_prev| is
+    // fixed and second r = |c − y| moves (`first = false`), or whose first distance
+    // l = |y − c| moves and second r = |y_next − y| is fixed (`first = true`).
+    let nbr =
+        |y: &[f64; 3], other: &[f64; 3], target: f64, first: bool| -> Option<(f64, [f64; 3])> {
+            let dc = dist(&c, y);
+            let fixed = dist(y, other);
+            if dc <= 0.0 || fixed <= 0.0 {
+                return None;
+            }
+            let e = c.sub(y).scale(&(1.0 / dc));
+            let t = dc + fixed;
+            Some(if first {
+                (dc / t - target, e.scale(&(fixed / (t * t))))
+            } else {
+                (fixed / t - target, e.scale(&(-fixed / (t * t))))
+            })
+        };
+    let ratio = |t: &[f64], k: usize| (t[k] - t[k - 1]) / (t[k + 1] - t[k - 1]);
+    res.push(near(&g.x[i - 1][j], &g.x[i + 1][j], ratio(&g.xi, i))?);
+    res.push(near(&g.x[i][j - 1], &g.x[i][j + 1], ratio(&g.eta, j))?);
+    if i >= 2 && g.is_interior(i - 1, j) {
+        res.extend(nbr(
+            &g.x[i - 1][j],
+            &g.x[i - 2][j],
+            ratio(&g.xi, i - 1),
+            false,
+        ));
+    }
+    if i + 2 < n && g.is_interior(i + 1, j) {
+        res.extend(nbr(
+            &g.x[i + 1][j],
+            &g.x[i + 2][j],
+            ratio(&g.xi, i + 1),
+            true,
+        ));
+    }
+    if j >= 2 && g.is_interior(i, j - 1) {
+        res.extend(nbr(
+            &g.x[i][j - 1],
+            &g.x[i][j - 2],
+            ratio(&g.eta, j - 1),
+            false,
+        ));
+    }
+    if j + 2 < m && g.is_interior(i, j + 1) {
+        res.extend(nbr(
+            &g.x[i][j + 1],
+            &g.x[i][j + 2],
+            ratio(&g.eta, j + 1),
+            true,
+        ));
+    }
+    let (mut a11, mut a12, mut a22, mut b1, mut b2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (f, gr) in &res {
+        let (ju, jv) = (dot(gr, &su), dot(gr, &sv));
+        a11 += ju * ju;
+        a12 += ju * jv;
+        a22 += jv * jv;
+        b1 += ju * f;
+        b2 += jv * f;
+    }
+    let damp = 1e-12 * (a11 + a22);
+    let (a11, a22) = (a11 + damp, a22 + damp);
+    let det = a11 * a22 - a12 * a12;
+    if !det.is_finite() || det <= 0.0 {
+        return None;
+    }
+    let mut d = [-(a22 * b1 - a12 * b2) / det, -(a11 * b2 - a12 * b1) / det];
+    let len = ((d[0] / scale[0]).powi(2) + (d[1] / scale[1]).powi(2)).sqrt();
+    if !len.is_finite() || len == 0.0 {
+        return None;
+    }
+    if len > cap {
+        d = [d[0] * cap / len, d[1] * cap / len];
+    }
+    Some([u + d[0], v + d[1]])
+}
+
+/// What one relaxation did.
+#[derive(Clone, Debug, Default)]
+pub struct RelaxStats {
+    pub visits: usize,
+    pub moves: usize,
+    /// `P_start / (δ − γ)`: the proven bound on `moves`.
+    pub move_bound: f64,
+    pub penalty_start: f64,
+    pub penalty_end: f64,
+    /// Stopped because no point could move (not by the budget).
+    pub converged: bool,
+}
+
+const DIRS: [(f64, f64); 8] = [
+    (1.0, 0.0),
+    (-1.0, 0.0),
+    (0.0, 1.0),
+    (0.0, -1.0),
+    (1.0, 1.0),
+    (1.0, -1.0),
+    (-1.0, 1.0),
+    (-1.0, -1.0),
+];
+
+/// The relaxation of step 3, starting with the points `start` dirty (see the module
+/// documentation for the rules and the termination theorem).
+pub fn relax(
+    s: &NurbsSurface<f64, 3>,
+    g: &mut Grid,
+    start: &[(usize, usize)],
+    p: &Params,
+) -> Result<RelaxStats, ReparamError> {
+    let (n, m) = (g.xi.len(), g.eta.len());
+    let (u0, u1, v0, v1) = s.hom.domain();
+    let (du, dv) = (u1 - u0, v1 - v0);
+    let mut pen = vec![vec![0.0; m]; n];
+    for (i, j) in g.interior_points().collect::<Vec<_>>() {
+        pen[i][j] = g.penalty(i, j, None);
+    }
+    let p_start: f64 = pen.iter().flatten().sum();
+    let mut st = RelaxStats {
+        move_bound: p_start * (1.0 + 1e-9) / (p.delta - GAMMA),
+        penalty_start: p_start,
+        converged: true,
+        ..Default::default()
+    };
+    // Normalized domain distance from (i, j) to its nearest neighbour.
+    let near = |g: &Grid, i: usize, j: usize| {
+        let c = g.uv[i][j];
+        [(i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
+            .iter()
+            .map(|&(a, b)| {
+                let q = g.uv[a][b];
+                (((q[0] - c[0]) / du).powi(2) + ((q[1] - c[1]) / dv).powi(2)).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut h = vec![vec![p.min_step; m]; n];
+    let mut dirty = vec![vec![false; m]; n];
+    let mut heap: BinaryHeap<(u64, usize)> = BinaryHeap::new();
+    for &(i, j) in start {
+        if g.is_interior(i, j) {
+            dirty[i][j] = true;
+            h[i][j] = (0.25 * near(g, i, j)).max(p.min_step);
+            heap.push((pen[i][j].to_bits(), i * m + j));
+        }
+    }
+    while let Some((bits, k)) = heap.pop() {
+        let (i, j) = (k / m, k % m);
+        if !dirty[i][j] || bits != pen[i][j].to_bits() {
+            continue;
+        }
+        dirty[i][j] = false;
+        st.visits += 1;
+        let nbrs: Vec<(usize, usize)> = [(i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)]
+            .into_iter()
+            .filter(|&(a, b)| g.is_interior(a, b))
+            .collect();
+        let cap = (0.5 * near(g, i, j)).max(p.min_step);
+        let mut step = h[i][j].clamp(p.min_step, cap);
+        let floor = (step * 1e-3).max(p.min_step);
+        let mut moved = 0.0;
+        loop {
+            let old: f64 = pen[i][j] + nbrs.iter().map(|&(a, b)| pen[a][b]).sum::<f64>();
+            let c = g.uv[i][j];
+            // The decrease of the local penalty sum if (i, j) moved to q.
+            let trial = |q: [f64; 2]| -> Option<Candidate> {
+                if !(q[0] >= u0 && q[0] <= u1 && q[1] >= v0 && q[1] <= v1) {
+                    return None;
+                }
+                let xq = s.eval(&q[0], &q[1]);
+                if !xq.iter().all(|v| v.is_finite()) {
+                    return None;
+                }
+                let own = g.penalty(i, j, Some(((i, j), &xq)));
+                let others: Vec<f64> = nbrs
+                    .iter()
+                    .map(|&(a, b)| g.penalty(a, b, Some(((i, j), &xq))))
+                    .collect();
+                let dec = old - (own + others.iter().sum::<f64>());
+                let len = (((q[0] - c[0]) / du).powi(2) + ((q[1] - c[1]) / dv).powi(2)).sqrt();
+                Some(Candidate {
+                    dec,
+                    q,
+                    xq,
+                    own,
+                    others,
+                    len,
+                })
+            };
+            // First the Newton step on the point's own two ratio conditions (a finite move
+            // like any other, accepted by the same rule), then the pattern of 8 steps.
+            let mut best = newton(s, g, i, j, cap, [du, dv]).and_then(trial);
+            if best.as_ref().is_none_or(|b| b.dec < p.delta) {
+                best = None;
+                for (dx, dy) in DIRS {
+                    if let Some(t) = trial([c[0] + step * du * dx, c[1] + step * dv * dy])
+                        && best.as_ref().is_none_or(|b| t.dec > b.dec)
+                    {
+                        best = Some(t);
+                    }
+                }
+            }
+            match best {
+                Some(b) if b.dec >= p.delta => {
+                    g.uv[i][j] = b.q;
+                    g.x[i][j] = b.xq;
+                    pen[i][j] = b.own;
+                    for (&(a, bb), v) in nbrs.iter().zip(b.others) {
+                        pen[a][bb] = v;
+                    }
+                    st.moves += 1;
+                    moved += b.len;
+                    if st.moves >= p.max_moves {
+                        st.converged = false;
+                        break;
+                    }
+                }
+                _ => {
+                    step /= 2.0;
+                    if step < floor {
+                        break;
+                    }
+                }
+            }
+        }
+        h[i][j] = p.min_step;
+        if !st.converged {
+            break;
+        }
+        if moved > 0.0 {
+            for &(a, b) in &nbrs {
+                dirty[a][b] = true;
+                h[a][b] = h[a][b].max(moved.min(0.25));
+                heap.push((pen[a][b].to_bits(), a * m + b));
+            }
+        }
+    }
+    st.penalty_end = pen.iter().flatten().sum();
+    Ok(st)
+}
