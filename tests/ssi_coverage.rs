@@ -4,8 +4,10 @@
 //! refuse (uncertified), but it must never claim that no branch is missing while a branch is
 //! absent from the output.
 
+mod common;
+use common::shapes::{frame_of, rotated};
 use vericad::spline::NurbsSurface;
-use vericad::spline::construct::{Frame, bilinear, sphere};
+use vericad::spline::construct::{bilinear, sphere};
 use vericad::ssi::coverage::{CoverageParams, coverage};
 use vericad::ssi::{PairOut, SsiParams, intersect_pair_canonical};
 
@@ -163,18 +165,6 @@ fn out_dist(r: &PairOut, p: &[f64; 3]) -> f64 {
     best
 }
 
-fn rotated(seed: u64) -> Frame {
-    // A rotation from a unit quaternion of a simple deterministic sequence.
-    let s = seed as f64;
-    let q = [
-        0.3 + s.sin(),
-        0.7 * (1.3 * s).cos(),
-        0.5 - (0.7 * s).sin(),
-        0.2 + (2.1 * s).cos(),
-    ];
-    frame_of(q, [0.1 * s.cos(), -0.2, 0.3])
-}
-
 /// Spheres in rotated frames cut by the plane through `o + h·z` normal to the frame's z:
 /// heights sweep through the poles. Certified complete ⇒ a branch on the true circle.
 #[test]
@@ -270,30 +260,6 @@ fn coincident_faces_are_reported_not_traced() {
     let res = vericad::ssi::intersect_models(&m, None, &SsiParams::default(), &|_, _| {}).unwrap();
     assert_eq!(res.summary.coincident_pairs, 1);
     assert!(!res.summary.certified && !res.summary.no_missed_branches);
-}
-
-/// A frame rotated by the unit quaternion `q / |q|` about the origin `o`.
-fn frame_of(q: [f64; 4], o: [f64; 3]) -> Frame {
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    Frame {
-        o,
-        x: [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y + w * z),
-            2.0 * (x * z - w * y),
-        ],
-        y: [
-            2.0 * (x * y - w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z + w * x),
-        ],
-        z: [
-            2.0 * (x * z + w * y),
-            2.0 * (y * z - w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    }
 }
 
 use proptest::prelude::*;

@@ -4,13 +4,15 @@
 //! touching a plane (a single point). Every claim "a true curve point lies within r of p" is
 //! checked exactly in rationals: the true distance from `p` to the known curve is at most `r`.
 
+mod common;
+use common::shapes::exact_sphere;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
 use vericad::model::{Model, Surface, SurfaceKind};
 use vericad::spline::NurbsSurface;
-use vericad::spline::construct::{CIRCLE_KNOTS, Frame, cylinder};
+use vericad::spline::construct::{Frame, cylinder};
 use vericad::ssi::krawczyk::certify_on_curve;
 use vericad::ssi::{PairOut, SsiParams, intersect_models, intersect_pair_canonical};
 
@@ -230,51 +232,6 @@ fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
 
 // ---------------------------------------------------------------------------------------
 // (b) An exact rational sphere cut by a plane.
-
-/// The sphere of radius `r` about the origin with *exact* f64 data: quarter circles as
-/// rational quadratics in non-standard form, corner weight 1 between end weights 1 and 2
-/// (w1² / (w0 w2) = 1/2 = cos² 45°, the circle's condition), so no weight is rounded. Every
-/// point of the surface lies exactly on the sphere (`exact_sphere_is_a_sphere` checks a few in
-/// rationals).
-fn exact_sphere(r: f64) -> NurbsSurface<f64, 3> {
-    let circle: [([f64; 2], f64); 9] = [
-        ([1.0, 0.0], 1.0),
-        ([1.0, 1.0], 1.0),
-        ([0.0, 1.0], 2.0),
-        ([-1.0, 1.0], 1.0),
-        ([-1.0, 0.0], 1.0),
-        ([-1.0, -1.0], 1.0),
-        ([0.0, -1.0], 2.0),
-        ([1.0, -1.0], 1.0),
-        ([1.0, 0.0], 1.0),
-    ];
-    // Profile (ρ, z) from the south pole to the north pole.
-    let profile: [([f64; 2], f64); 5] = [
-        ([0.0, -r], 1.0),
-        ([r, -r], 1.0),
-        ([r, 0.0], 2.0),
-        ([r, r], 1.0),
-        ([0.0, r], 1.0),
-    ];
-    let (mut pts, mut ws) = (Vec::new(), Vec::new());
-    for (c, wc) in circle {
-        for (p, wp) in profile {
-            pts.push([p[0] * c[0], p[0] * c[1], p[1]]);
-            ws.push(wc * wp);
-        }
-    }
-    NurbsSurface::new(
-        CIRCLE_KNOTS.to_vec(),
-        2,
-        vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0],
-        2,
-        9,
-        5,
-        pts,
-        ws,
-    )
-    .unwrap()
-}
 
 #[test]
 fn exact_sphere_is_a_sphere() {

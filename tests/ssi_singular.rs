@@ -7,8 +7,10 @@
 //! above a sphere) must get no claim, and degenerate contacts (a flat spot of order four, a
 //! cylinder lying on a plane) must be left uncertified.
 
+mod common;
+use common::shapes::{exact_sphere, rotated};
 use vericad::spline::NurbsSurface;
-use vericad::spline::construct::{CIRCLE_KNOTS, Frame, bilinear, cylinder, sphere, torus};
+use vericad::spline::construct::{Frame, bilinear, cylinder, sphere, torus};
 use vericad::ssi::report::{SingularKind, SingularOut, SingularReason};
 use vericad::ssi::singular::classify;
 use vericad::ssi::{PairOut, SsiParams, intersect_pair_canonical};
@@ -78,81 +80,10 @@ fn check_at(
     assert!(dd[0] <= dd[1] && dd[1] <= 1e-12, "{dd:?}");
 }
 
-/// The sphere of radius `r` about the origin with exact f64 data (quarter circles as rational
-/// quadratics with weights 1, 1, 2: no rounded weight), every point exactly on the sphere.
-fn exact_sphere(r: f64) -> NurbsSurface<f64, 3> {
-    let circle: [([f64; 2], f64); 9] = [
-        ([1.0, 0.0], 1.0),
-        ([1.0, 1.0], 1.0),
-        ([0.0, 1.0], 2.0),
-        ([-1.0, 1.0], 1.0),
-        ([-1.0, 0.0], 1.0),
-        ([-1.0, -1.0], 1.0),
-        ([0.0, -1.0], 2.0),
-        ([1.0, -1.0], 1.0),
-        ([1.0, 0.0], 1.0),
-    ];
-    let profile: [([f64; 2], f64); 5] = [
-        ([0.0, -r], 1.0),
-        ([r, -r], 1.0),
-        ([r, 0.0], 2.0),
-        ([r, r], 1.0),
-        ([0.0, r], 1.0),
-    ];
-    let (mut pts, mut ws) = (Vec::new(), Vec::new());
-    for (c, wc) in circle {
-        for (p, wp) in profile {
-            pts.push([p[0] * c[0], p[0] * c[1], p[1]]);
-            ws.push(wc * wp);
-        }
-    }
-    NurbsSurface::new(
-        CIRCLE_KNOTS.to_vec(),
-        2,
-        vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0],
-        2,
-        9,
-        5,
-        pts,
-        ws,
-    )
-    .unwrap()
-}
-
 /// The plane through `p` spanned by `e1`, `e2`: corners `p ± e1 ± e2`.
 fn plane(p: [f64; 3], e1: [f64; 3], e2: [f64; 3]) -> NurbsSurface<f64, 3> {
     let at = |a: f64, b: f64| -> [f64; 3] { std::array::from_fn(|k| p[k] + a * e1[k] + b * e2[k]) };
     bilinear(at(-1.0, -1.0), at(1.0, -1.0), at(-1.0, 1.0), at(1.0, 1.0)).unwrap()
-}
-
-fn rotated(seed: u64) -> Frame {
-    let s = seed as f64;
-    let q = [
-        0.3 + s.sin(),
-        0.7 * (1.3 * s).cos(),
-        0.5 - (0.7 * s).sin(),
-        0.2 + (2.1 * s).cos(),
-    ];
-    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let [w, x, y, z] = q.map(|c| c / n);
-    Frame {
-        o: [0.1 * s.cos(), -0.2, 0.3],
-        x: [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y + w * z),
-            2.0 * (x * z - w * y),
-        ],
-        y: [
-            2.0 * (x * y - w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z + w * x),
-        ],
-        z: [
-            2.0 * (x * z + w * y),
-            2.0 * (y * z - w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    }
 }
 
 // ---------------------------------------------------------------------------------------

@@ -89,7 +89,7 @@ pub struct CurveCertificate {
     pub held: Option<usize>,
 }
 
-type M4 = [[f64; 4]; 4];
+pub(crate) type M4 = [[f64; 4]; 4];
 
 #[derive(Clone, Copy, Debug)]
 enum Fourth {
@@ -201,7 +201,7 @@ impl System<'_> {
 }
 
 /// Inverse of a 4 × 4 matrix (Gauss–Jordan, partial pivoting); `None` if singular.
-fn inverse4(mut a: M4) -> Option<M4> {
+pub(crate) fn inverse4(mut a: M4) -> Option<M4> {
     let mut inv: M4 = std::array::from_fn(|i| std::array::from_fn(|j| (i == j) as u8 as f64));
     for c in 0..4 {
         let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
@@ -228,7 +228,7 @@ fn inverse4(mut a: M4) -> Option<M4> {
     inv.iter().flatten().all(|x| x.is_finite()).then_some(inv)
 }
 
-fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
+pub(crate) fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
     std::array::from_fn(|i| (0..4).map(|k| m[i][k] * v[k]).sum())
 }
 

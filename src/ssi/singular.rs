@@ -63,7 +63,7 @@ use crate::spline::{KnotVector, NurbsSurface};
 
 type I = Interval;
 type V = [I; 3];
-type M4 = [[f64; 4]; 4];
+use super::krawczyk::{M4, inverse4, mul4};
 
 fn pt(x: f64) -> I {
     Interval::point(x)
@@ -398,34 +398,6 @@ pub fn system(a: &Jet2, b: &Jet2) -> ([I; 4], [[I; 4]; 4]) {
     (g, j)
 }
 
-/// Inverse of a 4 × 4 matrix (Gauss–Jordan, partial pivoting); `None` if singular.
-fn inverse4(mut a: M4) -> Option<M4> {
-    let mut inv: M4 = std::array::from_fn(|i| std::array::from_fn(|j| (i == j) as u8 as f64));
-    for c in 0..4 {
-        let p = (c..4).max_by(|&i, &k| a[i][c].abs().total_cmp(&a[k][c].abs()))?;
-        if a[p][c] == 0.0 || a[p][c].is_nan() {
-            return None;
-        }
-        a.swap(c, p);
-        inv.swap(c, p);
-        let d = a[c][c];
-        for k in 0..4 {
-            a[c][k] /= d;
-            inv[c][k] /= d;
-        }
-        for r in 0..4 {
-            if r != c {
-                let f = a[r][c];
-                for k in 0..4 {
-                    a[r][k] -= f * a[c][k];
-                    inv[r][k] -= f * inv[c][k];
-                }
-            }
-        }
-    }
-    inv.iter().flatten().all(|x| x.is_finite()).then_some(inv)
-}
-
 /// Enclosure of the determinant of a real 4 × 4 matrix (Laplace expansion in intervals).
 fn det4(m: &M4) -> I {
     let e = |i: usize, j: usize| pt(m[i][j]);
@@ -519,10 +491,6 @@ struct Proven {
     pieces: usize,
     saddle: bool,
     distance: [f64; 2],
-}
-
-fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
-    std::array::from_fn(|i| (0..4).map(|k| m[i][k] * v[k]).sum())
 }
 
 /// Krawczyk's operator of piece `c` (groups `g` of a box holding `x`) for the centre

@@ -2,6 +2,8 @@
 //! integer-grid inputs, and the case count (`VERICAD_LARGE=1` multiplies it by 20).
 #![allow(dead_code)]
 
+pub mod shapes;
+
 use num_rational::BigRational;
 use vericad::geom::lift_point;
 
