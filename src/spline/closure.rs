@@ -64,6 +64,26 @@ fn same_row(a: &[&Hom<f64, 3>], b: &[&Hom<f64, 3>], eps: f64) -> bool {
     })
 }
 
+/// Whether the surface is closed in direction `dir` (0 = u, 1 = v) *exactly*: clamped knots
+/// at both ends and the first and last rows of homogeneous control points identical, so that
+/// `S(d0, ·) = S(d1, ·)` for every parameter and a proof may let the parameter run on across
+/// the seam (unlike [`Closure::of`], which allows rounding and is used only for welding).
+pub fn exact_seam(s: &NurbsSurface<f64, 3>, dir: usize) -> bool {
+    let h = &s.hom;
+    let k = if dir == 0 { &h.ku } else { &h.kv };
+    if !clamped(k.knots(), k.degree()) {
+        return false;
+    }
+    let (rows, cols) = (h.ku.n_ctrl(), h.kv.n_ctrl());
+    let at = |i: usize, j: usize| &h.net[i * cols + j];
+    let same = |a: &Hom<f64, 3>, b: &Hom<f64, 3>| a.wp == b.wp && a.w == b.w;
+    if dir == 0 {
+        (0..cols).all(|j| same(at(0, j), at(rows - 1, j)))
+    } else {
+        (0..rows).all(|i| same(at(i, 0), at(i, cols - 1)))
+    }
+}
+
 impl Closure {
     pub fn of(s: &NurbsSurface<f64, 3>) -> Closure {
         let h = &s.hom;

@@ -29,6 +29,7 @@ pub mod coverage;
 pub mod cull;
 pub mod driver;
 pub mod enclose;
+pub mod enclose2;
 pub mod fit;
 pub mod foreign;
 pub mod foreign_read;
