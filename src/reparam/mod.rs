@@ -24,6 +24,7 @@ pub mod job;
 pub mod plot;
 pub mod quality;
 pub mod reconcile;
+pub mod redistribute;
 pub mod surface;
 
 use crate::spline::NurbsSurface;
@@ -282,7 +283,7 @@ pub fn reparametrize_with_progress(
         penalty_line_intersections: grid.total_penalty(),
         ..Default::default()
     };
-    interior::redistribute(s, &mut grid, params.sweeps)?;
+    redistribute::redistribute(s, &mut grid, params.sweeps)?;
     let all: Vec<(usize, usize)> = grid.interior_points().collect();
     let r = interior::relax(s, &mut grid, &all, params)?;
     progress("relaxation moves", r.moves);
@@ -303,7 +304,7 @@ pub fn reparametrize_with_progress(
         let lines = error::limit(lines, room);
         inserted += lines.len();
         grid.insert_lines(s, &sides, &lines)?;
-        interior::redistribute(s, &mut grid, params.sweeps)?;
+        redistribute::redistribute(s, &mut grid, params.sweeps)?;
         let all: Vec<(usize, usize)> = grid.interior_points().collect();
         let r = interior::relax(s, &mut grid, &all, params)?;
         progress("relaxation moves", r.moves);
