@@ -13,6 +13,7 @@
 mod edge_curve;
 mod entities;
 pub mod part21;
+mod shells;
 mod topology;
 mod units;
 use entities::Reader;

@@ -10,9 +10,7 @@
 use super::edge_curve::{self, CurveFault, Found, MAX_DEPTH};
 use super::entities::Reader;
 use super::part21::{Entity, Value};
-use crate::brep::{
-    Brep, Edge, Face, IssueKind, Loop, LoopKind, OrientedEdge, Shell, Solid, Vertex,
-};
+use crate::brep::{Brep, Edge, Face, IssueKind, Loop, LoopKind, OrientedEdge, Vertex};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Topology entity types this reader walks or reports.
@@ -41,22 +39,22 @@ const TOPOLOGY_TYPES: [&str; 20] = [
 
 /// Builds a [`Brep`] from the parsed file.
 pub(super) struct TopologyReader<'a> {
-    r: &'a Reader<'a>,
-    brep: Brep,
-    vertices: BTreeMap<u64, usize>,
+    pub(super) r: &'a Reader<'a>,
+    pub(super) brep: Brep,
+    pub(super) vertices: BTreeMap<u64, usize>,
     /// `None`: the instance was refused (already reported).
-    edges: BTreeMap<u64, Option<usize>>,
-    faces: BTreeMap<u64, usize>,
-    shells: BTreeMap<u64, Option<usize>>,
+    pub(super) edges: BTreeMap<u64, Option<usize>>,
+    pub(super) faces: BTreeMap<u64, usize>,
+    pub(super) shells: BTreeMap<u64, Option<usize>>,
     /// Instances tallied (each once).
-    seen: BTreeSet<u64>,
+    pub(super) seen: BTreeSet<u64>,
     /// Vertex-to-curve distances above this are reported.
-    tolerance: f64,
+    pub(super) tolerance: f64,
 }
 
 /// The type name of an instance for the report (the first of `names` it contains, else its
 /// own name).
-fn type_of(e: &Entity, names: &[&str]) -> String {
+pub(super) fn type_of(e: &Entity, names: &[&str]) -> String {
     names
         .iter()
         .find(|n| e.is(n))
@@ -78,12 +76,12 @@ impl<'a> TopologyReader<'a> {
         }
     }
 
-    fn converted(&mut self, id: u64, ty: &str) {
+    pub(super) fn converted(&mut self, id: u64, ty: &str) {
         if self.seen.insert(id) {
             self.brep.report.converted(ty);
         }
     }
-    fn invalid(&mut self, id: u64, ty: &str, face: Option<u64>, kind: IssueKind) {
+    pub(super) fn invalid(&mut self, id: u64, ty: &str, face: Option<u64>, kind: IssueKind) {
         if self.seen.insert(id) {
             let face = face.map(|f| format!("#{f}"));
             self.brep
@@ -91,7 +89,7 @@ impl<'a> TopologyReader<'a> {
                 .invalid(ty, &format!("#{id}"), face.as_deref(), kind);
         }
     }
-    fn unsupported(&mut self, id: u64, ty: &str, face: Option<u64>, kind: IssueKind) {
+    pub(super) fn unsupported(&mut self, id: u64, ty: &str, face: Option<u64>, kind: IssueKind) {
         if self.seen.insert(id) {
             self.brep.report.unsupported(ty, &format!("#{id}"));
             let face = face.map(|f| format!("#{f}"));
@@ -102,7 +100,7 @@ impl<'a> TopologyReader<'a> {
     }
     /// The instance `id` when it is (or contains) one of `types`; otherwise the fault is
     /// reported against `owner` and `None` returned.
-    fn referenced(
+    pub(super) fn referenced(
         &mut self,
         owner: (u64, &str),
         id: u64,
@@ -513,161 +511,5 @@ impl<'a> TopologyReader<'a> {
         } else {
             self.invalid(f.id, &f.ty, Some(face), f.kind);
         }
-    }
-
-    fn shell(&mut self, id: u64) -> Option<usize> {
-        if let Some(s) = self.shells.get(&id) {
-            return *s;
-        }
-        self.shells.insert(id, None);
-        let e = self.r.p.entities.get(&id)?;
-        let ty = type_of(e, &["CLOSED_SHELL", "OPEN_SHELL"]);
-        let Some(list) = e.part(&ty).and_then(|a| a.get(1)).and_then(Value::list) else {
-            self.invalid(
-                id,
-                &ty,
-                None,
-                IssueKind::Malformed("cfs_faces is not a list".into()),
-            );
-            return None;
-        };
-        let mut faces = Vec::with_capacity(list.len());
-        for v in list {
-            let Some(fid) = v.reference() else {
-                self.invalid(
-                    id,
-                    &ty,
-                    None,
-                    IssueKind::Malformed("a face is not a reference".into()),
-                );
-                return None;
-            };
-            let (fe, fty) = self.referenced(
-                (id, &ty),
-                fid,
-                "face",
-                &["ADVANCED_FACE", "FACE_SURFACE", "ORIENTED_FACE"],
-                None,
-            )?;
-            let (target, orientation) = if fty == "ORIENTED_FACE" {
-                let a = fe.part("ORIENTED_FACE").unwrap_or(&[]);
-                match (
-                    a.get(2).and_then(Value::reference),
-                    a.get(3).and_then(Value::enumeration),
-                ) {
-                    (Some(t), Some(o)) => {
-                        self.converted(fid, "ORIENTED_FACE");
-                        (t, o != "F")
-                    }
-                    _ => {
-                        self.invalid(
-                            fid,
-                            "ORIENTED_FACE",
-                            None,
-                            IssueKind::Malformed(
-                                "expected (name, *, face_element, orientation)".into(),
-                            ),
-                        );
-                        return None;
-                    }
-                }
-            } else {
-                (fid, true)
-            };
-            match self.faces.get(&target) {
-                Some(fi) => faces.push((*fi, orientation)),
-                None => {
-                    self.invalid(
-                        id,
-                        &ty,
-                        None,
-                        IssueKind::WrongType {
-                            attribute: format!("face #{target}"),
-                            expected: "a face that was read (ADVANCED_FACE or FACE_SURFACE)".into(),
-                            found: self
-                                .r
-                                .p
-                                .entities
-                                .get(&target)
-                                .map_or("(missing)", |e| e.name())
-                                .to_string(),
-                        },
-                    );
-                    return None;
-                }
-            }
-        }
-        self.converted(id, &ty);
-        let i = self.brep.shells.len();
-        self.brep.shells.push(Shell {
-            source: format!("#{id}"),
-            closed: ty == "CLOSED_SHELL",
-            faces,
-        });
-        self.shells.insert(id, Some(i));
-        Some(i)
-    }
-
-    fn solid(&mut self, id: u64, e: &Entity) {
-        let ty = type_of(e, &["BREP_WITH_VOIDS", "MANIFOLD_SOLID_BREP"]);
-        let outer = e
-            .part("MANIFOLD_SOLID_BREP")
-            .and_then(|a| a.get(1)?.reference());
-        let Some(outer) = outer else {
-            self.invalid(
-                id,
-                &ty,
-                None,
-                IssueKind::Malformed("outer is not a reference".into()),
-            );
-            return;
-        };
-        let Some(_) = self.referenced((id, &ty), outer, "outer", &["CLOSED_SHELL"], None) else {
-            return;
-        };
-        let Some(outer) = self.shell(outer) else {
-            self.invalid(
-                id,
-                &ty,
-                None,
-                IssueKind::Malformed("its outer shell was refused".into()),
-            );
-            return;
-        };
-        let mut voids = Vec::new();
-        if let Some(list) = e.part("BREP_WITH_VOIDS").and_then(|a| a.last()?.list()) {
-            for v in list.iter().filter_map(Value::reference) {
-                let Some((ve, _)) =
-                    self.referenced((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
-                else {
-                    return;
-                };
-                let inner = ve
-                    .part("ORIENTED_CLOSED_SHELL")
-                    .and_then(|a| a.get(2)?.reference())
-                    .and_then(|s| self.shell(s));
-                match inner {
-                    Some(s) => {
-                        self.converted(v, "ORIENTED_CLOSED_SHELL");
-                        voids.push(s);
-                    }
-                    None => {
-                        self.invalid(
-                            v,
-                            "ORIENTED_CLOSED_SHELL",
-                            None,
-                            IssueKind::Malformed("closed_shell_element was refused".into()),
-                        );
-                        return;
-                    }
-                }
-            }
-        }
-        self.converted(id, &ty);
-        self.brep.solids.push(Solid {
-            source: format!("#{id}"),
-            outer,
-            voids,
-        });
     }
 }
