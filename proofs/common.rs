@@ -245,3 +245,22 @@ pub fn adversarial() -> Vec<f64> {
     }
     v
 }
+
+/// Exact homogeneous point of a Bézier patch of degrees `(p, q_)` with homogeneous net `net`
+/// (row-major, `i` along u) at `(u, v)`: de Casteljau in v on every row, then in u.
+pub fn eval_exact(p: usize, q_: usize, net: &[[Q; 4]], u: &Q, v: &Q) -> [Q; 4] {
+    let lerp_row = |row: Vec<[Q; 4]>, t: &Q| -> [Q; 4] {
+        let mut r = row;
+        let n = r.len();
+        for level in 1..n {
+            for k in 0..n - level {
+                r[k] = std::array::from_fn(|c| &r[k][c] + (&r[k + 1][c] - &r[k][c]) * t);
+            }
+        }
+        r[0].clone()
+    };
+    let cols: Vec<[Q; 4]> = (0..=p)
+        .map(|i| lerp_row((0..=q_).map(|j| net[i * (q_ + 1) + j].clone()).collect(), v))
+        .collect();
+    lerp_row(cols, u)
+}

@@ -333,24 +333,6 @@ fn inside(h: &IPatch, net: &Net) -> bool {
     })
 }
 
-/// Exact homogeneous point of the patch at `(u, v)` (de Casteljau in u then v).
-fn eval_exact(p: usize, q_: usize, net: &Net, u: &Q, v: &Q) -> [Q; 4] {
-    let lerp_row = |row: Vec<[Q; 4]>, t: &Q| -> [Q; 4] {
-        let mut r = row;
-        let n = r.len();
-        for level in 1..n {
-            for k in 0..n - level {
-                r[k] = std::array::from_fn(|c| &r[k][c] + (&r[k + 1][c] - &r[k][c]) * t);
-            }
-        }
-        r[0].clone()
-    };
-    let cols: Vec<[Q; 4]> = (0..=p)
-        .map(|i| lerp_row((0..=q_).map(|j| net[i * (q_ + 1) + j].clone()).collect(), v))
-        .collect();
-    lerp_row(cols, u)
-}
-
 /// For exact control values anywhere inside the enclosures of `h` (positive weights):
 /// * `h.halve(along_u)` encloses the exact de Casteljau halves of that exact net;
 /// * `hull_box` of `h` (when it gives one) holds every exact Cartesian control point and
