@@ -8,6 +8,7 @@ use super::fit::fit_branch;
 use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve};
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
+    sin_between,
 };
 use super::report::{BranchOut, EndKind, TouchOut};
 use super::topology::Topology;
@@ -15,7 +16,7 @@ use super::touch::touch_out;
 use super::trace::Branch;
 use super::tri_tri::Feature;
 use super::triangulate::SurfaceMesh;
-use crate::geom::{cross, dist, dist_to_segment, norm};
+use crate::geom::{dist, dist_to_segment};
 use crate::spline::NurbsSurface;
 use crate::spline::project::point_d1;
 use rayon::prelude::*;
@@ -115,14 +116,13 @@ impl Inserter<'_, '_> {
 /// Whether the surfaces meet at `r` at an angle whose sine is below 1/4 (or the normals are
 /// undefined there).
 fn small_angle(g: &PairGeometry, r: &Refined) -> bool {
-    let (_, su, sv) = point_d1(g.sa, r.uv_a[0], r.uv_a[1]);
-    let (_, rw, rt) = point_d1(g.sb, r.uv_b[0], r.uv_b[1]);
-    let (na, nb) = (cross(&su, &sv), cross(&rw, &rt));
-    let (la, lb) = (norm(&na), norm(&nb));
-    if !(la > 0.0 && lb > 0.0 && la.is_finite() && lb.is_finite()) {
-        return true;
-    }
-    let s = norm(&cross(&na, &nb)) / (la * lb);
+    let s = if r.sin_angle.is_finite() {
+        r.sin_angle
+    } else {
+        let (_, su, sv) = point_d1(g.sa, r.uv_a[0], r.uv_a[1]);
+        let (_, rw, rt) = point_d1(g.sb, r.uv_b[0], r.uv_b[1]);
+        sin_between(&su, &sv, &rw, &rt)
+    };
     s.is_nan() || s < 0.25
 }
 
@@ -156,6 +156,7 @@ fn onto_curve(
             r.uv_a = uv_a;
             r.uv_b = uv_b;
             r.gap = dist(&pa, &pb);
+            r.sin_angle = f64::NAN;
             Ok(c2)
         }
         _ => Ok(c),

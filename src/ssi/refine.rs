@@ -33,6 +33,9 @@ pub struct Refined {
     pub gap: f64,
     pub status: RefineStatus,
     pub iterations: u32,
+    /// `sin` of the angle between the surface normals at the parameters, where the
+    /// refinement computed it on the way (NaN where it did not).
+    pub sin_angle: f64,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -134,6 +137,7 @@ pub fn auxiliary_plane(
             gap,
             status,
             iterations: it,
+            sin_angle: f64::NAN,
         };
         if best.is_none_or(|b| gap < b.gap || !b.gap.is_finite()) {
             best = Some(cand);
@@ -141,6 +145,7 @@ pub fn auxiliary_plane(
         if gap <= prm.tol {
             return Refined {
                 status: RefineStatus::Converged,
+                sin_angle: sin_between(&su, &sv, &rw, &rt),
                 ..cand
             };
         }
@@ -196,6 +201,7 @@ pub fn auxiliary_plane(
         gap: f64::INFINITY,
         status,
         iterations: prm.max_iter,
+        sin_angle: f64::NAN,
     });
     Refined { status, ..b }
 }
@@ -314,6 +320,7 @@ pub fn tangential_point(
         gap,
         status,
         iterations: it,
+        sin_angle: f64::NAN,
     }
 }
 
@@ -374,6 +381,7 @@ pub fn refine_on_border(
                 gap,
                 status: RefineStatus::Converged,
                 iterations: it,
+                sin_angle: sin_between(&su, &sv, &rw, &rt),
             });
         }
         let cols = [su, sv, scale(&rw, -1.0), scale(&rt, -1.0)];
@@ -397,4 +405,15 @@ pub fn refine_on_border(
         }
     }
     None
+}
+
+/// `sin` of the angle between the normals `S_u × S_v` and `R_w × R_t` (NaN or ∞ where a
+/// normal vanishes or is not finite).
+pub fn sin_between(su: &[f64; 3], sv: &[f64; 3], rw: &[f64; 3], rt: &[f64; 3]) -> f64 {
+    let (na, nb) = (cross(su, sv), cross(rw, rt));
+    let (la, lb) = (norm(&na), norm(&nb));
+    if !(la > 0.0 && lb > 0.0 && la.is_finite() && lb.is_finite()) {
+        return f64::NAN;
+    }
+    norm(&cross(&na, &nb)) / (la * lb)
 }
