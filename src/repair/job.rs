@@ -82,10 +82,9 @@ pub fn run(
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
     }
     if let Some(p) = out.report {
-        write(
-            p,
-            &serde_json::to_string_pretty(&r.report).unwrap_or_default(),
-        )?;
+        let text = crate::io::json_text::to_text(&r.report)
+            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+        write(p, &text)?;
     }
     if let Some(p) = out.vtk {
         let mut pd = PolyData::default();

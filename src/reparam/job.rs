@@ -222,7 +222,7 @@ pub fn run(spec: &str, params: &Params, out: Outputs) -> Result<JobReport, JobEr
         seconds: t0.elapsed().as_secs_f64(),
     };
     if let Some(p) = out.report {
-        let text = serde_json::to_string_pretty(&report)
+        let text = crate::io::json_text::to_text(&report)
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
         write(p, text)?;
     }
