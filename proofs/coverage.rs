@@ -21,6 +21,7 @@ fn params() -> CoverageParams {
         max_boxes: 4_000,
         deadline: None,
         cancel: None,
+        outside: None,
     }
 }
 

@@ -357,7 +357,7 @@ fn coverage_certificate_on_analytic_cases() {
     assert!(c.no_missed_branches);
 }
 
-/// `--respect-trims`: a plane face with a rectangular hole (u in [0.45, 0.55]) cut by a
+/// Trims respected (the default; `--untrimmed` turns it off): a plane face with a rectangular hole (u in [0.45, 0.55]) cut by a
 /// sphere: the circle loses the two stretches over the hole and becomes two open arcs, ending
 /// at the trim boundary, with every point outside the hole.
 #[test]
@@ -400,6 +400,7 @@ fn branches_are_clipped_to_trim_loops() {
         Some(&b),
         &SsiParams {
             tol: 1e-7,
+            respect_trims: false,
             ..Default::default()
         },
         &no,
@@ -408,7 +409,6 @@ fn branches_are_clipped_to_trim_loops() {
     assert_eq!(full.summary.branches, 1);
     let prm = SsiParams {
         tol: 1e-7,
-        respect_trims: true,
         ..Default::default()
     };
     let r = vericad::ssi::intersect_models(&a, Some(&b), &prm, &no).unwrap();

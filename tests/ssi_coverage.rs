@@ -44,6 +44,7 @@ fn cparams(d: f64) -> CoverageParams {
         max_boxes: 400_000,
         deadline: None,
         cancel: None,
+        outside: None,
     }
 }
 

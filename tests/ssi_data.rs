@@ -14,9 +14,14 @@ fn data(name: &str) -> PathBuf {
 
 fn no_progress(_: usize, _: usize) {}
 
+/// The faces' whole surfaces intersected (`--untrimmed`): adjacent faces' surfaces cross
+/// along and beyond their shared edges, which gives many branches to check.
 fn check_file(name: &str, min_branches: usize) {
     let m = vericad::io::read_model(&data(name)).expect("readable");
-    let prm = SsiParams::default();
+    let prm = SsiParams {
+        respect_trims: false,
+        ..Default::default()
+    };
     let r = intersect_models(&m, None, &prm, &no_progress).expect("intersection completes");
     assert!(!r.summary.partial);
     assert!(
@@ -69,6 +74,63 @@ fn fuselage_faces_intersect() {
 #[test]
 fn t20_faces_intersect() {
     check_file("gmsh-t20_data.step", 10);
+}
+
+/// t20 is one closed shell of 21 faces and 48 edges (a valid solid): intersecting its faces
+/// (not their whole surfaces) gives no branch, and the intersection along the edges is listed
+/// as shared edges, each an EDGE_CURVE or VERTEX_POINT of the file (ids read here from the
+/// file's text, not through the reader).
+#[test]
+fn t20_solid_has_no_self_intersection() {
+    let path = data("gmsh-t20_data.step");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let ids_of = |kind: &str| -> std::collections::BTreeSet<String> {
+        text.lines()
+            .filter(|l| l.contains(&format!("={kind}(")))
+            .filter_map(|l| l.split('=').next().map(|s| s.trim().to_string()))
+            .collect()
+    };
+    let edges = ids_of("EDGE_CURVE");
+    let vertices = ids_of("VERTEX_POINT");
+    assert_eq!(edges.len(), 48);
+    let m = vericad::io::read_model(&path).unwrap();
+    let r = intersect_models(&m, None, &SsiParams::default(), &no_progress).unwrap();
+    assert_eq!(
+        r.summary.branches, 0,
+        "a valid solid's faces meet only along shared edges"
+    );
+    let mut found = std::collections::BTreeSet::new();
+    for p in &r.pairs {
+        for e in p.faces.iter().flat_map(|f| &f.shared_edges) {
+            assert!(
+                edges.contains(&e.edge) || vertices.contains(&e.edge),
+                "{} is not an edge or vertex of the file",
+                e.edge
+            );
+            assert!(e.points > 0 && e.max_distance <= e.within);
+            if edges.contains(&e.edge) {
+                found.insert(e.edge.clone());
+            }
+        }
+    }
+    // Every edge joins two faces whose surfaces meet along it; along a tangent (G1) edge the
+    // surfaces' intersection is degenerate (touch points or nothing), so not every edge
+    // carries curve points (30 of 48 do today).
+    assert!(found.len() >= 24, "{} of 48 edges found", found.len());
+    let touch_on_edges: usize = r
+        .pairs
+        .iter()
+        .filter_map(|p| p.faces.as_ref())
+        .map(|f| f.touch_points_on_shared_edges)
+        .sum();
+    assert!(touch_on_edges > 0);
+    // Untrimmed, the same faces give branches.
+    let untrimmed = SsiParams {
+        respect_trims: false,
+        ..Default::default()
+    };
+    let u = intersect_models(&m, None, &untrimmed, &no_progress).unwrap();
+    assert!(u.summary.branches >= 10);
 }
 
 fn branches_json(r: &vericad::ssi::SsiResult) -> String {
@@ -187,6 +249,7 @@ fn cli_writes_json_vtk_and_iges() {
             data("gmsh-t20_data.step").to_str().unwrap(),
             "--tol",
             "1e-6",
+            "--untrimmed",
             "--out",
         ])
         .arg(&json)

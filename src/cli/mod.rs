@@ -116,9 +116,12 @@ pub enum Command {
         /// Stop starting new work after this many seconds (the result is marked partial).
         #[arg(long)]
         time_limit: Option<f64>,
-        /// Clip the curves to the faces' trimming loops (IGES 144/142, JSON trim loops).
+        /// Intersect the faces' whole surfaces, ignoring trim loops (IGES 144/142, JSON trim
+        /// loops, STEP B-rep loops) and shared edges. By default the curves are restricted
+        /// to the faces, and in a one-file run on a B-rep the intersection along edges two
+        /// faces share is listed as shared edges, not as branches.
         #[arg(long)]
-        respect_trims: bool,
+        untrimmed: bool,
         /// Worker threads (default: all cores; at most 1024). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
@@ -345,7 +348,7 @@ pub fn run(cli: Cli) -> i32 {
             tol,
             flatness,
             time_limit,
-            respect_trims,
+            untrimmed,
             threads,
             out,
             vtk,
@@ -363,7 +366,7 @@ pub fn run(cli: Cli) -> i32 {
                 tol,
                 flatness,
                 time_limit,
-                respect_trims,
+                respect_trims: !untrimmed,
                 ..Default::default()
             };
             let outputs = job::Outputs {

@@ -7,10 +7,11 @@
 //! computed in a canonical surface order, so the output is the same for every thread count
 //! and for `(A, B)` and `(B, A)`.
 
+use super::brep_faces::Faces;
 use super::mesh::intersect_meshes;
 use super::pair::intersect_surfaces;
 use super::report::{PairOut, SingularKind, SsiResult, Summary};
-use super::trims::{SAMPLES_PER_CURVE, TrimRegion, clip};
+use super::trims::SAMPLES_PER_CURVE;
 use super::{SsiError, SsiParams};
 use crate::geom::Aabb;
 use crate::model::check::{MAX_COORDINATE, check_surface};
@@ -113,6 +114,10 @@ fn pair_canonical(
 ) -> Result<PairOut, SsiError> {
     if canonical_key(sa) <= canonical_key(sb) {
         intersect_surfaces(sa, sb, ids, prm, deadline)
+    } else if let Some(o) = &prm.coverage_outside {
+        let mut swapped = prm.clone();
+        swapped.coverage_outside = Some(o.swapped());
+        intersect_surfaces(sb, sa, (ids.1, ids.0), &swapped, deadline).map(swap_sides)
     } else {
         intersect_surfaces(sb, sa, (ids.1, ids.0), prm, deadline).map(swap_sides)
     }
@@ -271,6 +276,7 @@ pub fn intersect_models(
     let mut jobs = overlapping_pairs(&ba, b.map(|_| bb.as_slice()), meshes);
     jobs.sort_unstable();
     let culled = considered - jobs.len();
+    let faces = (prm.respect_trims && !meshes).then(|| Faces::new(a, b, prm.tol));
     let done = AtomicUsize::new(0);
     let total = jobs.len();
     let results: Vec<Option<Result<PairOut, SsiError>>> = jobs
@@ -280,7 +286,14 @@ pub fn intersect_models(
                 return None;
             }
             let r = match work((i, j)) {
-                Work::Surfaces(x, y) => pair_canonical(x, y, (i, j), prm, deadline),
+                Work::Surfaces(x, y) => match faces.as_ref().and_then(|f| f.outside_for(i, j)) {
+                    Some(o) => {
+                        let mut p = prm.clone();
+                        p.coverage_outside = Some(o);
+                        pair_canonical(x, y, (i, j), &p, deadline)
+                    }
+                    None => pair_canonical(x, y, (i, j), prm, deadline),
+                },
                 Work::Meshes(x, y) => intersect_meshes(x, y, (i, j)),
             };
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
@@ -296,16 +309,13 @@ pub fn intersect_models(
         }
     }
     let mut trimmed_faces = 0;
-    if prm.respect_trims && !meshes {
-        let ra: Vec<_> = a.surfaces.iter().map(TrimRegion::of).collect();
-        let rb: Vec<_> = other.surfaces.iter().map(TrimRegion::of).collect();
-        trimmed_faces = ra.iter().filter(|r| r.is_some()).count();
+    let mut faces_not_outlined = Vec::new();
+    if let Some(faces) = faces {
+        trimmed_faces = faces.trimmed;
         for p in &mut pairs {
-            let (x, y) = (ra[p.a].as_ref(), rb[p.b].as_ref());
-            if x.is_some() || y.is_some() {
-                p.branches = p.branches.iter().flat_map(|b| clip(b, x, y)).collect();
-            }
+            faces.apply(p);
         }
+        faces_not_outlined = faces.failed;
     }
     let partial = not_run > 0 || pairs.iter().any(|p| !p.complete);
     let branches: Vec<_> = pairs.iter().flat_map(|p| &p.branches).collect();
@@ -379,10 +389,33 @@ pub fn intersect_models(
             format!("singular points: {singular_points_proven} proven, {singular_points_uncertified} NOT certified (listed per touch point with the reason): their kind is not known")
         });
     }
-    if prm.respect_trims {
+    if prm.respect_trims && trimmed_faces > 0 {
+        let clip = |f: fn(&super::brep_faces::FaceClipOut) -> usize| -> usize {
+            pairs.iter().filter_map(|p| p.faces.as_ref()).map(f).sum()
+        };
+        let shared = clip(|c| c.shared_edges.len());
+        let on_shared: usize = clip(|c| c.shared_edges.iter().map(|e| e.points).sum::<usize>());
         certificate.push(format!(
-            "branches clipped to trim loops ({trimmed_faces} trimmed faces), polygonized with {SAMPLES_PER_CURVE} samples per trim curve: exact decisions against the polygon, evidence against the true trim curves"
+            "curves, touch points and uncertified regions restricted to the faces ({trimmed_faces} trimmed; trim loops polygonized with {SAMPLES_PER_CURVE} samples per curve, B-rep loops from their edges sampled at 1/150 of the model size and 3 degrees of turn): exact decisions against the polygons, evidence against the true loop curves; removed: {} branch points, {} touch points and {} uncertified regions outside the faces",
+            clip(|c| c.points_outside),
+            clip(|c| c.touch_points_outside),
+            clip(|c| c.regions_outside),
         ));
+        if a.brep.is_some() && b.is_none() {
+            certificate.push(format!(
+                "shared edges: the intersection along {shared} edges and vertices the faces share ({on_shared} points, {} touch points within max(100 tol, 1e-6 of the model size) of the edge curve, by local search: evidence) is listed per pair as shared_edges, not as branches; it is where the faces meet by construction",
+                clip(|c| c.touch_points_on_shared_edges)
+            ));
+        }
+        if !faces_not_outlined.is_empty() {
+            certificate.push(format!(
+                "NOT restricted: {} faces could not be outlined in their parameter plane, their whole surfaces were intersected: {}",
+                faces_not_outlined.len(),
+                faces_not_outlined.join("; ")
+            ));
+        }
+    } else if !prm.respect_trims && (a.brep.is_some() || b.is_some_and(|m| m.brep.is_some())) {
+        certificate.push("untrimmed: the faces' whole surfaces were intersected (the B-rep's loops and shared edges ignored, --untrimmed)".to_string());
     }
     if coincident_pairs > 0 {
         certificate.push(format!(

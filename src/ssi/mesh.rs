@@ -138,5 +138,6 @@ pub fn intersect_meshes(
         coverage: None,
         complete: true,
         coincident: None,
+        faces: None,
     })
 }

@@ -21,6 +21,7 @@
 //! | cancel flag and progress inside a pair | [`control`] |
 
 pub mod branch;
+pub mod brep_faces;
 pub mod certify;
 pub mod closest;
 pub mod coincide;
@@ -97,8 +98,13 @@ pub struct SsiParams {
     pub coverage_max_depth: u32,
     /// Boxes examined by the coverage certificate per face pair.
     pub coverage_max_boxes: usize,
-    /// Clip branches to the faces' trimming loops.
+    /// Intersect faces, not whole surfaces: outputs restricted to the faces' trim loops or
+    /// B-rep loops, and in one-file runs on a B-rep the intersection along shared edges listed
+    /// as such ([`brep_faces`]). On by default; off intersects the untrimmed surfaces.
     pub respect_trims: bool,
+    /// The coverage certificate skips box pairs outside the faces (set per pair by the
+    /// driver when faces are trimmed).
+    pub coverage_outside: Option<coverage::OutsideFaces>,
     /// Cancel flag and progress from inside face pairs ([`control`]).
     pub control: control::Control,
 }
@@ -119,7 +125,8 @@ impl Default for SsiParams {
             coverage_match: None,
             coverage_max_depth: 24,
             coverage_max_boxes: 200_000,
-            respect_trims: false,
+            respect_trims: true,
+            coverage_outside: None,
             control: control::Control::default(),
         }
     }

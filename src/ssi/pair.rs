@@ -129,6 +129,7 @@ pub fn intersect_surfaces(
             coverage: None,
             complete: false,
             coincident: None,
+            faces: None,
         })
     };
     if let Some(c) = coincidence(sa, sb) {
@@ -143,6 +144,7 @@ pub fn intersect_surfaces(
             coverage: None,
             complete: true,
             coincident: Some(c),
+            faces: None,
         });
     }
     ctl.report(ids, "triangulate", 0, 2);
@@ -204,6 +206,7 @@ pub fn intersect_surfaces(
         coverage: None,
         complete: true,
         coincident: None,
+        faces: None,
     };
     for (k, r) in singular.iter().enumerate() {
         out.touch_points.push(touch_out(
@@ -244,6 +247,7 @@ pub fn intersect_surfaces(
             max_boxes: prm.coverage_max_boxes,
             deadline,
             cancel: ctl.cancel.clone(),
+            outside: prm.coverage_outside.clone(),
         };
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
     }

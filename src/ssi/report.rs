@@ -13,7 +13,7 @@ pub enum EndKind {
     BranchPoint,
     /// Where the surfaces become tangent (refinement detected parallel normals).
     Tangential,
-    /// Where the curve leaves a trimmed face (`--respect-trims`).
+    /// Where the curve leaves a trimmed face (or meets an edge it shares with the other face).
     TrimBoundary,
     /// None of the above: the mesh curve stops at a point with one use that is not on a
     /// border (reported, never hidden).
@@ -248,6 +248,10 @@ pub struct PairOut {
     /// The faces are proven to coincide (identical, or coplanar): their intersection is a
     /// region, not curves; no curves or certificates are computed for the pair.
     pub coincident: Option<super::coincide::CoincidenceOut>,
+    /// What restricting the pair to its faces (trim loops, B-rep faces) removed, and the
+    /// intersection along the edges the faces share; absent when neither face is trimmed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub faces: Option<super::brep_faces::FaceClipOut>,
 }
 
 /// What the whole run proves and what it does not.

@@ -1,4 +1,4 @@
-//! Clipping intersection curves to the faces' trimming loops (`--respect-trims`, issue step 7).
+//! Clipping intersection curves to the faces' trimming loops (on by default; `--untrimmed` turns it off).
 //!
 //! Each trim loop is polygonized in the parameter plane (every curve sampled at
 //! [`SAMPLES_PER_CURVE`] + 1 parameters, the curves' end points exactly); a parameter point is
@@ -11,15 +11,18 @@
 use super::fit::fit_branch;
 use super::krawczyk::Uncertified;
 use super::report::{BranchOut, EndKind};
-use crate::model::Surface;
-use crate::predicates::orient2d;
-use crate::scalar::Sign;
+use crate::model::{Model, Surface};
+use crate::tessellate::domain::BoundaryPoint;
+use crate::tessellate::region::FaceRegion;
+use crate::tessellate::{MeshParams, face_regions};
 
 pub const SAMPLES_PER_CURVE: usize = 64;
 
-/// A face's trimmed region as polygons in its parameter plane.
+/// A face's trimmed region as polygons in its parameter plane: one or more
+/// [`FaceRegion`]s (a B-rep face each, or the face's own trim loops); inside any of them is
+/// inside the face.
 pub struct TrimRegion {
-    loops: Vec<Vec<[f64; 2]>>,
+    regions: Vec<FaceRegion>,
 }
 
 impl TrimRegion {
@@ -28,7 +31,7 @@ impl TrimRegion {
         if s.trim_loops.is_empty() {
             return None;
         }
-        let loops = s
+        let polys = s
             .trim_loops
             .iter()
             .map(|l| {
@@ -36,37 +39,55 @@ impl TrimRegion {
                 for c in &l.curves {
                     let (t0, t1) = c.hom.domain();
                     for k in 0..SAMPLES_PER_CURVE {
-                        poly.push(c.eval(&(t0 + (t1 - t0) * k as f64 / SAMPLES_PER_CURVE as f64)));
+                        let uv = c.eval(&(t0 + (t1 - t0) * k as f64 / SAMPLES_PER_CURVE as f64));
+                        poly.push(BoundaryPoint::straight(uv, 0));
                     }
                 }
                 poly
             })
-            .filter(|p| p.len() >= 3)
-            .collect();
-        Some(TrimRegion { loops })
+            .collect::<Vec<_>>();
+        let (u0, u1, v0, v1) = s.nurbs.hom.domain();
+        Some(TrimRegion {
+            regions: vec![FaceRegion::new(0, &polys, [None, None], [u0, u1, v0, v1])],
+        })
     }
 
-    /// Even-odd rule over all loops; a point on a polygon edge counts as inside.
-    pub fn inside(&self, p: &[f64; 2]) -> bool {
-        let mut odd = false;
-        for poly in &self.loops {
-            for k in 0..poly.len() {
-                let (a, b) = (&poly[k], &poly[(k + 1) % poly.len()]);
-                // Ray to +u: edges crossing the horizontal line through p, half-open in v.
-                if (a[1] > p[1]) != (b[1] > p[1]) {
-                    let o = orient2d(a, b, p);
-                    if o == Sign::Zero {
-                        return true;
-                    }
-                    // p is left of the upward edge (or right of a downward one) => crossing.
-                    let upward = b[1] > a[1];
-                    if (o == Sign::Positive) == upward {
-                        odd = !odd;
-                    }
+    /// The regions of the B-rep faces on each surface of `m` (`None`: no face of the B-rep
+    /// uses the surface, or none could be outlined — then the surface is not clipped; the
+    /// faces that could not be outlined are returned with the reason).
+    pub fn of_brep(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
+        let mut out: Vec<Option<TrimRegion>> = (0..m.surfaces.len()).map(|_| None).collect();
+        let mut failed = Vec::new();
+        let Some(brep) = &m.brep else {
+            return (out, failed);
+        };
+        for (f, r) in brep
+            .faces
+            .iter()
+            .zip(face_regions(m, brep, &MeshParams::for_area()))
+        {
+            match r {
+                Ok(r) => {
+                    let s = r.surface;
+                    out[s]
+                        .get_or_insert_with(|| TrimRegion { regions: vec![] })
+                        .regions
+                        .push(r)
                 }
+                Err(e) => failed.push(format!("face {}: {e}", f.source)),
             }
         }
-        odd
+        (out, failed)
+    }
+
+    /// Inside any of the regions.
+    pub fn inside(&self, p: &[f64; 2]) -> bool {
+        self.regions.iter().any(|r| r.inside(p))
+    }
+
+    /// The parameter box (widened by `margin` of the domain) lies outside every region.
+    pub fn box_outside(&self, b: &[f64; 4], margin: f64) -> bool {
+        self.regions.iter().all(|r| r.box_outside(b, margin))
     }
 }
 
@@ -76,10 +97,16 @@ fn refit(b: &mut BranchOut) {
 
 /// The parts of `b` inside both trimmed faces (`None`: untrimmed face).
 pub fn clip(b: &BranchOut, ra: Option<&TrimRegion>, rb: Option<&TrimRegion>) -> Vec<BranchOut> {
-    let n = b.points.len();
-    let keep: Vec<bool> = (0..n)
+    let keep: Vec<bool> = (0..b.points.len())
         .map(|i| ra.is_none_or(|r| r.inside(&b.uv_a[i])) && rb.is_none_or(|r| r.inside(&b.uv_b[i])))
         .collect();
+    clip_mask(b, &keep)
+}
+
+/// The runs of points of `b` with `keep` set, as branches of their own (cut ends
+/// [`EndKind::TrimBoundary`]); runs of one point are dropped.
+pub fn clip_mask(b: &BranchOut, keep: &[bool]) -> Vec<BranchOut> {
+    let n = b.points.len();
     if keep.iter().all(|k| *k) {
         return vec![b.clone()];
     }

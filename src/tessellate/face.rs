@@ -72,13 +72,30 @@ fn resolution(
 /// `add` makes a new mesh vertex; `h`: target edge length.
 pub fn mesh_face(
     fs: &FaceSurface,
-    mut rings: Vec<Ring>,
+    rings: Vec<Ring>,
     vertex_loop: Option<usize>,
     same_sense: bool,
     h: f64,
     max_turn: f64,
     add: &mut dyn FnMut([f64; 3]) -> usize,
 ) -> Result<FaceMesh, FaceError> {
+    let polys = face_polygons(fs, rings, vertex_loop, same_sense, h, max_turn, add)?;
+    triangulate(fs, &polys, same_sense, h, max_turn, add)
+}
+
+/// The closed parameter-plane polygons of a face (even-odd: the face is inside an odd number
+/// of them): winding loops closed into bands or pole caps, the other loops shifted by periods
+/// into the range of the first. Arguments as [`mesh_face`]; cut and pole points get vertices
+/// from `add`.
+pub fn face_polygons(
+    fs: &FaceSurface,
+    mut rings: Vec<Ring>,
+    vertex_loop: Option<usize>,
+    same_sense: bool,
+    h: f64,
+    max_turn: f64,
+    add: &mut dyn FnMut([f64; 3]) -> usize,
+) -> Result<Vec<Vec<BoundaryPoint>>, FaceError> {
     // Loops winding around a periodic direction, closed into polygons.
     let mut polys: Vec<Vec<BoundaryPoint>> = Vec::new();
     for d in 0..2 {
@@ -174,7 +191,7 @@ pub fn mesh_face(
         }
         polys.push(pts);
     }
-    triangulate(fs, &polys, same_sense, h, max_turn, add)
+    Ok(polys)
 }
 
 fn triangulate(

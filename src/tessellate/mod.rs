@@ -9,6 +9,7 @@
 
 pub mod domain;
 pub mod face;
+pub mod region;
 
 use crate::brep::{Brep, LoopKind};
 use crate::model::{Model, Triangulation};
@@ -105,18 +106,16 @@ fn segments(pts: &[[f64; 3]], h: f64, max_turn: f64) -> usize {
 /// A sample point of an edge: its mesh vertex and position.
 type Sample = (usize, [f64; 3]);
 
-/// Triangulate every face of `brep` (surfaces from `model`).
-pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
-    let size = bbox_diagonal(brep);
-    let h = size * params.relative_edge;
-    let mut t = Triangulation {
-        name: "trimmed faces".into(),
-        vertices: brep.vertices.iter().map(|v| v.point).collect(),
-        triangles: vec![],
-    };
-    // Edge samples: mesh vertices from the start vertex to the end vertex.
+/// Every edge sampled once: its samples from start to end vertex (`None`: no 3D curve) and
+/// the curve's points halfway (in its parameter) between consecutive samples. New sample
+/// points are appended to `t.vertices`.
+struct EdgeSamples {
+    samples: Vec<Option<Vec<Sample>>>,
+    halves: Vec<Vec<[f64; 3]>>,
+}
+
+fn sample_edges(brep: &Brep, h: f64, max_turn: f64, t: &mut Triangulation) -> EdgeSamples {
     let mut samples: Vec<Option<Vec<Sample>>> = Vec::with_capacity(brep.edges.len());
-    // The curve's point halfway (in its parameter) between consecutive samples.
     let mut halves: Vec<Vec<[f64; 3]>> = Vec::with_capacity(brep.edges.len());
     for e in &brep.edges {
         let Some(c) = &e.curve else {
@@ -128,7 +127,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         let probe: Vec<[f64; 3]> = (0..=256)
             .map(|i| c.nurbs.eval(&(t0 + (t1 - t0) * i as f64 / 256.0)))
             .collect();
-        let n = segments(&probe, h, params.max_turn).max(1);
+        let n = segments(&probe, h, max_turn).max(1);
         let mut s = vec![(e.start, brep.vertices[e.start].point)];
         for i in 1..n {
             let p = c.nurbs.eval(&(t0 + (t1 - t0) * i as f64 / n as f64));
@@ -146,16 +145,81 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
                 .collect(),
         );
     }
-    // Faces a shell uses reversed (`oriented_face` with orientation .F.): their triangles
-    // turn the other way (the region is the face's own).
-    let mut reversed_in_shell = vec![false; brep.faces.len()];
-    for sh in &brep.shells {
-        for (fi, o) in &sh.faces {
-            if !o {
-                reversed_in_shell[*fi] = true;
+    EdgeSamples { samples, halves }
+}
+
+/// The loops of face `fi` projected into its parameter plane, and its vertex loop's vertex.
+fn face_rings(
+    brep: &Brep,
+    fi: usize,
+    es: &EdgeSamples,
+    fs: &FaceSurface,
+) -> Result<(Vec<domain::Ring>, Option<usize>), String> {
+    let f = &brep.faces[fi];
+    let mut rings = Vec::new();
+    let mut vertex_loop = None;
+    // Edges already traversed by this face's loops (a second traversal is a seam copy).
+    let mut traversed = std::collections::BTreeSet::new();
+    for l in &f.loops {
+        match &l.kind {
+            LoopKind::Vertex(v) => vertex_loop = Some(*v),
+            LoopKind::Edges(edges) => {
+                let mut pts: Vec<(usize, [f64; 3])> = Vec::new();
+                let mut breaks: Vec<bool> = Vec::new();
+                let mut mids: Vec<Option<[f64; 3]>> = Vec::new();
+                let order: Vec<_> = if l.orientation {
+                    edges.iter().map(|o| (o.edge, o.forward)).collect()
+                } else {
+                    edges.iter().rev().map(|o| (o.edge, !o.forward)).collect()
+                };
+                for (e, fwd) in order {
+                    let Some(s) = &es.samples[e] else {
+                        return Err(format!("edge {} has no curve", brep.edges[e].source));
+                    };
+                    let n = s.len();
+                    let second = !traversed.insert(e);
+                    let hv = &es.halves[e];
+                    for k in 0..n - 1 {
+                        pts.push(if fwd { s[k] } else { s[n - 1 - k] });
+                        mids.push(Some(if fwd { hv[k] } else { hv[n - 2 - k] }));
+                        breaks.push(second && k == 0);
+                    }
+                }
+                if !pts.is_empty() {
+                    rings.push(domain::ring(fs, &pts, &mids, &breaks));
+                }
             }
         }
     }
+    Ok((rings, vertex_loop))
+}
+
+/// Faces a shell uses reversed (`oriented_face` with orientation .F.).
+fn reversed_in_shell(brep: &Brep) -> Vec<bool> {
+    let mut r = vec![false; brep.faces.len()];
+    for sh in &brep.shells {
+        for (fi, o) in &sh.faces {
+            if !o {
+                r[*fi] = true;
+            }
+        }
+    }
+    r
+}
+
+/// Triangulate every face of `brep` (surfaces from `model`).
+pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
+    let size = bbox_diagonal(brep);
+    let h = size * params.relative_edge;
+    let mut t = Triangulation {
+        name: "trimmed faces".into(),
+        vertices: brep.vertices.iter().map(|v| v.point).collect(),
+        triangles: vec![],
+    };
+    let es = sample_edges(brep, h, params.max_turn, &mut t);
+    // Faces a shell uses reversed: their triangles turn the other way (the region is the
+    // face's own).
+    let reversed = reversed_in_shell(brep);
     let mut faces = Vec::with_capacity(brep.faces.len());
     for (fi, f) in brep.faces.iter().enumerate() {
         let Some(si) = f.surface else {
@@ -163,47 +227,13 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
             continue;
         };
         let fs = FaceSurface::new(&model.surfaces[si].nurbs, size);
-        let mut rings = Vec::new();
-        let mut vertex_loop = None;
-        let mut fault = None;
-        // Edges already traversed by this face's loops (a second traversal is a seam copy).
-        let mut traversed = std::collections::BTreeSet::new();
-        for l in &f.loops {
-            match &l.kind {
-                LoopKind::Vertex(v) => vertex_loop = Some(*v),
-                LoopKind::Edges(es) => {
-                    let mut pts: Vec<(usize, [f64; 3])> = Vec::new();
-                    let mut breaks: Vec<bool> = Vec::new();
-                    let mut mids: Vec<Option<[f64; 3]>> = Vec::new();
-                    let order: Vec<_> = if l.orientation {
-                        es.iter().map(|o| (o.edge, o.forward)).collect()
-                    } else {
-                        es.iter().rev().map(|o| (o.edge, !o.forward)).collect()
-                    };
-                    for (e, fwd) in order {
-                        let Some(s) = &samples[e] else {
-                            fault = Some(format!("edge {} has no curve", brep.edges[e].source));
-                            break;
-                        };
-                        let n = s.len();
-                        let second = !traversed.insert(e);
-                        let hv = &halves[e];
-                        for k in 0..n - 1 {
-                            pts.push(if fwd { s[k] } else { s[n - 1 - k] });
-                            mids.push(Some(if fwd { hv[k] } else { hv[n - 2 - k] }));
-                            breaks.push(second && k == 0);
-                        }
-                    }
-                    if !pts.is_empty() {
-                        rings.push(domain::ring(&fs, &pts, &mids, &breaks));
-                    }
-                }
+        let (rings, vertex_loop) = match face_rings(brep, fi, &es, &fs) {
+            Ok(r) => r,
+            Err(e) => {
+                faces.push(Err(e));
+                continue;
             }
-        }
-        if let Some(e) = fault {
-            faces.push(Err(e));
-            continue;
-        }
+        };
         let first = t.triangles.len();
         let mut add = |p: [f64; 3]| {
             t.vertices.push(p);
@@ -219,7 +249,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
             &mut add,
         ) {
             Ok(m) => {
-                let flip = reversed_in_shell[fi];
+                let flip = reversed[fi];
                 t.triangles.extend(m.triangles.iter().map(|x| {
                     let x = x.map(|i| i as u32);
                     if flip { [x[0], x[2], x[1]] } else { x }
@@ -233,6 +263,48 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         triangulation: t,
         faces,
     }
+}
+
+/// The parameter-plane region of every face of `brep` ([`region::FaceRegion`]: its closed
+/// polygons from the edges sampled as `params` says), or why it has none.
+pub fn face_regions(
+    model: &Model,
+    brep: &Brep,
+    params: &MeshParams,
+) -> Vec<Result<region::FaceRegion, String>> {
+    let size = bbox_diagonal(brep);
+    let h = size * params.relative_edge;
+    let mut t = Triangulation {
+        name: String::new(),
+        vertices: brep.vertices.iter().map(|v| v.point).collect(),
+        triangles: vec![],
+    };
+    let es = sample_edges(brep, h, params.max_turn, &mut t);
+    let mut extra = t.vertices.len();
+    brep.faces
+        .iter()
+        .enumerate()
+        .map(|(fi, f)| {
+            let si = f.surface.ok_or_else(|| "no surface".to_string())?;
+            let fs = FaceSurface::new(&model.surfaces[si].nurbs, size);
+            let (rings, vertex_loop) = face_rings(brep, fi, &es, &fs)?;
+            let mut add = |_: [f64; 3]| {
+                extra += 1;
+                extra - 1
+            };
+            let polys = face::face_polygons(
+                &fs,
+                rings,
+                vertex_loop,
+                f.same_sense,
+                h,
+                params.max_turn,
+                &mut add,
+            )
+            .map_err(|e| e.to_string())?;
+            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain))
+        })
+        .collect()
 }
 
 /// The trimmed area of every face of `brep`, from the fine sampling

@@ -83,6 +83,31 @@ pub struct CoverageParams {
     /// Set from another thread to stop: past it (or the deadline) the pairs not yet examined
     /// are listed as budget-limited without being examined.
     pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// Pairs of parameter boxes lying outside the faces (trim or B-rep loops) are not
+    /// examined: no point of the faces' intersection lies in them (counted `outside_faces`).
+    pub outside: Option<OutsideFaces>,
+}
+
+/// `outside(uv_a, uv_b)`: the box pair `[u0, u1, v0, v1]` of surface A and of surface B lies
+/// outside face A or face B (see [`crate::ssi::brep_faces`] for what that decision rests on).
+#[derive(Clone)]
+pub struct OutsideFaces(pub std::sync::Arc<BoxPairTest>);
+
+/// A decision on a pair of parameter boxes `[u0, u1, v0, v1]` (of A, of B).
+pub type BoxPairTest = dyn Fn(&[f64; 4], &[f64; 4]) -> bool + Send + Sync;
+
+impl std::fmt::Debug for OutsideFaces {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("OutsideFaces")
+    }
+}
+
+impl OutsideFaces {
+    /// The same test with the two surfaces' roles exchanged.
+    pub fn swapped(&self) -> OutsideFaces {
+        let o = self.0.clone();
+        OutsideFaces(std::sync::Arc::new(move |a, b| o(b, a)))
+    }
 }
 
 /// Why a pair of parameter boxes is not certified.
@@ -126,6 +151,8 @@ pub struct CoverageOut {
     pub near_output: usize,
     pub transversal: usize,
     pub uncertified: usize,
+    /// Pairs outside the faces (trim or B-rep loops), not examined further.
+    pub outside_faces: usize,
     /// Boxes examined in border-crossing searches, and those proven near the output.
     pub crossing_boxes: usize,
     pub crossing_boxes_near_output: usize,
@@ -371,6 +398,10 @@ pub fn coverage(
         }
         out.pairs_examined += 1;
         boxes += 1;
+        if prm.outside.as_ref().is_some_and(|o| (o.0)(&a.uv, &b.uv)) {
+            out.outside_faces += 1;
+            continue;
+        }
         // Past the box or time budget, or with 100 undecided pairs listed already (the pair of
         // faces is not certified either way), the rest is listed as budget-limited.
         let over = boxes > prm.max_boxes

@@ -1,0 +1,184 @@
+//! A trimmed face's region in its surface's parameter plane: the closed polygons of its loops
+//! ([`super::face::face_polygons`]), tested by the even-odd rule with exact orientation signs
+//! against the polygon edges, periodic directions taken modulo their period.
+//!
+//! The polygons join points of the loops' edges projected onto the surface; between them they
+//! are chords in the parameter plane. The decision is exact *for the polygon*; against the true
+//! trim curves it is evidence, within the polygon's distance from them (about the chordal error
+//! of the edge sampling).
+
+use super::domain::BoundaryPoint;
+use crate::predicates::orient2d;
+use crate::scalar::Sign;
+
+/// The parameter-plane region of one face of a B-rep.
+#[derive(Clone, Debug)]
+pub struct FaceRegion {
+    /// The model surface the face lies on.
+    pub surface: usize,
+    /// Closed polygons (the last point joins the first); inside = odd number of crossings.
+    pub polys: Vec<Vec<[f64; 2]>>,
+    /// Period of each parameter, when the surface is closed in it.
+    pub period: [Option<f64>; 2],
+    /// The surface's parameter domain `[u0, u1, v0, v1]`.
+    pub domain: [f64; 4],
+}
+
+impl FaceRegion {
+    pub fn new(
+        surface: usize,
+        polys: &[Vec<BoundaryPoint>],
+        period: [Option<f64>; 2],
+        domain: [f64; 4],
+    ) -> FaceRegion {
+        FaceRegion {
+            surface,
+            polys: polys
+                .iter()
+                .map(|p| p.iter().map(|b| b.uv).collect::<Vec<_>>())
+                .filter(|p| p.len() >= 3)
+                .collect(),
+            period,
+            domain,
+        }
+    }
+
+    /// The shifts by whole periods under which a parameter point is tested.
+    fn shifts(&self) -> Vec<[f64; 2]> {
+        let ks = |d: usize| -> Vec<f64> {
+            match self.period[d] {
+                Some(p) => vec![0.0, -p, p, -2.0 * p, 2.0 * p],
+                None => vec![0.0],
+            }
+        };
+        let mut out = Vec::new();
+        for a in ks(0) {
+            for b in ks(1) {
+                out.push([a, b]);
+            }
+        }
+        out
+    }
+
+    /// Even-odd rule for one point (no shift); a point on a polygon edge counts as inside.
+    fn inside_once(&self, p: &[f64; 2]) -> bool {
+        let mut odd = false;
+        for poly in &self.polys {
+            for k in 0..poly.len() {
+                let (a, b) = (&poly[k], &poly[(k + 1) % poly.len()]);
+                if (a[1] > p[1]) != (b[1] > p[1]) {
+                    let o = orient2d(a, b, p);
+                    if o == Sign::Zero {
+                        return true;
+                    }
+                    let upward = b[1] > a[1];
+                    if (o == Sign::Positive) == upward {
+                        odd = !odd;
+                    }
+                }
+            }
+        }
+        odd
+    }
+
+    /// Whether `uv` lies in the face (under some shift by whole periods).
+    pub fn inside(&self, uv: &[f64; 2]) -> bool {
+        self.shifts()
+            .iter()
+            .any(|s| self.inside_once(&[uv[0] + s[0], uv[1] + s[1]]))
+    }
+
+    /// Whether the parameter box `[u0, u1, v0, v1]`, widened by `margin` (a fraction of the
+    /// domain's extent in each direction), lies wholly outside the face: no polygon edge meets
+    /// it and its centre is outside (under every shift).
+    pub fn box_outside(&self, b: &[f64; 4], margin: f64) -> bool {
+        let mu = margin * (self.domain[1] - self.domain[0]).abs();
+        let mv = margin * (self.domain[3] - self.domain[2]).abs();
+        for s in self.shifts() {
+            let lo = [b[0] - mu + s[0], b[2] - mv + s[1]];
+            let hi = [b[1] + mu + s[0], b[3] + mv + s[1]];
+            let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+            if self.inside_once(&centre) {
+                return false;
+            }
+            for poly in &self.polys {
+                for k in 0..poly.len() {
+                    if segment_meets_box(&poly[k], &poly[(k + 1) % poly.len()], &lo, &hi) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+}
+
+/// Liang–Barsky: whether the segment `a b` meets the closed box `lo..hi`.
+fn segment_meets_box(a: &[f64; 2], b: &[f64; 2], lo: &[f64; 2], hi: &[f64; 2]) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for d in 0..2 {
+        let delta = b[d] - a[d];
+        for (p, q) in [(-delta, a[d] - lo[d]), (delta, hi[d] - a[d])] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return false;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+                if t0 > t1 {
+                    return false;
+                }
+            }
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square_with_hole() -> FaceRegion {
+        FaceRegion {
+            surface: 0,
+            polys: vec![
+                vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                vec![[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]],
+            ],
+            period: [None, None],
+            domain: [0.0, 1.0, 0.0, 1.0],
+        }
+    }
+
+    #[test]
+    fn even_odd_with_a_hole() {
+        let r = square_with_hole();
+        assert!(r.inside(&[0.2, 0.2]));
+        assert!(!r.inside(&[0.5, 0.5]));
+        assert!(!r.inside(&[1.5, 0.5]));
+        assert!(r.inside(&[1.0, 0.5]), "on an edge counts as inside");
+        assert!(r.box_outside(&[0.45, 0.55, 0.45, 0.55], 0.0));
+        assert!(!r.box_outside(&[0.45, 0.55, 0.45, 0.55], 0.1));
+        assert!(!r.box_outside(&[0.1, 0.2, 0.1, 0.2], 0.0));
+        assert!(r.box_outside(&[2.0, 3.0, 2.0, 3.0], 0.01));
+    }
+
+    #[test]
+    fn periodic_points_shifted_into_the_polygon() {
+        // A band u in [0.5, 1.5] of a surface periodic in u with period 1 (domain [0, 1]).
+        let r = FaceRegion {
+            surface: 0,
+            polys: vec![vec![[0.5, 0.0], [1.5, 0.0], [1.5, 0.3], [0.5, 0.3]]],
+            period: [Some(1.0), None],
+            domain: [0.0, 1.0, 0.0, 1.0],
+        };
+        assert!(r.inside(&[0.1, 0.1]));
+        assert!(r.inside(&[0.9, 0.1]));
+        assert!(!r.inside(&[0.1, 0.5]));
+    }
+}
