@@ -68,6 +68,11 @@ use std::time::Instant;
 
 type Q = BigRational;
 
+/// Pieces whose quarters are kept for reuse, per face pair (about 5 KB each for bicubic
+/// pieces: about 50 MB per face pair; abc-0000.step peaked at 3.7 GB before this bound, 0.39 GB
+/// with it, the same certificate).
+const CACHED_CELLS: usize = 10_000;
+
 /// Budgets and the match distance.
 #[derive(Clone, Debug)]
 pub struct CoverageParams {
@@ -201,18 +206,27 @@ impl Cell {
         self.normals
             .get_or_init(|| normal_generators(&self.patch, self.polynomial))
     }
-    fn kids(&self) -> &[Rc<Cell>; 4] {
-        self.kids.get_or_init(|| {
-            let [u0, u1, v0, v1] = self.uv;
-            let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
-            let [a, b, c, d] = self.patch.quarters();
-            [
-                Cell::new(a, [u0, um, v0, vm], self.polynomial),
-                Cell::new(b, [u0, um, vm, v1], self.polynomial),
-                Cell::new(c, [um, u1, v0, vm], self.polynomial),
-                Cell::new(d, [um, u1, vm, v1], self.polynomial),
-            ]
-        })
+    /// The four quarters, kept for the next pair that splits this piece while fewer than
+    /// [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past that, made
+    /// afresh each time, so memory stays bounded however deep the refinement goes.
+    fn kids(&self, kept: &std::cell::Cell<usize>) -> [Rc<Cell>; 4] {
+        if let Some(k) = self.kids.get() {
+            return k.clone();
+        }
+        let [u0, u1, v0, v1] = self.uv;
+        let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        let [a, b, c, d] = self.patch.quarters();
+        let k = [
+            Cell::new(a, [u0, um, v0, vm], self.polynomial),
+            Cell::new(b, [u0, um, vm, v1], self.polynomial),
+            Cell::new(c, [um, u1, v0, vm], self.polynomial),
+            Cell::new(d, [um, u1, vm, v1], self.polynomial),
+        ];
+        if kept.get() < CACHED_CELLS {
+            kept.set(kept.get() + 4);
+            let _ = self.kids.set(k.clone());
+        }
+        k
     }
     fn diag(&self) -> f64 {
         self.hull.as_ref().map_or(f64::INFINITY, diagonal)
@@ -372,6 +386,7 @@ pub fn coverage(
         }
     }
     let mut boxes = 0usize;
+    let kept = std::cell::Cell::new(0usize);
     let mut searched: std::collections::HashSet<[u64; 8]> = std::collections::HashSet::new();
     let uncertified = |out: &mut CoverageOut, a: &Cell, b: &Cell, reason, point| {
         out.uncertified += 1;
@@ -484,11 +499,11 @@ pub fn coverage(
         let can_b = db < prm.max_pair_depth && b.diag() > 0.25 * d;
         let split_a = can_a && (!can_b || a.diag() >= b.diag());
         if split_a {
-            for k in a.kids() {
+            for k in a.kids(&kept) {
                 stack.push((k.clone(), b.clone(), da + 1, db));
             }
         } else if can_b {
-            for k in b.kids() {
+            for k in b.kids(&kept) {
                 stack.push((a.clone(), k.clone(), da, db + 1));
             }
         } else {
