@@ -10,8 +10,8 @@
 //!   coincide: the intersection is a planar region (possibly empty), not curves.
 //!
 //! Other coincidences (a surface and a reparametrization or a piece of it, overlapping
-//! curved surfaces) are not detected here; the curve pipeline then runs and its certificates
-//! refuse where the normals are parallel.
+//! curved surfaces) are not proven here; the curve pipeline then runs, its certificates
+//! refuse where the normals are parallel, and [`super::overlap`] measures the overlap.
 
 use crate::predicates::orient::orient3d;
 use crate::scalar::{Scalar, Sign, lift};
@@ -27,15 +27,35 @@ type Q = BigRational;
 pub enum CoincidenceKind {
     Identical,
     Coplanar,
+    /// Overlapping curved surfaces, measured ([`super::overlap`]): evidence, not proven.
+    Overlap,
 }
 
-/// A proven coincidence, reported instead of intersection curves.
+/// Where two surfaces were measured to overlap ([`super::overlap`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct OverlapOut {
+    /// Boxes `[u0, u1, v0, v1]` of the overlap samples in each parameter plane.
+    pub uv_a: [f64; 4],
+    pub uv_b: [f64; 4],
+    /// Grid points found on the other surface with parallel normals, in 2×2 blocks.
+    pub samples: usize,
+    /// Their largest distance to the other surface (local search: evidence).
+    pub max_distance: f64,
+    /// Branches and touch points of the curve pipeline inside the overlap, removed.
+    pub branches_removed: usize,
+    pub touch_points_removed: usize,
+}
+
+/// A coincidence, reported instead of intersection curves: proven (identical, coplanar) or
+/// measured (overlap).
 #[derive(Clone, Debug, Serialize)]
 pub struct CoincidenceOut {
     pub kind: CoincidenceKind,
     /// A point of the common plane and a normal (coplanar; for identical surfaces: none).
     pub plane_point: Option<[f64; 3]>,
     pub plane_normal: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub overlap: Option<OverlapOut>,
 }
 
 fn cartesian_exact(s: &NurbsSurface<f64, 3>) -> Option<Vec<[Q; 3]>> {
@@ -85,6 +105,7 @@ pub fn coincidence(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> Opti
             kind: CoincidenceKind::Identical,
             plane_point: None,
             plane_normal: None,
+            overlap: None,
         });
     }
     let pa = cartesian_exact(sa)?;
@@ -114,6 +135,7 @@ pub fn coincidence(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> Opti
         kind: CoincidenceKind::Coplanar,
         plane_point: Some(std::array::from_fn(|k| p0[k].to_f64())),
         plane_normal: (l > 0.0 && l.is_finite()).then(|| nf.map(|c| c / l)),
+        overlap: None,
     })
 }
 

@@ -8,6 +8,7 @@
 //! and for `(A, B)` and `(B, A)`.
 
 use super::brep_faces::Faces;
+use super::coincide::CoincidenceKind;
 use super::mesh::intersect_meshes;
 use super::pair::intersect_surfaces;
 use super::report::{PairOut, SingularKind, SsiResult, Summary};
@@ -64,6 +65,9 @@ fn swap_sides(mut p: PairOut) -> PairOut {
     }
     for c in &mut p.contacts {
         std::mem::swap(&mut c.triangle_a, &mut c.triangle_b);
+    }
+    if let Some(o) = p.coincident.as_mut().and_then(|c| c.overlap.as_mut()) {
+        std::mem::swap(&mut o.uv_a, &mut o.uv_b);
     }
     let s = &mut p.stats;
     std::mem::swap(&mut s.triangles_a, &mut s.triangles_b);
@@ -342,6 +346,14 @@ pub fn intersect_models(
             p.coincident.is_none() && p.coverage.as_ref().is_some_and(|c| c.no_missed_branches)
         });
     let coincident_pairs = pairs.iter().filter(|p| p.coincident.is_some()).count();
+    let overlap_pairs = pairs
+        .iter()
+        .filter(|p| {
+            p.coincident
+                .as_ref()
+                .is_some_and(|c| c.kind == CoincidenceKind::Overlap)
+        })
+        .count();
     let singular: Vec<_> = pairs
         .iter()
         .flat_map(|p| &p.touch_points)
@@ -417,9 +429,15 @@ pub fn intersect_models(
     } else if !prm.respect_trims && (a.brep.is_some() || b.is_some_and(|m| m.brep.is_some())) {
         certificate.push("untrimmed: the faces' whole surfaces were intersected (the B-rep's loops and shared edges ignored, --untrimmed)".to_string());
     }
-    if coincident_pairs > 0 {
+    if coincident_pairs > overlap_pairs {
         certificate.push(format!(
-            "COINCIDENT: {coincident_pairs} face pairs are proven to coincide (identical, or all control points in one plane, exact): their intersection is a region, not curves; listed per pair, not certified as curves"
+            "COINCIDENT: {} face pairs are proven to coincide (identical, or all control points in one plane, exact): their intersection is a region, not curves; listed per pair, not certified as curves",
+            coincident_pairs - overlap_pairs
+        ));
+    }
+    if overlap_pairs > 0 {
+        certificate.push(format!(
+            "OVERLAP: {overlap_pairs} face pairs were measured to overlap (a 2x2 block of a 17x17 grid of points of one surface within tol of the other with parallel normals; local search: evidence, not proven): their intersection is a region; the branches and touch points inside it are removed and counted per pair (coincident.overlap); their coverage stays refused"
         ));
     }
     if partial {

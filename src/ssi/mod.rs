@@ -37,6 +37,7 @@ pub mod foreign_read;
 pub mod job;
 pub mod krawczyk;
 pub mod mesh;
+pub mod overlap;
 pub mod pair;
 pub mod refine;
 pub mod report;

@@ -250,6 +250,15 @@ pub fn intersect_surfaces(
             outside: prm.coverage_outside.clone(),
         };
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
+        let parallel = out.coverage.as_ref().is_some_and(|c| {
+            c.uncertified_regions
+                .iter()
+                .any(|r| r.reason == super::coverage::Reason::NormalsNotSeparated)
+        });
+        if parallel {
+            ctl.report(ids, "overlap", 0, 0);
+            super::overlap::diagnose(&mut out, sa, sb, prm.tol);
+        }
     }
     out.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
