@@ -44,15 +44,22 @@ pub enum Command {
     },
     /// Summarize a model file: surfaces, curves, degrees, rational or not, bounding box.
     Info {
-        /// Model file: native JSON, STEP (.step/.stp), IGES (.igs/.iges) or STL.
+        /// Model file: native JSON, STEP (.step/.stp), IGES (.igs/.iges), STL or Plot3D
+        /// (.xyz/.p3d).
         file: PathBuf,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
-    /// Convert a model between formats (from the extensions: .json, .step/.stp, .igs/.iges,
-    /// .stl). Analytic surfaces are written as their exact NURBS forms.
+    /// Convert a model between formats (from the extensions). Reads native JSON, STEP, IGES,
+    /// STL and Plot3D; writes JSON, STEP, IGES, STL (ASCII or binary), VTK PolyData (.vtp)
+    /// and OBJ. Analytic surfaces are written as their exact NURBS forms; a B-rep's faces
+    /// are tessellated inside their trims for STL, OBJ and VTP; what the target format
+    /// cannot hold is reported.
     Convert {
+        /// Model to read (.json, .step/.stp, .igs/.iges, .stl, .xyz/.p3d).
         input: PathBuf,
+        /// File to write (.json, .step/.stp, .igs/.iges, .stl, .vtp, .obj).
         output: PathBuf,
         /// Output format, overriding the extension: json, step, iges, stl, stl-binary, vtp, obj.
         #[arg(long)]
@@ -68,10 +75,10 @@ pub enum Command {
         #[arg(long)]
         curve: String,
         /// Distance tolerance ε_D (model units).
-        #[arg(long, default_value_t = 1e-3)]
+        #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
         tol: f64,
         /// Angle tolerance ε_T (degrees).
-        #[arg(long, default_value_t = 10.0)]
+        #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
         angle: f64,
         /// Lipschitz bound: `local` (tighter, proven) or `paper` (eq. 12 per patch).
         #[arg(long, default_value = "local")]
@@ -93,6 +100,7 @@ pub enum Command {
         /// VTK PolyData (.vtp) here.
         #[arg(long)]
         vtk: Option<PathBuf>,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
@@ -104,17 +112,20 @@ pub enum Command {
     /// small while the second is large or unproven). Exit 0 certified, 3 finished but not
     /// certified, 2 bad input.
     Ssi {
+        /// Model: native JSON, STEP, IGES, or STL (intersected as triangulations).
         file: PathBuf,
+        /// Second model: every face of FILE against every face of FILE2 (omitted: all
+        /// distinct face pairs of FILE).
         file2: Option<PathBuf>,
         /// Tolerance: refined points agree on both surfaces, and chords follow the true curve,
         /// within it (model units).
         #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
         tol: f64,
         /// Triangulation flatness (default: 0.2% of the pair's control-net diagonal).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         flatness: Option<f64>,
         /// Stop starting new work after this many seconds (the result is marked partial).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         time_limit: Option<f64>,
         /// Intersect the faces' whole surfaces, ignoring trim loops (IGES 144/142, JSON trim
         /// loops, STEP B-rep loops) and shared edges. By default the curves are restricted
@@ -123,7 +134,7 @@ pub enum Command {
         #[arg(long)]
         untrimmed: bool,
         /// Worker threads (default: all cores; at most 1024). Results do not depend on it.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         threads: Option<usize>,
         /// Write the JSON result here.
         #[arg(long)]
@@ -138,6 +149,7 @@ pub enum Command {
         /// in the JSON result; off by default (about four times the size of the points).
         #[arg(long)]
         fits: bool,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
@@ -165,15 +177,18 @@ pub enum Command {
         /// (default 100 × tol).
         #[arg(long = "match", allow_hyphen_values = true)]
         match_distance: Option<f64>,
+        /// Write the JSON verdict (per curve, per point, missing branches) here.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
     /// Repair a faulty patch set (Uva, Monno & Hamann): connectivity with T-junction splits,
-    /// edge verification, corner and boundary averaging, feature lines, and a report.
-    /// (Patch grouping and merging are not implemented yet; the report says so.)
+    /// edge verification, corner and boundary averaging, feature lines, group growing and
+    /// merging of control nets, and a report (which lists what is left open and why).
     Repair {
+        /// Patch set: native JSON, STEP, IGES (faces as patches) or Plot3D.
         input: PathBuf,
         /// Corner distance threshold (Algorithm 1).
         #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
@@ -196,6 +211,7 @@ pub enum Command {
         /// VTK view: patches, feature edges, gaps left.
         #[arg(long)]
         vtk: Option<PathBuf>,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
@@ -222,14 +238,15 @@ pub enum Command {
         #[arg(long)]
         vtk: Option<PathBuf>,
         /// Most parameter lines inserted per face.
-        #[arg(long, default_value_t = 500)]
+        #[arg(long, default_value_t = 500, allow_hyphen_values = true)]
         max_lines: usize,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
-        /// Model file (native JSON).
+        /// Model file: native JSON, STEP or IGES.
         file: PathBuf,
         /// Index of the surface to evaluate (use with --uv).
         #[arg(long, conflicts_with = "curve")]
@@ -243,6 +260,7 @@ pub enum Command {
         /// Curve parameter.
         #[arg(long, allow_hyphen_values = true)]
         t: Option<f64>,
+        /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
     },
