@@ -13,7 +13,7 @@ use num_rational::BigRational;
 use serde::Serialize;
 
 /// The embedded default model.
-pub const DEFAULT_MODEL: &str = include_str!("models/yang-table2.json");
+pub const DEFAULT_MODEL: &str = crate::model::YANG_TABLE2;
 
 /// The exact composition and its checks.
 #[derive(Clone, Debug, Serialize)]

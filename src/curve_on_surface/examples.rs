@@ -9,7 +9,7 @@ use crate::spline::{NurbsCurve, NurbsSurface};
 
 /// Table 2: the biquadratic Bézier surface and the quadratic domain curve of the paper.
 pub fn table2() -> (NurbsSurface<f64, 3>, NurbsCurve<f64, 2>) {
-    let m = json::from_str(crate::demo::DEFAULT_MODEL, "embedded").expect("embedded model");
+    let m = json::from_str(crate::model::YANG_TABLE2, "embedded").expect("embedded model");
     let CurveGeometry::Domain(c) = m.curves[0].geometry.clone() else {
         unreachable!("the embedded model's first curve is a domain curve")
     };

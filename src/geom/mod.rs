@@ -4,6 +4,7 @@
 //! de Casteljau / de Boor routine serves polynomial and rational geometry on every backend.
 
 mod aabb;
+pub mod tri_tree;
 pub use aabb::Aabb;
 
 use crate::scalar::{RealScalar, Scalar};

@@ -5,6 +5,10 @@
 //! [`json`] reads and writes the native JSON format (schema in `docs/model-format.md`);
 //! every fault in a file is a [`ModelError`] naming the file, the JSON path and the reason.
 
+/// The embedded default model: Yang et al. (2008) Table 2 (a biquadratic Bézier surface and
+/// a quadratic domain curve), native JSON.
+pub const YANG_TABLE2: &str = include_str!("../models/yang-table2.json");
+
 pub mod check;
 pub mod eval;
 pub mod info;

@@ -16,8 +16,8 @@
 use super::edges::{closest_on_curve, collapsed, corners, edge_curve, edge_uv};
 use super::kdtree::KdTree;
 use crate::geom::dist;
+use crate::geom::tri_tree::TriTree;
 use crate::spline::NurbsSurface;
-use crate::ssi::cull::TriTree;
 use serde::Serialize;
 
 /// Edge `ep` of patch `p` meets edge `eq` of patch `q`.

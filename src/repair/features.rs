@@ -47,7 +47,7 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
 }
 
 fn unit_normal(s: &NurbsSurface<f64, 3>, uv: [f64; 2]) -> Option<[f64; 3]> {
-    let (_, su, sv) = crate::ssi::refine::point_d1(s, uv[0], uv[1]);
+    let (_, su, sv) = crate::spline::project::point_d1(s, uv[0], uv[1]);
     // The normal's direction from the tangents' directions: scale-independent.
     let (su, sv) = (unit(su)?, unit(sv)?);
     unit([

@@ -4,11 +4,11 @@
 //! tracer as for parametric surfaces.
 
 use super::SsiError;
-use super::cull::{TriTree, triangle_box};
 use super::pair::build_topology;
 use super::report::{BranchOut, EndKind, PairOut, PairStats};
 use super::trace::{check_invariants, trace};
 use super::tri_tri::Feature;
+use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::model::Triangulation;
 use std::collections::HashMap;
 use std::time::Instant;

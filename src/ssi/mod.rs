@@ -4,7 +4,7 @@
 //! | step | file |
 //! |---|---|
 //! | 1 adaptive triangulation | [`triangulate`] |
-//! | 2–3 trees and culling | [`cull`] |
+//! | 2–3 trees and culling | [`crate::geom::tri_tree`] (shared with repair) |
 //! | 4 triangle intersection (exact, perturbed, named points) | [`tri_tri`] |
 //! | 5 Point / PointUse / Segment topology | [`topology`] |
 //! | 6–7 loop detection and tracing | [`trace`] |
@@ -27,7 +27,6 @@ pub mod closest;
 pub mod coincide;
 pub mod control;
 pub mod coverage;
-pub mod cull;
 pub mod driver;
 pub mod enclose;
 pub mod enclose2;

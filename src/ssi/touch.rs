@@ -11,12 +11,12 @@
 //! ([`super::singular`]): the search itself decides nothing.
 
 use super::branch::PairGeometry;
-use super::cull::{TriTree, triangle_box};
 use super::pair::{tri, unit_normal};
 use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point};
 use super::report::TouchOut;
 use super::singular::classify;
 use super::triangulate::SurfaceMesh;
+use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::geom::{cross, dist, norm};
 use crate::spline::NurbsSurface;
 use std::collections::BTreeSet;

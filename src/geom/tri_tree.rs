@@ -1,4 +1,5 @@
-//! Steps 2–3 — space-partitioning trees and tree-against-tree culling (paper §4,
+//! Space-partitioning trees over triangles and tree-against-tree culling (the SSI steps 2–3 of
+//! paper A §4,
 //! "Intersection preprocessing using a tree structure", Fig. 16).
 //!
 //! As in the paper, the tree is binary with one triangle per leaf (at most `2N - 1` nodes for
