@@ -47,7 +47,7 @@ fn crate_refs(text: &str) -> Vec<(usize, String)> {
             if !name.is_empty() {
                 out.push((i + 1, name));
             }
-            rest = &tail[..];
+            rest = tail;
         }
     }
     out
