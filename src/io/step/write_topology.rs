@@ -109,6 +109,14 @@ impl Topology<'_> {
                     .add(&format!("{ty}('',#{lp},{})", logical(l.orientation))),
             );
         }
+        if bounds.is_empty() {
+            // An advanced face needs at least one bound.
+            notes.push(format!(
+                "face {} not written: none of its loops could be written",
+                face.source
+            ));
+            return None;
+        }
         let s = match self.surfaces.get(&si) {
             Some(s) => *s,
             None => {
