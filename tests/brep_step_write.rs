@@ -364,3 +364,55 @@ fn a_model_without_a_brep_keeps_the_geometric_set() {
     let back = step::from_str(&text, "f.step").unwrap();
     assert_eq!(back.surfaces.len(), m.surfaces.len());
 }
+
+/// The pcurves the writer adds on planar faces lie under the original file's edge curves: the
+/// surface at the pcurve's point is the edge curve's point, at every sample.
+#[test]
+fn pcurves_on_planar_faces_map_onto_the_edges() {
+    for name in [
+        "abc-0000.step",
+        "gmsh-t20_data.step",
+        "gmsh-periodic_u_cst.step",
+    ] {
+        let m = public(name);
+        let x = m.brep.as_ref().unwrap();
+        assert!(
+            x.edges.iter().all(|e| e.pcurves.is_empty()),
+            "{name}: the file has no pcurves"
+        );
+        let (back, _) = round_trip(&m, name);
+        let y = back.brep.as_ref().unwrap();
+        let scale = 1.0
+            + x.vertices
+                .iter()
+                .flat_map(|v| v.point)
+                .fold(0.0, |a: f64, c| a.max(c.abs()));
+        let mut checked = 0;
+        // Edges correspond by index (the writer keeps the order the reader found them in).
+        for (ex, ey) in x.edges.iter().zip(&y.edges) {
+            let c = &ex.curve.as_ref().unwrap().nurbs;
+            for pc in &ey.pcurves {
+                let vericad::brep::PCurveGeometry::Nurbs(p) = &pc.geometry else {
+                    panic!("{name}: a line pcurve")
+                };
+                let face = y
+                    .faces
+                    .iter()
+                    .find(|f| f.surface_source == pc.surface_source)
+                    .unwrap();
+                let s = &back.surfaces[face.surface.unwrap()].nurbs;
+                let (t0, t1) = c.hom.domain();
+                assert_eq!(p.hom.domain(), (t0, t1));
+                for k in 0..=16 {
+                    let t = t0 + (t1 - t0) * k as f64 / 16.0;
+                    let uv = p.eval(&t);
+                    let d = vericad::geom::dist(&s.eval(&uv[0], &uv[1]), &c.eval(&t));
+                    assert!(d <= 1e-9 * scale, "{name}: edge {} at {t}: {d}", ex.source);
+                }
+                checked += 1;
+            }
+        }
+        eprintln!("{name}: {checked} pcurves");
+        assert!(checked > 0, "{name}: no pcurve written");
+    }
+}

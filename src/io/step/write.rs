@@ -70,14 +70,9 @@ impl Out {
         self.put(i, body);
         i
     }
-    /// A `cartesian_point`.
-    pub(super) fn point(&mut self, p: &[f64; 3]) -> u64 {
-        self.add(&format!(
-            "CARTESIAN_POINT('',({},{},{}))",
-            real(p[0]),
-            real(p[1]),
-            real(p[2])
-        ))
+    /// A `cartesian_point` (2D or 3D).
+    pub(super) fn point(&mut self, p: &[f64]) -> u64 {
+        self.add(&format!("CARTESIAN_POINT('',{})", list(p, |x| real(*x))))
     }
     /// A B-spline surface (a complex rational instance when its weights are not all 1).
     pub(super) fn surface(&mut self, s: &NurbsSurface<f64, 3>, name: &str) -> u64 {
@@ -111,8 +106,9 @@ impl Out {
             ))
         }
     }
-    /// A B-spline curve in space (a complex rational instance when its weights are not all 1).
-    pub(super) fn curve(&mut self, g: &NurbsCurve<f64, 3>, name: &str) -> u64 {
+    /// A B-spline curve in space or in a parameter plane (a complex rational instance when its
+    /// weights are not all 1).
+    pub(super) fn curve<const D: usize>(&mut self, g: &NurbsCurve<f64, D>, name: &str) -> u64 {
         let (pts, w) = g.points_weights();
         let ids: Vec<u64> = pts.iter().map(|p| self.point(p)).collect();
         let (mu, ku) = knots_mults(g.hom.knots.knots());

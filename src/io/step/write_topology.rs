@@ -12,6 +12,7 @@
 //! without a surface or loops over an edge without a curve are left out, named.
 
 use super::write::{Out, refs, text};
+use super::write_pcurve::AffinePatch;
 use crate::brep::{Brep, LoopKind};
 use crate::model::{CurveGeometry, Model};
 use std::collections::{BTreeMap, BTreeSet};
@@ -24,6 +25,12 @@ struct Topology<'a> {
     vertices: BTreeMap<usize, u64>,
     edges: BTreeMap<usize, u64>,
     surfaces: BTreeMap<usize, u64>,
+    /// Model surfaces of the faces whose loops use each edge.
+    uses: Vec<Vec<usize>>,
+    /// Planar patches' inverses, by model surface (`None`: not planar).
+    patches: BTreeMap<usize, Option<AffinePatch>>,
+    /// The parameter-space representation context of the pcurves.
+    context_2d: Option<u64>,
 }
 
 impl Topology<'_> {
@@ -46,13 +53,54 @@ impl Topology<'_> {
         let edge = &self.b.edges[e];
         let curve = edge.curve.as_ref()?;
         let (v0, v1) = (self.vertex(edge.start), self.vertex(edge.end));
-        let c = self.o.curve(&curve.nurbs, "");
+        let mut g = self.o.curve(&curve.nurbs, "");
+        // Exact pcurves on the planar faces along the edge.
+        let mut pcurves = Vec::new();
+        for si in self.uses.get(e).cloned().unwrap_or_default() {
+            let patch = self
+                .patches
+                .entry(si)
+                .or_insert_with(|| AffinePatch::new(&self.m.surfaces[si].nurbs));
+            let Some(pc) = patch.as_ref().and_then(|p| p.pcurve(&curve.nurbs)) else {
+                continue;
+            };
+            let s = self.surface(si);
+            let c2 = self.o.curve(&pc, "");
+            let ctx = match self.context_2d {
+                Some(c) => c,
+                None => {
+                    let c = self.o.add("(GEOMETRIC_REPRESENTATION_CONTEXT(2) PARAMETRIC_REPRESENTATION_CONTEXT() REPRESENTATION_CONTEXT('2D SPACE',''))");
+                    self.context_2d = Some(c);
+                    c
+                }
+            };
+            let dr = self
+                .o
+                .add(&format!("DEFINITIONAL_REPRESENTATION('',(#{c2}),#{ctx})"));
+            pcurves.push(self.o.add(&format!("PCURVE('',#{s},#{dr})")));
+        }
+        if !pcurves.is_empty() {
+            g = self.o.add(&format!(
+                "SURFACE_CURVE('',#{g},{},.CURVE_3D.)",
+                refs(&pcurves)
+            ));
+        }
         let id = self.o.add(&format!(
-            "EDGE_CURVE('{}',#{v0},#{v1},#{c},.T.)",
+            "EDGE_CURVE('{}',#{v0},#{v1},#{g},.T.)",
             text(&edge.source)
         ));
         self.edges.insert(e, id);
         Some(id)
+    }
+
+    /// The surface entity of model surface `si`.
+    fn surface(&mut self, si: usize) -> u64 {
+        if let Some(s) = self.surfaces.get(&si) {
+            return *s;
+        }
+        let s = self.o.surface(&self.m.surfaces[si].nurbs, "");
+        self.surfaces.insert(si, s);
+        s
     }
 
     /// The `advanced_face` of face `f`, or why it is left out.
@@ -117,14 +165,7 @@ impl Topology<'_> {
             ));
             return None;
         }
-        let s = match self.surfaces.get(&si) {
-            Some(s) => *s,
-            None => {
-                let s = self.o.surface(&self.m.surfaces[si].nurbs, "");
-                self.surfaces.insert(si, s);
-                s
-            }
-        };
+        let s = self.surface(si);
         Some(self.o.add(&format!(
             "ADVANCED_FACE('{}',{},#{s},{})",
             text(&face.source),
@@ -132,6 +173,28 @@ impl Topology<'_> {
             logical(face.same_sense)
         )))
     }
+}
+
+/// For each edge, the model surfaces (each once) of the faces whose loops use it.
+fn edge_surfaces(m: &Model, b: &Brep) -> Vec<Vec<usize>> {
+    let mut uses = vec![Vec::new(); b.edges.len()];
+    for f in &b.faces {
+        let Some(si) = f.surface.filter(|s| *s < m.surfaces.len()) else {
+            continue;
+        };
+        for l in &f.loops {
+            if let LoopKind::Edges(oes) = &l.kind {
+                for oe in oes {
+                    if let Some(u) = uses.get_mut(oe.edge)
+                        && !u.contains(&si)
+                    {
+                        u.push(si);
+                    }
+                }
+            }
+        }
+    }
+    uses
 }
 
 /// `.T.` or `.F.`.
@@ -149,6 +212,9 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
         vertices: BTreeMap::new(),
         edges: BTreeMap::new(),
         surfaces: BTreeMap::new(),
+        uses: edge_surfaces(m, b),
+        patches: BTreeMap::new(),
+        context_2d: None,
     };
     let faces: Vec<Option<u64>> = (0..b.faces.len()).map(|f| t.face(f, &mut notes)).collect();
     // Shells, each face as the shell uses it.
@@ -270,8 +336,24 @@ fn free_geometry(t: &mut Topology, notes: &mut Vec<String>) -> Option<u64> {
                 }
                 acc
             });
+    // Pcurves of the source are read as curves too (z = 0); they are not written again.
+    let pcurves: Vec<&crate::spline::NurbsCurve<f64, 2>> = b
+        .edges
+        .iter()
+        .flat_map(|e| &e.pcurves)
+        .filter_map(|p| match &p.geometry {
+            crate::brep::PCurveGeometry::Nurbs(n) => Some(n),
+            crate::brep::PCurveGeometry::Line { .. } => None,
+        })
+        .collect();
     let mut partial = Vec::new();
     for c in &m.curves {
+        if c.geometry
+            .to_domain()
+            .is_some_and(|d| pcurves.iter().any(|p| **p == d))
+        {
+            continue;
+        }
         match edge_curves.get(c.name.as_str()) {
             Some(es) => {
                 if let CurveGeometry::Space(g) = &c.geometry {
@@ -332,7 +414,7 @@ fn conversion_notes(m: &Model, b: &Brep, t: &Topology, notes: &mut Vec<String>) 
     let pcurves: usize = b.edges.iter().map(|e| e.pcurves.len()).sum();
     if pcurves > 0 {
         notes.push(format!(
-            "{pcurves} pcurve(s) not written (only the edges' 3D curves are)"
+            "{pcurves} pcurve(s) of the source not written (the edges' 3D curves are, with exact pcurves on planar faces)"
         ));
     }
 }
