@@ -31,6 +31,8 @@ struct Topology<'a> {
     patches: BTreeMap<usize, Option<AffinePatch>>,
     /// The parameter-space representation context of the pcurves.
     context_2d: Option<u64>,
+    /// `(edge, model surface)` of every pcurve written.
+    pcurves: BTreeSet<(usize, usize)>,
 }
 
 impl Topology<'_> {
@@ -78,6 +80,7 @@ impl Topology<'_> {
                 .o
                 .add(&format!("DEFINITIONAL_REPRESENTATION('',(#{c2}),#{ctx})"));
             pcurves.push(self.o.add(&format!("PCURVE('',#{s},#{dr})")));
+            self.pcurves.insert((e, si));
         }
         if !pcurves.is_empty() {
             g = self.o.add(&format!(
@@ -215,6 +218,7 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
         uses: edge_surfaces(m, b),
         patches: BTreeMap::new(),
         context_2d: None,
+        pcurves: BTreeSet::new(),
     };
     let faces: Vec<Option<u64>> = (0..b.faces.len()).map(|f| t.face(f, &mut notes)).collect();
     // Shells, each face as the shell uses it.
@@ -411,10 +415,24 @@ fn conversion_notes(m: &Model, b: &Brep, t: &Topology, notes: &mut Vec<String>) 
             "{conics} edge curve(s) (lines, circles, ellipses) written as their exact B-spline forms"
         ));
     }
-    let pcurves: usize = b.edges.iter().map(|e| e.pcurves.len()).sum();
-    if pcurves > 0 {
+    // A pcurve of the source is replaced when the writer computed one on the same surface.
+    let mut lost = Vec::new();
+    for (i, e) in b.edges.iter().enumerate() {
+        for pc in &e.pcurves {
+            let replaced = b.faces.iter().any(|f| {
+                f.surface_source == pc.surface_source
+                    && f.surface.is_some_and(|s| t.pcurves.contains(&(i, s)))
+            });
+            if !replaced {
+                lost.push(pc.source.clone());
+            }
+        }
+    }
+    if !lost.is_empty() {
         notes.push(format!(
-            "{pcurves} pcurve(s) of the source not written (the edges' 3D curves are, with exact pcurves on planar faces)"
+            "{} pcurve(s) of the source not written (the edges' 3D curves are; exact pcurves only on planar faces): {}",
+            lost.len(),
+            crate::model::list_ids(lost)
         ));
     }
 }
