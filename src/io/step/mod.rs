@@ -19,7 +19,7 @@ mod units;
 use entities::Reader;
 use units::unit;
 pub mod write;
-mod write_pcurve;
+pub(crate) mod write_pcurve;
 mod write_topology;
 
 use crate::model::{Curve, CurveGeometry, Model, Surface};
