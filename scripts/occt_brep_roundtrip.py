@@ -10,6 +10,10 @@ precision 1e-9, in mm (Open CASCADE converts lengths to millimetres on reading).
 Prints a Markdown table; exits 1 when a count or validity differs, an area or volume differs by
 more than TOLERANCE (relative), or nothing was compared.
 
+A second table (for information, not a pass/fail check) has Open CASCADE read vericad's IGES
+output of the same files (`vericad convert IN OUT.igs`: entities 186/514/510/508/504/502)
+beside the original STEP file.
+
 Usage: cargo build --release && python3 scripts/occt_brep_roundtrip.py [FILES...]
 """
 import glob, os, subprocess, sys, tempfile
@@ -39,6 +43,13 @@ def shapes(shape, kind):
 
 
 def read(path):
+    if path.lower().endswith((".igs", ".iges")):
+        o.IGESControl.IGESControl_Controller.Init_s()
+        rd = o.IGESControl.IGESControl_Reader()
+        if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
+            raise RuntimeError(f"Open CASCADE cannot read {path}")
+        rd.TransferRoots()
+        return rd.OneShape()
     rd = o.STEPControl.STEPControl_Reader()
     if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
         raise RuntimeError(f"Open CASCADE cannot read {path}")
@@ -82,7 +93,7 @@ def rel(a, b):
 def main(files):
     if not os.path.exists(VERICAD):
         sys.exit(f"{VERICAD} not found: cargo build --release first")
-    rows, failures = [], []
+    rows, failures, iges_rows = [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         for path in files:
             name = os.path.basename(path)
@@ -106,6 +117,11 @@ def main(files):
             if bad:
                 failures.append(f"{name}: differs in {', '.join(bad)}")
             rows.append((name, a, b, da, dv, bad))
+            igs = os.path.join(tmp, name + ".vericad.igs")
+            c = subprocess.run([VERICAD, "convert", path, igs], capture_output=True, text=True)
+            if c.returncode == 0:
+                g = measure(igs)
+                iges_rows.append((name, a, g, rel(a["area"], g["area"]), rel(a["volume"], g["volume"])))
     print("| file | Open CASCADE reads the original | Open CASCADE reads vericad's STEP | valid (orig / vericad) | face area mm² (orig / vericad, rel. diff) | solid volume mm³ (orig / vericad, rel. diff) |")
     print("|---|---|---|---|---|---|")
     for name, a, b, da, dv, _ in rows:
@@ -113,6 +129,14 @@ def main(files):
             f"| {name} | {counts(a)} | {'same' if counts(a) == counts(b) else counts(b)} | "
             f"{a['valid']} / {b['valid']} | {a['area']:.10g} / {b['area']:.10g} ({da:.1e}) | "
             f"{a['volume']:.10g} / {b['volume']:.10g} ({dv:.1e}) |"
+        )
+    print()
+    print("| file | Open CASCADE reads vericad's IGES | valid | face area mm² (rel. diff to the STEP original) | solid volume mm³ (rel. diff) |")
+    print("|---|---|---|---|---|")
+    for name, a, g, da, dv in iges_rows:
+        print(
+            f"| {name} | {counts(g)} | {g['valid']} | {g['area']:.10g} ({da:.1e}) | "
+            f"{g['volume']:.10g} ({dv:.1e}) |"
         )
     for f in failures:
         print("FAIL:", f, file=sys.stderr)

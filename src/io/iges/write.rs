@@ -5,7 +5,7 @@
 use crate::model::{CurveGeometry, Model};
 use std::collections::BTreeSet;
 
-fn real(x: f64) -> String {
+pub(super) fn real(x: f64) -> String {
     let s = format!("{x:?}").replace('e', "E");
     if s.contains('.') || s.contains('E') {
         s
@@ -62,6 +62,10 @@ pub(super) fn curve_126(g: &crate::spline::NurbsCurve<f64, 3>) -> String {
     t
 }
 
+/// Entity type, parameter text, directory status and form number of each entity, in DE
+/// order.
+pub(super) type Params = Vec<(i64, String, &'static str, u8)>;
+
 /// Status of independent entities and of entities used by others (physically dependent,
 /// parametric use).
 const INDEPENDENT: &str = "00000000";
@@ -108,13 +112,13 @@ pub fn to_string(m: &Model, name: &str) -> String {
 /// as 128 (144 with 142/102/126 when they have trim loops) and 3D curves (126); and what the
 /// file does not hold.
 pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
-    let mut params: Vec<(i64, String, &str)> = Vec::new();
+    let mut params: Params = Vec::new();
     let mut notes = Vec::new();
     let as_faces = match &m.brep {
-        Some(b) => super::write_faces::faces(m, b, &mut params, &mut notes),
+        Some(b) => super::write_brep::brep(m, b, &mut params, &mut notes),
         None => BTreeSet::new(),
     };
-    let de_next = |params: &Vec<(i64, String, &str)>| 2 * params.len() + 1;
+    let de_next = |params: &Params| 2 * params.len() + 1;
     for (si, s) in m.surfaces.iter().enumerate() {
         if as_faces.contains(&si) {
             continue;
@@ -122,7 +126,7 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
         let t = surface_128(&s.nurbs);
         let trimmed = !s.trim_loops.is_empty();
         let sde = de_next(&params);
-        params.push((128, t, if trimmed { "00010000" } else { INDEPENDENT }));
+        params.push((128, t, if trimmed { "00010000" } else { INDEPENDENT }, 0));
         if trimmed {
             let (mut outer, mut holes) = (None, Vec::new());
             for l in &s.trim_loops {
@@ -133,6 +137,7 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
                         126,
                         curve_126(&CurveGeometry::Domain(c.clone()).to_space()),
                         DEPENDENT,
+                        0,
                     ));
                 }
                 let bde = if des.len() == 1 {
@@ -144,11 +149,12 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
                         102,
                         format!("102,{},{};", des.len(), list.join(",")),
                         DEPENDENT,
+                        0,
                     ));
                     d
                 };
                 let cde = de_next(&params);
-                params.push((142, format!("142,1,{sde},{bde},0,1;"), DEPENDENT));
+                params.push((142, format!("142,1,{sde},{bde},0,1;"), DEPENDENT, 0));
                 if l.outer && outer.is_none() {
                     outer = Some(cde);
                 } else {
@@ -165,6 +171,7 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
                     outer.unwrap_or(0)
                 ),
                 INDEPENDENT,
+                0,
             ));
         }
     }
@@ -173,12 +180,12 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
         // in a surface's parameter space).
         let lifted = c.geometry.to_space();
         let g = &lifted;
-        params.push((126, curve_126(g), INDEPENDENT));
+        params.push((126, curve_126(g), INDEPENDENT, 0));
     }
     let mut d = Vec::new();
     let mut p = Vec::new();
     let mut pseq = 1;
-    for (i, (ty, t, status)) in params.iter().enumerate() {
+    for (i, (ty, t, status, form)) in params.iter().enumerate() {
         let de = 2 * i + 1;
         let start = pseq;
         let n = p_lines(t, de, &mut pseq, &mut p);
@@ -186,9 +193,13 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
             "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
             0, 0, 0, 0, 0, 0, status, de
         ));
+        let form = if *form == 0 {
+            String::new()
+        } else {
+            form.to_string()
+        };
         d.push(format!(
-            "{ty:>8}{:>8}{:>8}{n:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
-            0,
+            "{ty:>8}{:>8}{:>8}{n:>8}{form:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
             0,
             0,
             "",
