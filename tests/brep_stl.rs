@@ -13,8 +13,11 @@ fn public(name: &str) -> std::path::PathBuf {
         .join(name)
 }
 
+/// Uses of each mesh edge `(a, b)`.
+type Uses = BTreeMap<(u32, u32), usize>;
+
 /// Undirected and directed uses of each mesh edge.
-fn uses(t: &[[u32; 3]]) -> (BTreeMap<(u32, u32), usize>, BTreeMap<(u32, u32), usize>) {
+fn uses(t: &[[u32; 3]]) -> (Uses, Uses) {
     let (mut und, mut dir) = (BTreeMap::new(), BTreeMap::new());
     for tri in t {
         for k in 0..3 {

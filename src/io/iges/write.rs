@@ -193,11 +193,6 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
             "{ty:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
             0, 0, 0, 0, 0, 0, status, de
         ));
-        let form = if *form == 0 {
-            String::new()
-        } else {
-            form.to_string()
-        };
         d.push(format!(
             "{ty:>8}{:>8}{:>8}{n:>8}{form:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
             0,
