@@ -337,7 +337,7 @@ fn what_the_writer_cannot_hold_is_named() {
     let all = notes.join("\n");
     assert!(all.contains("face #71 not written"), "{all}");
     assert!(
-        all.contains("loop #63 of face #72 not written: its edge #45 has no 3D curve"),
+        all.contains("loop #63 of face #72 not written: its edge #45 has no 3D curve or vertex"),
         "{all}"
     );
     assert!(all.contains("shell #81 written without face #71"), "{all}");
@@ -415,4 +415,30 @@ fn pcurves_on_planar_faces_map_onto_the_edges() {
         eprintln!("{name}: {checked} pcurves");
         assert!(checked > 0, "{name}: no pcurve written");
     }
+}
+
+/// A B-rep built by hand with indices outside its vertex list: the writers name the loops they
+/// leave out instead of failing.
+#[test]
+fn dangling_vertex_indices_are_named_not_a_panic() {
+    let mut m = public("gmsh-periodic_u_cst.step");
+    let b = m.brep.as_mut().unwrap();
+    b.edges[0].start = 999;
+    b.vertices.truncate(b.vertices.len() - 1);
+    let (text, notes) = step::write::write(&m, "x");
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("has no 3D curve or vertex")),
+        "{notes:?}"
+    );
+    step::from_str(&text, "x.step").unwrap();
+    let (igs, notes) = vericad::io::iges::write::write(&m, "x");
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("has no 3D curve or vertex")),
+        "{notes:?}"
+    );
+    vericad::io::iges::from_str(&igs, "x.igs").unwrap();
 }

@@ -69,6 +69,9 @@ pub(super) fn brep(
     let mut entries = String::new();
     for (i, e) in b.edges.iter().enumerate() {
         let Some(c) = &e.curve else { continue };
+        if e.start >= b.vertices.len() || e.end >= b.vertices.len() {
+            continue;
+        }
         let cde = push(p, 126, curve_126(&c.nurbs), USED);
         index.insert(i, index.len() + 1);
         entries += &format!(",{cde},{vl},{},{vl},{}", e.start + 1, e.end + 1);
@@ -87,12 +90,21 @@ pub(super) fn brep(
         let mut loops: Vec<(bool, usize)> = Vec::new();
         for l in &face.loops {
             let text = match &l.kind {
-                LoopKind::Vertex(v) => format!("508,1,1,{vl},{},1,0;", v + 1),
+                LoopKind::Vertex(v) if *v < b.vertices.len() => {
+                    format!("508,1,1,{vl},{},1,0;", v + 1)
+                }
+                LoopKind::Vertex(v) => {
+                    notes.push(format!(
+                        "loop {} of face {} not written: its vertex {v} does not exist",
+                        l.source, face.source
+                    ));
+                    continue;
+                }
                 LoopKind::Edges(oes) => {
                     let oes = ordered(oes, l.orientation);
                     if let Some(bad) = oes.iter().find(|o| !index.contains_key(&o.edge)) {
                         notes.push(format!(
-                            "loop {} of face {} not written: its edge {} has no 3D curve",
+                            "loop {} of face {} not written: its edge {} has no 3D curve or vertex",
                             l.source,
                             face.source,
                             b.edges.get(bad.edge).map_or("?", |e| e.source.as_str())

@@ -36,15 +36,22 @@ struct Topology<'a> {
 }
 
 impl Topology<'_> {
-    /// The `vertex_point` of vertex `v`.
-    fn vertex(&mut self, v: usize) -> u64 {
+    /// The `vertex_point` of vertex `v` (`None` for an index outside the B-rep's vertices).
+    fn vertex(&mut self, v: usize) -> Option<u64> {
         if let Some(id) = self.vertices.get(&v) {
-            return *id;
+            return Some(*id);
         }
-        let p = self.o.point(&self.b.vertices[v].point);
+        let p = self.o.point(&self.b.vertices.get(v)?.point);
         let id = self.o.add(&format!("VERTEX_POINT('',#{p})"));
         self.vertices.insert(v, id);
-        id
+        Some(id)
+    }
+
+    /// Whether edge `e` can be written: it exists, has a curve and both its vertices exist.
+    fn writable(&self, e: usize) -> bool {
+        self.b.edges.get(e).is_some_and(|x| {
+            x.curve.is_some() && x.start < self.b.vertices.len() && x.end < self.b.vertices.len()
+        })
     }
 
     /// The `edge_curve` of edge `e`; `None` when it has no curve.
@@ -52,9 +59,12 @@ impl Topology<'_> {
         if let Some(id) = self.edges.get(&e) {
             return Some(*id);
         }
+        if !self.writable(e) {
+            return None;
+        }
         let edge = &self.b.edges[e];
         let curve = edge.curve.as_ref()?;
-        let (v0, v1) = (self.vertex(edge.start), self.vertex(edge.end));
+        let (v0, v1) = (self.vertex(edge.start)?, self.vertex(edge.end)?);
         let mut g = self.o.curve(&curve.nurbs, "");
         // Exact pcurves on the planar faces along the edge.
         let mut pcurves = Vec::new();
@@ -120,16 +130,19 @@ impl Topology<'_> {
         for l in &face.loops {
             let lp = match &l.kind {
                 LoopKind::Vertex(v) => {
-                    let v = self.vertex(*v);
+                    let Some(v) = self.vertex(*v) else {
+                        notes.push(format!(
+                            "loop {} of face {} not written: its vertex {v} does not exist",
+                            l.source, face.source
+                        ));
+                        continue;
+                    };
                     self.o.add(&format!("VERTEX_LOOP('',#{v})"))
                 }
                 LoopKind::Edges(oes) => {
-                    if let Some(bad) = oes
-                        .iter()
-                        .find(|oe| self.b.edges.get(oe.edge).is_none_or(|e| e.curve.is_none()))
-                    {
+                    if let Some(bad) = oes.iter().find(|oe| !self.writable(oe.edge)) {
                         notes.push(format!(
-                            "loop {} of face {} not written: its edge {} has no 3D curve",
+                            "loop {} of face {} not written: its edge {} has no 3D curve or vertex",
                             l.source,
                             face.source,
                             self.b
