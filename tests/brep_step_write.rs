@@ -77,7 +77,8 @@ fn same_brep(name: &str, mx: &Model, x: &Brep, my: &Model, y: &Brep) {
     );
     assert_eq!(x.faces.len(), y.faces.len());
     let (mut em, mut ei, mut vm, mut vi) = Default::default();
-    // Uses of each edge: (face, loop, position, forward), in the original's numbering.
+    // Uses of each edge: (face, loop, position, forward); the written file's keyed by its own
+    // edge numbers.
     let mut uses_x: BTreeMap<usize, Vec<(usize, usize, usize, bool)>> = BTreeMap::new();
     let mut uses_y: BTreeMap<usize, Vec<(usize, usize, usize, bool)>> = BTreeMap::new();
     for (f, (fx, fy)) in x.faces.iter().zip(&y.faces).enumerate() {
@@ -144,7 +145,7 @@ fn same_brep(name: &str, mx: &Model, x: &Brep, my: &Model, y: &Brep) {
                             .or_default()
                             .push((f, l, k, oa.forward));
                         uses_y
-                            .entry(oa.edge)
+                            .entry(ob.edge)
                             .or_default()
                             .push((f, l, k, ob.forward));
                         let (ea, eb) = (&x.edges[oa.edge], &y.edges[ob.edge]);
@@ -156,8 +157,16 @@ fn same_brep(name: &str, mx: &Model, x: &Brep, my: &Model, y: &Brep) {
             }
         }
     }
-    // Every edge of the original is used in the same places (so shared by the same faces).
-    assert_eq!(uses_x, uses_y, "{name}: edge uses");
+    // Every edge of the original is used in the same places, the same way round, as the
+    // written edge it corresponds to (so it is shared by the same faces).
+    for (e, u) in &uses_x {
+        assert_eq!(
+            Some(u),
+            uses_y.get(&em[e]),
+            "{name}: uses of edge {}",
+            x.edges[*e].source
+        );
+    }
     assert_eq!(em.len(), x.edges.len(), "{name}: every edge reached");
     let shared = uses_x
         .values()
