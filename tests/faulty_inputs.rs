@@ -497,8 +497,10 @@ fn ssi_refuses_models_built_in_code_with_non_finite_or_huge_points() {
     }
 }
 
-/// abc-0000.step has 10 faces whose orientation is reversed (`same_sense = .F.`); the STEP
-/// and IGES writers store surfaces, not faces, and say so for each of them.
+/// abc-0000.step has 10 faces whose orientation is reversed (`same_sense = .F.`). With its
+/// B-rep, the STEP writer keeps each face's `same_sense` (read back: the same 10 faces) and
+/// the IGES writer the orientation flags of its shells (514); without the B-rep the writers
+/// store surfaces, not faces, and say so for each of them.
 #[test]
 fn writers_report_the_face_orientation_they_cannot_hold() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
@@ -507,6 +509,17 @@ fn writers_report_the_face_orientation_they_cannot_hold() {
     let d = tmp("orientation");
     for ext in ["step", "igs"] {
         let w = vericad::io::write_model(&d.join(format!("abc.{ext}")), &m).unwrap();
+        assert!(w.iter().all(|x| !x.contains("reversed")), "{ext}: {w:?}");
+    }
+    let back = read_model(&d.join("abc.step")).unwrap();
+    assert_eq!(back.surfaces.iter().filter(|s| s.reversed).count(), 10);
+    let surfaces_only = vericad::model::Model {
+        brep: None,
+        ..m.clone()
+    };
+    for ext in ["step", "igs"] {
+        let w = vericad::io::write_model(&d.join(format!("abc-surfaces.{ext}")), &surfaces_only)
+            .unwrap();
         assert!(
             w.iter()
                 .any(|x| x.contains("10 reversed face(s)") && x.contains("orientation")),

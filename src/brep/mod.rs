@@ -165,6 +165,10 @@ pub struct Brep {
     pub faces: Vec<Face>,
     pub shells: Vec<Shell>,
     pub solids: Vec<Solid>,
+    /// The length uncertainty the reader worked to, in the model's unit (for STEP the
+    /// file's `uncertainty_measure_with_unit`, at least 1e-9 times the model's size); 0 when
+    /// unknown. Writers declare it, so that other systems read the model to the same tolerance.
+    pub tolerance: f64,
     /// What was read, converted, unsupported or invalid, and the topology faults.
     pub report: BrepReport,
 }

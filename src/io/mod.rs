@@ -188,10 +188,15 @@ pub fn write_model_as(
             warnings.append(&mut rest);
             return Ok(warnings);
         }
-        warnings.push(format!(
-            "the B-rep topology ({} faces, their loops, edges and vertices) is not written: this writer stores the faces' surfaces, untrimmed",
-            b.faces.len()
-        ));
+        if !matches!(
+            format_of(std::path::Path::new(&format!("x.{ext}"))),
+            Some(Format::Step | Format::Iges)
+        ) {
+            warnings.push(format!(
+                "the B-rep topology ({} faces, their loops, edges and vertices) is not written: this writer stores the faces' surfaces, untrimmed",
+                b.faces.len()
+            ));
+        }
     }
     let name0 = path.display().to_string();
     if ext == "stl-binary" {
@@ -240,7 +245,10 @@ pub fn write_model_as(
     }
     if matches!(fmt, Some(Format::Step | Format::Iges)) {
         let reversed = m.surfaces.iter().filter(|s| s.reversed).count();
-        if reversed > 0 {
+        // A STEP B-rep keeps each face's orientation (`same_sense`); the IGES writer names
+        // the reversed faces of a B-rep itself.
+        let topology = m.brep.is_some();
+        if reversed > 0 && !topology {
             warnings.push(format!(
                 "{reversed} reversed face(s) (normal opposite to S_u x S_v): this writer stores surfaces, not faces, so the orientation is not kept"
             ));
@@ -267,8 +275,16 @@ pub fn write_model_as(
         .unwrap_or("vericad");
     let text = match format_of(path_fmt) {
         Some(Format::Json) => crate::model::json::to_string(m),
-        Some(Format::Step) => step::write::to_string(m, stem),
-        Some(Format::Iges) => iges::write::to_string(m, stem),
+        Some(Format::Step) => {
+            let (text, mut notes) = step::write::write(m, stem);
+            warnings.append(&mut notes);
+            text
+        }
+        Some(Format::Iges) => {
+            let (text, mut notes) = iges::write::write(m, stem);
+            warnings.append(&mut notes);
+            text
+        }
         Some(Format::Plot3d) => return Err(WriteError::UnknownFormat(name)),
         Some(Format::Stl) => match m.triangulations.first() {
             Some(t) => stl::to_string(t),

@@ -9,6 +9,7 @@
 
 pub mod parse;
 pub mod write;
+mod write_brep;
 
 use crate::geom::Point;
 use crate::model::{Curve, CurveGeometry, Model, Surface, SurfaceKind, TrimLoop};

@@ -1,10 +1,11 @@
-//! IGES writer: rational B-spline surfaces (128) and curves (126) of a model. Reals are
-//! written with the shortest decimal that reads back to the same double (round trips keep
-//! every bit).
+//! IGES writer: rational B-spline surfaces (128) and curves (126) of a model; a B-rep's faces
+//! as trimmed surfaces ([`super::write_faces`]). Reals are written with the shortest decimal
+//! that reads back to the same double (round trips keep every bit).
 
 use crate::model::{CurveGeometry, Model};
+use std::collections::BTreeSet;
 
-fn real(x: f64) -> String {
+pub(super) fn real(x: f64) -> String {
     let s = format!("{x:?}").replace('e', "E");
     if s.contains('.') || s.contains('E') {
         s
@@ -39,7 +40,7 @@ fn hol(s: &str) -> String {
 }
 
 /// Parameter text of a 126 entity.
-fn curve_126(g: &crate::spline::NurbsCurve<f64, 3>) -> String {
+pub(super) fn curve_126(g: &crate::spline::NurbsCurve<f64, 3>) -> String {
     let (pts, w) = g.points_weights();
     let k = pts.len() - 1;
     let mut t = format!(
@@ -61,47 +62,71 @@ fn curve_126(g: &crate::spline::NurbsCurve<f64, 3>) -> String {
     t
 }
 
+/// Entity type, parameter text, directory status and form number of each entity, in DE
+/// order.
+pub(super) type Params = Vec<(i64, String, &'static str, u8)>;
+
 /// Status of independent entities and of entities used by others (physically dependent,
 /// parametric use).
 const INDEPENDENT: &str = "00000000";
-const DEPENDENT: &str = "00010500";
+pub(super) const DEPENDENT: &str = "00010500";
 
-/// Write the model's surfaces (128, and 144 with 142/102/126 when they have trim loops) and
-/// 3D curves (126).
+/// Parameter text of a 128 entity.
+pub(super) fn surface_128(s: &crate::spline::NurbsSurface<f64, 3>) -> String {
+    let h = &s.hom;
+    let (pts, w) = s.points_weights();
+    let (nu, nv) = (h.nu(), h.nv());
+    let (p, q) = h.degrees();
+    let rational = !s.is_polynomial() || w[0] != 1.0;
+    let mut t = format!(
+        "128,{},{},{p},{q},0,0,{},0,0,",
+        nu - 1,
+        nv - 1,
+        if rational { 0 } else { 1 }
+    );
+    for k in h.ku.knots().iter().chain(h.kv.knots()) {
+        t += &format!("{},", real(*k));
+    }
+    for jv in 0..nv {
+        for iu in 0..nu {
+            t += &format!("{},", real(w[iu * nv + jv]));
+        }
+    }
+    for jv in 0..nv {
+        for iu in 0..nu {
+            let c = pts[iu * nv + jv];
+            t += &format!("{},{},{},", real(c[0]), real(c[1]), real(c[2]));
+        }
+    }
+    let (u0, u1, v0, v1) = h.domain();
+    t += &format!("{},{},{},{};", real(u0), real(u1), real(v0), real(v1));
+    t
+}
+
+/// The model as IGES text ([`write`] without its notes).
 pub fn to_string(m: &Model, name: &str) -> String {
-    let mut params: Vec<(i64, String, &str)> = Vec::new();
-    let de_next = |params: &Vec<(i64, String, &str)>| 2 * params.len() + 1;
-    for s in &m.surfaces {
-        let h = &s.nurbs.hom;
-        let (pts, w) = s.nurbs.points_weights();
-        let (nu, nv) = (h.nu(), h.nv());
-        let (p, q) = h.degrees();
-        let rational = !s.nurbs.is_polynomial() || w[0] != 1.0;
-        let mut t = format!(
-            "128,{},{},{p},{q},0,0,{},0,0,",
-            nu - 1,
-            nv - 1,
-            if rational { 0 } else { 1 }
-        );
-        for k in h.ku.knots().iter().chain(h.kv.knots()) {
-            t += &format!("{},", real(*k));
+    write(m, name).0
+}
+
+/// Write the model: a B-rep's faces as 144 (see [`super::write_faces`]), the other surfaces
+/// as 128 (144 with 142/102/126 when they have trim loops) and 3D curves (126); and what the
+/// file does not hold.
+pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
+    let mut params: Params = Vec::new();
+    let mut notes = Vec::new();
+    let as_faces = match &m.brep {
+        Some(b) => super::write_brep::brep(m, b, &mut params, &mut notes),
+        None => BTreeSet::new(),
+    };
+    let de_next = |params: &Params| 2 * params.len() + 1;
+    for (si, s) in m.surfaces.iter().enumerate() {
+        if as_faces.contains(&si) {
+            continue;
         }
-        for jv in 0..nv {
-            for iu in 0..nu {
-                t += &format!("{},", real(w[iu * nv + jv]));
-            }
-        }
-        for jv in 0..nv {
-            for iu in 0..nu {
-                let c = pts[iu * nv + jv];
-                t += &format!("{},{},{},", real(c[0]), real(c[1]), real(c[2]));
-            }
-        }
-        let (u0, u1, v0, v1) = h.domain();
-        t += &format!("{},{},{},{};", real(u0), real(u1), real(v0), real(v1));
+        let t = surface_128(&s.nurbs);
         let trimmed = !s.trim_loops.is_empty();
         let sde = de_next(&params);
-        params.push((128, t, if trimmed { "00010000" } else { INDEPENDENT }));
+        params.push((128, t, if trimmed { "00010000" } else { INDEPENDENT }, 0));
         if trimmed {
             let (mut outer, mut holes) = (None, Vec::new());
             for l in &s.trim_loops {
@@ -112,6 +137,7 @@ pub fn to_string(m: &Model, name: &str) -> String {
                         126,
                         curve_126(&CurveGeometry::Domain(c.clone()).to_space()),
                         DEPENDENT,
+                        0,
                     ));
                 }
                 let bde = if des.len() == 1 {
@@ -123,11 +149,12 @@ pub fn to_string(m: &Model, name: &str) -> String {
                         102,
                         format!("102,{},{};", des.len(), list.join(",")),
                         DEPENDENT,
+                        0,
                     ));
                     d
                 };
                 let cde = de_next(&params);
-                params.push((142, format!("142,1,{sde},{bde},0,1;"), DEPENDENT));
+                params.push((142, format!("142,1,{sde},{bde},0,1;"), DEPENDENT, 0));
                 if l.outer && outer.is_none() {
                     outer = Some(cde);
                 } else {
@@ -144,6 +171,7 @@ pub fn to_string(m: &Model, name: &str) -> String {
                     outer.unwrap_or(0)
                 ),
                 INDEPENDENT,
+                0,
             ));
         }
     }
@@ -152,12 +180,12 @@ pub fn to_string(m: &Model, name: &str) -> String {
         // in a surface's parameter space).
         let lifted = c.geometry.to_space();
         let g = &lifted;
-        params.push((126, curve_126(g), INDEPENDENT));
+        params.push((126, curve_126(g), INDEPENDENT, 0));
     }
     let mut d = Vec::new();
     let mut p = Vec::new();
     let mut pseq = 1;
-    for (i, (ty, t, status)) in params.iter().enumerate() {
+    for (i, (ty, t, status, form)) in params.iter().enumerate() {
         let de = 2 * i + 1;
         let start = pseq;
         let n = p_lines(t, de, &mut pseq, &mut p);
@@ -166,8 +194,7 @@ pub fn to_string(m: &Model, name: &str) -> String {
             0, 0, 0, 0, 0, 0, status, de
         ));
         d.push(format!(
-            "{ty:>8}{:>8}{:>8}{n:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
-            0,
+            "{ty:>8}{:>8}{:>8}{n:>8}{form:>8}{:>8}{:>8}{:>8}{:>8}D{:>7}",
             0,
             0,
             "",
@@ -223,7 +250,7 @@ pub fn to_string(m: &Model, name: &str) -> String {
         "",
         1
     );
-    out
+    (out, notes)
 }
 
 fn p_lines_global(text: &str, seq: &mut usize, out: &mut Vec<String>) {

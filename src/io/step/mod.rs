@@ -19,6 +19,8 @@ mod units;
 use entities::Reader;
 use units::unit;
 pub mod write;
+pub(crate) mod write_pcurve;
+mod write_topology;
 
 use crate::model::{Curve, CurveGeometry, Model, Surface};
 use part21::Entity;

@@ -197,6 +197,7 @@ impl<'a> TopologyReader<'a> {
                     .push(format!("#{id}"));
             }
         }
+        self.brep.tolerance = self.tolerance;
         let issues = self.brep.check();
         self.brep.report.issues.extend(issues);
         self.brep

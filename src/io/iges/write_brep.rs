@@ -1,0 +1,253 @@
+//! IGES writer for a model with a B-rep (IGES 5.3 B-rep entities): one vertex list (502) of
+//! every vertex, one edge list (504) of every edge with its model-space curve (126, from the
+//! start vertex to the end vertex), a loop (508) per edge loop — each edge once in the edge
+//! list, referenced by every loop that uses it, with its orientation — a face (510) per face
+//! over its B-spline surface (128), the outer loop first, a shell (514, form 1 closed, form 2
+//! open) per shell with each face's orientation relative to its surface normal, and a
+//! manifold solid B-rep object (186) per solid, its voids as further shells.
+//!
+//! On planar faces the loops carry exact parameter-space curves (the edge curves mapped by
+//! the inverse of the plane's affine parametrization, each running the way the loop uses the
+//! edge, as Open CASCADE reads them); elsewhere a loop gives none and readers project the
+//! edges. What the file does not hold is returned as notes.
+
+use super::write::{DEPENDENT, Params, curve_126, surface_128};
+use crate::brep::{Brep, LoopKind, OrientedEdge};
+use crate::io::step::write_pcurve::AffinePatch;
+use crate::model::{CurveGeometry, Model};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Status of an entity used by another (physically dependent).
+const USED: &str = "00010000";
+
+fn de_next(p: &Params) -> usize {
+    2 * p.len() + 1
+}
+
+/// Add an entity of form 0.
+fn push(p: &mut Params, ty: i64, text: String, status: &'static str) -> usize {
+    push_form(p, ty, 0, text, status)
+}
+
+fn push_form(p: &mut Params, ty: i64, form: u8, text: String, status: &'static str) -> usize {
+    let d = de_next(p);
+    p.push((ty, text, status, form));
+    d
+}
+
+/// The loop's edges in the order the loop runs (a bound with orientation .F. reversed).
+fn ordered(oes: &[OrientedEdge], orientation: bool) -> Vec<OrientedEdge> {
+    if orientation {
+        return oes.to_vec();
+    }
+    oes.iter()
+        .rev()
+        .map(|o| OrientedEdge {
+            edge: o.edge,
+            forward: !o.forward,
+        })
+        .collect()
+}
+
+/// Write the B-rep `b`; returns the model surfaces written as faces.
+pub(super) fn brep(
+    m: &Model,
+    b: &Brep,
+    p: &mut Params,
+    notes: &mut Vec<String>,
+) -> BTreeSet<usize> {
+    let mut written = BTreeSet::new();
+    let mut coords = format!("502,{}", b.vertices.len());
+    for v in &b.vertices {
+        for x in v.point {
+            coords += &format!(",{}", super::write::real(x));
+        }
+    }
+    let vl = push_form(p, 502, 1, coords + ";", USED);
+    // Edges with a curve, numbered from 1 in the edge list.
+    let mut index = BTreeMap::new();
+    let mut entries = String::new();
+    for (i, e) in b.edges.iter().enumerate() {
+        let Some(c) = &e.curve else { continue };
+        if e.start >= b.vertices.len() || e.end >= b.vertices.len() {
+            continue;
+        }
+        let cde = push(p, 126, curve_126(&c.nurbs), USED);
+        index.insert(i, index.len() + 1);
+        entries += &format!(",{cde},{vl},{},{vl},{}", e.start + 1, e.end + 1);
+    }
+    let el = push_form(p, 504, 1, format!("504,{}{entries};", index.len()), USED);
+    let mut face_de = vec![None; b.faces.len()];
+    for (fi, face) in b.faces.iter().enumerate() {
+        let Some(si) = face.surface.filter(|s| *s < m.surfaces.len()) else {
+            notes.push(format!(
+                "face {} not written: its surface {} was not converted",
+                face.source, face.surface_source
+            ));
+            continue;
+        };
+        let patch = AffinePatch::new(&m.surfaces[si].nurbs);
+        let mut loops: Vec<(bool, usize)> = Vec::new();
+        for l in &face.loops {
+            let text = match &l.kind {
+                LoopKind::Vertex(v) if *v < b.vertices.len() => {
+                    format!("508,1,1,{vl},{},1,0;", v + 1)
+                }
+                LoopKind::Vertex(v) => {
+                    notes.push(format!(
+                        "loop {} of face {} not written: its vertex {v} does not exist",
+                        l.source, face.source
+                    ));
+                    continue;
+                }
+                LoopKind::Edges(oes) => {
+                    let oes = ordered(oes, l.orientation);
+                    if let Some(bad) = oes.iter().find(|o| !index.contains_key(&o.edge)) {
+                        notes.push(format!(
+                            "loop {} of face {} not written: its edge {} has no 3D curve or vertex",
+                            l.source,
+                            face.source,
+                            b.edges.get(bad.edge).map_or("?", |e| e.source.as_str())
+                        ));
+                        continue;
+                    }
+                    let mut t = format!("508,{}", oes.len());
+                    for o in &oes {
+                        let c = b.edges[o.edge].curve.as_ref().map(|c| &c.nurbs);
+                        let pc = c
+                            .and_then(|c| patch.as_ref()?.pcurve(c))
+                            .map(|pc| if o.forward { pc } else { pc.reversed() });
+                        let k = match pc {
+                            Some(pc) => {
+                                let d = push(
+                                    p,
+                                    126,
+                                    curve_126(&CurveGeometry::Domain(pc).to_space()),
+                                    DEPENDENT,
+                                );
+                                format!("1,0,{d}")
+                            }
+                            None => "0".to_string(),
+                        };
+                        t += &format!(",0,{el},{},{},{k}", index[&o.edge], u8::from(o.forward));
+                    }
+                    t + ";"
+                }
+            };
+            loops.push((l.outer, push_form(p, 508, 1, text, USED)));
+        }
+        if loops.is_empty() {
+            notes.push(format!(
+                "face {} not written: none of its loops could be written",
+                face.source
+            ));
+            continue;
+        }
+        // The outer loop first: the first loop declared outer.
+        let outer = loops.iter().position(|l| l.0);
+        if let Some(k) = outer {
+            let l = loops.remove(k);
+            loops.insert(0, l);
+        }
+        let sde = push(p, 128, surface_128(&m.surfaces[si].nurbs), USED);
+        written.insert(si);
+        let ls: String = loops.iter().map(|l| format!(",{}", l.1)).collect();
+        face_de[fi] = Some(push_form(
+            p,
+            510,
+            1,
+            format!(
+                "510,{sde},{},{}{ls};",
+                loops.len(),
+                u8::from(outer.is_some())
+            ),
+            USED,
+        ));
+    }
+    shells_and_solids(b, p, &face_de, notes);
+    let pcurves: usize = b.edges.iter().map(|e| e.pcurves.len()).sum();
+    if pcurves > 0 {
+        notes.push(format!(
+            "{pcurves} pcurve(s) of the source not written (the edges' model-space curves are; exact parameter-space curves only on planar faces)"
+        ));
+    }
+    written
+}
+
+/// Shells (514) and solids (186); faces in no shell go into one more open shell.
+fn shells_and_solids(b: &Brep, p: &mut Params, face_de: &[Option<usize>], notes: &mut Vec<String>) {
+    let in_solid: BTreeSet<usize> = b
+        .solids
+        .iter()
+        .flat_map(|s| std::iter::once(s.outer).chain(s.voids.iter().copied()))
+        .collect();
+    let mut in_shell = BTreeSet::new();
+    let mut shell_de = Vec::with_capacity(b.shells.len());
+    for (k, s) in b.shells.iter().enumerate() {
+        let mut t = String::new();
+        let mut n = 0;
+        for (f, orientation) in &s.faces {
+            let Some(d) = face_de.get(*f).copied().flatten() else {
+                notes.push(format!(
+                    "shell {} written without face {} (not written)",
+                    s.source,
+                    b.faces.get(*f).map_or("?", |x| x.source.as_str())
+                ));
+                continue;
+            };
+            in_shell.insert(*f);
+            // Orientation relative to the surface normal: the face's and the shell's use.
+            let agrees = b.faces[*f].same_sense == *orientation;
+            t += &format!(",{d},{}", u8::from(agrees));
+            n += 1;
+        }
+        let form = if s.closed { 1 } else { 2 };
+        let status = if in_solid.contains(&k) {
+            USED
+        } else {
+            "00000000"
+        };
+        shell_de.push(push_form(p, 514, form, format!("514,{n}{t};"), status));
+    }
+    let loose: Vec<(usize, bool)> = face_de
+        .iter()
+        .enumerate()
+        .filter(|(f, _)| !in_shell.contains(f))
+        .filter_map(|(f, d)| Some(((*d)?, b.faces[f].same_sense)))
+        .collect();
+    if !loose.is_empty() {
+        notes.push(format!(
+            "{} face(s) in no shell written in an added open shell",
+            loose.len()
+        ));
+        let t: String = loose
+            .iter()
+            .map(|(d, same)| format!(",{d},{}", u8::from(*same)))
+            .collect();
+        shell_de.push(push_form(
+            p,
+            514,
+            2,
+            format!("514,{}{t};", loose.len()),
+            "00000000",
+        ));
+    }
+    for s in &b.solids {
+        let Some(outer) = shell_de.get(s.outer) else {
+            notes.push(format!("solid {} not written: no outer shell", s.source));
+            continue;
+        };
+        let voids: String = s
+            .voids
+            .iter()
+            .filter_map(|v| shell_de.get(*v))
+            .map(|d| format!(",{d},0"))
+            .collect();
+        push(
+            p,
+            186,
+            format!("186,{outer},1,{}{voids};", s.voids.len()),
+            "00000000",
+        );
+    }
+}
