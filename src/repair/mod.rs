@@ -5,15 +5,18 @@
 //! | corners, edges, arc-length samples, closest points | [`edges`] |
 //! | 1 connectivity (Algorithm 1), T-connectivity | [`connectivity`], [`kdtree`] |
 //! | 2 edge verification | [`verify`] |
-//! | 3 boundary averaging | [`average`] |
+//! | 3 boundary averaging | [`average`]; knot classes [`classes`], fitted shared curves [`fit_edge`], interior blending and deviation [`blend`] |
 //! | 4 feature lines | [`features`] |
 //! | 5 group-of-patches growing (Algorithm 2) | [`group`] |
 //! | 6 merging control information | [`merge`] |
 
 pub mod average;
+pub mod blend;
+pub mod classes;
 pub mod connectivity;
 pub mod edges;
 pub mod features;
+pub mod fit_edge;
 pub mod group;
 pub mod job;
 pub mod kdtree;
@@ -229,11 +232,17 @@ pub fn repair(
         .filter(|(_, n)| **n > 1)
         .map(|(&(p, e), &n)| (p, e, n))
         .collect();
-    let manifold: Vec<Connection> = connected
+    let manifold_gaps: Vec<(Connection, f64)> = verified
         .iter()
-        .filter(|c| partners[&(c.p, c.ep)] == 1 && partners[&(c.q, c.eq)] == 1)
-        .copied()
+        .filter(|v| v.connected)
+        .filter(|v| {
+            let c = &v.connection;
+            partners[&(c.p, c.ep)] == 1 && partners[&(c.q, c.eq)] == 1
+        })
+        .map(|v| (v.connection, v.gap))
         .collect();
+    let manifold: Vec<Connection> = manifold_gaps.iter().map(|x| x.0).collect();
+    let gaps_of: Vec<f64> = manifold_gaps.iter().map(|x| x.1).collect();
     progress("feature lines");
     let fe = features(
         &patches,
@@ -243,7 +252,8 @@ pub fn repair(
         overrides,
     );
     progress("boundary averaging");
-    let averaging = average::average(&mut patches, &manifold);
+    let averaging = average::average(&mut patches, &manifold, &gaps_of);
+    let n_left = averaging.left.len();
     use rayon::prelude::*;
     let gap_max_after = manifold
         .par_iter()
@@ -341,9 +351,13 @@ pub fn repair(
         max_merge_deviation: Some(max_dev),
         not_done: {
             let mut v: Vec<String> = vec![
-                "incompatible shared rows (different degree, count or knots) are not re-interpolated: listed in averaging.edges_incompatible".into(),
                 "groups grow only across aligned, consistently oriented neighbours (east-west, north-south); rotated or flipped neighbours bound a group".into(),
             ];
+            if n_left > 0 {
+                v.push(format!(
+                    "{n_left} connected pair(s) left as they were: averaging.left gives each one's reason"
+                ));
+            }
             if unsplit > 0 {
                 v.push(format!(
                     "T-junction split budget ({} per input patch, {split_budget} in all) spent: {unsplit} T-junction(s) left unsplit",
