@@ -311,6 +311,19 @@ fn check_grid(m: usize, n: usize, seed: u64, turn: bool) -> (usize, usize, usize
             }
         }
     }
+    // The merged output too.
+    for s in &res.patches {
+        let (u0, u1, v0, v1) = s.hom.domain();
+        for i in 0..=20 {
+            for j in 0..=20 {
+                let x = s.eval(
+                    &(u0 + (u1 - u0) * i as f64 / 20.0),
+                    &(v0 + (v1 - v0) * j as f64 / 20.0),
+                );
+                assert!((x[2] - C * x[0] * x[0]).abs() < 6.0 * NOISE, "{x:?}");
+            }
+        }
+    }
     (
         rep.patches_out,
         rep.averaging.edges_fitted,
@@ -336,7 +349,9 @@ fn mixed_degrees_and_knots_share_identical_edges() {
 fn swapped_and_reversed_neighbours_share_identical_edges() {
     let mut fitted = 0;
     for seed in 0..12 {
-        let (_, f, _) = check_grid(3, 2, 2000 + seed, true);
+        let (out, f, _) = check_grid(3, 2, 2000 + seed, true);
+        // Turned neighbours join their group: one region, one merged patch.
+        assert_eq!(out, 1, "seed {seed}");
         fitted += f;
     }
     assert!(fitted > 0);
