@@ -5,7 +5,8 @@
 //! each at the mean of the two points' normalized parameters along the edge (in the knot
 //! class's orientation, so the shared curve keeps both patches' parametrizations as far as
 //! they agree and the interior of either patch is sheared least); (iv) the two ends are the
-//! averaged corners; (v) a B-spline of the class degree (cubic, or higher when a member is)
+//! averaged corners of all patches there, and the midpoints follow the two ends' moves by
+//! their linear blend in the parameter; (v) a B-spline of the class degree (cubic, or higher when a member is)
 //! is fitted to the data by least squares with interpolated ends. The fit starts on the union
 //! of the two rows' knots (after elevation), a space that holds both original edges; while the
 //! largest residual exceeds the tolerance, every span holding such a residual is split at its
@@ -83,6 +84,20 @@ fn midpoints(
         }
     }
     data.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // The pair's own ends (the mean of its two corners) move to the averaged corners of all
+    // patches there; the midpoints follow by the linear blend of the two moves.
+    let corner = |s: &NurbsSurface<f64, 3>, e: usize, m: &Member, end: usize| {
+        super::edges::corners(s)[end_corner(e, m.flipped, end)]
+    };
+    let shift: [[f64; 3]; 2] = [0, 1].map(|end| {
+        let (a, b) = (corner(p, ep, mp, end), corner(q, eq, mq, end));
+        std::array::from_fn(|k| ends[end][k] - 0.5 * (a[k] + b[k]))
+    });
+    for (s, x) in &mut data {
+        for k in 0..3 {
+            x[k] += (1.0 - *s) * shift[0][k] + *s * shift[1][k];
+        }
+    }
     let mut t = vec![0.0];
     let mut pts = vec![ends[0]];
     for (s, x) in data {
