@@ -165,7 +165,11 @@ fn assert_identical(a: &NurbsSurface<f64, 3>, ea: usize, b: &NurbsSurface<f64, 3
     }
     assert!(ra == rb, "shared rows differ:\n{ra:?}\n{rb:?}");
     let norm = |s: &NurbsSurface<f64, 3>, e: usize| -> Vec<f64> {
-        let kv = if e % 2 == 0 { &s.hom.ku } else { &s.hom.kv };
+        let kv = if e.is_multiple_of(2) {
+            &s.hom.ku
+        } else {
+            &s.hom.kv
+        };
         let (lo, hi) = kv.domain();
         kv.knots().iter().map(|x| (x - lo) / (hi - lo)).collect()
     };
@@ -281,11 +285,10 @@ fn check_grid(m: usize, n: usize, seed: u64, turn: bool) -> (usize, usize, usize
                     let e1 = sides[k][true_corner];
                     let e0 = sides[k][(true_corner + 3) % 4];
                     let (r1, r0) = (row(s, e1), row(s, e0));
-                    let common = [r1[0], r1[r1.len() - 1]]
+                    [r1[0], r1[r1.len() - 1]]
                         .into_iter()
                         .find(|x| *x == r0[0] || *x == r0[r0.len() - 1])
-                        .expect("two sides of a patch share a corner");
-                    common
+                        .expect("two sides of a patch share a corner")
                 })
                 .collect();
             assert!(
