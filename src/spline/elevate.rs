@@ -231,7 +231,7 @@ mod tests {
         // Every distinct knot two more times (ends included).
         assert_eq!(e.knots.len(), c.knots.len() + 2 * 4);
         let mut target: Vec<Q> = e.knots.knots().to_vec();
-        for x in [0.1, 0.6, 0.8, 0.8] {
+        for x in [0.1, 0.25, 0.8, 0.8] {
             target.push(q(x));
         }
         target.sort();
