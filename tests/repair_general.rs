@@ -610,6 +610,7 @@ fn real_models_leave_no_unexplained_incompatible_rows() {
             f.display()
         );
         assert_eq!(a.edges.len(), a.edges_averaged + a.edges_fitted);
+        assert_eq!(a.incompatible_before, a.edges_fitted + a.left.len());
         for l in &a.left {
             assert!(!l.reason.is_empty());
         }

@@ -173,6 +173,8 @@ pub struct AveragingOutcome {
     pub edges_averaged: usize,
     /// Pairs given a fitted shared curve.
     pub edges_fitted: usize,
+    /// Connected pairs whose rows were incompatible before averaging (fitted or left).
+    pub incompatible_before: usize,
     /// Connected pairs left as they were (see `left` for the reasons).
     pub edges_incompatible: Vec<Connection>,
     pub left: Vec<LeftEdge>,
@@ -280,6 +282,7 @@ pub fn average(
         .map(|c| compatible(&patches[c.p], c.ep, &patches[c.q], c.eq, c.same_direction))
         .collect();
     let incompatible: Vec<bool> = compat.iter().map(|c| !c).collect();
+    out.incompatible_before = incompatible.iter().filter(|x| **x).count();
     let (mut cls, of) = classes(patches, connected, &incompatible);
     let member = |cls: &[KnotClass], p: usize, dir: usize| -> Option<Member> {
         let k = *of.get(&(p, dir))?;
