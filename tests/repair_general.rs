@@ -631,3 +631,63 @@ fn real_models_leave_no_unexplained_incompatible_rows() {
     }
     assert!(ran >= 5);
 }
+
+/// Triangular patches (degenerate quads: the west edge collapsed to the apex) in a fan of `k`
+/// around the origin, random degrees and knots, perturbed (the collapsed row moved as one
+/// point). After repair every apex row is still one point, the same for all triangles.
+#[test]
+fn collapsed_apexes_stay_one_point() {
+    for k in [3, 5, 6] {
+        let mut r = Rng(500 + k as u64);
+        let tau = std::f64::consts::TAU;
+        let at = |a: f64| [a.cos(), a.sin(), 0.0];
+        let ps: Vec<NurbsSurface<f64, 3>> = (0..k)
+            .map(|i| {
+                let (a0, a1) = (tau * i as f64 / k as f64, tau * (i + 1) as f64 / k as f64);
+                let c = [[0.0, 0.0, 0.0], at(a0), at(a1), [0.0, 0.0, 0.0]];
+                let (p, q) = (2 + r.below(2), 2 + r.below(2));
+                let (ku, kv) = (knots(p, &mut r), knots(q, &mut r));
+                let (nu, nv) = (ku.len() - p - 1, kv.len() - q - 1);
+                let apex_noise = [0, 1, 2].map(|_| NOISE * (2.0 * r.unit() - 1.0));
+                let mut pts = Vec::new();
+                for i in 0..nu {
+                    let s = ku[i + 1..=i + p].iter().sum::<f64>() / p as f64;
+                    for j in 0..nv {
+                        let t = kv[j + 1..=j + q].iter().sum::<f64>() / q as f64;
+                        let b: [f64; 3] = std::array::from_fn(|d| {
+                            (1.0 - s) * (1.0 - t) * c[0][d]
+                                + s * (1.0 - t) * c[1][d]
+                                + s * t * c[2][d]
+                                + (1.0 - s) * t * c[3][d]
+                        });
+                        let e: [f64; 3] = if i == 0 {
+                            apex_noise
+                        } else {
+                            [0, 1, 2].map(|_| NOISE * (2.0 * r.unit() - 1.0))
+                        };
+                        pts.push(std::array::from_fn(|d| b[d] + e[d]));
+                    }
+                }
+                NurbsSurface::new(ku, p, kv, q, nu, nv, pts, vec![1.0; nu * nv]).unwrap()
+            })
+            .collect();
+        let prm = RepairParams {
+            u1: 1e-2,
+            u2: 1e-2,
+            ..Default::default()
+        };
+        let res = repair(ps, &prm, &FeatureOverrides::default(), &none).unwrap();
+        let rep = &res.report;
+        assert_eq!(rep.collapsed_edges, k, "{rep}");
+        assert_eq!(rep.edges_connected, k, "{rep}");
+        let out = &res.connected_patches;
+        for i in 0..k {
+            // Triangle i's north edge (A_{i+1} → O) is triangle i+1's south edge (O → A_{i+1}).
+            assert_identical(&out[i], 2, &out[(i + 1) % k], 0);
+        }
+        let apex = row(&out[0], 3)[0];
+        for s in out {
+            assert!(row(s, 3).iter().all(|x| *x == apex), "valence {k}");
+        }
+    }
+}

@@ -21,7 +21,7 @@
 use super::blend::{blend_interior, control_move, measured_deviation};
 use super::classes::{KnotClass, Member, classes, refine_member, side};
 use super::connectivity::Connection;
-use super::edges::{corners, edge_curve};
+use super::edges::{collapsed, corners, edge_curve};
 use super::fit_edge::{EdgeFit, end_corner, fit_edge};
 use crate::geom::{Hom, dist};
 use crate::spline::NurbsSurface;
@@ -189,10 +189,10 @@ pub struct AveragingOutcome {
     pub patches: Vec<PatchRecord>,
 }
 
-/// Corner clusters (union-find over connections, each joining two pairs of corners):
-/// corner id `4 p + c` → cluster root.
-fn corner_clusters(n_patches: usize, connected: &[Connection]) -> Vec<usize> {
-    let n = n_patches * 4;
+/// Corner clusters (union-find over connections, each joining two pairs of corners, and over
+/// collapsed edges, whose two corners are one point): corner id `4 p + c` → cluster root.
+fn corner_clusters(patches: &[NurbsSurface<f64, 3>], connected: &[Connection]) -> Vec<usize> {
+    let n = patches.len() * 4;
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], x: usize) -> usize {
         let mut r = x;
@@ -207,14 +207,24 @@ fn corner_clusters(n_patches: usize, connected: &[Connection]) -> Vec<usize> {
         }
         r
     }
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
     for c in connected {
         let (pa, pb) = (4 * c.p + c.ep, 4 * c.p + (c.ep + 1) % 4);
         let (qa, qb) = (4 * c.q + c.eq, 4 * c.q + (c.eq + 1) % 4);
-        let pairs = if c.same_direction {
-            [(pa, qa), (pb, qb)]
+        if c.same_direction {
+            pairs.extend([(pa, qa), (pb, qb)]);
         } else {
-            [(pa, qb), (pb, qa)]
-        };
+            pairs.extend([(pa, qb), (pb, qa)]);
+        }
+    }
+    for (p, s) in patches.iter().enumerate() {
+        for e in 0..4 {
+            if collapsed(&edge_curve(s, e)) {
+                pairs.push((4 * p + e, 4 * p + (e + 1) % 4));
+            }
+        }
+    }
+    {
         for (x, y) in pairs {
             let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
             if rx != ry {
@@ -240,7 +250,7 @@ pub fn average(
     let mut out = AveragingOutcome::default();
     let original = patches.to_vec();
     // Corner clusters and their means (§4 (iv)).
-    let root = corner_clusters(patches.len(), connected);
+    let root = corner_clusters(patches, connected);
     let cs: Vec<[[f64; 3]; 4]> = patches.iter().map(corners).collect();
     let mut clusters: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for (x, r) in root.iter().enumerate() {
@@ -435,7 +445,9 @@ pub fn average(
     }
     // Corners last: one homogeneous point per cluster, written to every member.
     for (r, members) in clusters.iter().filter(|(_, m)| m.len() > 1) {
-        out.corner_clusters += 1;
+        let mut owners: Vec<usize> = members.iter().map(|m| m / 4).collect();
+        owners.dedup();
+        out.corner_clusters += usize::from(owners.len() > 1);
         let mean = mean_of[r];
         let h = Hom::from_point(&mean, &weight_of[r]);
         for &m in members {
@@ -444,6 +456,19 @@ pub fn average(
             out.corners_moved += usize::from(d > 0.0);
             let idx = corner_index(&patches[m / 4], m % 4);
             put(&mut patches[m / 4], idx, &h);
+        }
+    }
+    // A collapsed row (the degenerate side of a triangular patch) stays one point: its corners
+    // are one cluster, and its other control points follow them.
+    for (p, s) in patches.iter_mut().enumerate() {
+        for e in 0..4 {
+            if collapsed(&edge_curve(&before[p], e)) {
+                let idx = edge_indices(s, e);
+                let h = s.hom.at(idx[0].0, idx[0].1).clone();
+                for x in &idx[1..] {
+                    put(s, *x, &h);
+                }
+            }
         }
     }
     // The interior follows the boundary; per patch what moved and the deviation.
