@@ -691,3 +691,47 @@ fn collapsed_apexes_stay_one_point() {
         }
     }
 }
+
+/// A strip of 100 patches side by side, each with its own three interior v-knots: the v
+/// directions form one knot class whose union would need far more control points per row than
+/// the limit; its incompatible pairs are left, each with the reason, and nothing panics.
+#[test]
+fn oversized_knot_classes_are_left_with_their_reason() {
+    let mut r = Rng(9);
+    let ps: Vec<NurbsSurface<f64, 3>> = (0..100)
+        .map(|a| {
+            let mut kv = vec![0.0; 4];
+            let mut inner: Vec<f64> = (0..3)
+                .map(|k| r.range(0.05, 0.3) + 0.3 * k as f64)
+                .collect();
+            inner.sort_by(f64::total_cmp);
+            kv.extend(inner);
+            kv.extend([1.0; 4]);
+            let ku = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+            parabolic_patch(
+                a as f64 * 0.1,
+                (a + 1) as f64 * 0.1,
+                0.0,
+                1.0,
+                2,
+                3,
+                &ku,
+                &kv,
+                &mut r,
+            )
+        })
+        .collect();
+    let prm = RepairParams {
+        u1: 1e-2,
+        u2: 1e-2,
+        ..Default::default()
+    };
+    let rep = repair(ps, &prm, &FeatureOverrides::default(), &none)
+        .unwrap()
+        .report;
+    assert_eq!(rep.edges_connected, 99);
+    let a = &rep.averaging;
+    assert_eq!(a.left.len(), a.incompatible_before, "{:?}", a.left.first());
+    assert!(a.left.iter().all(|l| l.reason.contains("limit")));
+    assert_eq!(rep.shared_edges_identical, a.edges_averaged);
+}

@@ -19,7 +19,7 @@
 //! reported per patch.
 
 use super::blend::{blend_interior, control_move, measured_deviation};
-use super::classes::{KnotClass, Member, classes, refine_member, side};
+use super::classes::{KnotClass, MAX_CLASS_CONTROL_POINTS, Member, classes, refine_member, side};
 use super::connectivity::Connection;
 use super::edges::{collapsed, corners, edge_curve};
 use super::fit_edge::{EdgeFit, end_corner, fit_edge};
@@ -341,8 +341,17 @@ pub fn average(
     }
     // Bring every member of a refined class to the class degree and knots.
     let mut refined_class = vec![false; cls.len()];
+    let mut class_reason: Vec<Option<String>> = vec![None; cls.len()];
     for (ci, cl) in cls.iter().enumerate() {
         if !(cl.refine && cl.consistent) {
+            continue;
+        }
+        let n = cl.knots().len() - cl.degree - 1;
+        if n > MAX_CLASS_CONTROL_POINTS {
+            class_reason[ci] = Some(format!(
+                "the knot class ({} patch directions tied through shared edges) would need {n} control points per row (limit {MAX_CLASS_CONTROL_POINTS}): left rather than refined",
+                cl.members.len()
+            ));
             continue;
         }
         let trial: Option<Vec<NurbsSurface<f64, 3>>> = cl
@@ -433,7 +442,9 @@ pub fn average(
             out.edges_averaged += 1;
             out.edges.push(rec("control_points", None, deg, ip.len()));
         } else {
-            left[k] = Some(if cls[ci].consistent {
+            left[k] = Some(if let Some(r) = &class_reason[ci] {
+                r.clone()
+            } else if cls[ci].consistent {
                 "a patch of the knot class could not be refined to the class knots (knots not clamped, or two knots closer than the snapping tolerance)".into()
             } else {
                 "the knot class's ties reverse orientation around a cycle".into()

@@ -26,6 +26,11 @@ use std::collections::HashMap;
 /// Knot values closer than this (on the normalized `[0, 1]`) are one value.
 pub const SNAP: f64 = 1e-10;
 
+/// A class needing more control points per row than this is not refined (its knots would be
+/// inserted into every member: long chains of patches with unrelated knots); its incompatible
+/// ties are left and reported.
+pub const MAX_CLASS_CONTROL_POINTS: usize = 256;
+
 /// Direction along edge `e` (0 = u, 1 = v) and whether the edge runs with the parameter.
 pub fn side(e: usize) -> (usize, bool) {
     (e % 2, e < 2)
