@@ -120,8 +120,10 @@ fn mean_hom(a: &Hom<f64, 3>, b: &Hom<f64, 3>) -> Hom<f64, 3> {
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct EdgeRecord {
     pub connection: Connection,
-    /// `control_points` (matrix (2): the mean of two compatible rows) or `fitted_curve`
-    /// (§4 (i)–(v): least squares on the closest-point midpoints).
+    /// `control_points` (matrix (2): the mean of two compatible rows), `fitted_curve` (§4
+    /// (i)–(v): least squares on the closest-point midpoints), or, when no fit was solvable,
+    /// `control_points_after_refinement` (the mean of the two rows brought to the class's
+    /// degree and knots, at equal parameters).
     pub method: &'static str,
     /// Gap measured before averaging (step 2, evidence).
     pub gap_before: f64,
@@ -171,7 +173,7 @@ pub struct AveragingOutcome {
     pub max_corner_move: f64,
     /// Pairs averaged control point by control point.
     pub edges_averaged: usize,
-    /// Pairs given a fitted shared curve.
+    /// Incompatible pairs repaired (a fitted curve, or the mean of the refined rows).
     pub edges_fitted: usize,
     /// Connected pairs whose rows were incompatible before averaging (fitted or left).
     pub incompatible_before: usize,
@@ -316,6 +318,7 @@ pub fn average(
             continue;
         }
         let (Some(mp), Some(mq)) = (member(&cls, c.p, dp), member(&cls, c.q, dq)) else {
+            left[k] = Some("a patch direction is missing from its knot class".into());
             continue;
         };
         let ends = [0, 1].map(|e| {
@@ -336,7 +339,9 @@ pub fn average(
             tol,
         ) {
             Some(f) => fits[k] = Some(f),
-            None => left[k] = Some("no solvable least-squares fit of the midpoints".into()),
+            // Without a fit the pair is averaged control point by control point once both
+            // rows are in the class's representation (below).
+            None => {}
         }
     }
     // Bring every member of a refined class to the class degree and knots.
@@ -387,11 +392,12 @@ pub fn average(
         };
         if refined_class[ci] {
             let (Some(mp), Some(mq)) = (member(&cls, c.p, dp), member(&cls, c.q, dq)) else {
+                left[k] = Some("a patch direction is missing from its knot class".into());
                 continue;
             };
             let ip = class_positions(&patches[c.p], c.ep, mp.flipped);
             let iq = class_positions(&patches[c.q], c.eq, mq.flipped);
-            let homs: Vec<Hom<f64, 3>> = if compat[k] {
+            let homs: Vec<Hom<f64, 3>> = if compat[k] || fits[k].is_none() {
                 ip.iter()
                     .zip(&iq)
                     .map(|(a, b)| {
@@ -418,6 +424,15 @@ pub fn average(
                 out.edges_averaged += 1;
                 out.edges
                     .push(rec("control_points", None, cls[ci].degree, homs.len()));
+            } else if fits[k].is_none() {
+                // No solvable fit: the two refined rows averaged (at equal parameters).
+                out.edges_fitted += 1;
+                out.edges.push(rec(
+                    "control_points_after_refinement",
+                    None,
+                    cls[ci].degree,
+                    homs.len(),
+                ));
             } else {
                 out.edges_fitted += 1;
                 let f = fits[k].as_ref();
