@@ -4,6 +4,8 @@
 #![allow(dead_code)]
 
 use crate::common::Rng;
+use vericad::repair::features::FeatureOverrides;
+use vericad::repair::{RepairParams, repair};
 use vericad::spline::NurbsSurface;
 
 pub const C: f64 = 0.3;
@@ -173,4 +175,162 @@ pub fn assert_identical(a: &NurbsSurface<f64, 3>, ea: usize, b: &NurbsSurface<f6
         x.len() == y.len() && x.iter().zip(y).all(|(s, t)| (s - t).abs() <= 1e-12)
     };
     assert!(close(&ka, &kb) || close(&ka, &mirrored), "knots differ");
+}
+
+/// An `m × n` grid of parabolic-cylinder patches over `[0, m] × [0, n]`, random degrees 2/3
+/// and knots, optionally random u/v swaps and reversals. Returns the patches and each one's
+/// true-side → edge map.
+pub fn grid(
+    m: usize,
+    n: usize,
+    seed: u64,
+    turn: bool,
+) -> (Vec<NurbsSurface<f64, 3>>, Vec<[usize; 4]>) {
+    let mut r = Rng(seed);
+    let mut ps = Vec::new();
+    let mut sides = Vec::new();
+    for a in 0..m {
+        for b in 0..n {
+            let (p, q) = (2 + r.below(2), 2 + r.below(2));
+            let (ku, kv) = (knots(p, &mut r), knots(q, &mut r));
+            let (x0, y0) = (a as f64, b as f64);
+            let mut s = parabolic_patch(x0, x0 + 1.0, y0, y0 + 1.0, p, q, &ku, &kv, &mut r);
+            let mut side = [0, 1, 2, 3];
+            if turn {
+                if r.below(2) == 1 {
+                    swap_uv(&mut s, &mut side);
+                }
+                if r.below(2) == 1 {
+                    reverse_u(&mut s, &mut side);
+                }
+            }
+            ps.push(s);
+            sides.push(side);
+        }
+    }
+    (ps, sides)
+}
+
+/// Repair the grid and check it; returns (patches out, pairs fitted, pairs given
+/// control-point averaging).
+pub fn check_grid(m: usize, n: usize, seed: u64, turn: bool) -> (usize, usize, usize) {
+    let (ps, sides) = grid(m, n, seed, turn);
+    let incompatible_in = {
+        // Pairs whose rows differ in degree, count or knots (from the construction).
+        let mut k = 0;
+        let id = |a: usize, b: usize| a * n + b;
+        for a in 0..m {
+            for b in 0..n {
+                for (c, d, sa, sb) in [(a + 1, b, 1, 3), (a, b + 1, 2, 0)] {
+                    if c < m && d < n {
+                        let (x, y) = (&ps[id(a, b)], &ps[id(c, d)]);
+                        if row(x, sides[id(a, b)][sa]).len() != row(y, sides[id(c, d)][sb]).len() {
+                            k += 1;
+                        }
+                    }
+                }
+            }
+        }
+        k
+    };
+    let prm = RepairParams {
+        u1: 1e-2,
+        u2: 1e-2,
+        ..Default::default()
+    };
+    let res = repair(ps, &prm, &FeatureOverrides::default(), &none).unwrap();
+    let rep = &res.report;
+    assert_eq!(rep.t_junctions, 0, "{rep}");
+    assert_eq!(rep.edges_connected, (m - 1) * n + m * (n - 1), "{rep}");
+    assert!(rep.gaps_left.is_empty());
+    assert!(rep.averaging.left.is_empty(), "{:?}", rep.averaging.left);
+    assert!(rep.averaging.edges_fitted >= incompatible_in.min(1));
+    let out = &res.connected_patches;
+    let id = |a: usize, b: usize| a * n + b;
+    // Every true shared edge: the same control points on both sides, bit for bit.
+    for a in 0..m {
+        for b in 0..n {
+            if a + 1 < m {
+                assert_identical(
+                    &out[id(a, b)],
+                    sides[id(a, b)][1],
+                    &out[id(a + 1, b)],
+                    sides[id(a + 1, b)][3],
+                );
+            }
+            if b + 1 < n {
+                assert_identical(
+                    &out[id(a, b)],
+                    sides[id(a, b)][2],
+                    &out[id(a, b + 1)],
+                    sides[id(a, b + 1)][0],
+                );
+            }
+        }
+    }
+    // Every interior grid vertex: one point for its four patches.
+    for a in 1..m {
+        for b in 1..n {
+            let around = [
+                (id(a - 1, b - 1), 2),
+                (id(a, b - 1), 3),
+                (id(a, b), 0),
+                (id(a - 1, b), 1),
+            ];
+            let pts: Vec<([f64; 3], f64)> = around
+                .iter()
+                .map(|&(k, true_corner)| {
+                    // The corner at the start of the true side `true_corner` (S starts at
+                    // SW, E at SE, N at NE, W at NW): the shared endpoint of two true sides.
+                    let s = &out[k];
+                    let e1 = sides[k][true_corner];
+                    let e0 = sides[k][(true_corner + 3) % 4];
+                    let (r1, r0) = (row(s, e1), row(s, e0));
+                    [r1[0], r1[r1.len() - 1]]
+                        .into_iter()
+                        .find(|x| *x == r0[0] || *x == r0[r0.len() - 1])
+                        .expect("two sides of a patch share a corner")
+                })
+                .collect();
+            assert!(
+                pts.iter().all(|x| *x == pts[0]),
+                "corner ({a}, {b}): {pts:?}"
+            );
+        }
+    }
+    // The truth: every repaired patch stays on z = C x² within a few perturbations.
+    for s in out {
+        let (u0, u1, v0, v1) = s.hom.domain();
+        for i in 0..=10 {
+            for j in 0..=10 {
+                let x = s.eval(
+                    &(u0 + (u1 - u0) * i as f64 / 10.0),
+                    &(v0 + (v1 - v0) * j as f64 / 10.0),
+                );
+                let off = (x[2] - C * x[0] * x[0]).abs();
+                assert!(
+                    off < 6.0 * NOISE,
+                    "{off} off the parabolic cylinder at {x:?}"
+                );
+            }
+        }
+    }
+    // The merged output too.
+    for s in &res.patches {
+        let (u0, u1, v0, v1) = s.hom.domain();
+        for i in 0..=20 {
+            for j in 0..=20 {
+                let x = s.eval(
+                    &(u0 + (u1 - u0) * i as f64 / 20.0),
+                    &(v0 + (v1 - v0) * j as f64 / 20.0),
+                );
+                assert!((x[2] - C * x[0] * x[0]).abs() < 6.0 * NOISE, "{x:?}");
+            }
+        }
+    }
+    (
+        rep.patches_out,
+        rep.averaging.edges_fitted,
+        rep.averaging.edges_averaged,
+    )
 }
