@@ -191,9 +191,14 @@ pub struct AveragingOutcome {
     pub patches: Vec<PatchRecord>,
 }
 
-/// Corner clusters (union-find over connections, each joining two pairs of corners, and over
-/// collapsed edges, whose two corners are one point): corner id `4 p + c` → cluster root.
-fn corner_clusters(patches: &[NurbsSurface<f64, 3>], connected: &[Connection]) -> Vec<usize> {
+/// Corner clusters (union-find over connections, each joining two pairs of corners, and, with
+/// `collapsed_too`, over collapsed edges, whose two corners are one point): corner id
+/// `4 p + c` → cluster root.
+fn corner_clusters(
+    patches: &[NurbsSurface<f64, 3>],
+    connected: &[Connection],
+    collapsed_too: bool,
+) -> Vec<usize> {
     let n = patches.len() * 4;
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], x: usize) -> usize {
@@ -219,7 +224,7 @@ fn corner_clusters(patches: &[NurbsSurface<f64, 3>], connected: &[Connection]) -
             pairs.extend([(pa, qb), (pb, qa)]);
         }
     }
-    for (p, s) in patches.iter().enumerate() {
+    for (p, s) in patches.iter().enumerate().filter(|_| collapsed_too) {
         for e in 0..4 {
             if collapsed(&edge_curve(s, e)) {
                 pairs.push((4 * p + e, 4 * p + (e + 1) % 4));
@@ -252,7 +257,15 @@ pub fn average(
     let mut out = AveragingOutcome::default();
     let original = patches.to_vec();
     // Corner clusters and their means (§4 (iv)).
-    let root = corner_clusters(patches, connected);
+    // Positions: clusters through connections and collapsed edges. Weights: one per group of
+    // corners joined by connections (the ends of shared rows, which must be one homogeneous
+    // point); the two corners of a collapsed edge keep their own weights.
+    let root = corner_clusters(patches, connected, true);
+    let link = corner_clusters(patches, connected, false);
+    let mut groups: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (x, r) in link.iter().enumerate() {
+        groups.entry(*r).or_default().push(x);
+    }
     let cs: Vec<[[f64; 3]; 4]> = patches.iter().map(corners).collect();
     let mut clusters: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for (x, r) in root.iter().enumerate() {
@@ -271,7 +284,7 @@ pub fn average(
     let corner_pt = |x: usize| mean_of.get(&root[x]).copied().unwrap_or(cs[x / 4][x % 4]);
     // One weight per cluster: the members' common corner weight, or 1 when they differ.
     let mut weight_of: HashMap<usize, f64> = HashMap::new();
-    for (r, members) in clusters.iter().filter(|(_, m)| m.len() > 1) {
+    for (r, members) in groups.iter().filter(|(_, m)| m.len() > 1) {
         let ws: Vec<f64> = members
             .iter()
             .map(|&m| {
@@ -287,7 +300,16 @@ pub fn average(
         };
         weight_of.insert(*r, w);
     }
-    let corner_w = |x: usize| weight_of.get(&root[x]).copied().unwrap_or(1.0);
+    let cw: Vec<f64> = (0..4 * patches.len())
+        .map(|x| {
+            weight_of.get(&link[x]).copied().unwrap_or_else(|| {
+                let s = &patches[x / 4];
+                let (i, j) = corner_index(s, x % 4);
+                s.hom.at(i, j).w
+            })
+        })
+        .collect();
+    let corner_w = |x: usize| cw[x];
     // Knot classes; a class is refined when it ties incompatible rows.
     let compat: Vec<bool> = connected
         .iter()
@@ -469,14 +491,15 @@ pub fn average(
         replaced[c.p].push(c.ep);
         replaced[c.q].push(c.eq);
     }
-    // Corners last: one homogeneous point per cluster, written to every member.
+    // Corners last: one point per cluster, written to every member with its group's weight
+    // (one homogeneous point for the corners joined by connections).
     for (r, members) in clusters.iter().filter(|(_, m)| m.len() > 1) {
         let mut owners: Vec<usize> = members.iter().map(|m| m / 4).collect();
         owners.dedup();
         out.corner_clusters += usize::from(owners.len() > 1);
         let mean = mean_of[r];
-        let h = Hom::from_point(&mean, &weight_of[r]);
         for &m in members {
+            let h = Hom::from_point(&mean, &cw[m]);
             let d = dist(&cs[m / 4][m % 4], &mean);
             out.max_corner_move = out.max_corner_move.max(d);
             out.corners_moved += usize::from(d > 0.0);
@@ -485,14 +508,17 @@ pub fn average(
         }
     }
     // A collapsed row (the degenerate side of a triangular patch) stays one point: its corners
-    // are one cluster, and its other control points follow them.
+    // are one cluster, and its other control points follow them (each keeping its weight).
     for (p, s) in patches.iter_mut().enumerate() {
         for e in 0..4 {
             if collapsed(&edge_curve(&before[p], e)) {
+                let Some(apex) = mean_of.get(&root[4 * p + e]) else {
+                    continue;
+                };
                 let idx = edge_indices(s, e);
-                let h = s.hom.at(idx[0].0, idx[0].1).clone();
-                for x in &idx[1..] {
-                    put(s, *x, &h);
+                for x in &idx[1..idx.len() - 1] {
+                    let w = s.hom.at(x.0, x.1).w;
+                    put(s, *x, &Hom::from_point(apex, &w));
                 }
             }
         }
