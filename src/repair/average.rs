@@ -349,7 +349,9 @@ pub fn average(
         });
         let scale = dist(&ends[0].0, &ends[1].0).max(gaps[k]);
         let tol = (0.05 * gaps[k]).max(1e-9 * scale);
-        match fit_edge(
+        // Without a fit (`None`) the pair is averaged control point by control point once both
+        // rows are in the class's representation (below).
+        fits[k] = fit_edge(
             &mut cls[ci],
             &patches[c.p],
             c.ep,
@@ -359,12 +361,7 @@ pub fn average(
             &mq,
             ends,
             tol,
-        ) {
-            Some(f) => fits[k] = Some(f),
-            // Without a fit the pair is averaged control point by control point once both
-            // rows are in the class's representation (below).
-            None => {}
-        }
+        );
     }
     // Bring every member of a refined class to the class degree and knots.
     let mut refined_class = vec![false; cls.len()];

@@ -185,7 +185,9 @@ impl std::fmt::Display for RepairReport {
             "  patch deviation: {:.3e} measured (evidence, closest points){}",
             self.averaging.max_deviation_measured_evidence,
             match self.averaging.max_deviation_bound_proven {
-                Some(b) => format!(", {b:.3e} proven bound where weights were kept"),
+                Some(b) => format!(
+                    "; proven bound at equal parameters {b:.3e} (patches whose weights were kept)"
+                ),
                 None => String::new(),
             }
         )?;
