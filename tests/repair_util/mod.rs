@@ -1,4 +1,4 @@
-//! Helpers of the repair tests: exact constructions (polar forms, Greville abscissae), the
+//! Shared constructions of the repair tests: exact patches (polar forms, Greville abscissae), the
 //! symmetries of a patch's parameter square, and an independent bit-for-bit check of shared
 //! rows read from the nets.
 #![allow(dead_code)]
