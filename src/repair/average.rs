@@ -2,18 +2,31 @@
 //! §C: rows/columns on shared borders are replaced by the average of the coincident rows, four
 //! at a shared corner).
 //!
-//! Corners: every cluster of corners joined by connections is moved to the cluster's mean
-//! (the paper's step (iv): "we average the n individual, distinct corner points"). Edges: for
-//! a connected pair whose boundary rows are compatible (same degree, same number of control
-//! points, the same knots after normalization, mirrored when the edges run opposite ways),
-//! each interior boundary control point of the pair is replaced by the mean of the two, computed
-//! once and written to both patches. The shared boundary curves are then the same control
-//! points and knots, bit for bit (checked). Incompatible pairs are left unchanged and reported
-//! (the paper's closest-point midpoints and re-interpolation would be needed there).
+//! Corners (§4 (iv)): every cluster of corners joined by connections is moved to the
+//! cluster's mean ("we average the n individual, distinct corner points"), written last and
+//! the same homogeneous point in every patch of the cluster, whatever its valence.
+//!
+//! Edges: a connected pair whose boundary rows are compatible (same degree, number of control
+//! points, knots after normalization, weights; mirrored when the edges run opposite ways) gets
+//! each boundary control point replaced by the mean of the two (control-point averaging,
+//! matrix (2)). Any other pair gets the shared curve of §4 (i)–(v) fitted to the closest-point
+//! midpoints ([`super::fit_edge`]); both patches are first brought to a representation that
+//! holds it — their knot class raised to the class degree and refined to the class knots
+//! ([`super::classes`]) — and the curve's control points become the boundary row of both.
+//! Either way the row is computed once and written to both patches: the shared edges are then
+//! the same control points, weights and knots, bit for bit (checked: [`identical`]). The
+//! interior follows the boundary ([`super::blend`]); the deviation from the original patch is
+//! reported per patch.
 
+use super::blend::{blend_interior, control_move, measured_deviation};
+use super::classes::{KnotClass, MAX_CLASS_CONTROL_POINTS, Member, classes, refine_member, side};
 use super::connectivity::Connection;
-use super::edges::{corners, edge_curve};
+use super::edges::{collapsed, corners, edge_curve};
+use super::fit_edge::{EdgeFit, end_corner, fit_edge};
+use crate::geom::{Hom, dist};
 use crate::spline::NurbsSurface;
+use crate::spline::elevate::refine_to;
+use std::collections::{BTreeMap, HashMap};
 
 /// Net indices `(i, j)` of the control points of edge `k`, in the edge's direction.
 pub fn edge_indices(s: &NurbsSurface<f64, 3>, k: usize) -> Vec<(usize, usize)> {
@@ -32,7 +45,9 @@ pub(crate) fn normalized(k: &[f64]) -> Vec<f64> {
     k.iter().map(|x| (x - a) / (b - a)).collect()
 }
 
-/// Whether the two edges' rows can be averaged control point by control point.
+/// Whether the two edges' rows can be averaged control point by control point: same degree,
+/// number of control points, normalized knots (within 1e-12) and weights (within a relative
+/// 1e-12), mirrored when the edges run opposite ways.
 pub fn compatible(
     p: &NurbsSurface<f64, 3>,
     ep: usize,
@@ -54,18 +69,100 @@ pub fn compatible(
     if !same_direction {
         wb.reverse();
     }
-    ka.iter().zip(&kb).all(|(x, y)| (x - y).abs() <= 1e-12) && wa == wb
-}
-
-fn set_point(s: &mut NurbsSurface<f64, 3>, (i, j): (usize, usize), x: [f64; 3]) {
-    let nv = s.hom.nv();
-    let h = &mut s.hom.net[i * nv + j];
-    h.wp = [x[0] * h.w, x[1] * h.w, x[2] * h.w];
+    // Weights equal up to rounding (a relative 1e-12): the mean row, written to both
+    // patches, then has one weight per control point on both sides.
+    ka.iter().zip(&kb).all(|(x, y)| (x - y).abs() <= 1e-12)
+        && wa
+            .iter()
+            .zip(&wb)
+            .all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()))
 }
 
 fn get_point(s: &NurbsSurface<f64, 3>, (i, j): (usize, usize)) -> [f64; 3] {
     let h = s.hom.at(i, j);
     [h.wp[0] / h.w, h.wp[1] / h.w, h.wp[2] / h.w]
+}
+
+fn put(s: &mut NurbsSurface<f64, 3>, (i, j): (usize, usize), h: &Hom<f64, 3>) {
+    let nv = s.hom.nv();
+    s.hom.net[i * nv + j] = h.clone();
+}
+
+/// Net indices of edge `e`'s row in the order of the patch's own parameter.
+fn row_positions(s: &NurbsSurface<f64, 3>, e: usize) -> Vec<(usize, usize)> {
+    let (nu, nv) = (s.hom.nu(), s.hom.nv());
+    match e {
+        0 => (0..nu).map(|i| (i, 0)).collect(),
+        2 => (0..nu).map(|i| (i, nv - 1)).collect(),
+        1 => (0..nv).map(|j| (nu - 1, j)).collect(),
+        _ => (0..nv).map(|j| (0, j)).collect(),
+    }
+}
+
+/// Net indices of edge `e`'s row in the order of the knot class (reversed for a flipped
+/// member).
+fn class_positions(s: &NurbsSurface<f64, 3>, e: usize, flipped: bool) -> Vec<(usize, usize)> {
+    let mut r = row_positions(s, e);
+    if flipped {
+        r.reverse();
+    }
+    r
+}
+
+fn mean_hom(a: &Hom<f64, 3>, b: &Hom<f64, 3>) -> Hom<f64, 3> {
+    Hom {
+        wp: std::array::from_fn(|k| 0.5 * (a.wp[k] + b.wp[k])),
+        w: 0.5 * (a.w + b.w),
+    }
+}
+
+/// How the shared row of a connected pair was made.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct EdgeRecord {
+    pub connection: Connection,
+    /// `control_points` (matrix (2): the mean of two compatible rows), `fitted_curve` (§4
+    /// (i)–(v): least squares on the closest-point midpoints), or, when no fit was solvable,
+    /// `control_points_after_refinement` (the mean of the two rows brought to the class's
+    /// degree and knots, at equal parameters).
+    pub method: &'static str,
+    /// Gap measured before averaging (step 2, evidence).
+    pub gap_before: f64,
+    /// Fitted curves: largest residual at the midpoints (evidence, not a bound between them).
+    pub fit_error_evidence: Option<f64>,
+    /// Fitted curves: number of midpoints (corners included) and knots added by splitting.
+    pub fit_data: Option<usize>,
+    pub knots_added: usize,
+    /// Degree and control points of the shared row.
+    pub degree: usize,
+    pub control_points: usize,
+}
+
+/// What averaging did to one patch (indices after T-junction splitting).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PatchRecord {
+    pub patch: usize,
+    pub degrees_before: (usize, usize),
+    pub degrees_after: (usize, usize),
+    pub control_points_before: (usize, usize),
+    pub control_points_after: (usize, usize),
+    /// Edges whose row was replaced (0 south, 1 east, 2 north, 3 west).
+    pub rows_replaced: Vec<usize>,
+    /// Largest move of a control point (boundary and interior) against the original refined
+    /// to the same knots.
+    pub max_control_point_move: f64,
+    /// Proven bound on `|S_new(u,v) − S_old(u,v)|` (partition of unity; hypotheses: weights
+    /// unchanged, refinement exact): present only when the weights are unchanged.
+    pub deviation_bound_proven: Option<f64>,
+    /// Largest distance of 9 × 9 samples of the repaired patch to their closest points on the
+    /// original (evidence).
+    pub deviation_measured_evidence: f64,
+}
+
+/// A connected pair left as it was, and why.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct LeftEdge {
+    pub connection: Connection,
+    pub reason: String,
 }
 
 /// What averaging did.
@@ -74,16 +171,34 @@ pub struct AveragingOutcome {
     pub corner_clusters: usize,
     pub corners_moved: usize,
     pub max_corner_move: f64,
+    /// Pairs averaged control point by control point.
     pub edges_averaged: usize,
-    /// Connected pairs left as they were (incompatible rows).
+    /// Incompatible pairs repaired (a fitted curve, or the mean of the refined rows).
+    pub edges_fitted: usize,
+    /// Connected pairs whose rows were incompatible before averaging (fitted or left).
+    pub incompatible_before: usize,
+    /// Connected pairs left as they were (see `left` for the reasons).
     pub edges_incompatible: Vec<Connection>,
+    pub left: Vec<LeftEdge>,
+    /// Knot classes raised and refined so that fitted curves fit in.
+    pub classes_refined: usize,
     pub max_control_point_move: f64,
+    pub max_fit_error_evidence: f64,
+    pub max_deviation_measured_evidence: f64,
+    /// Largest proven bound over the patches that have one.
+    pub max_deviation_bound_proven: Option<f64>,
+    pub edges: Vec<EdgeRecord>,
+    pub patches: Vec<PatchRecord>,
 }
 
-/// Average corners and compatible shared rows in place.
-pub fn average(patches: &mut [NurbsSurface<f64, 3>], connected: &[Connection]) -> AveragingOutcome {
-    let mut out = AveragingOutcome::default();
-    // Corner clusters by union-find over connections (each joins two pairs of corners).
+/// Corner clusters (union-find over connections, each joining two pairs of corners, and, with
+/// `collapsed_too`, over collapsed edges, whose two corners are one point): corner id
+/// `4 p + c` → cluster root.
+fn corner_clusters(
+    patches: &[NurbsSurface<f64, 3>],
+    connected: &[Connection],
+    collapsed_too: bool,
+) -> Vec<usize> {
     let n = patches.len() * 4;
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], x: usize) -> usize {
@@ -99,14 +214,24 @@ pub fn average(patches: &mut [NurbsSurface<f64, 3>], connected: &[Connection]) -
         }
         r
     }
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
     for c in connected {
         let (pa, pb) = (4 * c.p + c.ep, 4 * c.p + (c.ep + 1) % 4);
         let (qa, qb) = (4 * c.q + c.eq, 4 * c.q + (c.eq + 1) % 4);
-        let pairs = if c.same_direction {
-            [(pa, qa), (pb, qb)]
+        if c.same_direction {
+            pairs.extend([(pa, qa), (pb, qb)]);
         } else {
-            [(pa, qb), (pb, qa)]
-        };
+            pairs.extend([(pa, qb), (pb, qa)]);
+        }
+    }
+    for (p, s) in patches.iter().enumerate().filter(|_| collapsed_too) {
+        for e in 0..4 {
+            if collapsed(&edge_curve(s, e)) {
+                pairs.push((4 * p + e, 4 * p + (e + 1) % 4));
+            }
+        }
+    }
+    {
         for (x, y) in pairs {
             let (rx, ry) = (find(&mut parent, x), find(&mut parent, y));
             if rx != ry {
@@ -114,64 +239,328 @@ pub fn average(patches: &mut [NurbsSurface<f64, 3>], connected: &[Connection]) -
             }
         }
     }
-    let cs: Vec<[[f64; 3]; 4]> = patches.iter().map(corners).collect();
-    let mut clusters: std::collections::BTreeMap<usize, Vec<usize>> =
-        std::collections::BTreeMap::new();
-    for x in 0..n {
-        let r = find(&mut parent, x);
-        clusters.entry(r).or_default().push(x);
+    (0..n).map(|x| find(&mut parent, x)).collect()
+}
+
+fn corner_index(s: &NurbsSurface<f64, 3>, c: usize) -> (usize, usize) {
+    let (nu, nv) = (s.hom.nu(), s.hom.nv());
+    [(0, 0), (nu - 1, 0), (nu - 1, nv - 1), (0, nv - 1)][c]
+}
+
+/// Average corners and shared rows in place; `gaps[k]` is the measured gap of
+/// `connected[k]`.
+pub fn average(
+    patches: &mut [NurbsSurface<f64, 3>],
+    connected: &[Connection],
+    gaps: &[f64],
+) -> AveragingOutcome {
+    let mut out = AveragingOutcome::default();
+    let original = patches.to_vec();
+    // Corner clusters and their means (§4 (iv)).
+    // Positions: clusters through connections and collapsed edges. Weights: one per group of
+    // corners joined by connections (the ends of shared rows, which must be one homogeneous
+    // point); the two corners of a collapsed edge keep their own weights.
+    let root = corner_clusters(patches, connected, true);
+    let link = corner_clusters(patches, connected, false);
+    let mut groups: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (x, r) in link.iter().enumerate() {
+        groups.entry(*r).or_default().push(x);
     }
-    let corner_index = |s: &NurbsSurface<f64, 3>, c: usize| -> (usize, usize) {
-        let (nu, nv) = (s.hom.nu(), s.hom.nv());
-        [(0, 0), (nu - 1, 0), (nu - 1, nv - 1), (0, nv - 1)][c]
-    };
-    for members in clusters.values().filter(|m| m.len() > 1) {
-        out.corner_clusters += 1;
+    let cs: Vec<[[f64; 3]; 4]> = patches.iter().map(corners).collect();
+    let mut clusters: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (x, r) in root.iter().enumerate() {
+        clusters.entry(*r).or_default().push(x);
+    }
+    let mut mean_of: HashMap<usize, [f64; 3]> = HashMap::new();
+    for (r, members) in clusters.iter().filter(|(_, m)| m.len() > 1) {
         let mut mean = [0.0; 3];
         for &m in members {
             for k in 0..3 {
                 mean[k] += cs[m / 4][m % 4][k];
             }
         }
-        let mean = mean.map(|v| v / members.len() as f64);
+        mean_of.insert(*r, mean.map(|v| v / members.len() as f64));
+    }
+    let corner_pt = |x: usize| mean_of.get(&root[x]).copied().unwrap_or(cs[x / 4][x % 4]);
+    // One weight per cluster: the members' common corner weight, or 1 when they differ.
+    let mut weight_of: HashMap<usize, f64> = HashMap::new();
+    for (r, members) in groups.iter().filter(|(_, m)| m.len() > 1) {
+        let ws: Vec<f64> = members
+            .iter()
+            .map(|&m| {
+                let s = &patches[m / 4];
+                let (i, j) = corner_index(s, m % 4);
+                s.hom.at(i, j).w
+            })
+            .collect();
+        let w = if ws.iter().all(|x| *x == ws[0]) {
+            ws[0]
+        } else {
+            1.0
+        };
+        weight_of.insert(*r, w);
+    }
+    let cw: Vec<f64> = (0..4 * patches.len())
+        .map(|x| {
+            weight_of.get(&link[x]).copied().unwrap_or_else(|| {
+                let s = &patches[x / 4];
+                let (i, j) = corner_index(s, x % 4);
+                s.hom.at(i, j).w
+            })
+        })
+        .collect();
+    let corner_w = |x: usize| cw[x];
+    // Knot classes; a class is refined when it ties incompatible rows.
+    let compat: Vec<bool> = connected
+        .iter()
+        .map(|c| compatible(&patches[c.p], c.ep, &patches[c.q], c.eq, c.same_direction))
+        .collect();
+    let incompatible: Vec<bool> = compat.iter().map(|c| !c).collect();
+    out.incompatible_before = incompatible.iter().filter(|x| **x).count();
+    let (mut cls, of) = classes(patches, connected, &incompatible);
+    let member = |cls: &[KnotClass], p: usize, dir: usize| -> Option<Member> {
+        let k = *of.get(&(p, dir))?;
+        cls[k]
+            .members
+            .iter()
+            .find(|m| m.patch == p && m.dir == dir)
+            .copied()
+    };
+    let mut left: Vec<Option<String>> = vec![None; connected.len()];
+    // Fitted shared curves (§4 (i)–(v)) for the incompatible pairs.
+    let mut fits: Vec<Option<EdgeFit>> = vec![None; connected.len()];
+    for (k, c) in connected.iter().enumerate() {
+        if compat[k] {
+            continue;
+        }
+        let ((dp, _), (dq, _)) = (side(c.ep), side(c.eq));
+        let ci = of[&(c.p, dp)];
+        if !cls[ci].consistent {
+            left[k] = Some("the knot class's ties reverse orientation around a cycle: no common orientation for the shared rows".into());
+            continue;
+        }
+        let (Some(mp), Some(mq)) = (member(&cls, c.p, dp), member(&cls, c.q, dq)) else {
+            left[k] = Some("a patch direction is missing from its knot class".into());
+            continue;
+        };
+        let ends = [0, 1].map(|e| {
+            let x = 4 * c.p + end_corner(c.ep, mp.flipped, e);
+            (corner_pt(x), corner_w(x))
+        });
+        let scale = dist(&ends[0].0, &ends[1].0).max(gaps[k]);
+        let tol = (0.05 * gaps[k]).max(1e-9 * scale);
+        // Without a fit (`None`) the pair is averaged control point by control point once both
+        // rows are in the class's representation (below).
+        fits[k] = fit_edge(
+            &mut cls[ci],
+            &patches[c.p],
+            c.ep,
+            &mp,
+            &patches[c.q],
+            c.eq,
+            &mq,
+            ends,
+            tol,
+        );
+    }
+    // Bring every member of a refined class to the class degree and knots.
+    let mut refined_class = vec![false; cls.len()];
+    let mut class_reason: Vec<Option<String>> = vec![None; cls.len()];
+    for (ci, cl) in cls.iter().enumerate() {
+        if !(cl.refine && cl.consistent) {
+            continue;
+        }
+        let n = cl.knots().len() - cl.degree - 1;
+        if n > MAX_CLASS_CONTROL_POINTS {
+            class_reason[ci] = Some(format!(
+                "the knot class ({} patch directions tied through shared edges) would need {n} control points per row (limit {MAX_CLASS_CONTROL_POINTS}): left rather than refined",
+                cl.members.len()
+            ));
+            continue;
+        }
+        let trial: Option<Vec<NurbsSurface<f64, 3>>> = cl
+            .members
+            .iter()
+            .map(|m| refine_member(cl, &patches[m.patch], m))
+            .collect();
+        if let Some(t) = trial {
+            for (m, s) in cl.members.iter().zip(t) {
+                patches[m.patch] = s;
+            }
+            refined_class[ci] = true;
+            out.classes_refined += 1;
+        }
+    }
+    let before = patches.to_vec();
+    let mut replaced: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
+    for (k, c) in connected.iter().enumerate() {
+        if left[k].is_some() {
+            continue;
+        }
+        let ((dp, _), (dq, _)) = (side(c.ep), side(c.eq));
+        let ci = of[&(c.p, dp)];
+        let rec = |method, fit: Option<&EdgeFit>, degree, n| EdgeRecord {
+            connection: *c,
+            method,
+            gap_before: gaps[k],
+            fit_error_evidence: fit.map(|f| f.fit_error),
+            fit_data: fit.map(|f| f.data),
+            knots_added: fit.map_or(0, |f| f.knots_added),
+            degree,
+            control_points: n,
+        };
+        if refined_class[ci] {
+            let (Some(mp), Some(mq)) = (member(&cls, c.p, dp), member(&cls, c.q, dq)) else {
+                left[k] = Some("a patch direction is missing from its knot class".into());
+                continue;
+            };
+            let ip = class_positions(&patches[c.p], c.ep, mp.flipped);
+            let iq = class_positions(&patches[c.q], c.eq, mq.flipped);
+            let homs: Vec<Hom<f64, 3>> = if compat[k] || fits[k].is_none() {
+                ip.iter()
+                    .zip(&iq)
+                    .map(|(a, b)| {
+                        mean_hom(before[c.p].hom.at(a.0, a.1), before[c.q].hom.at(b.0, b.1))
+                    })
+                    .collect()
+            } else {
+                let Some(f) = &fits[k] else { continue };
+                let Some(cv) = refine_to(&f.curve, &cls[ci].knots()) else {
+                    left[k] = Some("the fitted curve's knots are not in its class".into());
+                    continue;
+                };
+                cv.control
+            };
+            if homs.len() != ip.len() || homs.len() != iq.len() {
+                left[k] = Some("rows of different lengths after refinement".into());
+                continue;
+            }
+            for ((a, b), h) in ip.iter().zip(&iq).zip(&homs) {
+                put(&mut patches[c.p], *a, h);
+                put(&mut patches[c.q], *b, h);
+            }
+            if compat[k] {
+                out.edges_averaged += 1;
+                out.edges
+                    .push(rec("control_points", None, cls[ci].degree, homs.len()));
+            } else if fits[k].is_none() {
+                // No solvable fit: the two refined rows averaged (at equal parameters).
+                out.edges_fitted += 1;
+                out.edges.push(rec(
+                    "control_points_after_refinement",
+                    None,
+                    cls[ci].degree,
+                    homs.len(),
+                ));
+            } else {
+                out.edges_fitted += 1;
+                let f = fits[k].as_ref();
+                out.max_fit_error_evidence = out
+                    .max_fit_error_evidence
+                    .max(f.map_or(0.0, |f| f.fit_error));
+                out.edges
+                    .push(rec("fitted_curve", f, cls[ci].degree, homs.len()));
+            }
+        } else if compat[k] {
+            let ip = edge_indices(&patches[c.p], c.ep);
+            let mut iq = edge_indices(&patches[c.q], c.eq);
+            if !c.same_direction {
+                iq.reverse();
+            }
+            for (a, b) in ip.iter().zip(&iq) {
+                let h = mean_hom(before[c.p].hom.at(a.0, a.1), before[c.q].hom.at(b.0, b.1));
+                put(&mut patches[c.p], *a, &h);
+                put(&mut patches[c.q], *b, &h);
+            }
+            let deg = edge_curve(&patches[c.p], c.ep).hom.knots.degree();
+            out.edges_averaged += 1;
+            out.edges.push(rec("control_points", None, deg, ip.len()));
+        } else {
+            left[k] = Some(if let Some(r) = &class_reason[ci] {
+                r.clone()
+            } else if cls[ci].consistent {
+                "a patch of the knot class could not be refined to the class knots (knots not clamped, or two knots closer than the snapping tolerance)".into()
+            } else {
+                "the knot class's ties reverse orientation around a cycle".into()
+            });
+            continue;
+        }
+        replaced[c.p].push(c.ep);
+        replaced[c.q].push(c.eq);
+    }
+    // Corners last: one point per cluster, written to every member with its group's weight
+    // (one homogeneous point for the corners joined by connections).
+    for (r, members) in clusters.iter().filter(|(_, m)| m.len() > 1) {
+        let mut owners: Vec<usize> = members.iter().map(|m| m / 4).collect();
+        owners.dedup();
+        out.corner_clusters += usize::from(owners.len() > 1);
+        let mean = mean_of[r];
         for &m in members {
-            let old = cs[m / 4][m % 4];
-            let d = ((old[0] - mean[0]).powi(2)
-                + (old[1] - mean[1]).powi(2)
-                + (old[2] - mean[2]).powi(2))
-            .sqrt();
+            let h = Hom::from_point(&mean, &cw[m]);
+            let d = dist(&cs[m / 4][m % 4], &mean);
             out.max_corner_move = out.max_corner_move.max(d);
             out.corners_moved += usize::from(d > 0.0);
             let idx = corner_index(&patches[m / 4], m % 4);
-            set_point(&mut patches[m / 4], idx, mean);
+            put(&mut patches[m / 4], idx, &h);
         }
     }
-    // Interior boundary control points of compatible pairs.
-    for c in connected {
-        if !compatible(&patches[c.p], c.ep, &patches[c.q], c.eq, c.same_direction) {
-            out.edges_incompatible.push(*c);
+    // A collapsed row (the degenerate side of a triangular patch) stays one point: its corners
+    // are one cluster, and its other control points follow them (each keeping its weight).
+    for (p, s) in patches.iter_mut().enumerate() {
+        for e in 0..4 {
+            if collapsed(&edge_curve(&before[p], e)) {
+                let Some(apex) = mean_of.get(&root[4 * p + e]) else {
+                    continue;
+                };
+                let idx = edge_indices(s, e);
+                for x in &idx[1..idx.len() - 1] {
+                    let w = s.hom.at(x.0, x.1).w;
+                    put(s, *x, &Hom::from_point(apex, &w));
+                }
+            }
+        }
+    }
+    // The interior follows the boundary; per patch what moved and the deviation.
+    for (p, s) in patches.iter_mut().enumerate() {
+        if s.hom.net == before[p].hom.net
+            && s.hom.ku == original[p].hom.ku
+            && s.hom.kv == original[p].hom.kv
+        {
             continue;
         }
-        let ip = edge_indices(&patches[c.p], c.ep);
-        let mut iq = edge_indices(&patches[c.q], c.eq);
-        if !c.same_direction {
-            iq.reverse();
+        blend_interior(&before[p], s);
+        let (mv, same_w) = control_move(&before[p], s);
+        let measured = measured_deviation(&original[p], s, 9);
+        out.max_control_point_move = out.max_control_point_move.max(mv);
+        out.max_deviation_measured_evidence = out.max_deviation_measured_evidence.max(measured);
+        if same_w {
+            out.max_deviation_bound_proven =
+                Some(out.max_deviation_bound_proven.unwrap_or(0.0).max(mv));
         }
-        let m = ip.len();
-        for k in 1..m - 1 {
-            let (a, b) = (
-                get_point(&patches[c.p], ip[k]),
-                get_point(&patches[c.q], iq[k]),
-            );
-            let mean: [f64; 3] = std::array::from_fn(|d| 0.5 * (a[d] + b[d]));
-            let mv =
-                ((a[0] - mean[0]).powi(2) + (a[1] - mean[1]).powi(2) + (a[2] - mean[2]).powi(2))
-                    .sqrt();
-            out.max_control_point_move = out.max_control_point_move.max(mv);
-            set_point(&mut patches[c.p], ip[k], mean);
-            set_point(&mut patches[c.q], iq[k], mean);
+        let mut rows = replaced[p].clone();
+        rows.sort_unstable();
+        rows.dedup();
+        let o = &original[p].hom;
+        out.patches.push(PatchRecord {
+            patch: p,
+            degrees_before: o.degrees(),
+            degrees_after: s.hom.degrees(),
+            control_points_before: (o.nu(), o.nv()),
+            control_points_after: (s.hom.nu(), s.hom.nv()),
+            rows_replaced: rows,
+            max_control_point_move: mv,
+            deviation_bound_proven: same_w.then_some(mv),
+            deviation_measured_evidence: measured,
+        });
+    }
+    for (c, reason) in connected.iter().zip(left) {
+        if let Some(reason) = reason {
+            out.edges_incompatible.push(*c);
+            out.left.push(LeftEdge {
+                connection: *c,
+                reason,
+            });
         }
-        out.edges_averaged += 1;
     }
     out
 }

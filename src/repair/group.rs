@@ -2,7 +2,8 @@
 //!
 //! Patches are taken as cells of a local grid: a patch's east edge (1) meets its east
 //! neighbour's west edge (3), its north edge (2) the north neighbour's south edge (0), both
-//! running opposite ways (consistently oriented, not rotated). A group is a rectangle of
+//! running opposite ways (consistently oriented). Rotated and flipped neighbours are turned
+//! into such neighbours beforehand ([`super::orient`]). A group is a rectangle of
 //! `i × j` patches. It grows one row or column at a time in the direction that brings the
 //! aspect ratio ρ of eq. (1), `(len(north) + len(south)) / (len(east) + len(west))`, closest to
 //! 1, provided every patch along that side has such a neighbour, not yet grouped, across an

@@ -172,11 +172,31 @@ impl std::fmt::Display for RepairReport {
         )?;
         writeln!(
             f,
-            "  averaging: {} corner clusters (largest move {:.3e}), {} edges averaged, {} incompatible",
+            "  averaging: {} corner clusters (largest move {:.3e}), {} edges by control points, {} by fitted curves (largest fit residual {:.3e}, evidence), {} left",
             self.averaging.corner_clusters,
             self.averaging.max_corner_move,
             self.averaging.edges_averaged,
+            self.averaging.edges_fitted,
+            self.averaging.max_fit_error_evidence,
             self.averaging.edges_incompatible.len()
+        )?;
+        writeln!(
+            f,
+            "  patch deviation: {:.3e} measured (evidence, closest points){}",
+            self.averaging.max_deviation_measured_evidence,
+            match self.averaging.max_deviation_bound_proven {
+                Some(b) => format!(
+                    "; proven bound at equal parameters {b:.3e} (patches whose weights were kept)"
+                ),
+                None => String::new(),
+            }
+        )?;
+        writeln!(
+            f,
+            "  groups: {} ({} patches turned to fit their group), {} not merged",
+            self.groups.unwrap_or(0),
+            self.reoriented,
+            self.groups_not_merged
         )?;
         writeln!(
             f,

@@ -7,12 +7,14 @@
 //! shared control row, which is exactly what averaging made identical (the paper's quadruple
 //! knot, `p + 1`, would double that row). Likewise in v. The net is the union of the patches'
 //! nets with shared rows/columns written once (the mean of the coincident rows, identical after
-//! averaging). Each original patch is the merged surface over its cell, reparametrized
+//! averaging). Patches of a lower degree than the group's largest are raised first (exact
+//! degree elevation). Each original patch is the merged surface over its cell, reparametrized
 //! affinely; the largest deviation at 7 × 7 samples per patch is measured and reported.
 
 use super::average::normalized;
 use super::group::Group;
 use crate::geom::Hom;
+use crate::spline::elevate::elevate_surface_to;
 use crate::spline::{BSplineSurface, KnotVector, NurbsSurface};
 
 fn union_knots(parts: &[Vec<f64>], p: usize) -> Vec<f64> {
@@ -33,17 +35,26 @@ fn union_knots(parts: &[Vec<f64>], p: usize) -> Vec<f64> {
 /// when the patches' degrees or knot vectors do not line up (the group then stays as is).
 pub fn merge(patches: &[NurbsSurface<f64, 3>], g: &Group) -> Option<(NurbsSurface<f64, 3>, f64)> {
     let (ni, nj) = (g.columns(), g.rows());
-    let first = &patches[g.cells[0][0]].hom;
-    let (p, q) = (first.ku.degree(), first.kv.degree());
+    // Columns (rows) of different degrees are raised to the group's largest, exactly.
+    let members: Vec<usize> = g.cells.iter().flatten().copied().collect();
+    let p = members.iter().map(|&k| patches[k].hom.ku.degree()).max()?;
+    let q = members.iter().map(|&k| patches[k].hom.kv.degree()).max()?;
+    let mut raised: std::collections::HashMap<usize, NurbsSurface<f64, 3>> =
+        std::collections::HashMap::new();
+    for &k in &members {
+        let h = elevate_surface_to(&elevate_surface_to(&patches[k].hom, 0, p), 1, q);
+        raised.insert(k, NurbsSurface { hom: h });
+    }
+    let patches = |k: usize| -> &NurbsSurface<f64, 3> { &raised[&k] };
     let cols: Vec<Vec<f64>> = (0..ni)
-        .map(|i| normalized(patches[g.cells[i][0]].hom.ku.knots()))
+        .map(|i| normalized(patches(g.cells[i][0]).hom.ku.knots()))
         .collect();
     let rows: Vec<Vec<f64>> = (0..nj)
-        .map(|j| normalized(patches[g.cells[0][j]].hom.kv.knots()))
+        .map(|j| normalized(patches(g.cells[0][j]).hom.kv.knots()))
         .collect();
     for i in 0..ni {
         for j in 0..nj {
-            let h = &patches[g.cells[i][j]].hom;
+            let h = &patches(g.cells[i][j]).hom;
             if h.ku.degree() != p || h.kv.degree() != q {
                 return None;
             }
@@ -56,8 +67,8 @@ pub fn merge(patches: &[NurbsSurface<f64, 3>], g: &Group) -> Option<(NurbsSurfac
             }
         }
     }
-    let nu: Vec<usize> = (0..ni).map(|i| patches[g.cells[i][0]].hom.nu()).collect();
-    let nv: Vec<usize> = (0..nj).map(|j| patches[g.cells[0][j]].hom.nv()).collect();
+    let nu: Vec<usize> = (0..ni).map(|i| patches(g.cells[i][0]).hom.nu()).collect();
+    let nv: Vec<usize> = (0..nj).map(|j| patches(g.cells[0][j]).hom.nv()).collect();
     let off_u: Vec<usize> = (0..ni)
         .map(|i| nu[..i].iter().map(|n| n - 1).sum())
         .collect();
@@ -75,7 +86,7 @@ pub fn merge(patches: &[NurbsSurface<f64, 3>], g: &Group) -> Option<(NurbsSurfac
     let mut count = vec![0u32; tu * tv];
     for i in 0..ni {
         for j in 0..nj {
-            let h = &patches[g.cells[i][j]].hom;
+            let h = &patches(g.cells[i][j]).hom;
             for a in 0..h.nu() {
                 for b in 0..h.nv() {
                     let k = (off_u[i] + a) * tv + off_v[j] + b;
@@ -108,7 +119,7 @@ pub fn merge(patches: &[NurbsSurface<f64, 3>], g: &Group) -> Option<(NurbsSurfac
     let mut dev = 0.0f64;
     for i in 0..ni {
         for j in 0..nj {
-            let s = &patches[g.cells[i][j]];
+            let s = &patches(g.cells[i][j]);
             let (u0, u1, v0, v1) = s.hom.domain();
             for a in 0..7 {
                 for b in 0..7 {

@@ -5,19 +5,23 @@
 //! | corners, edges, arc-length samples, closest points | [`edges`] |
 //! | 1 connectivity (Algorithm 1), T-connectivity | [`connectivity`], [`kdtree`] |
 //! | 2 edge verification | [`verify`] |
-//! | 3 boundary averaging | [`average`] |
+//! | 3 boundary averaging | [`average`]; knot classes [`classes`], fitted shared curves [`fit_edge`], interior blending and deviation [`blend`] |
 //! | 4 feature lines | [`features`] |
-//! | 5 group-of-patches growing (Algorithm 2) | [`group`] |
+//! | 5 group-of-patches growing (Algorithm 2) | [`group`]; common i/j directions [`orient`] |
 //! | 6 merging control information | [`merge`] |
 
 pub mod average;
+pub mod blend;
+pub mod classes;
 pub mod connectivity;
 pub mod edges;
 pub mod features;
+pub mod fit_edge;
 pub mod group;
 pub mod job;
 pub mod kdtree;
 pub mod merge;
+pub mod orient;
 pub mod verify;
 
 use connectivity::{Connection, TJunction, connect, split, t_junctions};
@@ -109,6 +113,9 @@ pub struct RepairReport {
     pub group_sizes: Vec<(usize, usize)>,
     /// Groups whose nets could not be merged (kept as their patches).
     pub groups_not_merged: usize,
+    /// Patches of merged groups that were turned (u/v swap, reversal) to fit their group's
+    /// rows and columns.
+    pub reoriented: usize,
     /// Largest measured deviation of a merged surface from one of its patches (7 × 7 samples).
     pub max_merge_deviation: Option<f64>,
     pub not_done: Vec<String>,
@@ -229,11 +236,17 @@ pub fn repair(
         .filter(|(_, n)| **n > 1)
         .map(|(&(p, e), &n)| (p, e, n))
         .collect();
-    let manifold: Vec<Connection> = connected
+    let manifold_gaps: Vec<(Connection, f64)> = verified
         .iter()
-        .filter(|c| partners[&(c.p, c.ep)] == 1 && partners[&(c.q, c.eq)] == 1)
-        .copied()
+        .filter(|v| v.connected)
+        .filter(|v| {
+            let c = &v.connection;
+            partners[&(c.p, c.ep)] == 1 && partners[&(c.q, c.eq)] == 1
+        })
+        .map(|v| (v.connection, v.gap))
         .collect();
+    let manifold: Vec<Connection> = manifold_gaps.iter().map(|x| x.0).collect();
+    let gaps_of: Vec<f64> = manifold_gaps.iter().map(|x| x.1).collect();
     progress("feature lines");
     let fe = features(
         &patches,
@@ -243,7 +256,8 @@ pub fn repair(
         overrides,
     );
     progress("boundary averaging");
-    let averaging = average::average(&mut patches, &manifold);
+    let averaging = average::average(&mut patches, &manifold, &gaps_of);
+    let n_left = averaging.left.len();
     use rayon::prelude::*;
     let gap_max_after = manifold
         .par_iter()
@@ -259,7 +273,34 @@ pub fn repair(
         .filter(|f| f.feature)
         .flat_map(|f| [(f.p, f.ep), (f.q, f.eq)])
         .collect();
-    let gs = group::groups(&patches, &manifold, &feature_set);
+    // Rotated and flipped neighbours are turned into east-west / north-south neighbours first.
+    let usable: Vec<Connection> = manifold
+        .iter()
+        .filter(|c| !feature_set.contains(&(c.p, c.ep)) && !feature_set.contains(&(c.q, c.eq)))
+        .copied()
+        .collect();
+    let orientation = orient::orient(patches.len(), &usable);
+    let turned: Vec<NurbsSurface<f64, 3>> = patches
+        .iter()
+        .zip(&orientation)
+        .map(|(s, o)| {
+            if o.is_identity() {
+                s.clone()
+            } else {
+                orient::apply(s, o)
+            }
+        })
+        .collect();
+    let turned_conns: Vec<Connection> = manifold
+        .iter()
+        .map(|c| orient::transform(c, &orientation))
+        .collect();
+    let turned_features: std::collections::HashSet<(usize, usize)> = feature_set
+        .iter()
+        .map(|&(p, e)| (p, orientation[p].edge(e)))
+        .collect();
+    let gs = group::groups(&turned, &turned_conns, &turned_features);
+    let mut reoriented = 0;
     let mut out_patches = Vec::new();
     let mut out_origin: Vec<Vec<usize>> = Vec::new();
     let mut max_dev: f64 = 0.0;
@@ -267,9 +308,13 @@ pub fn repair(
     for g in &gs {
         let members: Vec<usize> = g.cells.iter().flatten().copied().collect();
         if members.len() > 1
-            && let Some((m, d)) = merge::merge(&patches, g)
+            && let Some((m, d)) = merge::merge(&turned, g)
         {
             max_dev = max_dev.max(d);
+            reoriented += members
+                .iter()
+                .filter(|&&k| !orientation[k].is_identity())
+                .count();
             out_patches.push(m);
             let mut o: Vec<usize> = members.iter().map(|&k| origin[k]).collect();
             o.sort_unstable();
@@ -338,12 +383,15 @@ pub fn repair(
         groups: Some(gs.len()),
         group_sizes: gs.iter().map(|g| (g.columns(), g.rows())).collect(),
         groups_not_merged: not_merged,
+        reoriented,
         max_merge_deviation: Some(max_dev),
         not_done: {
-            let mut v: Vec<String> = vec![
-                "incompatible shared rows (different degree, count or knots) are not re-interpolated: listed in averaging.edges_incompatible".into(),
-                "groups grow only across aligned, consistently oriented neighbours (east-west, north-south); rotated or flipped neighbours bound a group".into(),
-            ];
+            let mut v: Vec<String> = Vec::new();
+            if n_left > 0 {
+                v.push(format!(
+                    "{n_left} connected pair(s) left as they were: averaging.left gives each one's reason"
+                ));
+            }
             if unsplit > 0 {
                 v.push(format!(
                     "T-junction split budget ({} per input patch, {split_budget} in all) spent: {unsplit} T-junction(s) left unsplit",

@@ -11,6 +11,8 @@
 //! * [`nurbs`] — rational curves/surfaces via homogeneous points, rational derivatives, normals;
 //! * [`compose`] — a planar Bézier curve composed with a Bézier surface, exactly;
 //! * [`interpolate`], [`fit`] — cubic interpolation and least-squares fitting;
+//! * [`elevate`] — degree elevation and refinement to a knot vector, exact;
+//! * [`fit_knots`] — least-squares fitting on a given knot vector;
 //! * [`linalg`] — the small dense solver both use.
 
 pub mod basis;
@@ -21,8 +23,10 @@ pub mod bspline_surface;
 pub mod closure;
 pub mod compose;
 pub mod construct;
+pub mod elevate;
 pub mod enclosed_bezier;
 pub mod fit;
+pub mod fit_knots;
 pub mod interpolate;
 pub mod knots;
 pub mod linalg;
