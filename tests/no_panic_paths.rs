@@ -37,7 +37,7 @@ const ALLOWED: &[(&str, &str, &str)] = &[
     ),
     (
         "src/curve_on_surface/examples.rs",
-        r#"json::from_str(crate::demo::DEFAULT_MODEL, "embedded").expect("embedded model");"#,
+        r#"json::from_str(crate::model::YANG_TABLE2, "embedded").expect("embedded model");"#,
         "the model compiled into the binary (tested by the demo tests)",
     ),
     (

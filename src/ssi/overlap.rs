@@ -139,11 +139,12 @@ fn inside(b: &[f64; 4], p: &[f64; 2]) -> bool {
 pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>, tol: f64) {
     let ab = blocks(&samples(sa, sb, tol));
     let ba = blocks(&samples(sb, sa, tol));
-    if ab.is_none() && ba.is_none() {
+    let (Some(box_a), Some(box_b)) = (
+        union(ab.map(|x| x.0), ba.map(|x| x.1)),
+        union(ab.map(|x| x.1), ba.map(|x| x.0)),
+    ) else {
         return;
-    }
-    let box_a = union(ab.map(|x| x.0), ba.map(|x| x.1)).expect("one side found");
-    let box_b = union(ab.map(|x| x.1), ba.map(|x| x.0)).expect("one side found");
+    };
     let n = ab.map_or(0, |x| x.2) + ba.map_or(0, |x| x.2);
     let dmax = ab.map_or(0.0, |x| x.3).max(ba.map_or(0.0, |x| x.3));
     let (wa, wb) = (widened(&box_a, sa), widened(&box_b, sb));
