@@ -4,6 +4,8 @@
 //! de Casteljau / de Boor routine serves polynomial and rational geometry on every backend.
 
 mod aabb;
+pub mod bvh;
+pub mod triangle;
 pub use aabb::Aabb;
 
 use crate::scalar::{RealScalar, Scalar};

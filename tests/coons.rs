@@ -1,0 +1,635 @@
+//! Projected Coons patches with multiquadric gap filling (paper A §3) on the situations of
+//! the paper's Figures 8–11, with truth independent of the construction: distances to a
+//! sphere and to planes are analytic, the oscillating surface is a graph `z = f(x, y)` whose
+//! vertical distance bounds the true one; the multiquadric on a plane and on Franke's test
+//! functions; bad inputs.
+
+use vericad::approx::coons::boundary::{BoundarySpec, CurveRef, CurveSpec};
+use vericad::approx::coons::discrete::Grid;
+use vericad::approx::coons::multiquadric::{fill, interpolate};
+use vericad::approx::coons::{Approximant, CoonsError, Params, approximate, bicubic};
+use vericad::geom::{Point, cross, norm};
+use vericad::model::{Curve, CurveGeometry, Model, Surface};
+use vericad::spline::construct::{Frame, arc, bilinear, revolve_curve_range};
+use vericad::spline::{NurbsCurve, NurbsSurface};
+
+/// The unit sphere between longitudes `a0..a1` and latitudes ±0.6.
+fn sphere_piece(a0: f64, a1: f64) -> NurbsSurface<f64, 3> {
+    let meridian_plane = Frame {
+        o: [0.0; 3],
+        x: [1.0, 0.0, 0.0],
+        y: [0.0, 0.0, 1.0],
+        z: [0.0, -1.0, 0.0],
+    };
+    let profile = arc(&meridian_plane, 1.0, -0.6, 0.6).unwrap();
+    revolve_curve_range(&[0.0; 3], &[0.0, 0.0, 1.0], &profile, a0, a1).unwrap()
+}
+
+/// Latitude circle `φ` from longitude `a0` to `a1`.
+fn latitude(phi: f64, a0: f64, a1: f64) -> NurbsCurve<f64, 3> {
+    let f = Frame {
+        o: [0.0, 0.0, phi.sin()],
+        ..Frame::WORLD
+    };
+    arc(&f, phi.cos(), a0, a1).unwrap()
+}
+
+/// Meridian at longitude `a` from latitude `p0` to `p1`.
+fn meridian(a: f64, p0: f64, p1: f64) -> NurbsCurve<f64, 3> {
+    let x = [a.cos(), a.sin(), 0.0];
+    let y = [0.0, 0.0, 1.0];
+    let f = Frame {
+        o: [0.0; 3],
+        x,
+        y,
+        z: cross(&x, &y),
+    };
+    arc(&f, 1.0, p0, p1).unwrap()
+}
+
+fn curve(name: &str, c: NurbsCurve<f64, 3>) -> Curve {
+    Curve {
+        name: name.into(),
+        geometry: CurveGeometry::Space(c),
+    }
+}
+
+fn by_index(i: usize) -> CurveSpec {
+    CurveSpec {
+        curve: Some(CurveRef::Index(i)),
+        polyline: None,
+        reversed: false,
+        name: None,
+    }
+}
+
+fn polyline(pts: Vec<[f64; 3]>) -> CurveSpec {
+    CurveSpec {
+        curve: None,
+        polyline: Some(pts),
+        reversed: false,
+        name: None,
+    }
+}
+
+/// The sphere model with the patch's four boundary curves (longitudes 0.2..1.3, latitudes
+/// ±0.4) as model curves 0–3, in loop order but with curves 2 and 3 in their own direction.
+fn sphere_model(pieces: &[(f64, f64)]) -> (Model, BoundarySpec) {
+    let mut m = Model::default();
+    for (k, (a0, a1)) in pieces.iter().enumerate() {
+        m.surfaces.push(Surface::new(
+            format!("sphere piece {k}"),
+            sphere_piece(*a0, *a1),
+        ));
+    }
+    m.curves = vec![
+        curve("south", latitude(-0.4, 0.2, 1.3)),
+        curve("east", meridian(1.3, -0.4, 0.4)),
+        curve("north", latitude(0.4, 0.2, 1.3)),
+        curve("west", meridian(0.2, -0.4, 0.4)),
+    ];
+    let spec = BoundarySpec {
+        curves: (0..4).map(by_index).collect(),
+    };
+    (m, spec)
+}
+
+/// Largest of `f` over an `k × k` lattice of the approximant's domain, restricted by `keep`.
+fn dense_max(
+    s: &NurbsSurface<f64, 3>,
+    k: usize,
+    f: impl Fn(&[f64; 3]) -> f64,
+    keep: impl Fn(&[f64; 3]) -> bool,
+) -> f64 {
+    let mut worst: f64 = 0.0;
+    for i in 0..=k {
+        for j in 0..=k {
+            let p = s.eval(&(i as f64 / k as f64), &(j as f64 / k as f64));
+            if keep(&p) {
+                worst = worst.max(f(&p));
+            }
+        }
+    }
+    worst
+}
+
+fn sphere_distance(p: &[f64; 3]) -> f64 {
+    (norm(p) - 1.0).abs()
+}
+
+/// `s_u` just left and right of every interior knot line `ξ_I` (and `s_v` across `η_J`):
+/// the largest jump relative to the derivative's size.
+fn c1_jump(ap: &Approximant) -> f64 {
+    let s = &ap.surface;
+    let (m, n) = (ap.report.m, ap.report.n);
+    let eps = 1e-9;
+    let mut worst: f64 = 0.0;
+    for i in 1..m {
+        let u = i as f64 / m as f64;
+        for k in 0..=20 {
+            let v = k as f64 / 20.0;
+            let l = s.derivatives2(&(u - eps), &v)[1];
+            let r = s.derivatives2(&(u + eps), &v)[1];
+            worst = worst.max(norm(&l.sub(&r)) / norm(&l).max(1e-300));
+        }
+    }
+    for j in 1..n {
+        let v = j as f64 / n as f64;
+        for k in 0..=20 {
+            let u = k as f64 / 20.0;
+            let l = s.derivatives2(&u, &(v - eps))[2];
+            let r = s.derivatives2(&u, &(v + eps))[2];
+            worst = worst.max(norm(&l.sub(&r)) / norm(&l).max(1e-300));
+        }
+    }
+    worst
+}
+
+/// Figure 8: part of a single patch — the sphere, analytic distance.
+#[test]
+fn figure8_part_of_a_single_patch() {
+    let (model, spec) = sphere_model(&[(0.0, 1.6)]);
+    let params = Params {
+        tol: 1e-4,
+        ..Default::default()
+    };
+    let ap = approximate(&model, &spec, &params).unwrap();
+    let r = &ap.report;
+    eprintln!("figure 8: {:?}", r.rounds);
+    assert!(r.within_tol, "{}", r.reason);
+    assert_eq!(r.fill.filled, 0);
+    assert!(r.proven.interpolates_grid_points);
+    // The pipeline's measured distances agree with the analytic ones.
+    for s in &ap.samples {
+        let d = s.distance.unwrap();
+        assert!(
+            (d - sphere_distance(&s.point)).abs() < 1e-9,
+            "{d} vs {}",
+            sphere_distance(&s.point)
+        );
+    }
+    // Dense samples, analytic distance: within the tolerance.
+    let dense = dense_max(&ap.surface, 100, sphere_distance, |_| true);
+    eprintln!(
+        "figure 8: dense analytic max {dense:.3e}, M×N {}×{}",
+        r.m, r.n
+    );
+    assert!(dense <= params.tol, "{dense}");
+    // Grid points lie on the sphere (projected and refined).
+    for p in &ap.points.data {
+        assert!(sphere_distance(p) < 1e-12);
+    }
+    // The boundary stays near the boundary curves: corners are the curves' ends.
+    let corner = ap.surface.eval(&0.0, &0.0);
+    let expect = [
+        0.4f64.cos() * 0.2f64.cos(),
+        0.4f64.cos() * 0.2f64.sin(),
+        -(0.4f64.sin()),
+    ];
+    assert!(norm(&corner.sub(&expect)) < 1e-12);
+}
+
+/// Figure 9: two patches with a gap — bridged, within tolerance away from it, C1 across.
+#[test]
+fn figure9_two_patches_with_a_gap() {
+    let (model, spec) = sphere_model(&[(0.0, 0.65), (0.85, 1.6)]);
+    let params = Params {
+        tol: 1e-4,
+        ..Default::default()
+    };
+    let ap = approximate(&model, &spec, &params).unwrap();
+    let r = &ap.report;
+    eprintln!("figure 9: {:?} fill {:?}", r.rounds, r.fill);
+    assert!(r.fill.filled > 0, "the gap must be filled");
+    assert!(r.evidence.skipped_gap > 0);
+    assert!(r.within_tol, "{}", r.reason);
+    let h = 1.1 / r.m as f64;
+    let away = |p: &[f64; 3]| {
+        let a = p[1].atan2(p[0]);
+        a < 0.65 - h || a > 0.85 + h
+    };
+    let near = |p: &[f64; 3]| !away(p);
+    let dense_away = dense_max(&ap.surface, 120, sphere_distance, away);
+    let dense_gap = dense_max(&ap.surface, 120, sphere_distance, near);
+    eprintln!(
+        "figure 9: M×N {}×{}, away from the gap {dense_away:.3e}, over the gap {dense_gap:.3e}",
+        r.m, r.n
+    );
+    assert!(dense_away <= params.tol, "{dense_away}");
+    // The bridge follows the sphere closely (the fill interpolates t smoothly).
+    assert!(dense_gap <= 0.01, "{dense_gap}");
+    let jump = c1_jump(&ap);
+    eprintln!(
+        "figure 9: C1 jump {jump:.3e}, control-net defect {:.3e}",
+        r.c1_defect
+    );
+    assert!(jump < 1e-6, "{jump}");
+}
+
+fn plane_b(x: f64) -> f64 {
+    0.2 * (x - 0.5)
+}
+
+/// Figure 10: two intersecting planes; the boundary runs along their upper envelope.
+#[test]
+fn figure10_intersecting_surfaces() {
+    let mut model = Model::default();
+    let (lo, hi) = (-0.2, 1.2);
+    model.surfaces.push(Surface::new(
+        "z = 0",
+        bilinear([lo, lo, 0.0], [hi, lo, 0.0], [lo, hi, 0.0], [hi, hi, 0.0]).unwrap(),
+    ));
+    model.surfaces.push(Surface::new(
+        "z = 0.2 (x - 0.5)",
+        bilinear(
+            [lo, lo, plane_b(lo)],
+            [hi, lo, plane_b(hi)],
+            [lo, hi, plane_b(lo)],
+            [hi, hi, plane_b(hi)],
+        )
+        .unwrap(),
+    ));
+    let env = |x: f64, y: f64| [x, y, plane_b(x).max(0.0)];
+    let spec = BoundarySpec {
+        curves: vec![
+            polyline(vec![env(0.0, 0.0), env(0.5, 0.0), env(1.0, 0.0)]),
+            polyline(vec![env(1.0, 0.0), env(1.0, 1.0)]),
+            polyline(vec![env(1.0, 1.0), env(0.5, 1.0), env(0.0, 1.0)]),
+            polyline(vec![env(0.0, 1.0), env(0.0, 0.0)]),
+        ],
+    };
+    let params = Params {
+        tol: 1e-3,
+        ..Default::default()
+    };
+    let ap = approximate(&model, &spec, &params).unwrap();
+    let r = &ap.report;
+    eprintln!("figure 10: {:?}", r.rounds);
+    let truth = |p: &[f64; 3]| {
+        p[2].abs()
+            .min((p[2] - plane_b(p[0])).abs() / 1.04f64.sqrt())
+    };
+    for s in &ap.samples {
+        let d = s.distance.unwrap();
+        assert!(
+            (d - truth(&s.point)).abs() < 1e-9,
+            "{d} vs {}",
+            truth(&s.point)
+        );
+    }
+    let dense = dense_max(&ap.surface, 100, truth, |_| true);
+    eprintln!(
+        "figure 10: M×N {}×{}, dense analytic max {dense:.3e}, {}",
+        r.m, r.n, r.reason
+    );
+    if r.within_tol {
+        assert!(dense <= 2.0 * params.tol, "{dense}");
+    } else {
+        assert!(r.reason.contains("maximum resolution"), "{}", r.reason);
+    }
+}
+
+/// Figure 11: a highly oscillating bicubic graph `z = f(x, y)` (Greville abscissae, so
+/// `x = u`, `y = v`); the vertical distance `|z − f(x, y)|` bounds the true distance.
+#[test]
+fn figure11_highly_oscillating_surface() {
+    let n = 15;
+    let mut knots = vec![0.0; 4];
+    for k in 1..n - 3 {
+        knots.push(k as f64 / (n - 3) as f64);
+    }
+    knots.extend([1.0; 4]);
+    let greville: Vec<f64> = (0..n)
+        .map(|i| (knots[i + 1] + knots[i + 2] + knots[i + 3]) / 3.0)
+        .collect();
+    let mut pts = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let sign = if (i + j) % 2 == 0 { 1.0 } else { -1.0 };
+            pts.push([greville[i], greville[j], 0.05 * sign]);
+        }
+    }
+    let s = NurbsSurface::new(knots.clone(), 3, knots, 3, n, n, pts, vec![1.0; n * n]).unwrap();
+    let f = |x: f64, y: f64| s.eval(&x, &y)[2];
+    let side = |k: usize| -> Vec<[f64; 3]> {
+        (0..=200)
+            .map(|i| {
+                let t = 0.1 + 0.8 * i as f64 / 200.0;
+                let (x, y) = match k {
+                    0 => (t, 0.1),
+                    1 => (0.9, t),
+                    2 => (1.0 - t, 0.9),
+                    _ => (0.1, 1.0 - t),
+                };
+                [x, y, f(x, y)]
+            })
+            .collect()
+    };
+    let model = Model {
+        surfaces: vec![Surface::new("oscillating", s.clone())],
+        ..Default::default()
+    };
+    let spec = BoundarySpec {
+        curves: (0..4).map(|k| polyline(side(k))).collect(),
+    };
+    let params = Params {
+        tol: 1e-3,
+        max_resolution: 64,
+        ..Default::default()
+    };
+    let ap = approximate(&model, &spec, &params).unwrap();
+    let r = &ap.report;
+    eprintln!("figure 11: {:?}, {}", r.rounds, r.reason);
+    assert!(r.rounds.len() >= 2, "the resolution must be raised");
+    for w in r.rounds.windows(2) {
+        assert!(w[1].m >= w[0].m && w[1].n >= w[0].n && (w[1].m, w[1].n) != (w[0].m, w[0].n));
+    }
+    // Each measured distance is at most the independent upper bound.
+    for sm in &ap.samples {
+        let d = sm.distance.unwrap();
+        let vertical = (sm.point[2] - f(sm.point[0], sm.point[1])).abs();
+        assert!(d <= vertical + 1e-12, "measured {d} > vertical {vertical}");
+    }
+    assert!(
+        r.within_tol || r.reason.contains("maximum resolution"),
+        "{}",
+        r.reason
+    );
+    if r.within_tol {
+        assert!(r.evidence.max_error <= params.tol);
+    }
+}
+
+/// The bicubic interpolant reproduces a plane (tangent scheme and twist rule are exact on
+/// affine data) and is C1 by the knot-line derivative test.
+#[test]
+fn bicubic_reproduces_a_plane() {
+    let (m, n) = (5, 7);
+    let map = |u: f64, v: f64| {
+        [
+            1.0 + 2.0 * u - 0.5 * v,
+            -1.0 + 0.3 * u + 1.7 * v,
+            0.25 + u + v,
+        ]
+    };
+    let mut y = Grid::filled(m, n, [0.0; 3]);
+    for i in 0..=m {
+        for j in 0..=n {
+            y.set(i, j, map(i as f64 / m as f64, j as f64 / n as f64));
+        }
+    }
+    let s = bicubic::interpolant(&y).unwrap();
+    for i in 0..=40 {
+        for j in 0..=40 {
+            let (u, v) = (i as f64 / 40.0, j as f64 / 40.0);
+            assert!(norm(&s.eval(&u, &v).sub(&map(u, v))) < 1e-13);
+        }
+    }
+}
+
+/// The multiquadric fill reproduces a plane through a hole to 1e-9.
+#[test]
+fn multiquadric_reproduces_a_plane() {
+    let (m, n) = (20, 16);
+    let plane = |u: f64, v: f64| 0.3 + 0.2 * u - 0.7 * v;
+    let mut known = Grid::filled(m, n, None);
+    let mut hole = 0;
+    for i in 0..=m {
+        for j in 0..=n {
+            let (u, v) = (i as f64 / m as f64, j as f64 / n as f64);
+            if (u - 0.45).powi(2) + (v - 0.55).powi(2) < 0.05 {
+                hole += 1;
+            } else {
+                known.set(i, j, Some(plane(u, v)));
+            }
+        }
+    }
+    let (t, stats) = fill(&known, 8, 1.0, -0.5, true).unwrap();
+    assert_eq!(stats.filled, hole);
+    let mut worst: f64 = 0.0;
+    for i in 0..=m {
+        for j in 0..=n {
+            worst = worst.max((t.at(i, j) - plane(i as f64 / m as f64, j as f64 / n as f64)).abs());
+        }
+    }
+    eprintln!(
+        "plane: {hole} filled, max error {worst:.3e}, max condition {:.3e}",
+        stats.max_condition
+    );
+    assert!(worst < 1e-9, "{worst}");
+}
+
+/// Franke's (1982) test functions F1–F6.
+fn franke(k: usize, x: f64, y: f64) -> f64 {
+    let r2 = (x - 0.5).powi(2) + (y - 0.5).powi(2);
+    match k {
+        1 => {
+            0.75 * (-((9.0 * x - 2.0).powi(2) + (9.0 * y - 2.0).powi(2)) / 4.0).exp()
+                + 0.75 * (-(9.0 * x + 1.0).powi(2) / 49.0 - (9.0 * y + 1.0) / 10.0).exp()
+                + 0.5 * (-((9.0 * x - 7.0).powi(2) + (9.0 * y - 3.0).powi(2)) / 4.0).exp()
+                - 0.2 * (-(9.0 * x - 4.0).powi(2) - (9.0 * y - 7.0).powi(2)).exp()
+        }
+        2 => ((9.0 * y - 9.0 * x).tanh() + 1.0) / 9.0,
+        3 => (1.25 + (5.4 * y).cos()) / (6.0 * (1.0 + (3.0 * x - 1.0).powi(2))),
+        4 => (-81.0 / 16.0 * r2).exp() / 3.0,
+        5 => (-81.0 / 4.0 * r2).exp() / 3.0,
+        _ => (64.0 - 81.0 * r2).sqrt() / 9.0 - 0.5,
+    }
+}
+
+/// Franke's functions on a 33 × 33 grid with a round hole (radius 0.12 about (0.4, 0.6)):
+/// max and RMS error of the fill at the hole's points (the table in docs/coons.md).
+#[test]
+fn multiquadric_on_franke_functions() {
+    let m = 32;
+    for k in 1..=6 {
+        let mut known = Grid::filled(m, m, None);
+        for i in 0..=m {
+            for j in 0..=m {
+                let (u, v) = (i as f64 / m as f64, j as f64 / m as f64);
+                if (u - 0.4).powi(2) + (v - 0.6).powi(2) >= 0.0144 {
+                    known.set(i, j, Some(franke(k, u, v)));
+                }
+            }
+        }
+        let (t, stats) = fill(&known, 8, 1.0, -0.5, true).unwrap();
+        let (mut worst, mut sum2, mut count) = (0.0f64, 0.0, 0);
+        for i in 0..=m {
+            for j in 0..=m {
+                if known.at(i, j).is_none() {
+                    let e =
+                        (t.at(i, j) - franke(k, i as f64 / m as f64, j as f64 / m as f64)).abs();
+                    worst = worst.max(e);
+                    sum2 += e * e;
+                    count += 1;
+                }
+            }
+        }
+        let rms = (sum2 / count as f64).sqrt();
+        eprintln!(
+            "Franke F{k}: {count} hole points, max {worst:.3e}, rms {rms:.3e}, condition ≤ {:.2e}",
+            stats.max_condition
+        );
+        assert!(worst < 0.05, "F{k}: {worst}");
+    }
+}
+
+/// The plain interpolant is exact at its centres.
+#[test]
+fn multiquadric_interpolates_its_centres() {
+    let c = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.7, 0.6], [0.2, 0.9]];
+    let v = [1.0, -2.0, 0.5, 3.0, 0.0];
+    for linear in [false, true] {
+        let ip = interpolate(&c, &v, 0.1, -0.5, linear).unwrap();
+        for (p, val) in c.iter().zip(&v) {
+            assert!((ip.eval(p) - val).abs() < 1e-12);
+        }
+    }
+}
+
+fn square(z: f64, s: f64) -> Vec<CurveSpec> {
+    let p = |x: f64, y: f64| [x * s, y * s, z];
+    vec![
+        polyline(vec![p(0.0, 0.0), p(1.0, 0.0)]),
+        polyline(vec![p(1.0, 0.0), p(1.0, 1.0)]),
+        polyline(vec![p(1.0, 1.0), p(0.0, 1.0)]),
+        polyline(vec![p(0.0, 1.0), p(0.0, 0.0)]),
+    ]
+}
+
+fn plane_model() -> Model {
+    Model {
+        surfaces: vec![Surface::new(
+            "plane",
+            bilinear(
+                [-1.0, -1.0, 0.0],
+                [2.0, -1.0, 0.0],
+                [-1.0, 2.0, 0.0],
+                [2.0, 2.0, 0.0],
+            )
+            .unwrap(),
+        )],
+        ..Default::default()
+    }
+}
+
+fn run(curves: Vec<CurveSpec>, params: &Params) -> Result<Approximant, CoonsError> {
+    approximate(&plane_model(), &BoundarySpec { curves }, params)
+}
+
+#[test]
+fn bad_input_is_a_typed_error_naming_the_curve() {
+    let p = Params::default();
+    // A plane square works (sanity of the fixture).
+    assert!(run(square(0.0, 1.0), &p).unwrap().report.within_tol);
+    // Not closing: the third curve moved.
+    let mut c = square(0.0, 1.0);
+    c[2] = polyline(vec![[1.0, 1.2, 0.0], [0.0, 1.2, 0.0]]);
+    c[2].name = Some("top".into());
+    match run(c, &p) {
+        Err(CoonsError::NotClosed { from, to, .. }) => {
+            assert!(from == "top" || to == "top", "{from} {to}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // A zero-length side.
+    let mut c = square(0.0, 1.0);
+    c.insert(1, polyline(vec![[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]));
+    c.remove(2);
+    c[1].name = Some("point".into());
+    c[2] = polyline(vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+    match run(c, &p) {
+        Err(CoonsError::Degenerate { curve, .. }) => assert_eq!(curve, "point"),
+        other => panic!("{other:?}"),
+    }
+    // A self-crossing loop (a bow tie).
+    let mut c = vec![
+        polyline(vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]),
+        polyline(vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]),
+        polyline(vec![[0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]),
+        polyline(vec![[1.0, 1.0, 0.0], [0.0, 0.0, 0.0]]),
+    ];
+    c[1].name = Some("diagonal 1".into());
+    c[3].name = Some("diagonal 2".into());
+    match run(c, &p) {
+        Err(CoonsError::SelfCrossing { a, b }) => {
+            assert!(a.contains("diagonal") || b.contains("diagonal"), "{a} {b}")
+        }
+        Err(CoonsError::Flat(names)) => assert!(names.contains("diagonal"), "{names}"),
+        other => panic!("{other:?}"),
+    }
+    // Far from every surface.
+    match run(square(50.0, 1.0), &p) {
+        Err(CoonsError::FarFromSurfaces { curves, .. }) => assert!(curves.contains("#0")),
+        other => panic!("{other:?}"),
+    }
+    // M or N zero.
+    for (m, n) in [(0, 8), (8, 0)] {
+        let q = Params {
+            m,
+            n,
+            ..Default::default()
+        };
+        assert!(matches!(
+            run(square(0.0, 1.0), &q),
+            Err(CoonsError::Resolution { .. })
+        ));
+    }
+    // A curve index the model does not have, a domain curve, a non-finite point.
+    let mut m = plane_model();
+    m.curves.push(Curve {
+        name: "domain".into(),
+        geometry: CurveGeometry::Domain(
+            NurbsCurve::new(
+                vec![0.0, 0.0, 1.0, 1.0],
+                1,
+                vec![[0.0, 0.0], [1.0, 0.0]],
+                vec![1.0, 1.0],
+            )
+            .unwrap(),
+        ),
+    });
+    let mut c = square(0.0, 1.0);
+    c[0] = by_index(7);
+    assert!(
+        matches!(approximate(&m, &BoundarySpec { curves: c }, &p), Err(CoonsError::Curve { curve, .. }) if curve == "#0")
+    );
+    let mut c = square(0.0, 1.0);
+    c[1] = by_index(0);
+    assert!(
+        matches!(approximate(&m, &BoundarySpec { curves: c }, &p), Err(CoonsError::Curve { curve, .. }) if curve.contains("#1"))
+    );
+    let mut c = square(0.0, 1.0);
+    c[3] = polyline(vec![[0.0, 1.0, 0.0], [f64::NAN, 0.5, 0.0], [0.0, 0.0, 0.0]]);
+    assert!(matches!(run(c, &p), Err(CoonsError::Curve { curve, .. }) if curve == "#3"));
+    // Three curves; a tolerance that is NaN.
+    let mut c = square(0.0, 1.0);
+    c.pop();
+    assert!(matches!(run(c, &p), Err(CoonsError::Boundary(_))));
+    let q = Params {
+        tol: f64::NAN,
+        ..Default::default()
+    };
+    assert!(matches!(
+        run(square(0.0, 1.0), &q),
+        Err(CoonsError::Tolerance(_))
+    ));
+    // Bad JSON names its path.
+    match BoundarySpec::parse(r#"{"curves": [{"curve": 0, "colour": 1}]}"#) {
+        Err(CoonsError::Boundary(msg)) => assert!(msg.contains("curves[0]"), "{msg}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn boundary_file_format() {
+    let spec = BoundarySpec::parse(
+        r#"{"curves": [{"curve": 3}, {"curve": "wing", "reversed": true}, {"polyline": [[0,0,0],[1,0,0]]}, {"curve": 1, "name": "left"}]}"#,
+    )
+    .unwrap();
+    assert_eq!(spec.curves[0].curve, Some(CurveRef::Index(3)));
+    assert_eq!(spec.curves[1].curve, Some(CurveRef::Name("wing".into())));
+    assert!(spec.curves[1].reversed);
+    assert_eq!(spec.curves[2].polyline.as_ref().map(|p| p.len()), Some(2));
+    assert_eq!(spec.curves[3].name.as_deref(), Some("left"));
+}
