@@ -284,7 +284,7 @@ pub fn close_loop(curves: Vec<(BoundaryCurve, bool)>, closure: f64) -> Result<Lo
     }
     let perimeter: f64 = cs.iter().map(|c| c.length).sum();
     for c in &cs {
-        if !(c.length > 1e-12 * perimeter) {
+        if c.length.is_nan() || c.length <= 1e-12 * perimeter {
             return Err(CoonsError::Degenerate {
                 curve: c.name.clone(),
                 length: c.length,
@@ -310,7 +310,7 @@ pub fn close_loop(curves: Vec<(BoundaryCurve, bool)>, closure: f64) -> Result<Lo
         let prev = &cs[(k + 3) % 4];
         let (e, s) = (prev.end(), cs[k].start());
         gaps[k] = dist(&e, &s);
-        if !(gaps[k] <= closure) {
+        if gaps[k].is_nan() || gaps[k] > closure {
             return Err(CoonsError::NotClosed {
                 from: prev.name.clone(),
                 to: cs[k].name.clone(),
@@ -356,7 +356,7 @@ fn check_crossing(lp: &Loop) -> Result<(), CoonsError> {
         normal = normal.add(&cross(p, q));
     }
     let nn = norm(&normal);
-    if !(nn > 1e-12 * lp.perimeter * lp.perimeter) {
+    if nn.is_nan() || nn <= 1e-12 * lp.perimeter * lp.perimeter {
         return Err(CoonsError::Flat(lp.names()));
     }
     let z = normal.scale(&(1.0 / nn));

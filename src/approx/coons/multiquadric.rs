@@ -63,7 +63,7 @@ fn solve_with_condition(a: &[Vec<f64>], rhs: &[f64]) -> Option<(Vec<f64>, f64)> 
     let a_norm = norm1(&|i, j| a[i][j]);
     for col in 0..n {
         let piv = (col..n).max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))?;
-        if !(m[piv][col].abs() > 0.0) {
+        if m[piv][col] == 0.0 || m[piv][col].is_nan() {
             return None;
         }
         m.swap(col, piv);

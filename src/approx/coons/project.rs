@@ -147,8 +147,8 @@ pub fn segment_triangle(
     let s_qr = orient3d(a, b, q, r);
     let s_rp = orient3d(a, b, r, p);
     let signs = [s_pq, s_qr, s_rp];
-    let pos = signs.iter().any(|s| *s == Sign::Positive);
-    let neg = signs.iter().any(|s| *s == Sign::Negative);
+    let pos = signs.contains(&Sign::Positive);
+    let neg = signs.contains(&Sign::Negative);
     if pos == neg {
         return None; // edges on both sides, or all zero (degenerate)
     }
