@@ -95,42 +95,70 @@ fn samples_of(m: usize, n: usize) -> Vec<(char, usize, usize, [f64; 2])> {
     out
 }
 
-/// Distance from `p` to the original surfaces by projection, with the foot's edge flag.
+/// Distance from `p` to the original surfaces by projection, with the foot's edge flag:
+/// the nearest triangle, and every other surface with a triangle about as near (within the
+/// nearest triangle's size), each give a start for damped Gauss–Newton on its surface;
+/// the nearest foot wins.
 pub fn distance_to_originals(
     model: &Model,
     mesh: &OriginalMesh,
     p: &[f64; 3],
 ) -> Option<(f64, bool)> {
-    let (ti, _) = mesh.bvh.nearest(p, &mut |ti| {
+    let tri_dist2 = |ti: usize| {
         let [a, b, c] = mesh.triangles[ti].0.map(|i| &mesh.vertices[i as usize]);
-        let (q, _) = crate::geom::triangle::closest_point(p, a, b, c);
+        let (q, w) = crate::geom::triangle::closest_point(p, a, b, c);
         let d = q.sub(p);
-        dot(&d, &d)
-    })?;
-    let (tri, si) = mesh.triangles[ti];
-    let [a, b, c] = tri.map(|i| &mesh.vertices[i as usize]);
-    let (_, w) = crate::geom::triangle::closest_point(p, a, b, c);
-    let uvs = tri.map(|i| mesh.uv[i as usize]);
-    let uv = [
-        w[0] * uvs[0][0] + w[1] * uvs[1][0] + w[2] * uvs[2][0],
-        w[0] * uvs[0][1] + w[1] * uvs[1][1] + w[2] * uvs[2][1],
-    ];
-    let s: &NurbsSurface<f64, 3> = &model.surfaces[si].nurbs;
-    let (u0, u1, v0, v1) = s.hom.domain();
-    let (uv, e) = descend(s, p, uv, &[u0, u1, v0, v1]);
-    let dist = e.sqrt();
-    let on_border = uv[0] <= u0 || uv[0] >= u1 || uv[1] <= v0 || uv[1] >= v1;
-    let at_edge = on_border && {
-        let (q, su, sv) = point_d1(s, uv[0], uv[1]);
-        let r = p.sub(&q);
-        let nr = norm(&r);
-        nr > 0.0
-            && [su, sv].iter().any(|t| {
-                let nt = norm(t);
-                nt > 0.0 && (dot(&r, t) / (nr * nt)).abs() > 1e-3
-            })
+        (dot(&d, &d), w)
     };
-    dist.is_finite().then_some((dist, at_edge))
+    let (t0, d0) = mesh.bvh.nearest(p, &mut |ti| tri_dist2(ti).0)?;
+    let size = {
+        let [a, b, c] = mesh.triangles[t0].0.map(|i| mesh.vertices[i as usize]);
+        crate::geom::dist(&a, &b)
+            .max(crate::geom::dist(&b, &c))
+            .max(crate::geom::dist(&c, &a))
+    };
+    let reach = d0.sqrt() + size;
+    // Per surface: its nearest triangle within reach.
+    let mut starts: Vec<(usize, f64, usize, [f64; 3])> = Vec::new();
+    mesh.bvh
+        .query(&p.map(|c| c - reach), &p.map(|c| c + reach), &mut |ti| {
+            let si = mesh.triangles[ti].1;
+            let (d2, w) = tri_dist2(ti);
+            match starts.iter_mut().find(|s| s.0 == si) {
+                Some(s) if d2 < s.1 => *s = (si, d2, ti, w),
+                Some(_) => {}
+                None => starts.push((si, d2, ti, w)),
+            }
+        });
+    starts.sort_by(|x, y| x.1.total_cmp(&y.1).then(x.0.cmp(&y.0)));
+    let mut best: Option<(f64, bool)> = None;
+    for (si, _, ti, w) in starts {
+        let uvs = mesh.triangles[ti].0.map(|i| mesh.uv[i as usize]);
+        let uv = [
+            w[0] * uvs[0][0] + w[1] * uvs[1][0] + w[2] * uvs[2][0],
+            w[0] * uvs[0][1] + w[1] * uvs[1][1] + w[2] * uvs[2][1],
+        ];
+        let s: &NurbsSurface<f64, 3> = &model.surfaces[si].nurbs;
+        let (u0, u1, v0, v1) = s.hom.domain();
+        let (uv, e) = descend(s, p, uv, &[u0, u1, v0, v1]);
+        let dist = e.sqrt();
+        if !dist.is_finite() || best.is_some_and(|b| b.0 <= dist) {
+            continue;
+        }
+        let on_border = uv[0] <= u0 || uv[0] >= u1 || uv[1] <= v0 || uv[1] >= v1;
+        let at_edge = on_border && {
+            let (q, su, sv) = point_d1(s, uv[0], uv[1]);
+            let r = p.sub(&q);
+            let nr = norm(&r);
+            nr > 0.0
+                && [su, sv].iter().any(|t| {
+                    let nt = norm(t);
+                    nt > 0.0 && (dot(&r, t) / (nr * nt)).abs() > 1e-3
+                })
+        };
+        best = Some((dist, at_edge));
+    }
+    best
 }
 
 /// Eq. (17): sample the approximant and measure; `artificial` marks grid points filled by

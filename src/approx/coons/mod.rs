@@ -149,11 +149,11 @@ impl Params {
                     value,
                     why: "must be at least 1",
                 })
-            } else if value > 4096 {
+            } else if value > 1024 {
                 Err(CoonsError::Resolution {
                     name,
                     value,
-                    why: "must be at most 4096",
+                    why: "must be at most 1024",
                 })
             } else {
                 Ok(())

@@ -20,6 +20,9 @@ use super::CoonsError;
 use super::discrete::Grid;
 use serde::Serialize;
 
+/// Condition numbers above this are reported as ill-conditioned.
+pub const ILL_CONDITIONED: f64 = 1e12;
+
 /// A multiquadric interpolant of scattered values.
 #[derive(Clone, Debug)]
 pub struct Interpolant {
@@ -177,6 +180,8 @@ pub struct FillStats {
     pub mu: f64,
     /// Largest 1-norm condition number of the systems (12).
     pub max_condition: f64,
+    /// Systems whose condition number exceeds 1e12 (their `t` may carry few digits).
+    pub ill_conditioned: usize,
     /// Systems solved without the linear part (collinear centres).
     pub without_linear_part: usize,
     /// Artificial `t` outside `[0, 1]`, clamped to the segment by the caller.
@@ -237,6 +242,9 @@ pub fn fill(
             let values: Vec<f64> = near.iter().map(|(_, q)| found[*q].2).collect();
             let ip = interpolate(&centers, &values, r, mu, linear)?;
             stats.max_condition = stats.max_condition.max(ip.condition);
+            if ip.condition > ILL_CONDITIONED {
+                stats.ill_conditioned += 1;
+            }
             if linear && !ip.has_linear_part() {
                 stats.without_linear_part += 1;
             }

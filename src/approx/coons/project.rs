@@ -184,8 +184,8 @@ pub fn segment_triangle(
     Some((t, bary))
 }
 
-/// Newton on `S(u, v) − (a + t (b − a)) = 0` from `(uv, t)`; `None` when it leaves the
-/// domain or does not converge.
+/// Newton on `S(u, v) − (a + t (b − a)) = 0` from `(uv, t)`, `(u, v)` clamped to the
+/// domain; `None` when it does not converge to a point of the segment.
 pub fn refine(
     s: &NurbsSurface<f64, 3>,
     a: &[f64; 3],
@@ -219,13 +219,15 @@ pub fn refine(
         let du = det3(&g, &sv, &nd) / det;
         let dv = det3(&su, &g, &nd) / det;
         let dt = det3(&su, &sv, &g) / det;
-        u += du;
-        v += dv;
-        t += dt;
-        if !(u >= u0 && u <= u1 && v >= v0 && v <= v1) {
+        // Clamped to the domain: a root on its border (a seam between patches) is still
+        // reached; a root beyond it leaves a residual and is refused below.
+        let (un, vn) = ((u + du).clamp(u0, u1), (v + dv).clamp(v0, v1));
+        if !(un.is_finite() && vn.is_finite() && dt.is_finite()) {
             return None;
         }
-        if du.abs() + dv.abs() <= 1e-15 * ((u1 - u0) + (v1 - v0)) {
+        let moved = (un - u).abs() + (vn - v).abs();
+        (u, v, t) = (un, vn, t + dt);
+        if moved <= 1e-15 * ((u1 - u0) + (v1 - v0)) {
             let p = s.eval(&u, &v);
             let res = norm(&p.sub(&a.add(&dir.scale(&t))));
             let on_segment = (-1e-9..=1.0 + 1e-9).contains(&t);
@@ -256,44 +258,98 @@ pub fn project_grid(
 fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -> Option<Hit> {
     let lo = std::array::from_fn(|k| a[k].min(b[k]));
     let hi = std::array::from_fn(|k| a[k].max(b[k]));
-    let mut best: Option<(f64, usize, [f64; 3])> = None;
+    let mut found: Vec<(f64, usize, [f64; 3])> = Vec::new();
     mesh.bvh.query(&lo, &hi, &mut |ti| {
         let (t, _) = mesh.triangles[ti];
         let [p, q, r] = t.map(|i| &mesh.vertices[i as usize]);
-        if let Some((tt, bary)) = segment_triangle(a, b, p, q, r)
-            && best.is_none_or(|(bt, _, _)| (tt - 0.5).abs() < (bt - 0.5).abs())
-        {
-            best = Some((tt, ti, bary));
+        if let Some((tt, bary)) = segment_triangle(a, b, p, q, r) {
+            found.push((tt, ti, bary));
         }
     });
-    let (t, ti, bary) = best?;
-    let (tri, si) = mesh.triangles[ti];
-    let uvs = tri.map(|i| mesh.uv[i as usize]);
-    let uv = [
-        bary[0] * uvs[0][0] + bary[1] * uvs[1][0] + bary[2] * uvs[2][0],
-        bary[0] * uvs[0][1] + bary[1] * uvs[1][1] + bary[2] * uvs[2][1],
-    ];
-    let s = &model.surfaces[si].nurbs;
-    match refine(s, a, b, uv, t) {
-        Some((uv, t, point, residual)) => Some(Hit {
-            surface: si,
-            uv,
-            t,
-            point,
-            refined: true,
-            residual,
-        }),
-        None => {
-            let point = s.eval(&uv[0], &uv[1]);
-            let residual = norm(&point.sub(&a.lerp(b, &t)));
-            Some(Hit {
+    found.sort_by(|x, y| {
+        (x.0 - 0.5)
+            .abs()
+            .total_cmp(&(y.0 - 0.5).abs())
+            .then(x.1.cmp(&y.1))
+    });
+    let &(t_best, _, _) = found.first()?;
+    let uv_of = |ti: usize, bary: &[f64; 3]| {
+        let uvs = mesh.triangles[ti].0.map(|i| mesh.uv[i as usize]);
+        [
+            bary[0] * uvs[0][0] + bary[1] * uvs[1][0] + bary[2] * uvs[2][0],
+            bary[0] * uvs[0][1] + bary[1] * uvs[1][1] + bary[2] * uvs[2][1],
+        ]
+    };
+    // Newton from the nearest hit; where it leaves its surface's domain (a seam between
+    // patches), from the hits at (almost) the same place on the other triangles.
+    for (t, ti, bary) in found
+        .iter()
+        .take_while(|h| (h.0 - t_best).abs() <= 1e-3)
+        .take(8)
+    {
+        let si = mesh.triangles[*ti].1;
+        let s = &model.surfaces[si].nurbs;
+        if let Some((uv, t, point, residual)) = refine(s, a, b, uv_of(*ti, bary), *t) {
+            return Some(Hit {
                 surface: si,
                 uv,
                 t,
                 point,
-                refined: false,
+                refined: true,
                 residual,
-            })
+            });
         }
     }
+    let (t, ti, bary) = found[0];
+    let si = mesh.triangles[ti].1;
+    let uv = uv_of(ti, &bary);
+    // The triangulation's chord put the hit on one patch, the surface's own root may lie on
+    // a neighbour: Newton on every other surface with triangles around the hit, from the
+    // nearest vertex.
+    let tri = mesh.triangles[ti].0.map(|i| mesh.vertices[i as usize]);
+    let hit = a.lerp(b, &t);
+    let reach = tri
+        .iter()
+        .map(|q| crate::geom::dist(q, &hit))
+        .fold(0.0, f64::max);
+    let mut near: Vec<(f64, usize, [f64; 2])> = Vec::new();
+    let lo = hit.map(|c| c - reach);
+    let hi = hit.map(|c| c + reach);
+    mesh.bvh.query(&lo, &hi, &mut |tj| {
+        let (tv, sj) = mesh.triangles[tj];
+        if sj == si {
+            return;
+        }
+        for &k in &tv {
+            let d = crate::geom::dist(&mesh.vertices[k as usize], &hit);
+            match near.iter_mut().find(|n| n.1 == sj) {
+                Some(n) if d < n.0 => *n = (d, sj, mesh.uv[k as usize]),
+                Some(_) => {}
+                None => near.push((d, sj, mesh.uv[k as usize])),
+            }
+        }
+    });
+    near.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    for (_, sj, uv0) in near {
+        if let Some((uv, t, point, residual)) = refine(&model.surfaces[sj].nurbs, a, b, uv0, t) {
+            return Some(Hit {
+                surface: sj,
+                uv,
+                t,
+                point,
+                refined: true,
+                residual,
+            });
+        }
+    }
+    let point = model.surfaces[si].nurbs.eval(&uv[0], &uv[1]);
+    let residual = norm(&point.sub(&a.lerp(b, &t)));
+    Some(Hit {
+        surface: si,
+        uv,
+        t,
+        point,
+        refined: false,
+        residual,
+    })
 }
