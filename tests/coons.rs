@@ -179,6 +179,30 @@ fn figure8_part_of_a_single_patch() {
     for p in &ap.points.data {
         assert!(sphere_distance(p) < 1e-12);
     }
+    // The proven claims, checked independently: the surface passes through the grid
+    // points, and its boundary stays within the hull bound of the boundary polylines.
+    let (m, n) = (r.m, r.n);
+    for i in 0..=m {
+        for j in 0..=n {
+            let q = ap
+                .surface
+                .eval(&(i as f64 / m as f64), &(j as f64 / n as f64));
+            assert!(norm(&q.sub(ap.points.at(i, j))) < 1e-12);
+        }
+    }
+    let bound = r.proven.boundary_hull_bound;
+    let poly: Vec<[f64; 3]> = (0..=m).map(|i| *ap.points.at(i, 0)).collect();
+    let mut seen: f64 = 0.0;
+    for k in 0..=1000 {
+        let q = ap.surface.eval(&(k as f64 / 1000.0), &0.0);
+        let d = poly
+            .windows(2)
+            .map(|w| vericad::geom::dist_to_segment(&q, &w[0], &w[1]))
+            .fold(f64::INFINITY, f64::min);
+        seen = seen.max(d);
+    }
+    eprintln!("figure 8: boundary hull bound {bound:.3e}, seen {seen:.3e}");
+    assert!(seen <= bound && bound < 0.05, "{seen} {bound}");
     // The boundary stays near the boundary curves: corners are the curves' ends.
     let corner = ap.surface.eval(&0.0, &0.0);
     let expect = [
@@ -874,4 +898,89 @@ fn cli_coons() {
     ]);
     assert_eq!(code, 1, "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Real data across a crease: the fuselage's rear section is only C0 along its first
+/// interior knot line (`x = 156.79`, tangents 4.9° apart — computed here from the data), so
+/// a C1 approximant spanning it cannot reach a tight tolerance: the maximum resolution is
+/// reached and said, and the worst sample lies at the crease.
+#[test]
+fn fuselage_across_a_crease() {
+    let m = fuselage();
+    let s4 = &m.surfaces[4].nurbs;
+    let (l, r) = (
+        s4.derivatives2(&(1.0 - 1e-9), &0.5)[1],
+        s4.derivatives2(&(1.0 + 1e-9), &0.5)[1],
+    );
+    let angle = (vericad::geom::dot(&l, &r) / (norm(&l) * norm(&r)))
+        .clamp(-1.0, 1.0)
+        .acos();
+    assert!(angle.to_degrees() > 4.0, "{}", angle.to_degrees());
+    let crease_x = s4.eval(&1.0, &0.5)[0];
+    let iso80 = |s: usize, a: [f64; 2], b: [f64; 2]| -> Vec<[f64; 3]> {
+        (0..=80)
+            .map(|k| {
+                let t = k as f64 / 80.0;
+                m.surfaces[s]
+                    .nurbs
+                    .eval(&(a[0] + t * (b[0] - a[0])), &(a[1] + t * (b[1] - a[1])))
+            })
+            .collect()
+    };
+    let (ua, ub, va) = (1.0, 2.5, 0.1);
+    let spec = BoundarySpec {
+        curves: vec![
+            polyline(joined(
+                iso80(0, [ua, va], [3.0, va]),
+                iso80(4, [0.0, va], [ub, va]),
+            )),
+            polyline(joined(
+                iso80(4, [ub, va], [ub, 1.0]),
+                iso80(5, [ub, 0.0], [ub, 1.0 - va]),
+            )),
+            polyline(joined(
+                iso80(5, [ub, 1.0 - va], [0.0, 1.0 - va]),
+                iso80(1, [3.0, 1.0 - va], [ua, 1.0 - va]),
+            )),
+            polyline(joined(
+                iso80(1, [ua, 1.0 - va], [ua, 0.0]),
+                iso80(0, [ua, 1.0], [ua, va]),
+            )),
+        ],
+    };
+    let params = Params {
+        tol: 1e-3,
+        max_resolution: 64,
+        ..Default::default()
+    };
+    let t0 = std::time::Instant::now();
+    let ap = approximate(&m, &spec, &params).unwrap();
+    let r = &ap.report;
+    let errors: Vec<(usize, usize, f64)> =
+        r.rounds.iter().map(|x| (x.m, x.n, x.max_error)).collect();
+    eprintln!(
+        "fuselage across the crease: {errors:?}, {:.2} s",
+        t0.elapsed().as_secs_f64()
+    );
+    assert!(!r.within_tol);
+    assert!(
+        r.reason.contains("maximum resolution 64 reached"),
+        "{}",
+        r.reason
+    );
+    let worst = ap
+        .samples
+        .iter()
+        .max_by(|a, b| {
+            a.distance
+                .unwrap_or(0.0)
+                .total_cmp(&b.distance.unwrap_or(0.0))
+        })
+        .unwrap();
+    let cell = (r.boundary_lengths[0] / r.m as f64).max(r.boundary_lengths[2] / r.m as f64);
+    assert!(
+        (worst.point[0] - crease_x).abs() < 2.0 * cell,
+        "worst at x = {}, crease at {crease_x}",
+        worst.point[0]
+    );
 }
