@@ -4,6 +4,8 @@
 //! vertical distance bounds the true one; the multiquadric on a plane and on Franke's test
 //! functions; bad inputs.
 
+mod common;
+
 use vericad::approx::coons::boundary::{BoundarySpec, CurveRef, CurveSpec};
 use vericad::approx::coons::discrete::Grid;
 use vericad::approx::coons::multiquadric::{fill, interpolate};
@@ -982,5 +984,82 @@ fn fuselage_across_a_crease() {
         (worst.point[0] - crease_x).abs() < 2.0 * cell,
         "worst at x = {}, crease at {crease_x}",
         worst.point[0]
+    );
+}
+
+/// Random and hostile boundaries never panic: polylines with repeated, huge, tiny,
+/// non-finite or random points, random M, N, K and tolerances; every outcome is a result or
+/// a typed error.
+#[test]
+fn hostile_boundaries_never_panic() {
+    let mut rng = common::Rng(0xC0045);
+    let model = plane_model();
+    let specials = [
+        0.0,
+        -0.0,
+        1e-300,
+        1e300,
+        f64::MAX,
+        f64::MIN_POSITIVE,
+        f64::NAN,
+        f64::INFINITY,
+        1.0,
+        0.5,
+    ];
+    let mut outcomes = std::collections::BTreeMap::new();
+    for case in 0..200 {
+        let mut curves = square(rng.range(-0.5, 0.5), rng.range(1e-9, 3.0));
+        for _ in 0..rng.below(4) {
+            let k = rng.below(4);
+            let mut pts = curves[k].polyline.clone().unwrap();
+            let q = rng.below(pts.len());
+            match rng.below(4) {
+                0 => pts[q][rng.below(3)] = specials[rng.below(specials.len())],
+                1 => pts.insert(q, pts[q]),
+                2 => pts.push([
+                    rng.range(-2.0, 2.0),
+                    rng.range(-2.0, 2.0),
+                    rng.range(-1.0, 1.0),
+                ]),
+                _ => pts.truncate(1),
+            }
+            curves[k] = polyline(pts);
+        }
+        if rng.below(10) == 0 {
+            curves.truncate(rng.below(5));
+        }
+        let params = Params {
+            tol: [1e-3, 1e-3, 1e-3, 0.0, f64::NAN, 1e-12, 10.0][rng.below(7)],
+            m: rng.below(12),
+            n: 1 + rng.below(12),
+            max_resolution: 1 + rng.below(32),
+            k_nearest: 1 + rng.below(12),
+            ..Default::default()
+        };
+        let r = std::panic::catch_unwind(|| {
+            approximate(
+                &model,
+                &BoundarySpec {
+                    curves: curves.clone(),
+                },
+                &params,
+            )
+        });
+        assert!(r.is_ok(), "case {case} panicked: {curves:?} {params:?}");
+        let key = match r {
+            Ok(Ok(_)) => "approximant".to_string(),
+            Ok(Err(e)) => format!("{e:?}")
+                .split([' ', '(', '{'])
+                .next()
+                .unwrap_or("")
+                .to_string(),
+            Err(_) => "panic".into(),
+        };
+        *outcomes.entry(key).or_insert(0) += 1;
+    }
+    eprintln!("{outcomes:?}");
+    assert!(
+        outcomes.get("approximant").is_some_and(|n| *n >= 20),
+        "{outcomes:?}"
     );
 }
