@@ -1063,3 +1063,19 @@ fn hostile_boundaries_never_panic() {
         "{outcomes:?}"
     );
 }
+
+/// The fuzz target's body over a seed and byte-level mutations of it.
+#[test]
+fn coons_boundary_fuzz_entry_survives_mutations() {
+    let seed = br#"{"curves": [{"polyline": [[0,0,0],[1,0,0]]}, {"polyline": [[1,0,0],[1,1,0.2]]}, {"polyline": [[1,1,0.2],[0,1,0]]}, {"polyline": [[0,1,0],[0,0,0]], "reversed": false}]}"#;
+    vericad::fuzz_entry::coons_boundary(seed);
+    let mut rng = common::Rng(7);
+    for _ in 0..300 {
+        let mut s = seed.to_vec();
+        for _ in 0..1 + rng.below(3) {
+            let k = rng.below(s.len());
+            s[k] = b"0123456789.-e,[]{}\" 1"[rng.below(20)];
+        }
+        vericad::fuzz_entry::coons_boundary(&s);
+    }
+}
