@@ -1079,3 +1079,90 @@ fn coons_boundary_fuzz_entry_survives_mutations() {
         vericad::fuzz_entry::coons_boundary(&s);
     }
 }
+
+/// A gap made by trimming (IGES-style loops in the parameter plane): two faces on the same
+/// hyperbolic paraboloid `z = 0.3 x y` (`x = u`, `y = v`), trimmed to `x ≤ 0.45` and
+/// `x ≥ 0.55`. Grid points over the trimmed-away strip must be artificial, the others hits;
+/// the fill bridges the strip on the paraboloid.
+#[test]
+fn gap_made_by_trimming() {
+    use vericad::model::TrimLoop;
+    let s = bilinear(
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.3],
+    )
+    .unwrap();
+    let rect = |x0: f64, x1: f64| TrimLoop {
+        outer: true,
+        curves: [[x0, 0.0], [x1, 0.0], [x1, 1.0], [x0, 1.0]]
+            .iter()
+            .zip([[x1, 0.0], [x1, 1.0], [x0, 1.0], [x0, 0.0]].iter())
+            .map(|(a, b)| {
+                NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![*a, *b], vec![1.0, 1.0]).unwrap()
+            })
+            .collect(),
+    };
+    let mut a = Surface::new("x ≤ 0.45", s.clone());
+    a.trim_loops = vec![rect(0.0, 0.45)];
+    let mut b = Surface::new("x ≥ 0.55", s);
+    b.trim_loops = vec![rect(0.55, 1.0)];
+    let model = Model {
+        surfaces: vec![a, b],
+        ..Default::default()
+    };
+    let f = |x: f64, y: f64| [x, y, 0.3 * x * y];
+    let line = |p: [f64; 2], q: [f64; 2]| {
+        polyline(
+            (0..=20)
+                .map(|k| {
+                    let t = k as f64 / 20.0;
+                    f(p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]))
+                })
+                .collect(),
+        )
+    };
+    let spec = BoundarySpec {
+        curves: vec![
+            line([0.1, 0.1], [0.9, 0.1]),
+            line([0.9, 0.1], [0.9, 0.9]),
+            line([0.9, 0.9], [0.1, 0.9]),
+            line([0.1, 0.9], [0.1, 0.1]),
+        ],
+    };
+    let params = Params {
+        tol: 1e-4,
+        m: 16,
+        n: 8,
+        ..Default::default()
+    };
+    let ap = approximate(&model, &spec, &params).unwrap();
+    let r = &ap.report;
+    eprintln!("trimmed gap: {:?}", r.rounds);
+    assert!(r.fill.filled > 0);
+    let h = 0.8 / r.m as f64 / 4.0;
+    for i in 0..=r.m {
+        let row: String = (0..=r.n)
+            .map(|j| if *ap.artificial.at(i, j) { 'A' } else { '.' })
+            .collect();
+        eprintln!("{:.3} {row}", ap.coons.at(i, 0)[0]);
+    }
+    for (x, art) in ap.coons.data.iter().zip(&ap.artificial.data) {
+        if x[0] > 0.45 + h && x[0] < 0.55 - h {
+            assert!(*art, "{x:?} over the trimmed strip must be artificial");
+        }
+        if x[0] < 0.45 - h || x[0] > 0.55 + h {
+            assert!(!*art, "{x:?} over a face must be a hit");
+        }
+    }
+    // Bridged on the paraboloid (vertical distance bounds the distance).
+    let dense = dense_max(
+        &ap.surface,
+        80,
+        |p| (p[2] - 0.3 * p[0] * p[1]).abs(),
+        |_| true,
+    );
+    eprintln!("trimmed gap: dense vertical max {dense:.3e}");
+    assert!(dense < 1e-4, "{dense}");
+}

@@ -62,6 +62,8 @@ pub struct Report {
     /// The measured error is within tolerance (evidence) and the proven facts hold.
     pub within_tol: bool,
     pub reason: String,
+    /// Faces whose trimming could not be applied.
+    pub warnings: Vec<String>,
     pub seconds: f64,
 }
 
@@ -298,6 +300,7 @@ pub fn approximate_loop(
                 proven,
                 evidence: ev,
                 reason,
+                warnings: mesh.regions.warnings.clone(),
                 seconds: t0.elapsed().as_secs_f64(),
             };
             return Ok(Approximant {

@@ -42,8 +42,9 @@ pub struct Sample {
     pub gap: bool,
     /// Measured distance to the original surfaces (`None` when skipped).
     pub distance: Option<f64>,
-    /// The foot lies on the border of its surface's domain and the sample is not
-    /// perpendicular over it: the sample is beyond the original surfaces there.
+    /// The foot lies on the border of its surface's domain, or outside its face's trimmed
+    /// region, and the sample is not perpendicular over it: the sample is beyond the
+    /// original faces there.
     pub at_edge: bool,
 }
 
@@ -146,16 +147,18 @@ pub fn distance_to_originals(
             continue;
         }
         let on_border = uv[0] <= u0 || uv[0] >= u1 || uv[1] <= v0 || uv[1] >= v1;
-        let at_edge = on_border && {
-            let (q, su, sv) = point_d1(s, uv[0], uv[1]);
-            let r = p.sub(&q);
-            let nr = norm(&r);
-            nr > 0.0
-                && [su, sv].iter().any(|t| {
-                    let nt = norm(t);
-                    nt > 0.0 && (dot(&r, t) / (nr * nt)).abs() > 1e-3
-                })
-        };
+        let outside_face = !mesh.regions.contains(si, &uv);
+        let at_edge = outside_face
+            || on_border && {
+                let (q, su, sv) = point_d1(s, uv[0], uv[1]);
+                let r = p.sub(&q);
+                let nr = norm(&r);
+                nr > 0.0
+                    && [su, sv].iter().any(|t| {
+                        let nt = norm(t);
+                        nt > 0.0 && (dot(&r, t) / (nr * nt)).abs() > 1e-3
+                    })
+            };
         best = Some((dist, at_edge));
     }
     best

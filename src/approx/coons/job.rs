@@ -103,11 +103,7 @@ pub fn run(
             e => JobError::Coons(e),
         })?;
     let mut warnings = model.warnings.clone();
-    if model.surfaces.iter().any(|s| !s.trim_loops.is_empty()) || model.brep.is_some() {
-        warnings.push(
-            "trimming of the original faces is not applied: projections and distances use their whole surfaces".into(),
-        );
-    }
+    warnings.extend(ap.report.warnings.iter().cloned());
     if let Some(p) = out.model {
         let m = Model {
             unit: model.unit.clone(),

@@ -11,6 +11,7 @@
 //! * [`project`] — step 3: culling against the offset hull, triangulation with `uv`,
 //!   segments `a–b` against triangles by exact predicates, (8)/(9) and Newton onto the
 //!   exact surface;
+//! * [`trim`] — step 3: the faces' trimmed regions in their parameter planes;
 //! * [`multiquadric`] — step 4, §3.4: artificial projections (10)–(13);
 //! * [`bicubic`] — step 5, §3.5: the C1 bicubic interpolant (14)–(16);
 //! * [`error`] — §3.6: the discrete error at `e`, `f`, `g` (17) and the proven claims;
@@ -26,6 +27,7 @@ pub mod job;
 pub mod multiquadric;
 pub mod normals;
 pub mod project;
+pub mod trim;
 
 pub use approximant::{Approximant, Report, approximate, approximate_with_progress};
 

@@ -13,7 +13,9 @@
 //!   `S(u, v) = a + t (b − a)` then puts the point on the exact surface (`y = S(u, v)`);
 //!   where Newton does not converge inside the domain, the barycentric `(u, v)` is kept.
 //!
-//! Trimming loops of the original faces are not applied: a face is its whole surface.
+//! Trimmed faces ([`super::trim`]): triangles that may meet the face's region are kept, and
+//! a hit counts only if its final `(u, v)` lies in the region, so segments meet the faces,
+//! not their surfaces' extensions.
 
 use super::discrete::Grid;
 use crate::geom::bvh::Bvh;
@@ -34,6 +36,8 @@ pub struct OriginalMesh {
     pub triangles: Vec<([u32; 3], usize)>,
     /// Surfaces whose net box met the hull box.
     pub surfaces: Vec<usize>,
+    /// The faces' trimmed regions.
+    pub regions: super::trim::Regions,
     pub bvh: Bvh,
 }
 
@@ -69,9 +73,13 @@ fn meets(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])) -> bool {
     (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
 
-/// Cull the model's surfaces against `hull` and triangulate the rest.
+/// Cull the model's surfaces against `hull` and triangulate the rest (inside their faces'
+/// trimmed regions).
 pub fn triangulate(model: &Model, hull: ([f64; 3], [f64; 3]), per_span: usize) -> OriginalMesh {
-    let mut m = OriginalMesh::default();
+    let mut m = OriginalMesh {
+        regions: super::trim::regions(model),
+        ..Default::default()
+    };
     let mut boxes = Vec::new();
     for (si, surf) in model.surfaces.iter().enumerate() {
         let s = &surf.nurbs;
@@ -101,7 +109,10 @@ pub fn triangulate(model: &Model, hull: ([f64; 3], [f64; 3]), per_span: usize) -
                     [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
                 ] {
                     let b = tri_box(&m.vertices, &t);
-                    if b.0.iter().chain(&b.1).all(|c| c.is_finite()) && meets(&b, &hull) {
+                    if b.0.iter().chain(&b.1).all(|c| c.is_finite())
+                        && meets(&b, &hull)
+                        && m.regions.touches(si, &t.map(|k| m.uv[k as usize]))
+                    {
                         m.triangles.push((t, si));
                         boxes.push(b);
                     }
@@ -272,7 +283,6 @@ fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -
             .total_cmp(&(y.0 - 0.5).abs())
             .then(x.1.cmp(&y.1))
     });
-    let &(t_best, _, _) = found.first()?;
     let uv_of = |ti: usize, bary: &[f64; 3]| {
         let uvs = mesh.triangles[ti].0.map(|i| mesh.uv[i as usize]);
         [
@@ -280,6 +290,15 @@ fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -
             bary[0] * uvs[0][1] + bary[1] * uvs[1][1] + bary[2] * uvs[2][1],
         ]
     };
+    // Hits outside their face's trimmed region do not count.
+    found.retain(|(_, ti, bary)| {
+        mesh.regions
+            .contains(mesh.triangles[*ti].1, &uv_of(*ti, bary))
+    });
+    let &(t_best, _, _) = found.first()?;
+    // Newton converged, but outside the face: the segment meets the surface only where the
+    // face is trimmed away.
+    let mut outside = false;
     // Newton from the nearest hit; where it leaves its surface's domain (a seam between
     // patches), from the hits at (almost) the same place on the other triangles.
     for (t, ti, bary) in found
@@ -290,6 +309,10 @@ fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -
         let si = mesh.triangles[*ti].1;
         let s = &model.surfaces[si].nurbs;
         if let Some((uv, t, point, residual)) = refine(s, a, b, uv_of(*ti, bary), *t) {
+            if !mesh.regions.contains(si, &uv) {
+                outside = true;
+                continue;
+            }
             return Some(Hit {
                 surface: si,
                 uv,
@@ -332,6 +355,10 @@ fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -
     near.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     for (_, sj, uv0) in near {
         if let Some((uv, t, point, residual)) = refine(&model.surfaces[sj].nurbs, a, b, uv0, t) {
+            if !mesh.regions.contains(sj, &uv) {
+                outside = true;
+                continue;
+            }
             return Some(Hit {
                 surface: sj,
                 uv,
@@ -341,6 +368,9 @@ fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -
                 residual,
             });
         }
+    }
+    if outside {
+        return None;
     }
     let point = model.surfaces[si].nurbs.eval(&uv[0], &uv[1]);
     let residual = norm(&point.sub(&a.lerp(b, &t)));
