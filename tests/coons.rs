@@ -515,6 +515,25 @@ fn multiquadric_interpolates_its_centres() {
     }
 }
 
+/// Collinear centres (decided exactly) leave the linear part undetermined: it is dropped,
+/// and the interpolant is still exact at the centres.
+#[test]
+fn multiquadric_on_collinear_centres() {
+    let c = [
+        [0.0, 0.25],
+        [0.125, 0.25],
+        [0.25, 0.25],
+        [0.375, 0.25],
+        [0.5, 0.25],
+    ];
+    let v = [0.1, 0.2, 0.4, 0.3, 0.0];
+    let ip = interpolate(&c, &v, 0.0625, -0.5, true).unwrap();
+    assert!(!ip.has_linear_part());
+    for (p, val) in c.iter().zip(&v) {
+        assert!((ip.eval(p) - val).abs() < 1e-12);
+    }
+}
+
 fn square(z: f64, s: f64) -> Vec<CurveSpec> {
     let p = |x: f64, y: f64| [x * s, y * s, z];
     vec![

@@ -128,8 +128,32 @@ pub fn interpolate(
         }
         solve_with_condition(&a, &b)
     };
-    let (sol, linear_used) = match (linear && k >= 3).then(|| build(true)).flatten() {
-        Some(s) => (s, true),
+    // Collinear centres (decided exactly) leave the linear part undetermined; a system
+    // whose condition exceeds [`ILL_CONDITIONED`] with the linear part is replaced by the
+    // plain one when that is better conditioned.
+    let far = centers
+        .iter()
+        .max_by(|a, b| {
+            let d = |p: &[f64; 2]| (p[0] - centers[0][0]).powi(2) + (p[1] - centers[0][1]).powi(2);
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap_or(&centers[0]);
+    let collinear = centers
+        .iter()
+        .all(|c| crate::predicates::orient2d(&centers[0], far, c) == crate::scalar::Sign::Zero);
+    let with_linear = (linear && k >= 3 && !collinear)
+        .then(|| build(true))
+        .flatten();
+    let with_linear = match with_linear {
+        Some(s) if s.1 > ILL_CONDITIONED => match build(false) {
+            Some(p) if p.1 < s.1 => Some((p, false)),
+            _ => Some((s, true)),
+        },
+        Some(s) => Some((s, true)),
+        None => None,
+    };
+    let (sol, linear_used) = match with_linear {
+        Some(x) => x,
         None => (
             build(false).ok_or(CoonsError::Parameter {
                 name: "multiquadric system",
