@@ -51,7 +51,11 @@ pub struct Outputs<'a> {
 pub struct JobReport {
     pub file: String,
     pub boundary: String,
+    /// The model's length unit, if the file names one.
+    pub unit: Option<String>,
     pub approximant: Report,
+    /// The error samples (17): `[ξ, η, distance]`, distance `null` over a gap.
+    pub samples: Vec<(f64, f64, Option<f64>)>,
     pub warnings: Vec<String>,
 }
 
@@ -122,6 +126,12 @@ pub fn run(
     let report = JobReport {
         file: model_path.display().to_string(),
         boundary: bfile,
+        unit: model.unit.clone(),
+        samples: ap
+            .samples
+            .iter()
+            .map(|s| (s.param[0], s.param[1], s.distance))
+            .collect(),
         approximant: ap.report,
         warnings,
     };
