@@ -270,6 +270,8 @@ fn figure10_intersecting_surfaces() {
         "figure 10: M×N {}×{}, dense analytic max {dense:.3e}, {}",
         r.m, r.n, r.reason
     );
+    // The samples (17) are evidence: between them the deviation may exceed what they saw
+    // (8.4e-4 dense against 7.1e-4 sampled here), hence the margin.
     if r.within_tol {
         assert!(dense <= 2.0 * params.tol, "{dense}");
     } else {

@@ -37,10 +37,9 @@ pub fn normals(x: &Grid<[f64; 3]>, fallback: [f64; 3]) -> Grid<[f64; 3]> {
     for i in 0..=m {
         for j in 0..=n {
             if out.at(i, j)[0].is_nan() {
-                let (ii, jj) = (
-                    i.clamp(1.min(m), m.saturating_sub(1).max(1.min(m))),
-                    j.clamp(1.min(n), n.saturating_sub(1).max(1.min(n))),
-                );
+                // The nearest interior point (itself when a direction has one interval).
+                let inner = |k: usize, len: usize| if len >= 2 { k.clamp(1, len - 1) } else { k };
+                let (ii, jj) = (inner(i, m), inner(j, n));
                 let v = *out.at(ii, jj);
                 out.set(i, j, if v[0].is_nan() { fallback } else { v });
             }
