@@ -10,8 +10,11 @@
 //!   edges on one side); segments in a triangle's plane are not hits. Of several hits the
 //!   one nearest `x` (`t` nearest ½) is kept.
 //! * Eq. (8)/(9): the hit's barycentric coordinates give `(u, v)`; Newton on
-//!   `S(u, v) = a + t (b − a)` then puts the point on the exact surface (`y = S(u, v)`);
-//!   where Newton does not converge inside the domain, the barycentric `(u, v)` is kept.
+//!   `S(u, v) = a + t (b − a)` (with `(u, v)` clamped to the domain) then puts the point on
+//!   the exact surface (`y = S(u, v)`). Newton starts from the nearest hit, then from the
+//!   other hits at the same place, then on every other surface with triangles around the
+//!   hit (near a seam the root may lie on the neighbouring patch); where none converges,
+//!   the barycentric `(u, v)` is kept (`refined = false`).
 //!
 //! Trimmed faces ([`super::trim`]): triangles that may meet the face's region are kept, and
 //! a hit counts only if its final `(u, v)` lies in the region, so segments meet the faces,
