@@ -463,3 +463,57 @@ fn gap_made_by_trimming() {
     eprintln!("trimmed gap: dense vertical max {dense:.3e}");
     assert!(dense < 1e-4, "{dense}");
 }
+
+/// On random grids the interpolant (14)–(16) passes through every point and its first
+/// derivatives do not jump across the knot lines (C1), measured on the surface itself.
+#[test]
+fn bicubic_is_c1_and_interpolates_on_random_grids() {
+    let mut rng = common::Rng(0xB1C0);
+    for _ in 0..40 {
+        let (m, n) = (1 + rng.below(6), 1 + rng.below(6));
+        let mut y = Grid::filled(m, n, [0.0; 3]);
+        for i in 0..=m {
+            for j in 0..=n {
+                y.set(
+                    i,
+                    j,
+                    [
+                        i as f64 + rng.range(-0.3, 0.3),
+                        j as f64 + rng.range(-0.3, 0.3),
+                        rng.range(-1.0, 1.0),
+                    ],
+                );
+            }
+        }
+        let s = bicubic::interpolant(&y).unwrap();
+        for i in 0..=m {
+            for j in 0..=n {
+                let q = s.eval(&(i as f64 / m as f64), &(j as f64 / n as f64));
+                assert!(norm(&q.sub(y.at(i, j))) < 1e-12);
+            }
+        }
+        let eps = 1e-9;
+        for i in 1..m {
+            let u = i as f64 / m as f64;
+            for k in 0..=10 {
+                let v = k as f64 / 10.0;
+                let (l, r) = (
+                    s.derivatives2(&(u - eps), &v)[1],
+                    s.derivatives2(&(u + eps), &v)[1],
+                );
+                assert!(norm(&l.sub(&r)) < 1e-5 * (1.0 + norm(&l)), "{l:?} {r:?}");
+            }
+        }
+        for j in 1..n {
+            let v = j as f64 / n as f64;
+            for k in 0..=10 {
+                let u = k as f64 / 10.0;
+                let (l, r) = (
+                    s.derivatives2(&u, &(v - eps))[2],
+                    s.derivatives2(&u, &(v + eps))[2],
+                );
+                assert!(norm(&l.sub(&r)) < 1e-5 * (1.0 + norm(&l)), "{l:?} {r:?}");
+            }
+        }
+    }
+}
