@@ -320,3 +320,39 @@ pub fn ssi_surfaces(data: &[u8]) -> usize {
     }
     r.branches.len()
 }
+
+/// Coons boundary files: any text is a boundary file or a typed error; an accepted one over
+/// a fixed plane gives an approximant (or a typed error) with finite control points that
+/// interpolates its grid points.
+pub fn coons_boundary(data: &[u8]) {
+    use crate::approx::coons::{Params, approximate, boundary::BoundarySpec};
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let Ok(spec) = BoundarySpec::parse(text) else {
+        return;
+    };
+    let Ok(plane) = crate::spline::construct::bilinear(
+        [-1.0, -1.0, 0.0],
+        [2.0, -1.0, 0.0],
+        [-1.0, 2.0, 0.0],
+        [2.0, 2.0, 0.0],
+    ) else {
+        return;
+    };
+    let mut model = crate::model::Model::default();
+    model
+        .surfaces
+        .push(crate::model::Surface::new("plane", plane));
+    let params = Params {
+        m: 4,
+        n: 4,
+        max_resolution: 8,
+        ..Default::default()
+    };
+    if let Ok(ap) = approximate(&model, &spec, &params) {
+        let (pts, _) = ap.surface.points_weights();
+        assert!(pts.iter().flatten().all(|c| c.is_finite()));
+        assert!(ap.report.proven.interpolates_grid_points);
+    }
+}

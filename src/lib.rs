@@ -6,6 +6,7 @@
 // Index loops mirror the published algorithms (The NURBS Book, de Casteljau); keep them.
 #![allow(clippy::needless_range_loop)]
 
+pub mod approx;
 pub mod brep;
 pub mod cli;
 pub mod curve_on_surface;

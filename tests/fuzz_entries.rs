@@ -177,7 +177,7 @@ fn every_fuzz_target_survives_its_seed_corpus() {
     use std::time::Duration;
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     type Entry = fn(&[u8]);
-    let targets: [(&str, Entry, &[&str]); 8] = [
+    let targets: [(&str, Entry, &[&str]); 9] = [
         (
             "readers",
             fuzz_entry::readers,
@@ -216,6 +216,7 @@ fn every_fuzz_target_survives_its_seed_corpus() {
             },
             &[],
         ),
+        ("coons_boundary", fuzz_entry::coons_boundary, &[]),
     ];
     // Every cargo-fuzz target has an entry here.
     let declared = std::fs::read_to_string(root.join("fuzz/Cargo.toml")).unwrap();

@@ -4,6 +4,8 @@
 //! uncertified singular points, missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
 //! 1 failure of the computation or of writing outputs.
 
+pub mod coons;
+
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -244,6 +246,9 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Approximate faulty geometry by one bicubic C1 B-spline surface over four boundary
+    /// curves (projected Coons patch, multiquadric gap filling; Hamann & Jean).
+    Coons(coons::CoonsArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file: native JSON, STEP or IGES.
@@ -549,6 +554,7 @@ pub fn run(cli: Cli) -> i32 {
                 Err(e) => bad(e),
             }
         }
+        Command::Coons(args) => coons::run(args),
         Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
                 let mut info = crate::model::info::summarize(&m);

@@ -4,7 +4,9 @@
 //! de Casteljau / de Boor routine serves polynomial and rational geometry on every backend.
 
 mod aabb;
+pub mod bvh;
 pub mod tri_tree;
+pub mod triangle;
 pub use aabb::Aabb;
 
 use crate::scalar::{RealScalar, Scalar};

@@ -1,0 +1,229 @@
+//! The `coons` job: read a model and a boundary file, build one approximant, write the
+//! surface (format by extension), a JSON report and a VTK view. Output paths are checked
+//! writable before the work.
+
+use super::boundary::BoundarySpec;
+use super::{Approximant, CoonsError, Params, Report, approximate_with_progress};
+use crate::io::vtk::{Array, PolyData};
+use crate::model::{Model, Surface};
+use serde::Serialize;
+use std::path::Path;
+
+/// Errors of the job.
+#[derive(Debug, thiserror::Error)]
+pub enum JobError {
+    #[error(transparent)]
+    Read(#[from] crate::io::ReadError),
+    #[error("{0}: {1}")]
+    Boundary(String, CoonsError),
+    #[error("{0}")]
+    Coons(CoonsError),
+    #[error("cannot read {0}: {1}")]
+    ReadBoundary(String, String),
+    #[error("{0}: {1}")]
+    Output(String, String),
+    #[error("cannot write {0}: {1}")]
+    Write(String, String),
+}
+
+impl JobError {
+    /// Whether the user's input is at fault (exit code 2).
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            JobError::Write(..) => false,
+            JobError::Coons(e) => !matches!(e, CoonsError::NotFinite(_) | CoonsError::Spline(_)),
+            _ => true,
+        }
+    }
+}
+
+/// Optional outputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    /// The approximant (`.igs`, `.step`, `.json`).
+    pub model: Option<&'a Path>,
+    pub report: Option<&'a Path>,
+    pub vtk: Option<&'a Path>,
+}
+
+/// The job's report.
+#[derive(Clone, Debug, Serialize)]
+pub struct JobReport {
+    pub file: String,
+    pub boundary: String,
+    /// The model's length unit, if the file names one.
+    pub unit: Option<String>,
+    pub approximant: Report,
+    /// The error samples (17): `[ξ, η, distance]`, distance `null` over a gap.
+    pub samples: Vec<(f64, f64, Option<f64>)>,
+    pub warnings: Vec<String>,
+}
+
+fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), JobError> {
+    crate::io::write_atomic(path, text)
+        .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
+}
+
+/// Run the job.
+pub fn run(
+    model_path: &Path,
+    boundary_path: &Path,
+    params: &Params,
+    out: Outputs,
+) -> Result<JobReport, JobError> {
+    params.validate().map_err(JobError::Coons)?;
+    for p in [out.model, out.report, out.vtk].into_iter().flatten() {
+        crate::io::check_writable(p)
+            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+    }
+    use crate::io::Format;
+    if let Some(p) = out.model
+        && !matches!(
+            crate::io::format_of(p),
+            Some(Format::Iges | Format::Step | Format::Json)
+        )
+    {
+        return Err(JobError::Output(
+            p.display().to_string(),
+            "unknown output type (expected .igs/.iges, .step/.stp, .json)".into(),
+        ));
+    }
+    let bfile = boundary_path.display().to_string();
+    let text = std::fs::read_to_string(boundary_path)
+        .map_err(|e| JobError::ReadBoundary(bfile.clone(), e.to_string()))?;
+    let spec = BoundarySpec::parse(&text).map_err(|e| JobError::Boundary(bfile.clone(), e))?;
+    let model = crate::io::read_model(model_path)?;
+    let t0 = std::time::Instant::now();
+    let mut progress = |stage: &str, k: usize| {
+        if t0.elapsed().as_secs_f64() > 1.0 {
+            eprintln!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64());
+        }
+    };
+    let ap =
+        approximate_with_progress(&model, &spec, params, &mut progress).map_err(|e| match e {
+            e @ (CoonsError::Boundary(_) | CoonsError::Curve { .. }) => {
+                JobError::Boundary(bfile.clone(), e)
+            }
+            e => JobError::Coons(e),
+        })?;
+    let mut warnings = model.warnings.clone();
+    warnings.extend(ap.report.warnings.iter().cloned());
+    if let Some(p) = out.model {
+        let m = Model {
+            unit: model.unit.clone(),
+            surfaces: vec![Surface::new("coons approximant", ap.surface.clone())],
+            ..Default::default()
+        };
+        let w = crate::io::write_model(p, &m).map_err(|e| match e {
+            crate::io::WriteError::Io(f, e) => JobError::Write(f, e.to_string()),
+            e => JobError::Write(p.display().to_string(), e.to_string()),
+        })?;
+        warnings.extend(w);
+    }
+    if let Some(p) = out.vtk {
+        write(p, view(&ap))?;
+    }
+    let report = JobReport {
+        file: model_path.display().to_string(),
+        boundary: bfile,
+        unit: model.unit.clone(),
+        samples: ap
+            .samples
+            .iter()
+            .map(|s| (s.param[0], s.param[1], s.distance))
+            .collect(),
+        approximant: ap.report,
+        warnings,
+    };
+    if let Some(p) = out.report {
+        let text = crate::io::json_text::to_text(&report)
+            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+        write(p, text)?;
+    }
+    Ok(report)
+}
+
+/// The VTK view: the approximant (quads, `part` 0), the projected points as small
+/// crosses (`part` 1 found, 2 artificial), the error samples (`part` 3 measured with
+/// `error` = distance, 4 skipped over a gap).
+pub fn view(ap: &Approximant) -> String {
+    let mut p = PolyData::default();
+    let k = (4 * ap.report.m.max(ap.report.n)).clamp(16, 256);
+    let cells = p.add_surface(&ap.surface, k);
+    let mut part = vec![0.0; cells];
+    let mut err = vec![0.0; cells];
+    let size = {
+        let d = &ap.coons;
+        crate::geom::dist(d.at(0, 0), d.at(d.m, d.n)) / (4.0 * (d.m + d.n) as f64)
+    };
+    let mut cross = |p: &mut PolyData, c: [f64; 3], tag: f64, e: f64| {
+        for ax in 0..3 {
+            let mut lo = c;
+            let mut hi = c;
+            lo[ax] -= size;
+            hi[ax] += size;
+            p.add_polyline(&[lo, hi]);
+            part.push(tag);
+            err.push(e);
+        }
+    };
+    for (q, art) in ap.points.data.iter().zip(&ap.artificial.data) {
+        cross(&mut p, *q, if *art { 2.0 } else { 1.0 }, 0.0);
+    }
+    for s in &ap.samples {
+        match s.distance {
+            Some(d) => cross(&mut p, s.point, 3.0, d),
+            None => cross(&mut p, s.point, 4.0, 0.0),
+        }
+    }
+    p.cell_data.push(Array {
+        name: "part".into(),
+        values: part,
+    });
+    p.cell_data.push(Array {
+        name: "error".into(),
+        values: err,
+    });
+    crate::io::vtk::render(&p)
+}
+
+impl std::fmt::Display for JobReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let r = &self.approximant;
+        writeln!(
+            f,
+            "coons {} with boundary {} (tol {:e})",
+            self.file, self.boundary, r.params.tol
+        )?;
+        writeln!(
+            f,
+            "{:>5} {:>5} {:>7} {:>8} {:>10} {:>9} {:>5}",
+            "M", "N", "hits", "artif.", "max error", "measured", "gap"
+        )?;
+        for x in &r.rounds {
+            writeln!(
+                f,
+                "{:>5} {:>5} {:>7} {:>8} {:>10.3e} {:>9} {:>5}",
+                x.m, x.n, x.hits, x.artificial, x.max_error, x.measured, x.skipped_gap
+            )?;
+        }
+        writeln!(
+            f,
+            "proven: interpolates the grid points: {}; boundary within {:.3e} of the boundary grid polylines",
+            r.proven.interpolates_grid_points, r.proven.boundary_hull_bound
+        )?;
+        writeln!(
+            f,
+            "evidence: max error {:.3e} at {} samples ({} over gaps skipped, {} beyond a surface's border); multiquadric condition ≤ {:.2e}",
+            r.evidence.max_error,
+            r.evidence.measured,
+            r.evidence.skipped_gap,
+            r.evidence.at_edge,
+            r.fill.max_condition
+        )?;
+        for w in &self.warnings {
+            writeln!(f, "warning: {w}")?;
+        }
+        writeln!(f, "{} ({:.2} s)", r.reason, r.seconds)
+    }
+}

@@ -1,0 +1,77 @@
+//! `vericad coons`: arguments, the call into [`crate::approx::coons::job`], the summary.
+
+use std::path::PathBuf;
+
+/// Arguments of `vericad coons`.
+#[derive(clap::Args, Debug)]
+pub struct CoonsArgs {
+    /// Model file with the original surfaces (.json, .step/.stp, .igs/.iges).
+    pub model: PathBuf,
+    /// Boundary file: four curves in loop order, each `{"curve": INDEX or "NAME"}` or
+    /// `{"polyline": [[x, y, z], ...]}` (docs/coons.md).
+    #[arg(long)]
+    pub boundary: PathBuf,
+    /// Largest deviation accepted at the error samples (model units).
+    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
+    pub tol: f64,
+    /// Initial resolution M × N.
+    #[arg(long, default_value_t = 8)]
+    pub m: usize,
+    #[arg(long, default_value_t = 8)]
+    pub n: usize,
+    /// Largest M and N the refinement may reach.
+    #[arg(long, default_value_t = 128)]
+    pub max_resolution: usize,
+    /// How far apart consecutive boundary curves' ends may be (default: tol).
+    #[arg(long, allow_hyphen_values = true)]
+    pub closure: Option<f64>,
+    /// K: known projections per artificial projection.
+    #[arg(long, default_value_t = 8)]
+    pub k: usize,
+    /// The approximant (format from the extension: .igs, .step, .json).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// JSON report.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// VTK PolyData (.vtp): approximant, projected points (hit / artificial), error samples.
+    #[arg(long)]
+    pub vtk: Option<PathBuf>,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Run the command; returns the exit code (0 within tol, 3 not within tol or the maximum
+/// resolution reached, 2 bad input, 1 failure).
+pub fn run(a: CoonsArgs) -> i32 {
+    let params = crate::approx::coons::Params {
+        tol: a.tol,
+        m: a.m,
+        n: a.n,
+        max_resolution: a.max_resolution,
+        closure: a.closure,
+        k_nearest: a.k,
+        ..Default::default()
+    };
+    let outputs = crate::approx::coons::job::Outputs {
+        model: a.out.as_deref(),
+        report: a.report.as_deref(),
+        vtk: a.vtk.as_deref(),
+    };
+    match crate::approx::coons::job::run(&a.model, &a.boundary, &params, outputs) {
+        Ok(r) => {
+            super::print(&r, a.json);
+            if r.approximant.within_tol {
+                0
+            } else {
+                super::EXIT_UNCERTIFIED
+            }
+        }
+        Err(e) if e.is_bad_input() => super::bad(e),
+        Err(e) => {
+            eprintln!("error: {e}");
+            super::EXIT_FAILURE
+        }
+    }
+}
