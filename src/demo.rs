@@ -213,7 +213,7 @@ impl std::fmt::Display for DemoReport {
         writeln!(f, "\nModel\n{}", self.model)?;
         writeln!(
             f,
-            "Domain curve against its chord (exact predicate): {:?}",
+            "Domain curve against its chord (exact predicate): {}",
             self.domain_curve_sidedness
         )?;
         let c = &self.composition;

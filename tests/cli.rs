@@ -472,3 +472,41 @@ fn ssi_json_is_compact_and_fits_are_on_request() {
         .count();
     assert_eq!(lone, 0);
 }
+
+/// Human summaries speak the user's language: no Rust Debug text (`Some(`, `None`, enum
+/// variants with braces, quoted map keys).
+#[test]
+fn human_output_has_no_debug_text() {
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/public/");
+    let d = tmp("human");
+    let runs: Vec<Vec<String>> = vec![
+        vec!["demo".into(), "--out".into(), d.to_string_lossy().into()],
+        vec!["info".into(), format!("{data}abc-0000.step")],
+        vec!["info".into(), format!("{data}gmsh-t20_data.step")],
+        vec!["ssi".into(), format!("{data}gmsh-periodic_u_cst.step")],
+        vec![
+            "ssi".into(),
+            format!("{data}gmsh-periodic_u_cst.step"),
+            "--untrimmed".into(),
+        ],
+    ];
+    for r in runs {
+        let args: Vec<&str> = r.iter().map(String::as_str).collect();
+        let (code, stdout, stderr) = vericad(&args);
+        assert!(code == 0 || code == 3, "{args:?}: {stderr}");
+        for bad in [
+            "Some(",
+            "None",
+            " { ",
+            "{\"",
+            "[Boundary",
+            "[TrimBoundary",
+            "[Tangential",
+        ] {
+            assert!(
+                !stdout.contains(bad),
+                "{args:?} prints Debug text `{bad}`:\n{stdout}"
+            );
+        }
+    }
+}

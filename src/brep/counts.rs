@@ -144,8 +144,10 @@ impl std::fmt::Display for BrepCounts {
         )?;
         write!(
             f,
-            "  edges by 3D curve: {:?}; {} oriented edge(s) in loops; {} boundary component(s) without seams",
-            self.edges_by_curve, self.oriented_edges, self.boundary_components
+            "  edges by 3D curve: {}; {} oriented edge(s) in loops; {} boundary component(s) without seams",
+            crate::model::info::counts_text(&self.edges_by_curve),
+            self.oriented_edges,
+            self.boundary_components
         )?;
         if self.faces_without_surface > 0 || self.edges_without_curve > 0 {
             write!(

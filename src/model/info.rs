@@ -189,12 +189,12 @@ impl std::fmt::Display for ModelInfo {
         )?;
         writeln!(
             f,
-            "  faces: {} B-spline ({} non-rational, {} rational), {} analytic (converted exactly to NURBS); by kind: {:?}",
+            "  faces: {} B-spline ({} non-rational, {} rational), {} analytic (converted exactly to NURBS); by kind: {}",
             self.bspline_polynomial + self.bspline_rational,
             self.bspline_polynomial,
             self.bspline_rational,
             self.analytic,
-            self.surfaces_by_kind
+            counts_text(&self.surfaces_by_kind)
         )?;
         if !self.source_entities.is_empty() {
             let mut top: Vec<_> = self.source_entities.iter().collect();
@@ -251,7 +251,11 @@ impl std::fmt::Display for ModelInfo {
             )?;
         }
         if !self.surfaces_by_degree.is_empty() {
-            writeln!(f, "  surfaces by degree: {:?}", self.surfaces_by_degree)?;
+            writeln!(
+                f,
+                "  surfaces by degree: {}",
+                counts_text(&self.surfaces_by_degree)
+            )?;
         }
         for w in &self.warnings {
             writeln!(f, "  warning: {w}")?;
@@ -292,4 +296,12 @@ impl std::fmt::Display for ModelInfo {
         }
         Ok(())
     }
+}
+
+/// `"a 2, b 5"` for a map of counts (human output).
+pub fn counts_text(m: &std::collections::BTreeMap<String, usize>) -> String {
+    m.iter()
+        .map(|(k, n)| format!("{k} {n}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }

@@ -35,6 +35,23 @@ pub enum Sidedness {
     DegenerateChord,
 }
 
+impl std::fmt::Display for Sidedness {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Sidedness::SingleSided {
+                decided_by_hull: true,
+            } => f.write_str("single-sided (decided by the control points' signs)"),
+            Sidedness::SingleSided {
+                decided_by_hull: false,
+            } => f.write_str("single-sided (decided by the exact root analysis)"),
+            Sidedness::DoubleSided { crossings } => {
+                write!(f, "double-sided ({crossings} crossings of the chord)")
+            }
+            Sidedness::DegenerateChord => f.write_str("no chord (closed piece)"),
+        }
+    }
+}
+
 /// Exact Bernstein coefficients of `f(t) = (C(t) - P_0) × (P_n - P_0)`.
 pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<BigRational> {
     let q: Vec<[BigRational; 2]> = ctrl

@@ -308,7 +308,7 @@ impl std::fmt::Display for SsiResult {
             for (j, b) in p.branches.iter().enumerate() {
                 writeln!(
                     f,
-                    "    branch {j}: {} , {} points, proven dist {:.2e} / {:.2e}, to the curve {}, ends {:?}",
+                    "    branch {j}: {}, {} points, proven dist {:.2e} / {:.2e}, to the curve {}, ends: {}",
                     if b.closed { "closed" } else { "open" },
                     b.points.len(),
                     b.dist_a_max,
@@ -317,7 +317,15 @@ impl std::fmt::Display for SsiResult {
                         Some(d) => format!("{d:.2e}"),
                         None => format!("unproven at {} points", b.curve_uncertified_points),
                     },
-                    b.ends
+                    if b.ends.is_empty() {
+                        "none".to_string()
+                    } else {
+                        b.ends
+                            .iter()
+                            .map(|e| e.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    }
                 )?;
             }
             for (j, t) in p.touch_points.iter().enumerate() {

@@ -20,6 +20,19 @@ pub enum EndKind {
     Unexplained,
 }
 
+impl EndKind {
+    /// The name used in the JSON result.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            EndKind::Boundary => "boundary",
+            EndKind::BranchPoint => "branch_point",
+            EndKind::Tangential => "tangential",
+            EndKind::TrimBoundary => "trim_boundary",
+            EndKind::Unexplained => "unexplained",
+        }
+    }
+}
+
 /// One intersection curve.
 #[derive(Clone, Debug, Serialize)]
 pub struct BranchOut {
