@@ -5,8 +5,10 @@
 //! 1 failure of the computation or of writing outputs.
 
 pub mod coons;
+mod output;
 
 use clap::{Parser, Subcommand};
+use output::{bad, finish, print};
 use std::path::PathBuf;
 
 /// Exit code for bad input.
@@ -269,47 +271,6 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-}
-
-/// Print a report; a closed pipe (e.g. `| head`) is not an error.
-fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    let _ = if json {
-        match crate::io::json_text::to_text(r) {
-            Ok(t) => writeln!(out, "{t}"),
-            Err(e) => {
-                eprintln!("error: the JSON report could not be written: {e}");
-                Ok(())
-            }
-        }
-    } else {
-        write!(out, "{r}")
-    };
-}
-
-fn bad(msg: impl std::fmt::Display) -> i32 {
-    eprintln!("error: {msg}");
-    EXIT_BAD_INPUT
-}
-
-/// Print a job's report, or its error with the exit code for bad input or failure.
-fn finish<T: serde::Serialize + std::fmt::Display, E: std::fmt::Display>(
-    r: Result<T, E>,
-    json: bool,
-    is_bad: impl Fn(&E) -> bool,
-) -> i32 {
-    match r {
-        Ok(r) => {
-            print(&r, json);
-            0
-        }
-        Err(e) if is_bad(&e) => bad(e),
-        Err(e) => {
-            eprintln!("error: {e}");
-            EXIT_FAILURE
-        }
-    }
 }
 
 /// Run a parsed command; returns the process exit code.

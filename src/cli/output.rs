@@ -1,0 +1,44 @@
+//! Printing a job's report and mapping its error to an exit code.
+
+use super::{EXIT_BAD_INPUT, EXIT_FAILURE};
+
+/// Print a report; a closed pipe (e.g. `| head`) is not an error.
+pub(super) fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let _ = if json {
+        match crate::io::json_text::to_text(r) {
+            Ok(t) => writeln!(out, "{t}"),
+            Err(e) => {
+                eprintln!("error: the JSON report could not be written: {e}");
+                Ok(())
+            }
+        }
+    } else {
+        write!(out, "{r}")
+    };
+}
+
+pub(super) fn bad(msg: impl std::fmt::Display) -> i32 {
+    eprintln!("error: {msg}");
+    EXIT_BAD_INPUT
+}
+
+/// Print a job's report, or its error with the exit code for bad input or failure.
+pub(super) fn finish<T: serde::Serialize + std::fmt::Display, E: std::fmt::Display>(
+    r: Result<T, E>,
+    json: bool,
+    is_bad: impl Fn(&E) -> bool,
+) -> i32 {
+    match r {
+        Ok(r) => {
+            print(&r, json);
+            0
+        }
+        Err(e) if is_bad(&e) => bad(e),
+        Err(e) => {
+            eprintln!("error: {e}");
+            EXIT_FAILURE
+        }
+    }
+}
