@@ -84,7 +84,7 @@ fn two_sphere_pieces_joined_along_a_shared_curve() {
         r#"{"curves": {"sw": {"curve": 0}, "se": {"curve": "south east"}, "nw": {"curve": 2},
             "ne": {"curve": 3}, "w": {"curve": 4}, "mid": {"curve": 5}, "e": {"curve": 6}},
            "approximants": [
-             {"name": "left", "sides": [{"curve": "sw"}, {"curve": "mid"}, {"curve": "nw"}, {"curve": "w"}]},
+             {"name": "left", "n": 16, "sides": [{"curve": "sw"}, {"curve": "mid"}, {"curve": "nw"}, {"curve": "w"}]},
              {"name": "right", "sides": [{"curve": "se"}, {"curve": "e"}, {"curve": "ne"}, {"curve": "mid"}]}
            ]}"#,
     )
@@ -93,8 +93,8 @@ fn two_sphere_pieces_joined_along_a_shared_curve() {
         tol: 1e-4,
         ..Default::default()
     };
-    let (aps, shared, topo, rebuilds) =
-        approximate_layout(&model, &layout, &params, &mut |_, _| {}).unwrap();
+    let r = approximate_layout(&model, &layout, &params, &mut |_, _| {}).unwrap();
+    let (aps, shared, topo, rebuilds) = (r.approximants, r.shared, r.topology, r.rebuilds);
     eprintln!("sphere layout: shared {shared:?}, rebuilds {rebuilds}");
     assert_eq!(topo.open.len(), 6);
     assert_eq!(shared.len(), 1);
@@ -260,8 +260,8 @@ fn two_by_two_layout_reproduces_a_bicubic_patch() {
         tol: 1e-4,
         ..Default::default()
     };
-    let (aps, shared, topo, _) =
-        approximate_layout(&model, &layout, &params, &mut |_, _| {}).unwrap();
+    let r = approximate_layout(&model, &layout, &params, &mut |_, _| {}).unwrap();
+    let (aps, shared, topo) = (r.approximants, r.shared, r.topology);
     assert_eq!(shared.len(), 4);
     assert_eq!(topo.open.len(), 8);
     for s in &shared {
@@ -365,4 +365,41 @@ fn the_approximate_command() {
         "a curve used twice by one approximant"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A tighter tolerance: some approximants refine and some do not, so neighbours end with
+/// different counts along a shared curve and are rebuilt; afterwards the counts agree.
+#[test]
+fn unequal_refinement_is_rebuilt_to_equal_counts() {
+    let model = bicubic_model();
+    let layout = Layout::parse(&grid_layout()).unwrap();
+    let params = Params {
+        tol: 3e-5,
+        ..Default::default()
+    };
+    let r = approximate_layout(&model, &layout, &params, &mut |_, _| {}).unwrap();
+    let mn: Vec<(usize, usize)> = r
+        .approximants
+        .iter()
+        .map(|ap| (ap.report.m, ap.report.n))
+        .collect();
+    eprintln!("rebuilds {}, M×N {mn:?}", r.rebuilds);
+    assert!(r.rebuilds >= 1, "the rebuild path is exercised");
+    for (s, (_, [p, q])) in r.shared.iter().zip(&r.topology.shared) {
+        let count = |u: &vericad::approx::coons::layout::Use| {
+            let (m, n) = mn[u.approximant];
+            if u.side % 2 == 0 { m } else { n }
+        };
+        assert_eq!(count(p), count(q), "curve {}", s.curve);
+        assert!(s.identical, "curve {}", s.curve);
+    }
+    for ap in &r.approximants {
+        let d = dense_max(&ap.surface, 80, |p| (p[2] - f(p[0], p[1])).abs(), |_| true);
+        eprintln!(
+            "tight: M×N {}×{}, measured {:.3e}, dense vertical {d:.3e}, {}",
+            ap.report.m, ap.report.n, ap.report.evidence.max_error, ap.report.reason
+        );
+        assert!(ap.report.within_tol, "{}", ap.report.reason);
+        assert!(d <= params.tol, "{d}");
+    }
 }

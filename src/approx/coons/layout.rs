@@ -1,13 +1,16 @@
-//! Many local approximants (paper A §3.1: "the user specifies … boundary curves of local
-//! approximants"): a *layout* names a set of boundary curves once and lists the
-//! approximants, each by the ids of its four sides (eq. (3)/(4) order: `J = 0`, `I = M`,
+//! Many local approximants, connected as in §3.7: a *layout* names a set of boundary
+//! curves once and lists the approximants, each by the ids of its four sides (eq. (3)/(4) order: `J = 0`, `I = M`,
 //! `J = N`, `I = 0`). Every approximant is built by [`approximate`]; then the resolutions
 //! along shared curves are made equal (the larger count wins: an approximant whose count
 //! along a shared side is smaller is rebuilt starting from the larger one), and
 //! [`super::join`] makes the shared boundary rows identical bit for bit.
 //!
-//! Topology: a curve used by more than two approximants is refused
-//! ([`LayoutError::Overused`]); curves used once are the open boundary of the replacement.
+//! Topology (§3.7): each boundary curve is shared by at most two approximants — a curve
+//! used by more is refused ([`LayoutError::Overused`]); curves used once are the open
+//! boundary of the replacement. Neighbours have the same number of control points along a
+//! common curve (§3.7's compatibility, here per shared curve rather than one global count).
+//! Not checked: the full-face interface property (a corner of one approximant lying inside
+//! a side of another).
 
 use super::boundary::{BoundarySpec, CurveSpec};
 use super::{Approximant, CoonsError, Params, approximate};
@@ -194,7 +197,7 @@ pub fn boundary_spec(layout: &Layout, a: usize) -> BoundarySpec {
 
 /// The count of grid intervals along side `k` (`M` on sides 0 and 2, `N` on 1 and 3).
 pub fn side_count(m: usize, n: usize, k: usize) -> usize {
-    if k % 2 == 0 { m } else { n }
+    if k.is_multiple_of(2) { m } else { n }
 }
 
 /// Build every approximant with [`approximate`] and make the resolution along every shared
@@ -268,6 +271,10 @@ pub fn build_all(
 }
 
 fn raise(mn: &mut (usize, usize), side: usize, want: usize) {
-    let c = if side % 2 == 0 { &mut mn.0 } else { &mut mn.1 };
+    let c = if side.is_multiple_of(2) {
+        &mut mn.0
+    } else {
+        &mut mn.1
+    };
     *c = (*c).max(want);
 }

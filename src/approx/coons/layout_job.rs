@@ -3,7 +3,7 @@
 //! extension), a JSON report and a VTK view. Output paths are checked writable first.
 
 use super::join::{SharedCurve, join};
-use super::layout::{Layout, LayoutError, build_all, topology};
+use super::layout::{Layout, LayoutError, Topology, build_all, topology};
 use super::{Approximant, Params, Report};
 use crate::io::vtk::{Array, PolyData};
 use crate::model::{Model, Surface};
@@ -88,21 +88,24 @@ pub struct Joined {
     pub report: LayoutReport,
 }
 
-/// Build and join the approximants of `layout` over `model` (the library entry point).
+/// The joined approximants, what the join did, the topology.
+pub struct Replacement {
+    /// In layout order.
+    pub approximants: Vec<Approximant>,
+    pub shared: Vec<SharedCurve>,
+    pub topology: Topology,
+    /// Approximants rebuilt to make counts along shared curves equal.
+    pub rebuilds: usize,
+}
+
+/// Build and join the approximants of `layout` over `model` (the library entry point;
+/// §3.7).
 pub fn approximate_layout(
     model: &Model,
     layout: &Layout,
     params: &Params,
     progress: &mut dyn FnMut(&str, usize),
-) -> Result<
-    (
-        Vec<Approximant>,
-        Vec<SharedCurve>,
-        super::layout::Topology,
-        usize,
-    ),
-    LayoutError,
-> {
+) -> Result<Replacement, LayoutError> {
     params.validate().map_err(|source| LayoutError::Coons {
         approximant: "(all)".into(),
         source,
@@ -113,7 +116,12 @@ pub fn approximate_layout(
         approximant: "(join)".into(),
         source,
     })?;
-    Ok((aps, shared, topo, rebuilds))
+    Ok(Replacement {
+        approximants: aps,
+        shared,
+        topology: topo,
+        rebuilds,
+    })
 }
 
 fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), ApproximateError> {
@@ -156,13 +164,15 @@ pub fn run(
             eprintln!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64());
         }
     };
-    let (aps, shared, topo, rebuilds) = approximate_layout(&model, &layout, params, &mut progress)
-        .map_err(|e| match e {
-            LayoutError::Coons { source, .. } if !e.is_bad_input() => {
-                ApproximateError::Join(source)
-            }
-            e => ApproximateError::Layout(lfile.clone(), e),
-        })?;
+    let Replacement {
+        approximants: aps,
+        shared,
+        topology: topo,
+        rebuilds,
+    } = approximate_layout(&model, &layout, params, &mut progress).map_err(|e| match e {
+        LayoutError::Coons { source, .. } if !e.is_bad_input() => ApproximateError::Join(source),
+        e => ApproximateError::Layout(lfile.clone(), e),
+    })?;
     let mut warnings = model.warnings.clone();
     for ap in &aps {
         warnings.extend(ap.report.warnings.iter().cloned());
