@@ -319,6 +319,7 @@ fn the_approximate_command() {
     let layout = dir.join("layout.json");
     std::fs::write(&layout, grid_layout()).unwrap();
     let (out, report) = (dir.join("surfaces.igs"), dir.join("report.json"));
+    let vtk = dir.join("view.vtp");
     let run = |extra: &[&str]| {
         let mut args: Vec<std::ffi::OsString> = vec![
             "approximate".into(),
@@ -339,6 +340,8 @@ fn the_approximate_command() {
         out.to_str().unwrap(),
         "--report",
         report.to_str().unwrap(),
+        "--vtk",
+        vtk.to_str().unwrap(),
     ]);
     eprintln!("{}", String::from_utf8_lossy(&o.stdout));
     assert_eq!(
@@ -349,6 +352,7 @@ fn the_approximate_command() {
     );
     let back = vericad::io::read_model(&out).unwrap();
     assert_eq!(back.surfaces.len(), 4);
+    assert!(std::fs::read_to_string(&vtk).unwrap().contains("VTKFile"));
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(r["approximants"].as_array().unwrap().len(), 4);
@@ -388,7 +392,7 @@ fn unequal_refinement_is_rebuilt_to_equal_counts() {
     for (s, (_, [p, q])) in r.shared.iter().zip(&r.topology.shared) {
         let count = |u: &vericad::approx::coons::layout::Use| {
             let (m, n) = mn[u.approximant];
-            if u.side % 2 == 0 { m } else { n }
+            if u.side.is_multiple_of(2) { m } else { n }
         };
         assert_eq!(count(p), count(q), "curve {}", s.curve);
         assert!(s.identical, "curve {}", s.curve);

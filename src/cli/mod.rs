@@ -250,8 +250,7 @@ pub enum Command {
     /// Approximate faulty geometry by one bicubic C1 B-spline surface over four boundary
     /// curves (projected Coons patch, multiquadric gap filling; Hamann & Jean).
     Coons(coons::CoonsArgs),
-    /// Replace faulty geometry by many projected Coons approximants (a layout of boundary
-    /// curves), joined with shared boundary rows identical bit for bit (checked).
+    /// Many Coons approximants over a layout of curves; shared rows identical (checked).
     Approximate(approximate::ApproximateArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {

@@ -44,7 +44,8 @@ pub struct SharedCurve {
 }
 
 /// Grid indices `(I, J)` of side `k` of an `M × N` grid, in the curve's own direction
-/// (`reversed`: the loop traverses the curve backwards). `step` 3 gives control-net indices.
+/// (`reversed`: the loop traverses the curve backwards). With `3M × 3N` it gives the
+/// control-net indices of the side.
 pub fn side_indices(m: usize, n: usize, k: usize, reversed: bool) -> Vec<(usize, usize)> {
     let mut v: Vec<(usize, usize)> = match k {
         0 => (0..=m).map(|i| (i, 0)).collect(),

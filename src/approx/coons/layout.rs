@@ -180,19 +180,22 @@ pub fn topology(layout: &Layout) -> Result<Topology, LayoutError> {
 
 /// The boundary file of approximant `a`: its four curves, reversed as the side says
 /// (relative to the curve's own entry), named by their ids unless the entry names them.
-pub fn boundary_spec(layout: &Layout, a: usize) -> BoundarySpec {
-    BoundarySpec {
-        curves: layout.approximants[a]
-            .sides
-            .iter()
-            .map(|s| {
-                let mut c = layout.curves[&s.curve].clone();
-                c.reversed ^= s.reversed;
-                c.name = Some(c.name.unwrap_or_else(|| s.curve.clone()));
-                c
-            })
-            .collect(),
+pub fn boundary_spec(layout: &Layout, a: usize) -> Result<BoundarySpec, LayoutError> {
+    let mut curves = Vec::with_capacity(4);
+    for s in &layout.approximants[a].sides {
+        let mut c = layout
+            .curves
+            .get(&s.curve)
+            .ok_or_else(|| LayoutError::UnknownCurve {
+                approximant: layout.name(a),
+                curve: s.curve.clone(),
+            })?
+            .clone();
+        c.reversed ^= s.reversed;
+        c.name = Some(c.name.unwrap_or_else(|| s.curve.clone()));
+        curves.push(c);
     }
+    Ok(BoundarySpec { curves })
 }
 
 /// The count of grid intervals along side `k` (`M` on sides 0 and 2, `N` on 1 and 3).
@@ -232,7 +235,7 @@ pub fn build_all(
             n: n.min(params.max_resolution),
             ..params.clone()
         };
-        approximate(model, &boundary_spec(layout, a), &p).map_err(|source| LayoutError::Coons {
+        approximate(model, &boundary_spec(layout, a)?, &p).map_err(|source| LayoutError::Coons {
             approximant: layout.name(a),
             source,
         })
