@@ -357,6 +357,12 @@ fn the_approximate_command() {
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(r["approximants"].as_array().unwrap().len(), 4);
     assert_eq!(r["shared"].as_array().unwrap().len(), 4);
+    let o = run(&["--tol", "1e-7", "--max-resolution", "8"]);
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "not within tol at the maximum resolution"
+    );
     for bad in [["--m", "-1"], ["--tol", "-1"], ["--k", "0"]] {
         assert_eq!(run(&bad).status.code(), Some(2), "{bad:?}");
     }
