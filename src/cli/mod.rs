@@ -4,6 +4,7 @@
 //! uncertified singular points, missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
 //! 1 failure of the computation or of writing outputs.
 
+pub mod approximate;
 pub mod coons;
 mod output;
 
@@ -251,6 +252,8 @@ pub enum Command {
     /// Approximate faulty geometry by one bicubic C1 B-spline surface over four boundary
     /// curves (projected Coons patch, multiquadric gap filling; Hamann & Jean).
     Coons(coons::CoonsArgs),
+    /// Many Coons approximants over a layout of curves; shared rows identical (checked).
+    Approximate(approximate::ApproximateArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file: native JSON, STEP or IGES.
@@ -516,6 +519,7 @@ pub fn run(cli: Cli) -> i32 {
             }
         }
         Command::Coons(args) => coons::run(args),
+        Command::Approximate(args) => approximate::run(args),
         Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
                 let mut info = crate::model::info::summarize(&m);

@@ -16,7 +16,11 @@
 //! * [`bicubic`] — step 5, §3.5: the C1 bicubic interpolant (14)–(16);
 //! * [`error`] — §3.6: the discrete error at `e`, `f`, `g` (17) and the proven claims;
 //! * [`approximant`] — the loop raising `M` and `N` until the error is within tolerance;
-//! * [`job`] — the `coons` command: files in, surface, report and view out.
+//! * [`job`] — the `coons` command: files in, surface, report and view out;
+//! * [`layout`] — many approximants: the layout file, its topology, equal counts along
+//!   shared curves;
+//! * [`join`] — shared boundary rows made identical bit for bit (checked);
+//! * [`layout_job`] — the `approximate` command.
 
 pub mod approximant;
 pub mod bicubic;
@@ -24,6 +28,9 @@ pub mod boundary;
 pub mod discrete;
 pub mod error;
 pub mod job;
+pub mod join;
+pub mod layout;
+pub mod layout_job;
 pub mod multiquadric;
 pub mod normals;
 pub mod project;

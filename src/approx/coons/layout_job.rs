@@ -1,0 +1,293 @@
+//! The `approximate` job: read a model and a layout file, build every approximant, join
+//! them along shared curves ([`super::join`]), write all surfaces in one file (format by
+//! extension), a JSON report and a VTK view. Output paths are checked writable first.
+
+use super::join::{SharedCurve, join};
+use super::layout::{Layout, LayoutError, Topology, build_all, topology};
+use super::{Approximant, Params, Report};
+use crate::io::vtk::{Array, PolyData};
+use crate::model::{Model, Surface};
+use serde::Serialize;
+use std::path::Path;
+
+/// Errors of the job.
+#[derive(Debug, thiserror::Error)]
+pub enum ApproximateError {
+    #[error(transparent)]
+    Read(#[from] crate::io::ReadError),
+    #[error("{0}: {1}")]
+    Layout(String, LayoutError),
+    #[error("{0}")]
+    Params(super::CoonsError),
+    #[error("cannot read {0}: {1}")]
+    ReadLayout(String, String),
+    #[error("{0}: {1}")]
+    Output(String, String),
+    #[error("cannot write {0}: {1}")]
+    Write(String, String),
+    #[error("join: {0}")]
+    Join(super::CoonsError),
+}
+
+impl ApproximateError {
+    /// Whether the user's input is at fault (exit code 2).
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            ApproximateError::Write(..) | ApproximateError::Join(_) => false,
+            ApproximateError::Layout(_, e) => e.is_bad_input(),
+            _ => true,
+        }
+    }
+}
+
+/// Optional outputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    /// All approximants (`.igs`, `.step`, `.json`).
+    pub model: Option<&'a Path>,
+    pub report: Option<&'a Path>,
+    pub vtk: Option<&'a Path>,
+}
+
+/// One approximant in the report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Entry {
+    pub name: String,
+    pub m: usize,
+    pub n: usize,
+    /// Measured error at the samples (17) after the join: evidence.
+    pub max_error: f64,
+    pub within_tol: bool,
+    pub reason: String,
+    pub report: Report,
+}
+
+/// The job's report.
+#[derive(Clone, Debug, Serialize)]
+pub struct LayoutReport {
+    pub file: String,
+    pub layout: String,
+    pub unit: Option<String>,
+    pub approximants: Vec<Entry>,
+    /// Shared curves: gap before the join, the move, identical bit for bit (checked).
+    pub shared: Vec<SharedCurve>,
+    /// Curves used by one approximant (the open boundary of the replacement).
+    pub open_curves: Vec<String>,
+    pub unused_curves: Vec<String>,
+    /// Approximants rebuilt to make counts along shared curves equal.
+    pub rebuilds: usize,
+    /// Every approximant within tol (evidence) and every shared row identical (checked).
+    pub within_tol: bool,
+    pub warnings: Vec<String>,
+    pub seconds: f64,
+}
+
+/// The approximants and the report, as [`run`] returns them.
+pub struct Joined {
+    pub approximants: Vec<Approximant>,
+    pub report: LayoutReport,
+}
+
+/// The joined approximants, what the join did, the topology.
+pub struct Replacement {
+    /// In layout order.
+    pub approximants: Vec<Approximant>,
+    pub shared: Vec<SharedCurve>,
+    pub topology: Topology,
+    /// Approximants rebuilt to make counts along shared curves equal.
+    pub rebuilds: usize,
+}
+
+/// Build and join the approximants of `layout` over `model` (the library entry point;
+/// §3.7).
+pub fn approximate_layout(
+    model: &Model,
+    layout: &Layout,
+    params: &Params,
+    progress: &mut dyn FnMut(&str, usize),
+) -> Result<Replacement, LayoutError> {
+    params.validate().map_err(|source| LayoutError::Coons {
+        approximant: "(all)".into(),
+        source,
+    })?;
+    let topo = topology(layout)?;
+    let (mut aps, rebuilds) = build_all(model, layout, &topo, params, progress)?;
+    let shared = join(model, &mut aps, &topo, params).map_err(|source| LayoutError::Coons {
+        approximant: "(join)".into(),
+        source,
+    })?;
+    Ok(Replacement {
+        approximants: aps,
+        shared,
+        topology: topo,
+        rebuilds,
+    })
+}
+
+fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), ApproximateError> {
+    crate::io::write_atomic(path, text)
+        .map_err(|e| ApproximateError::Write(path.display().to_string(), e.to_string()))
+}
+
+/// Run the job.
+pub fn run(
+    model_path: &Path,
+    layout_path: &Path,
+    params: &Params,
+    out: Outputs,
+) -> Result<Joined, ApproximateError> {
+    params.validate().map_err(ApproximateError::Params)?;
+    for p in [out.model, out.report, out.vtk].into_iter().flatten() {
+        crate::io::check_writable(p)
+            .map_err(|e| ApproximateError::Write(p.display().to_string(), e.to_string()))?;
+    }
+    use crate::io::Format;
+    if let Some(p) = out.model
+        && !matches!(
+            crate::io::format_of(p),
+            Some(Format::Iges | Format::Step | Format::Json)
+        )
+    {
+        return Err(ApproximateError::Output(
+            p.display().to_string(),
+            "unknown output type (expected .igs/.iges, .step/.stp, .json)".into(),
+        ));
+    }
+    let lfile = layout_path.display().to_string();
+    let text = std::fs::read_to_string(layout_path)
+        .map_err(|e| ApproximateError::ReadLayout(lfile.clone(), e.to_string()))?;
+    let layout = Layout::parse(&text).map_err(|e| ApproximateError::Layout(lfile.clone(), e))?;
+    let model = crate::io::read_model(model_path)?;
+    let t0 = std::time::Instant::now();
+    let mut progress = |stage: &str, k: usize| {
+        if t0.elapsed().as_secs_f64() > 1.0 {
+            eprintln!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64());
+        }
+    };
+    let Replacement {
+        approximants: aps,
+        shared,
+        topology: topo,
+        rebuilds,
+    } = approximate_layout(&model, &layout, params, &mut progress).map_err(|e| match e {
+        LayoutError::Coons { source, .. } if !e.is_bad_input() => ApproximateError::Join(source),
+        e => ApproximateError::Layout(lfile.clone(), e),
+    })?;
+    let mut warnings = model.warnings.clone();
+    for ap in &aps {
+        warnings.extend(ap.report.warnings.iter().cloned());
+    }
+    if let Some(p) = out.model {
+        let m = Model {
+            unit: model.unit.clone(),
+            surfaces: aps
+                .iter()
+                .enumerate()
+                .map(|(a, ap)| Surface::new(layout.name(a), ap.surface.clone()))
+                .collect(),
+            ..Default::default()
+        };
+        let w = crate::io::write_model(p, &m).map_err(|e| match e {
+            crate::io::WriteError::Io(f, e) => ApproximateError::Write(f, e.to_string()),
+            e => ApproximateError::Write(p.display().to_string(), e.to_string()),
+        })?;
+        warnings.extend(w);
+    }
+    if let Some(p) = out.vtk {
+        write(p, view(&aps))?;
+    }
+    let entries: Vec<Entry> = aps
+        .iter()
+        .enumerate()
+        .map(|(a, ap)| Entry {
+            name: layout.name(a),
+            m: ap.report.m,
+            n: ap.report.n,
+            max_error: ap.report.evidence.max_error,
+            within_tol: ap.report.within_tol,
+            reason: ap.report.reason.clone(),
+            report: ap.report.clone(),
+        })
+        .collect();
+    let report = LayoutReport {
+        file: model_path.display().to_string(),
+        layout: lfile,
+        unit: model.unit.clone(),
+        within_tol: entries.iter().all(|e| e.within_tol) && shared.iter().all(|s| s.identical),
+        approximants: entries,
+        shared,
+        open_curves: topo.open,
+        unused_curves: topo.unused,
+        rebuilds,
+        warnings,
+        seconds: t0.elapsed().as_secs_f64(),
+    };
+    if let Some(p) = out.report {
+        let text = crate::io::json_text::to_text(&report)
+            .map_err(|e| ApproximateError::Write(p.display().to_string(), e.to_string()))?;
+        write(p, text)?;
+    }
+    Ok(Joined {
+        approximants: aps,
+        report,
+    })
+}
+
+/// The VTK view: every approximant as quads, cell data `approximant` (its index) and
+/// `error` (0 on the surfaces).
+pub fn view(aps: &[Approximant]) -> String {
+    let mut p = PolyData::default();
+    let mut which = Vec::new();
+    for (a, ap) in aps.iter().enumerate() {
+        let k = (4 * ap.report.m.max(ap.report.n)).clamp(16, 256);
+        let cells = p.add_surface(&ap.surface, k);
+        which.extend(std::iter::repeat_n(a as f64, cells));
+    }
+    p.cell_data.push(Array {
+        name: "approximant".into(),
+        values: which,
+    });
+    crate::io::vtk::render(&p)
+}
+
+impl std::fmt::Display for LayoutReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        writeln!(f, "approximate {} with layout {}", self.file, self.layout)?;
+        writeln!(
+            f,
+            "{:>16} {:>5} {:>5} {:>10} {:>6}",
+            "approximant", "M", "N", "max error", "ok"
+        )?;
+        for e in &self.approximants {
+            writeln!(
+                f,
+                "{:>16} {:>5} {:>5} {:>10.3e} {:>6}",
+                e.name, e.m, e.n, e.max_error, e.within_tol
+            )?;
+        }
+        for s in &self.shared {
+            writeln!(
+                f,
+                "shared curve {}: {} (gap before {:.3e}, moved {:.3e}, {} intervals; identical bit for bit: {})",
+                s.curve, s.status, s.gap, s.moved, s.count, s.identical
+            )?;
+        }
+        if !self.open_curves.is_empty() {
+            writeln!(f, "open boundary curves: {}", self.open_curves.join(", "))?;
+        }
+        for w in &self.warnings {
+            writeln!(f, "warning: {w}")?;
+        }
+        writeln!(
+            f,
+            "{} ({} rebuilds, {:.2} s)",
+            if self.within_tol {
+                "all approximants within tol (measured), shared rows identical (checked)"
+            } else {
+                "not all approximants within tol"
+            },
+            self.rebuilds,
+            self.seconds
+        )
+    }
+}
