@@ -4,6 +4,7 @@
 //! uncertified singular points, missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
 //! 1 failure of the computation or of writing outputs.
 
+pub mod batch;
 pub mod coons;
 
 use clap::{Parser, Subcommand};
@@ -249,6 +250,9 @@ pub enum Command {
     /// Approximate faulty geometry by one bicubic C1 B-spline surface over four boundary
     /// curves (projected Coons patch, multiquadric gap filling; Hamann & Jean).
     Coons(coons::CoonsArgs),
+    /// Run one job (info, ssi, repair) over many models in parallel: one JSON record per model
+    /// appended to a JSONL file as it finishes; resumable and shardable (docs/batch.md).
+    Batch(batch::BatchArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file: native JSON, STEP or IGES.
@@ -555,6 +559,7 @@ pub fn run(cli: Cli) -> i32 {
             }
         }
         Command::Coons(args) => coons::run(args),
+        Command::Batch(args) => batch::run(args),
         Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
                 let mut info = crate::model::info::summarize(&m);
