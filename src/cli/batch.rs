@@ -18,7 +18,7 @@ pub struct BatchArgs {
     #[arg(long)]
     pub out: PathBuf,
     /// Run only shard I of N (`I/N`): the models whose index in the sorted list is I mod N.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub shard: Option<String>,
     /// Time limit per model in seconds (the `ssi` job stops starting new face pairs and the
     /// record is `timeout`).
