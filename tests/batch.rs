@@ -227,6 +227,45 @@ fn ssi_job_gives_verdicts_within_the_time_limit() {
     assert_eq!(code, if all_ok { 0 } else { 3 }, "{stderr}");
 }
 
+/// `--job repair`: a model read as faces gets the repair figures, its patch count the one
+/// `--job info` gives; a file without faces (STL) a `bad_input` record from the repair.
+#[test]
+fn repair_job_reports_patches_in_and_out() {
+    let d = tmp("repair");
+    let (info, repair) = (d.join("info.jsonl"), d.join("repair.jsonl"));
+    batch(&info_args(&[data("public")]), &info);
+    let args: Vec<String> = [data("public"), "--job".into(), "repair".into()].to_vec();
+    batch(&args, &repair);
+    let faces: BTreeMap<String, usize> = records(&info)
+        .into_iter()
+        .filter_map(|r| Some((r.path, r.info?.faces)))
+        .collect();
+    let rs = records(&repair);
+    assert_eq!(
+        rs.len(),
+        faces.len(),
+        "every model read by info is repaired or refused"
+    );
+    let mut repaired = 0;
+    for r in &rs {
+        match (&r.repair, &r.error) {
+            (Some(f), None) => {
+                assert_eq!(r.status, Status::Ok);
+                assert_eq!(f.patches_in, faces[&r.path], "{r:?}");
+                assert!(f.patches_out >= 1, "{r:?}");
+                repaired += 1;
+            }
+            (None, Some(e)) => {
+                assert_eq!(r.status, Status::BadInput);
+                assert!(r.path.ends_with(".stl"), "{r:?}");
+                assert_eq!(e.kind, "repair", "{r:?}");
+            }
+            _ => panic!("figures or an error: {r:?}"),
+        }
+    }
+    assert!(repaired >= 5, "{rs:?}");
+}
+
 #[test]
 fn bad_arguments_exit_2_with_a_clear_message() {
     let d = tmp("args");
