@@ -195,6 +195,7 @@ fn ssi_job_gives_verdicts_within_the_time_limit() {
     let out = d.join("r.jsonl");
     let args: Vec<String> = [
         &format!("@{}", list.display()),
+        "missing-model",
         "--job",
         "ssi",
         "--time-limit-per-model",
@@ -206,6 +207,13 @@ fn ssi_job_gives_verdicts_within_the_time_limit() {
     .to_vec();
     let (code, stderr) = batch(&args, &out);
     let rs = records(&out);
+    assert_eq!(rs.len(), 4, "{stderr}");
+    // A path that names nothing is a bad model, not the end of the batch.
+    let missing = rs.iter().find(|r| r.path == "missing-model").unwrap();
+    assert_eq!(missing.status, Status::BadInput);
+    let message = &missing.error.as_ref().unwrap().message;
+    assert!(message.contains("no such file"), "{missing:?}");
+    let rs: Vec<Record> = rs.into_iter().filter(|r| r.ssi.is_some()).collect();
     assert_eq!(rs.len(), 3, "{stderr}");
     let by: BTreeMap<&str, &Record> = rs
         .iter()
@@ -223,8 +231,7 @@ fn ssi_job_gives_verdicts_within_the_time_limit() {
     let one = by["occt-bad_header.igs"];
     assert_eq!(one.status, Status::Ok);
     assert_eq!(one.ssi.as_ref().unwrap().branches, 0);
-    let all_ok = rs.iter().all(|r| r.status == Status::Ok);
-    assert_eq!(code, if all_ok { 0 } else { 3 }, "{stderr}");
+    assert_eq!(code, 3, "a bad model makes the run not all ok: {stderr}");
 }
 
 /// `--job repair`: a model read as faces gets the repair figures, its patch count the one

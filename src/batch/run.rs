@@ -55,6 +55,10 @@ impl Job {
     /// Run the job on one model. Every fault is returned as an outcome (a panic is not caught
     /// here but by [`execute`]).
     pub fn run(&self, path: &Path) -> Outcome {
+        if !path.exists() {
+            let msg = format!("{}: no such file or directory", path.display());
+            return error(Status::BadInput, "read", msg);
+        }
         let m = match crate::io::read_model(path) {
             Ok(m) => m,
             Err(e) => return error(Status::BadInput, "read", e),
@@ -188,8 +192,10 @@ pub fn execute<W: Write + Send>(
             // A poisoned lock only means another worker panicked while holding it, which the
             // writes below do not do; the data is still consistent.
             let mut s = shared.lock().unwrap_or_else(|e| e.into_inner());
+            // One write per line: with an append-mode file the line lands whole.
             let written = r.to_line().map_err(|e| e.to_string()).and_then(|line| {
-                writeln!(s.out, "{line}")
+                s.out
+                    .write_all(format!("{line}\n").as_bytes())
                     .and_then(|_| s.out.flush())
                     .map_err(|e| e.to_string())
             });
