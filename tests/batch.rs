@@ -154,6 +154,52 @@ fn a_resumed_run_adds_only_the_missing_records() {
     assert_eq!(records(&out).len(), fresh.len());
 }
 
+/// A run killed part way and started again with the same command ends with one record per
+/// model, the records written before the kill kept as they were.
+#[test]
+fn a_killed_run_resumed_completes_the_records() {
+    let d = tmp("kill");
+    let out = d.join("r.jsonl");
+    let args = [
+        &data("public"),
+        "--job",
+        "ssi",
+        "--time-limit-per-model",
+        "1",
+        "--threads",
+        "2",
+        "--quiet",
+    ];
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vericad"))
+        .arg("batch")
+        .args(args)
+        .arg("--out")
+        .arg(&out)
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let _ = child.kill();
+    child.wait().unwrap();
+    let before = std::fs::read_to_string(&out).unwrap_or_default();
+    // Complete lines only: a line cut by the kill is dropped and its model runs again.
+    let kept = before.matches('\n').count();
+    let args: Vec<String> = args.map(String::from).to_vec();
+    batch(&args, &out);
+    let rs = records(&out);
+    let mut expected = Vec::new();
+    model_files(Path::new(&data("public")), &mut expected);
+    expected.sort();
+    let mut got: Vec<String> = rs.iter().map(|r| r.path.clone()).collect();
+    got.sort();
+    assert_eq!(got, expected, "one record per model after the resume");
+    assert!(kept < expected.len(), "the kill came before the end");
+    let after = std::fs::read_to_string(&out).unwrap();
+    let first: Vec<&str> = before.lines().take(kept).collect();
+    let again: Vec<&str> = after.lines().take(kept).collect();
+    assert_eq!(first, again, "records from before the kill are kept");
+}
+
 #[test]
 fn two_shards_make_one_run() {
     let d = tmp("shard");
