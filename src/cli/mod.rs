@@ -250,8 +250,7 @@ pub enum Command {
     /// Approximate faulty geometry by one bicubic C1 B-spline surface over four boundary
     /// curves (projected Coons patch, multiquadric gap filling; Hamann & Jean).
     Coons(coons::CoonsArgs),
-    /// Run one job (info, ssi, repair) over many models in parallel: one JSON record per model
-    /// appended to a JSONL file as it finishes; resumable and shardable (docs/batch.md).
+    /// One job (info, ssi, repair) over many models: a JSONL record each, resumable, sharded.
     Batch(batch::BatchArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
