@@ -7,6 +7,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod approx;
+pub mod batch;
 pub mod brep;
 pub mod cli;
 pub mod curve_on_surface;

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 const PIPELINES: [&str; 5] = ["ssi", "repair", "reparam", "curve_on_surface", "approx"];
-const TOP: [&str; 4] = ["cli", "demo", "fuzz_entry", "bin"];
+const TOP: [&str; 5] = ["cli", "demo", "fuzz_entry", "bin", "batch"];
 
 /// The top-level module a source file belongs to (`src/ssi/pair.rs` → `ssi`).
 fn module_of(rel: &Path) -> String {

@@ -5,6 +5,7 @@
 //! 1 failure of the computation or of writing outputs.
 
 pub mod approximate;
+pub mod batch;
 pub mod coons;
 mod output;
 
@@ -254,6 +255,8 @@ pub enum Command {
     Coons(coons::CoonsArgs),
     /// Many Coons approximants over a layout of curves; shared rows identical (checked).
     Approximate(approximate::ApproximateArgs),
+    /// One job (info, ssi, repair) over many models: a JSONL record each, resumable, sharded.
+    Batch(batch::BatchArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file: native JSON, STEP or IGES.
@@ -520,6 +523,7 @@ pub fn run(cli: Cli) -> i32 {
         }
         Command::Coons(args) => coons::run(args),
         Command::Approximate(args) => approximate::run(args),
+        Command::Batch(args) => batch::run(args),
         Command::Info { file, json } => match crate::io::read_model(&file) {
             Ok(m) => {
                 let mut info = crate::model::info::summarize(&m);
