@@ -68,7 +68,9 @@ pub struct Accounting {
 
 /// An account whose parts do not add up to what was read.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("entity kind {kind}: read {read}, accounted {accounted} (converted + used + unsupported + invalid)")]
+#[error(
+    "entity kind {kind}: read {read}, accounted {accounted} (converted + used + unsupported + invalid)"
+)]
 pub struct Unbalanced {
     pub kind: String,
     pub read: usize,
