@@ -5,7 +5,8 @@
 //! every surface no face references (untrimmed patch sets). Surfaces: rational B-spline (128),
 //! surface of revolution (120, full turn) and tabulated cylinder (122) converted exactly to
 //! NURBS; generatrices and directrices from 126, 110 (line) and 100 (arc). Unsupported
-//! entities are counted by type in the model's warnings, never dropped silently.
+//! entities are counted by type in the model's warnings, never dropped silently; every
+//! surface, face and curve entry has its outcome in the model's accounts (`account`).
 
 mod account;
 pub mod parse;

@@ -8,7 +8,8 @@
 //! set) contributes every surface instance that no other surface references. Analytic
 //! surfaces take their extent from the face's boundary points (planes: the bounding
 //! rectangle in the plane; cylinders and cones: the axial range, full turn); spheres and tori
-//! are full. Anything skipped is counted in the model's warnings.
+//! are full. Anything skipped is counted in the model's warnings, and every surface and
+//! B-spline curve instance has its outcome in the model's accounts (`account`).
 
 mod account;
 mod edge_curve;
