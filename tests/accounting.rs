@@ -288,6 +288,26 @@ fn step_scan_sees_complex_instances_and_skips_strings() {
     assert_eq!(step_count(&inst, "PLANE"), 1);
 }
 
+#[test]
+fn independent_iges_entries_not_converted_are_named_unsupported() {
+    // The first line (DE 3) of a public file marked independent (status field, columns
+    // 65–72, all zeros): a free line, which the reader does not convert on its own.
+    let text = std::fs::read_to_string(path("public", "occt-bad_header.igs")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let d3 = lines
+        .iter()
+        .position(|l| l.len() >= 80 && &l[72..80] == "D      3")
+        .expect("DE 3");
+    assert_eq!(lines[d3][0..8].trim(), "110");
+    lines[d3].replace_range(64..72, "00000000");
+    let m = vericad::io::iges::from_str(&lines.join("\n"), "x.igs").unwrap();
+    balanced("x.igs", &m);
+    let a = &m.accounts.kinds["110"];
+    assert_eq!(ids(&a.unsupported), ["DE 3"]);
+    assert_eq!((a.read, a.used), (8, 7));
+    assert_eq!(iges_counts(&text)[&110], 8);
+}
+
 fn vericad(args: &[&str]) -> String {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
         .args(args)

@@ -18,11 +18,11 @@ const CURVES: [i64; 7] = [100, 102, 104, 110, 112, 126, 130];
 pub(super) const NOT_CONVERTED: &str = "surface type (or its generatrix or axis) not converted";
 
 /// Whether directory entry `x` is physically or logically dependent (its subordinate entity
-/// switch, status digits 3–4, is not `00`): part of another entity.
+/// switch, digits 3–4 of the right-aligned eight-digit status field, is not `00`): part of
+/// another entity.
 fn dependent(x: &Entry) -> bool {
-    x.status
-        .get(2..4)
-        .is_some_and(|s| s.trim() != "00" && !s.trim().is_empty())
+    let s = format!("{:0>8}", x.status.trim().replace(' ', "0"));
+    s.get(2..4).is_some_and(|d| d != "00")
 }
 
 /// The account of a file. `outcomes` holds what the reader decided for the entries it
