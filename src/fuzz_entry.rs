@@ -126,7 +126,8 @@ pub fn curve_on_surface(data: &[u8]) {
 /// everything an accepted model holds is finite (knots, spans, control points, weights,
 /// `w·p`, vertices) and its surfaces evaluate to points that are not NaN; its accounts
 /// balance (per kind, read = converted + used + unsupported + invalid) and the converted
-/// free curves are the model's curves (STEP `B_SPLINE_CURVE_WITH_KNOTS`, IGES 126).
+/// free curves are the model's curves (STEP `B_SPLINE_CURVE_WITH_KNOTS`, IGES 126), the
+/// converted IGES faces and surfaces its surfaces.
 pub fn readers(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let accounted = |m: &crate::model::Model, curve_kind: &str| {
@@ -156,6 +157,11 @@ pub fn readers(data: &[u8]) {
     match crate::io::iges::from_str(&text, "fuzz.igs") {
         Ok(m) => {
             accounted(&m, "126");
+            let faces: usize = (m.accounts.kinds.iter())
+                .filter(|(k, _)| *k != "126")
+                .map(|(_, a)| a.converted)
+                .sum();
+            assert_eq!(faces, m.surfaces.len(), "converted IGES faces and surfaces");
             check(m)
         }
         Err(e) => assert!(!e.reason.is_empty()),
