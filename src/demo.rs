@@ -140,6 +140,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         source_entities: Default::default(),
         brep: None,
         warnings: vec![],
+        accounts: Default::default(),
     };
     let curve_path = out_dir.join("demo-exact-curve.json");
     crate::io::write_atomic(&curve_path, json::to_string(&curve_model))

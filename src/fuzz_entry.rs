@@ -124,9 +124,19 @@ pub fn curve_on_surface(data: &[u8]) {
 
 /// STEP, IGES and STL readers: any bytes give a model or a located error, never a panic;
 /// everything an accepted model holds is finite (knots, spans, control points, weights,
-/// `w·p`, vertices) and its surfaces evaluate to points that are not NaN.
+/// `w·p`, vertices) and its surfaces evaluate to points that are not NaN; its accounts
+/// balance (per kind, read = converted + used + unsupported + invalid) and the converted
+/// free curves are the model's curves (STEP `B_SPLINE_CURVE_WITH_KNOTS`, IGES 126), the
+/// converted IGES faces and surfaces its surfaces.
 pub fn readers(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
+    let accounted = |m: &crate::model::Model, curve_kind: &str| {
+        if let Err(e) = m.accounts.check() {
+            panic!("a reader's accounts do not balance: {e}");
+        }
+        let converted = m.accounts.kinds.get(curve_kind).map_or(0, |a| a.converted);
+        assert_eq!(converted, m.curves.len(), "converted {curve_kind} curves");
+    };
     let check = |m: crate::model::Model| {
         if let Err(e) = m.validate() {
             panic!("a reader accepted geometry that is not finite: {e}");
@@ -138,15 +148,29 @@ pub fn readers(data: &[u8]) {
         }
     };
     match crate::io::step::from_str(&text, "fuzz.step") {
-        Ok(m) => check(m),
+        Ok(m) => {
+            accounted(&m, "B_SPLINE_CURVE_WITH_KNOTS");
+            check(m)
+        }
         Err(e) => assert!(!e.reason.is_empty()),
     }
     match crate::io::iges::from_str(&text, "fuzz.igs") {
-        Ok(m) => check(m),
+        Ok(m) => {
+            accounted(&m, "126");
+            let faces: usize = (m.accounts.kinds.iter())
+                .filter(|(k, _)| *k != "126")
+                .map(|(_, a)| a.converted)
+                .sum();
+            assert_eq!(faces, m.surfaces.len(), "converted IGES faces and surfaces");
+            check(m)
+        }
         Err(e) => assert!(!e.reason.is_empty()),
     }
     match crate::io::stl::from_bytes(data, "fuzz.stl") {
-        Ok(m) => check(m),
+        Ok(m) => {
+            assert!(m.accounts.is_empty(), "an STL model has no entity accounts");
+            check(m)
+        }
         Err(e) => assert!(!e.reason.is_empty()),
     }
 }

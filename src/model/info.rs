@@ -62,6 +62,9 @@ pub struct ModelInfo {
     pub topology_report: Option<crate::brep::BrepReport>,
     /// Trimmed area of each B-rep face (filled by callers that triangulate the faces).
     pub face_areas: Vec<FaceArea>,
+    /// What the reader did with each geometric entity, by source kind (empty for models not
+    /// read from STEP or IGES).
+    pub accounts: super::Accounting,
 }
 
 /// The trimmed area of one face, or why there is none.
@@ -174,6 +177,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
         topology: m.brep.as_ref().map(|b| b.counts()),
         topology_report: m.brep.as_ref().map(|b| b.report.clone()),
         face_areas: vec![],
+        accounts: m.accounts.clone(),
     }
 }
 
@@ -211,6 +215,9 @@ impl std::fmt::Display for ModelInfo {
                 shown.join(", "),
                 if top.len() > 12 { ", ..." } else { "" }
             )?;
+        }
+        for l in self.accounts.lines() {
+            writeln!(f, "  geometry entities: {l}")?;
         }
         if let Some(t) = &self.topology {
             write!(f, "{t}")?;

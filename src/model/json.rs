@@ -372,6 +372,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, ModelError> {
         source_entities: Default::default(),
         warnings: vec![],
         brep: None,
+        accounts: Default::default(),
     })
 }
 

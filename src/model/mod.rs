@@ -9,12 +9,14 @@
 /// a quadratic domain curve), native JSON.
 pub const YANG_TABLE2: &str = include_str!("../models/yang-table2.json");
 
+pub mod accounting;
 pub mod check;
 pub mod eval;
 pub mod info;
 pub mod json;
 
 use crate::spline::{NurbsCurve, NurbsSurface};
+pub use accounting::{Accounting, Outcome};
 pub use check::{MAX_COORDINATE, RangeError, list_ids};
 
 /// A curve in the parameter plane of a surface (`u, v`) or in space.
@@ -159,6 +161,9 @@ pub struct Model {
     pub warnings: Vec<String>,
     /// Faces, loops, edges, vertices, shells and solids, when the source has topology.
     pub brep: Option<crate::brep::Brep>,
+    /// What the reader did with each geometric entity of the source file, by kind (read,
+    /// converted, used, unsupported, invalid); empty for models not read from STEP or IGES.
+    pub accounts: accounting::Accounting,
 }
 
 /// Canonical short name of a length unit (`"m"`, `"mm"`, `"cm"`, `"km"`, `"um"`, `"inch"`,

@@ -5,14 +5,16 @@
 //! every surface no face references (untrimmed patch sets). Surfaces: rational B-spline (128),
 //! surface of revolution (120, full turn) and tabulated cylinder (122) converted exactly to
 //! NURBS; generatrices and directrices from 126, 110 (line) and 100 (arc). Unsupported
-//! entities are counted by type in the model's warnings, never dropped silently.
+//! entities are counted by type in the model's warnings, never dropped silently; every
+//! surface, face and curve entry has its outcome in the model's accounts (`account`).
 
+mod account;
 pub mod parse;
 pub mod write;
 mod write_brep;
 
 use crate::geom::Point;
-use crate::model::{Curve, CurveGeometry, Model, Surface, SurfaceKind, TrimLoop};
+use crate::model::{Curve, CurveGeometry, Model, Outcome, Surface, SurfaceKind, TrimLoop};
 use crate::spline::{NurbsCurve, NurbsSurface, construct};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -468,9 +470,15 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     }
     faces.sort();
     let mut skipped: BTreeMap<i64, usize> = BTreeMap::new();
+    // What became of each visited entry (the model's accounts).
+    let mut outcomes: BTreeMap<usize, Outcome> = BTreeMap::new();
     for (face, s) in faces {
         match r.surface(s)? {
             Some((nurbs, kind)) => {
+                outcomes.insert(face, Outcome::Converted);
+                if s != face {
+                    outcomes.entry(s).or_insert(Outcome::Used);
+                }
                 let (trim_loops, missing) = r.trims(face)?;
                 if missing > 0 {
                     warnings.push(format!("DE {face}: {missing} boundary(ies) without a parameter-space curve, not kept as trims"));
@@ -483,7 +491,16 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
                     ..Surface::new("", nurbs)
                 })
             }
-            None => *skipped.entry(e[&s].etype).or_insert(0) += 1,
+            None => {
+                *skipped.entry(e[&s].etype).or_insert(0) += 1;
+                let note = format!(
+                    "{} (surface DE {s}, type {})",
+                    account::NOT_CONVERTED,
+                    e[&s].etype
+                );
+                outcomes.insert(face, Outcome::Unsupported(note.clone()));
+                outcomes.entry(s).or_insert(Outcome::Unsupported(note));
+            }
         }
     }
     for (de, x) in &e {
@@ -495,6 +512,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
                 name: format!("DE {de}"),
                 geometry: CurveGeometry::Space(c),
             });
+            outcomes.insert(*de, Outcome::Converted);
         }
     }
     let known = [
@@ -515,6 +533,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     for (t, n) in other {
         warnings.push(format!("{n} entit(ies) of type {t} not supported, skipped"));
     }
+    model.accounts = account::account(&e, &outcomes);
     warnings.extend(model.degeneracy_warnings());
     model.warnings = warnings;
     for x in e.values() {

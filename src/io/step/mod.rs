@@ -8,8 +8,10 @@
 //! set) contributes every surface instance that no other surface references. Analytic
 //! surfaces take their extent from the face's boundary points (planes: the bounding
 //! rectangle in the plane; cylinders and cones: the axial range, full turn); spheres and tori
-//! are full. Anything skipped is counted in the model's warnings.
+//! are full. Anything skipped is counted in the model's warnings, and every surface and
+//! B-spline curve instance has its outcome in the model's accounts (`account`).
 
+mod account;
 mod edge_curve;
 mod entities;
 pub mod part21;
@@ -22,7 +24,7 @@ pub mod write;
 pub(crate) mod write_pcurve;
 mod write_topology;
 
-use crate::model::{Curve, CurveGeometry, Model, Surface};
+use crate::model::{Curve, CurveGeometry, Model, Outcome, Surface};
 use part21::Entity;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -145,6 +147,8 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     // Surface entities of a bare patch set that this reader cannot convert: named, not
     // dropped silently.
     let mut skipped: BTreeMap<String, Vec<u64>> = BTreeMap::new();
+    // What became of each visited surface and curve instance (the model's accounts).
+    let mut outcomes: BTreeMap<u64, Outcome> = BTreeMap::new();
     if faces.is_empty() {
         for (id, e) in &p.entities {
             if let Some(t) = UNSUPPORTED_SURFACES.iter().find(|t| e.is(t))
@@ -152,6 +156,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
                 && !referenced.contains(id)
             {
                 skipped.entry(t.to_string()).or_default().push(*id);
+                outcomes.insert(*id, Outcome::Unsupported(account::NOT_CONVERTED.into()));
             }
         }
     }
@@ -165,6 +170,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
                 if let Some(f) = face {
                     surface_of.insert(f, model.surfaces.len());
                 }
+                outcomes.insert(sid, Outcome::Converted);
                 let reversed = face
                     .and_then(|f| p.entities.get(&f))
                     .and_then(|e| e.part("ADVANCED_FACE").or_else(|| e.part("FACE_SURFACE")))
@@ -184,7 +190,10 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
                 if let Some(f) = face {
                     unsupported_surface.insert(f, ty.clone());
                 }
-                skipped.entry(ty).or_default().push(face.unwrap_or(sid))
+                skipped.entry(ty).or_default().push(face.unwrap_or(sid));
+                outcomes
+                    .entry(sid)
+                    .or_insert_with(|| Outcome::Unsupported(account::NOT_CONVERTED.into()));
             }
         }
     }
@@ -208,13 +217,19 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     // that cannot be read is reported with its id and reason.
     let mut bad_curves = Vec::new();
     for (id, e) in &p.entities {
-        if e.is("B_SPLINE_CURVE_WITH_KNOTS") {
+        if e.is(account::CURVE) {
             match r.bspline_curve(*id, e) {
-                Ok(c) => model.curves.push(Curve {
-                    name: format!("#{id}"),
-                    geometry: CurveGeometry::Space(c),
-                }),
-                Err(e) => bad_curves.push(format!("{}: {}", e.location, e.reason)),
+                Ok(c) => {
+                    model.curves.push(Curve {
+                        name: format!("#{id}"),
+                        geometry: CurveGeometry::Space(c),
+                    });
+                    outcomes.insert(*id, Outcome::Converted);
+                }
+                Err(e) => {
+                    outcomes.insert(*id, Outcome::Invalid(e.reason.clone()));
+                    bad_curves.push(format!("{}: {}", e.location, e.reason))
+                }
             }
         }
     }
@@ -230,6 +245,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             .warnings
             .push(format!("invalid B-spline curve skipped: {b}"));
     }
+    model.accounts = account::account(&p, &outcomes);
     let degenerate = model.degeneracy_warnings();
     model.warnings.extend(degenerate);
     for e in p.entities.values() {
