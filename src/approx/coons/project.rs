@@ -8,7 +8,10 @@
 //! * Each segment `a–b` against the triangles: decided by exact `orient3d` signs (the
 //!   segment crosses the triangle's plane, and the line through `a`, `b` passes the three
 //!   edges on one side); segments in a triangle's plane are not hits. Of several hits the
-//!   one nearest `x` (`t` nearest ½) is kept.
+//!   one nearest `x` (`t` nearest ½) is kept. Where no triangle is hit, an edge within
+//!   rounding (1e-10 of the coordinates' scale) of the segment counts: a segment through an
+//!   edge exactly (the model's outer border) is otherwise decided by the rounding of the
+//!   edge's end points.
 //! * Eq. (8)/(9): the hit's barycentric coordinates give `(u, v)`; Newton on
 //!   `S(u, v) = a + t (b − a)` (with `(u, v)` clamped to the domain) then puts the point on
 //!   the exact surface (`y = S(u, v)`). Newton starts from the nearest hit, then from the
@@ -198,6 +201,46 @@ pub fn segment_triangle(
     Some((t, bary))
 }
 
+/// The closest points of segments `a b` and `p q`: their distance, the parameter along
+/// `a b` and the parameter along `p q` (clamped, Ericson's method).
+fn segment_segment(a: &[f64; 3], b: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> (f64, f64, f64) {
+    let (d1, d2, r) = (b.sub(a), q.sub(p), a.sub(p));
+    let (aa, ee, f) = (dot(&d1, &d1), dot(&d2, &d2), dot(&d2, &r));
+    let (mut s, mut t);
+    if aa <= 0.0 && ee <= 0.0 {
+        return (norm(&r), 0.0, 0.0);
+    }
+    if aa <= 0.0 {
+        s = 0.0;
+        t = (f / ee).clamp(0.0, 1.0);
+    } else {
+        let c = dot(&d1, &r);
+        if ee <= 0.0 {
+            t = 0.0;
+            s = (-c / aa).clamp(0.0, 1.0);
+        } else {
+            let bb = dot(&d1, &d2);
+            let den = aa * ee - bb * bb;
+            s = if den > 0.0 {
+                ((bb * f - c * ee) / den).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            t = (bb * s + f) / ee;
+            if t < 0.0 {
+                t = 0.0;
+                s = (-c / aa).clamp(0.0, 1.0);
+            } else if t > 1.0 {
+                t = 1.0;
+                s = ((bb - c) / aa).clamp(0.0, 1.0);
+            }
+        }
+    }
+    let x = a.lerp(b, &s);
+    let y = p.lerp(q, &t);
+    (norm(&x.sub(&y)), s, t)
+}
+
 /// Newton on `S(u, v) − (a + t (b − a)) = 0` from `(uv, t)`, `(u, v)` clamped to the
 /// domain; `None` when it does not converge to a point of the segment.
 pub fn refine(
@@ -280,6 +323,29 @@ fn project_one(model: &Model, mesh: &OriginalMesh, a: &[f64; 3], b: &[f64; 3]) -
             found.push((tt, ti, bary));
         }
     });
+    if found.is_empty() {
+        // A segment through a triangle edge exactly (the model's outer border, a patch
+        // border) is decided by the rounding of the edge's end points: take the edges within
+        // rounding of the segment as hits; Newton below must still put the point on the
+        // surface and on the segment.
+        let graze = 1e-10 * (norm(a) + norm(b) + norm(&b.sub(a))).max(1e-300);
+        let (glo, ghi) = (lo.map(|x: f64| x - graze), hi.map(|x: f64| x + graze));
+        mesh.bvh.query(&glo, &ghi, &mut |ti| {
+            let (t, _) = mesh.triangles[ti];
+            let v = t.map(|i| mesh.vertices[i as usize]);
+            for e in 0..3 {
+                let (p, q) = (&v[e], &v[(e + 1) % 3]);
+                let (d, s, w) = segment_segment(a, b, p, q);
+                if d <= graze {
+                    let mut bary = [0.0; 3];
+                    bary[e] = 1.0 - w;
+                    bary[(e + 1) % 3] = w;
+                    found.push((s, ti, bary));
+                    break;
+                }
+            }
+        });
+    }
     found.sort_by(|x, y| {
         (x.0 - 0.5)
             .abs()
