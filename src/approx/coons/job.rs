@@ -37,13 +37,104 @@ impl JobError {
     }
 }
 
-/// Optional outputs.
+/// Optional outputs (of `coons` and of `approximate`).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Outputs<'a> {
-    /// The approximant (`.igs`, `.step`, `.json`).
+    /// The approximant(s) (`.igs`, `.step`, `.json`).
     pub model: Option<&'a Path>,
     pub report: Option<&'a Path>,
     pub vtk: Option<&'a Path>,
+}
+
+/// An output that cannot be written: its path, why, and whether its type is the fault.
+pub(super) struct OutputFault {
+    pub path: String,
+    pub why: String,
+    pub unknown_type: bool,
+}
+
+impl OutputFault {
+    fn write(path: &Path, why: impl std::fmt::Display) -> Self {
+        OutputFault {
+            path: path.display().to_string(),
+            why: why.to_string(),
+            unknown_type: false,
+        }
+    }
+}
+
+impl From<OutputFault> for JobError {
+    fn from(f: OutputFault) -> Self {
+        if f.unknown_type {
+            JobError::Output(f.path, f.why)
+        } else {
+            JobError::Write(f.path, f.why)
+        }
+    }
+}
+
+impl Outputs<'_> {
+    /// Before the work: every output writable, the surfaces' file of a type that holds them.
+    pub(super) fn check(&self) -> Result<(), OutputFault> {
+        for p in [self.model, self.report, self.vtk].into_iter().flatten() {
+            crate::io::check_writable(p).map_err(|e| OutputFault::write(p, e))?;
+        }
+        use crate::io::Format;
+        if let Some(p) = self.model
+            && !matches!(
+                crate::io::format_of(p),
+                Some(Format::Iges | Format::Step | Format::Json)
+            )
+        {
+            return Err(OutputFault {
+                path: p.display().to_string(),
+                why: "unknown output type (expected .igs/.iges, .step/.stp, .json)".into(),
+                unknown_type: true,
+            });
+        }
+        Ok(())
+    }
+
+    /// Write `surfaces` (in `unit`) to the model output, if any; the writer's notes.
+    pub(super) fn write_surfaces(
+        &self,
+        unit: Option<String>,
+        surfaces: Vec<Surface>,
+    ) -> Result<Vec<String>, OutputFault> {
+        let Some(p) = self.model else {
+            return Ok(vec![]);
+        };
+        let m = Model {
+            unit,
+            surfaces,
+            ..Default::default()
+        };
+        crate::io::write_model(p, &m).map_err(|e| match e {
+            crate::io::WriteError::Io(f, e) => OutputFault {
+                path: f,
+                why: e.to_string(),
+                unknown_type: false,
+            },
+            e => OutputFault::write(p, e),
+        })
+    }
+
+    /// Write the VTK view, if asked for (`view` makes it).
+    pub(super) fn write_vtk(&self, view: impl FnOnce() -> String) -> Result<(), OutputFault> {
+        match self.vtk {
+            Some(p) => crate::io::write_atomic(p, view()).map_err(|e| OutputFault::write(p, e)),
+            None => Ok(()),
+        }
+    }
+
+    /// Write the JSON report, if asked for.
+    pub(super) fn write_report<T: serde::Serialize>(&self, r: &T) -> Result<(), OutputFault> {
+        let Some(p) = self.report else {
+            return Ok(());
+        };
+        let text = crate::io::json_text::to_text(r).map_err(|e| OutputFault::write(p, e))?;
+        crate::io::write_atomic(p, text).map_err(|e| OutputFault::write(p, e))
+    }
 }
 
 /// The job's report.
@@ -59,11 +150,6 @@ pub struct JobReport {
     pub warnings: Vec<String>,
 }
 
-fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), JobError> {
-    crate::io::write_atomic(path, text)
-        .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
-}
-
 /// Run the job.
 pub fn run(
     model_path: &Path,
@@ -72,22 +158,7 @@ pub fn run(
     out: Outputs,
 ) -> Result<JobReport, JobError> {
     params.validate().map_err(JobError::Coons)?;
-    for p in [out.model, out.report, out.vtk].into_iter().flatten() {
-        crate::io::check_writable(p)
-            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
-    }
-    use crate::io::Format;
-    if let Some(p) = out.model
-        && !matches!(
-            crate::io::format_of(p),
-            Some(Format::Iges | Format::Step | Format::Json)
-        )
-    {
-        return Err(JobError::Output(
-            p.display().to_string(),
-            "unknown output type (expected .igs/.iges, .step/.stp, .json)".into(),
-        ));
-    }
+    out.check()?;
     let bfile = boundary_path.display().to_string();
     let text = std::fs::read_to_string(boundary_path)
         .map_err(|e| JobError::ReadBoundary(bfile.clone(), e.to_string()))?;
@@ -108,21 +179,11 @@ pub fn run(
         })?;
     let mut warnings = model.warnings.clone();
     warnings.extend(ap.report.warnings.iter().cloned());
-    if let Some(p) = out.model {
-        let m = Model {
-            unit: model.unit.clone(),
-            surfaces: vec![Surface::new("coons approximant", ap.surface.clone())],
-            ..Default::default()
-        };
-        let w = crate::io::write_model(p, &m).map_err(|e| match e {
-            crate::io::WriteError::Io(f, e) => JobError::Write(f, e.to_string()),
-            e => JobError::Write(p.display().to_string(), e.to_string()),
-        })?;
-        warnings.extend(w);
-    }
-    if let Some(p) = out.vtk {
-        write(p, view(&ap))?;
-    }
+    warnings.extend(out.write_surfaces(
+        model.unit.clone(),
+        vec![Surface::new("coons approximant", ap.surface.clone())],
+    )?);
+    out.write_vtk(|| view(&ap))?;
     let report = JobReport {
         file: model_path.display().to_string(),
         boundary: bfile,
@@ -135,11 +196,7 @@ pub fn run(
         approximant: ap.report,
         warnings,
     };
-    if let Some(p) = out.report {
-        let text = crate::io::json_text::to_text(&report)
-            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
-        write(p, text)?;
-    }
+    out.write_report(&report)?;
     Ok(report)
 }
 

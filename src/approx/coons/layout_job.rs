@@ -40,13 +40,16 @@ impl ApproximateError {
     }
 }
 
-/// Optional outputs.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Outputs<'a> {
-    /// All approximants (`.igs`, `.step`, `.json`).
-    pub model: Option<&'a Path>,
-    pub report: Option<&'a Path>,
-    pub vtk: Option<&'a Path>,
+pub use super::job::Outputs;
+
+impl From<super::job::OutputFault> for ApproximateError {
+    fn from(f: super::job::OutputFault) -> Self {
+        if f.unknown_type {
+            ApproximateError::Output(f.path, f.why)
+        } else {
+            ApproximateError::Write(f.path, f.why)
+        }
+    }
 }
 
 /// One approximant in the report.
@@ -124,11 +127,6 @@ pub fn approximate_layout(
     })
 }
 
-fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), ApproximateError> {
-    crate::io::write_atomic(path, text)
-        .map_err(|e| ApproximateError::Write(path.display().to_string(), e.to_string()))
-}
-
 /// Run the job.
 pub fn run(
     model_path: &Path,
@@ -137,22 +135,7 @@ pub fn run(
     out: Outputs,
 ) -> Result<Joined, ApproximateError> {
     params.validate().map_err(ApproximateError::Params)?;
-    for p in [out.model, out.report, out.vtk].into_iter().flatten() {
-        crate::io::check_writable(p)
-            .map_err(|e| ApproximateError::Write(p.display().to_string(), e.to_string()))?;
-    }
-    use crate::io::Format;
-    if let Some(p) = out.model
-        && !matches!(
-            crate::io::format_of(p),
-            Some(Format::Iges | Format::Step | Format::Json)
-        )
-    {
-        return Err(ApproximateError::Output(
-            p.display().to_string(),
-            "unknown output type (expected .igs/.iges, .step/.stp, .json)".into(),
-        ));
-    }
+    out.check()?;
     let lfile = layout_path.display().to_string();
     let text = std::fs::read_to_string(layout_path)
         .map_err(|e| ApproximateError::ReadLayout(lfile.clone(), e.to_string()))?;
@@ -177,25 +160,16 @@ pub fn run(
     for ap in &aps {
         warnings.extend(ap.report.warnings.iter().cloned());
     }
-    if let Some(p) = out.model {
-        let m = Model {
-            unit: model.unit.clone(),
-            surfaces: aps
-                .iter()
+    warnings.extend(
+        out.write_surfaces(
+            model.unit.clone(),
+            aps.iter()
                 .enumerate()
                 .map(|(a, ap)| Surface::new(layout.name(a), ap.surface.clone()))
                 .collect(),
-            ..Default::default()
-        };
-        let w = crate::io::write_model(p, &m).map_err(|e| match e {
-            crate::io::WriteError::Io(f, e) => ApproximateError::Write(f, e.to_string()),
-            e => ApproximateError::Write(p.display().to_string(), e.to_string()),
-        })?;
-        warnings.extend(w);
-    }
-    if let Some(p) = out.vtk {
-        write(p, view(&aps))?;
-    }
+        )?,
+    );
+    out.write_vtk(|| view(&aps))?;
     let entries: Vec<Entry> = aps
         .iter()
         .enumerate()
@@ -222,11 +196,7 @@ pub fn run(
         warnings,
         seconds: t0.elapsed().as_secs_f64(),
     };
-    if let Some(p) = out.report {
-        let text = crate::io::json_text::to_text(&report)
-            .map_err(|e| ApproximateError::Write(p.display().to_string(), e.to_string()))?;
-        write(p, text)?;
-    }
+    out.write_report(&report)?;
     Ok(Joined {
         approximants: aps,
         report,
