@@ -12,24 +12,8 @@ pub struct ApproximateArgs {
     /// by curve id (docs/coons.md, "Many approximants").
     #[arg(long)]
     pub layout: PathBuf,
-    /// Largest deviation accepted at the error samples (model units).
-    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
-    pub tol: f64,
-    /// Initial resolution M of every approximant (unless the layout gives one).
-    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
-    pub m: i64,
-    /// Initial resolution N of every approximant (unless the layout gives one).
-    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
-    pub n: i64,
-    /// Largest M and N the refinement may reach.
-    #[arg(long, default_value_t = 128, allow_hyphen_values = true)]
-    pub max_resolution: i64,
-    /// How far apart consecutive boundary curves' ends may be (default: tol).
-    #[arg(long, allow_hyphen_values = true)]
-    pub closure: Option<f64>,
-    /// K: known projections per artificial projection.
-    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
-    pub k: i64,
+    #[command(flatten)]
+    pub params: super::coons::ParamArgs,
     /// All approximants in one file (format from the extension: .igs, .step, .json).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -48,33 +32,9 @@ pub struct ApproximateArgs {
 /// Run the command; returns the exit code (0 all within tol, 3 some not, 2 bad input, 1
 /// failure).
 pub fn run(a: ApproximateArgs) -> i32 {
-    let count = |name: &str, v: i64| -> Result<usize, String> {
-        if (1..=1024).contains(&v) {
-            Ok(v as usize)
-        } else {
-            Err(format!("--{name} {v}: must lie in 1..=1024"))
-        }
-    };
-    let parsed = (|| {
-        Ok::<_, String>((
-            count("m", a.m)?,
-            count("n", a.n)?,
-            count("max-resolution", a.max_resolution)?,
-            count("k", a.k)?,
-        ))
-    })();
-    let (m, n, max_resolution, k) = match parsed {
-        Ok(v) => v,
+    let params = match a.params.params() {
+        Ok(p) => p,
         Err(e) => return super::bad(e),
-    };
-    let params = crate::approx::coons::Params {
-        tol: a.tol,
-        m,
-        n,
-        max_resolution,
-        closure: a.closure,
-        k_nearest: k,
-        ..Default::default()
     };
     let outputs = crate::approx::coons::layout_job::Outputs {
         model: a.out.as_deref(),

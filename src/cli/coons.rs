@@ -2,6 +2,48 @@
 
 use std::path::PathBuf;
 
+/// The approximant's parameters, shared by `coons` and `approximate`.
+#[derive(clap::Args, Debug)]
+pub struct ParamArgs {
+    /// Largest deviation accepted at the error samples (model units).
+    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
+    pub tol: f64,
+    /// Initial resolution M (for `approximate`: of every approximant the layout gives none).
+    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
+    pub m: i64,
+    /// Initial resolution N (likewise).
+    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
+    pub n: i64,
+    /// Largest M and N the refinement may reach.
+    #[arg(long, default_value_t = 128, allow_hyphen_values = true)]
+    pub max_resolution: i64,
+    /// How far apart consecutive boundary curves' ends may be (default: tol).
+    #[arg(long, allow_hyphen_values = true)]
+    pub closure: Option<f64>,
+    /// K: known projections per artificial projection.
+    #[arg(long, default_value_t = 8, allow_hyphen_values = true)]
+    pub k: i64,
+}
+
+impl ParamArgs {
+    /// The library's parameters; counts must not be negative (the library checks the rest
+    /// and names what is wrong).
+    pub fn params(&self) -> Result<crate::approx::coons::Params, String> {
+        let count = |name: &str, v: i64| -> Result<usize, String> {
+            usize::try_from(v).map_err(|_| format!("--{name} {v}: must not be negative"))
+        };
+        Ok(crate::approx::coons::Params {
+            tol: self.tol,
+            m: count("m", self.m)?,
+            n: count("n", self.n)?,
+            max_resolution: count("max-resolution", self.max_resolution)?,
+            closure: self.closure,
+            k_nearest: count("k", self.k)?,
+            ..Default::default()
+        })
+    }
+}
+
 /// Arguments of `vericad coons`.
 #[derive(clap::Args, Debug)]
 pub struct CoonsArgs {
@@ -11,23 +53,8 @@ pub struct CoonsArgs {
     /// `{"polyline": [[x, y, z], ...]}` (docs/coons.md).
     #[arg(long)]
     pub boundary: PathBuf,
-    /// Largest deviation accepted at the error samples (model units).
-    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
-    pub tol: f64,
-    /// Initial resolution M × N.
-    #[arg(long, default_value_t = 8)]
-    pub m: usize,
-    #[arg(long, default_value_t = 8)]
-    pub n: usize,
-    /// Largest M and N the refinement may reach.
-    #[arg(long, default_value_t = 128)]
-    pub max_resolution: usize,
-    /// How far apart consecutive boundary curves' ends may be (default: tol).
-    #[arg(long, allow_hyphen_values = true)]
-    pub closure: Option<f64>,
-    /// K: known projections per artificial projection.
-    #[arg(long, default_value_t = 8)]
-    pub k: usize,
+    #[command(flatten)]
+    pub params: ParamArgs,
     /// The approximant (format from the extension: .igs, .step, .json).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -45,14 +72,9 @@ pub struct CoonsArgs {
 /// Run the command; returns the exit code (0 within tol, 3 not within tol or the maximum
 /// resolution reached, 2 bad input, 1 failure).
 pub fn run(a: CoonsArgs) -> i32 {
-    let params = crate::approx::coons::Params {
-        tol: a.tol,
-        m: a.m,
-        n: a.n,
-        max_resolution: a.max_resolution,
-        closure: a.closure,
-        k_nearest: a.k,
-        ..Default::default()
+    let params = match a.params.params() {
+        Ok(p) => p,
+        Err(e) => return super::bad(e),
     };
     let outputs = crate::approx::coons::job::Outputs {
         model: a.out.as_deref(),
