@@ -30,6 +30,42 @@ pub fn fitting_knots<S: Scalar>(t: &[S], p: usize, n_ctrl: usize) -> Vec<S> {
     k
 }
 
+/// The least-squares control points with the first and last fixed at the end data points:
+/// `rows[k]` holds the basis values `N_0..N_n` at interior datum `k + 1`; with
+/// `R_k = Q_k − N_0 Q_0 − N_n Q_m`, the normal equations `(NᵀN) P = Nᵀ R` give `P_1..P_{n−1}`.
+pub(crate) fn solve_fixed_ends<P: Point>(
+    rows: &[Vec<P::S>],
+    data: &[P],
+) -> Result<Vec<P>, SplineError> {
+    let m = data.len();
+    let n = rows.first().map_or(1, |r| r.len() - 1);
+    let (q0, qm) = (data[0].clone(), data[m - 1].clone());
+    let r: Vec<P> = rows
+        .iter()
+        .zip(&data[1..m - 1])
+        .map(|(row, qk)| qk.sub(&q0.scale(&row[0])).sub(&qm.scale(&row[n])))
+        .collect();
+    let k = n - 1;
+    let mut a = vec![vec![P::S::zero(); k]; k];
+    let mut b = vec![P::origin(); k];
+    for (row, rk) in rows.iter().zip(&r) {
+        for i in 0..k {
+            if row[i + 1].is_zero() {
+                continue;
+            }
+            b[i] = b[i].add(&rk.scale(&row[i + 1]));
+            for j in 0..k {
+                a[i][j] = a[i][j].clone() + row[i + 1].clone() * row[j + 1].clone();
+            }
+        }
+    }
+    let inner = solve(a, b)?;
+    let mut control = vec![q0];
+    control.extend(inner);
+    control.push(qm);
+    Ok(control)
+}
+
 /// Degree-`p` least-squares fit with `n_ctrl` control points through the first and last
 /// data point, at parameters `t` (increasing, from 0 to 1).
 pub fn fit_least_squares<P: Point>(
@@ -71,30 +107,7 @@ pub fn fit_least_squares<P: Point>(
             row
         })
         .collect();
-    // R_k = Q_k - N_0 Q_0 - N_n Q_m; normal equations (NᵀN) P = Nᵀ R, unknowns P_1..P_{n-1}.
-    let r: Vec<P> = rows
-        .iter()
-        .zip(&data[1..m - 1])
-        .map(|(row, qk)| qk.sub(&q0.scale(&row[0])).sub(&qm.scale(&row[n])))
-        .collect();
-    let k = n - 1;
-    let mut a = vec![vec![P::S::zero(); k]; k];
-    let mut b = vec![P::origin(); k];
-    for (row, rk) in rows.iter().zip(&r) {
-        for i in 0..k {
-            if row[i + 1].is_zero() {
-                continue;
-            }
-            b[i] = b[i].add(&rk.scale(&row[i + 1]));
-            for j in 0..k {
-                a[i][j] = a[i][j].clone() + row[i + 1].clone() * row[j + 1].clone();
-            }
-        }
-    }
-    let inner = solve(a, b)?;
-    let mut control = vec![q0];
-    control.extend(inner);
-    control.push(qm);
+    let control = solve_fixed_ends(&rows, data)?;
     Ok(BSplineCurve { knots: kv, control })
 }
 

@@ -6,7 +6,6 @@ use super::SplineError;
 use super::basis::basis_funs;
 use super::bspline_curve::BSplineCurve;
 use super::knots::KnotVector;
-use super::linalg::solve;
 use crate::geom::Point;
 use crate::scalar::Scalar;
 
@@ -60,7 +59,6 @@ pub fn fit_rational_with_knots<P: Point>(
             control: vec![q0, qm],
         });
     }
-    let n = n_ctrl - 1;
     let rows: Vec<Vec<P::S>> = t[1..m - 1]
         .iter()
         .map(|tk| {
@@ -82,29 +80,7 @@ pub fn fit_rational_with_knots<P: Point>(
             row
         })
         .collect();
-    let r: Vec<P> = rows
-        .iter()
-        .zip(&data[1..m - 1])
-        .map(|(row, qk)| qk.sub(&q0.scale(&row[0])).sub(&qm.scale(&row[n])))
-        .collect();
-    let k = n - 1;
-    let mut a = vec![vec![P::S::zero(); k]; k];
-    let mut b = vec![P::origin(); k];
-    for (row, rk) in rows.iter().zip(&r) {
-        for i in 0..k {
-            if row[i + 1].is_zero() {
-                continue;
-            }
-            b[i] = b[i].add(&rk.scale(&row[i + 1]));
-            for j in 0..k {
-                a[i][j] = a[i][j].clone() + row[i + 1].clone() * row[j + 1].clone();
-            }
-        }
-    }
-    let inner = solve(a, b)?;
-    let mut control = vec![q0];
-    control.extend(inner);
-    control.push(qm);
+    let control = super::fit::solve_fixed_ends(&rows, data)?;
     Ok(BSplineCurve {
         knots: kv.clone(),
         control,
