@@ -46,6 +46,8 @@ pub enum IssueKind {
     SeveralOuterBounds { count: usize },
     #[error("curve of type {0} is not supported; the edge has no 3D curve")]
     UnsupportedCurve(String),
+    #[error("parameter-space curve of type {0} is not supported; the edge keeps its 3D curve")]
+    UnsupportedPCurve(String),
     #[error("surface of type {0} is not supported; the face has no surface")]
     UnsupportedSurface(String),
     #[error("references nest deeper than {0} levels (a cycle?)")]

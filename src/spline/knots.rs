@@ -122,6 +122,19 @@ impl<S: Scalar> KnotVector<S> {
                 hi: n_ctrl,
             });
         }
+        // End knots of multiplicity `degree` at the domain's ends with one more knot beyond
+        // (`t_0 < t_1 = … = t_p`, as systems that store closed surfaces periodically write
+        // them): the outermost knot does not enter any basis function on the domain (in the
+        // recurrence it only multiplies `N_{0,p-1}`, which vanishes on `[t_p, t_n]`), so it
+        // is set to the domain end — the same spline, clamped.
+        let mut knots = knots;
+        let last = knots.len() - 1;
+        if degree >= 2 && knots[1..=degree].iter().all(|t| *t == knots[degree]) {
+            knots[0] = knots[degree].clone();
+        }
+        if degree >= 2 && knots[n_ctrl..last].iter().all(|t| *t == knots[n_ctrl]) {
+            knots[last] = knots[n_ctrl].clone();
+        }
         Ok(KnotVector { knots, degree })
     }
 

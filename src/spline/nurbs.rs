@@ -168,6 +168,40 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
             .map(|h| (project(h), h.w.clone()))
             .unzip()
     }
+    /// `self` followed by `next` (same degree, both clamped), one curve on `self`'s domain
+    /// extended by `next`'s length, C0 at the joint (a knot of multiplicity p). `next`'s
+    /// homogeneous points are scaled so that its first weight equals `self`'s last (the same
+    /// curve), and its first point is replaced by `self`'s last: the caller asserts the two
+    /// ends meet (for a closed curve cut in two and put back the other way round, they are
+    /// the curve's own end points); the result's point there is `self`'s end.
+    pub fn joined(&self, next: &Self) -> Result<Self, SplineError> {
+        let p = self.hom.degree();
+        if next.hom.degree() != p {
+            return Err(SplineError::Invalid(format!(
+                "joining curves of degrees {p} and {}",
+                next.hom.degree()
+            )));
+        }
+        let (_, e1) = self.hom.domain();
+        let (s2, _) = next.hom.domain();
+        let (Some(last), Some(first)) = (self.hom.control.last(), next.hom.control.first()) else {
+            return Err(SplineError::Invalid("joining an empty curve".into()));
+        };
+        let scale = last.w.clone() / first.w.clone();
+        let k1 = self.hom.knots.knots();
+        let k2 = next.hom.knots.knots();
+        let mut knots: Vec<S> = k1[..k1.len() - 1].to_vec();
+        knots.extend(
+            k2[p + 1..]
+                .iter()
+                .map(|t| t.clone() - s2.clone() + e1.clone()),
+        );
+        let mut control = self.hom.control.clone();
+        control.extend(next.hom.control[1..].iter().map(|h| h.scale(&scale)));
+        Ok(NurbsCurve {
+            hom: BSplineCurve::new(knots, p, control)?,
+        })
+    }
 }
 
 impl<S: Scalar, const D: usize> NurbsSurface<S, D> {

@@ -36,8 +36,19 @@ pub fn descend(
         let r = sub(&p, x);
         let (a, b, c) = (dot(&su, &su), dot(&su, &sv), dot(&sv, &sv));
         let (g0, g1) = (dot(&r, &su), dot(&r, &sv));
-        let det = a * c - b * b;
-        if det.is_nan() || det == 0.0 {
+        // At a pole (a degenerate border) one derivative vanishes and the normal equations
+        // are singular: a Levenberg–Marquardt shift moves along the other direction.
+        let mut det = a * c - b * b;
+        let lm = if det > 1e-12 * a * c {
+            0.0
+        } else {
+            1e-6 * (a + c)
+        };
+        let (a, c) = (a + lm, c + lm);
+        if lm > 0.0 {
+            det = a * c - b * b;
+        }
+        if det.is_nan() || det <= 0.0 {
             break;
         }
         let step = [-(c * g0 - b * g1) / det, -(a * g1 - b * g0) / det];
@@ -62,8 +73,9 @@ pub fn descend(
     (uv, e)
 }
 
-/// Parameters of (a local) closest point of `s` to `x`: the best of several grid starts,
-/// each refined by damped Gauss–Newton.
+/// Parameters of (a local) closest point of `s` to `x`: the best of four grid starts at
+/// distinct distances from `x` (so not four copies of one pole), each refined by damped
+/// Gauss–Newton.
 pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
     let (u0, u1, v0, v1) = s.hom.domain();
     let d = [u0, u1, v0, v1];
@@ -80,9 +92,18 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
         }
     }
     starts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    starts
+    // Four starts at distinct points (a pole row is one point many times).
+    let mut chosen: Vec<(f64, [f64; 2])> = Vec::with_capacity(4);
+    for st in &starts {
+        if chosen.len() == 4 {
+            break;
+        }
+        if chosen.iter().all(|c| c.0 != st.0) {
+            chosen.push(*st);
+        }
+    }
+    chosen
         .iter()
-        .take(4)
         .map(|(_, uv)| descend(s, x, *uv, &d))
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map_or([d[0], d[2]], |r| r.0)

@@ -180,8 +180,32 @@ pub fn ring(
                 jumps.push((i, -(left.signum() as f64) * per));
                 left -= left.signum();
             }
-            raw = saved;
+            let continuous = std::mem::replace(&mut raw, saved);
             winding[d] = unwrap(&mut raw, &jumps).0;
+            // A loop through a pole where `d` is free can close through the pole line
+            // instead: a cap bounded by a seam traversed up and back and a circle between
+            // the traversals needs no jump (the circle already puts the copies a period
+            // apart), while one whose traversals meet at the pole does. Of the two, the
+            // jumps that lay the seam's copies on top of each other give a polygon of no
+            // area: the larger one is kept.
+            if raw.iter().any(|r| r.2 == Some(d)) {
+                let area = |r: &[(usize, [f64; 2], Option<usize>)]| {
+                    let q: Vec<[f64; 2]> =
+                        r.iter().filter(|x| x.2.is_none()).map(|x| x.1).collect();
+                    let n = q.len();
+                    (0..n)
+                        .map(|i| {
+                            let (a, b) = (q[i], q[(i + 1) % n]);
+                            a[0] * b[1] - a[1] * b[0]
+                        })
+                        .sum::<f64>()
+                        .abs()
+                };
+                if area(&continuous) > area(&raw) {
+                    raw = continuous;
+                    winding[d] = 0;
+                }
+            }
         }
     }
     // Middle points, projected near their segment and unwrapped next to its start.

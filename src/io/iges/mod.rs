@@ -9,7 +9,9 @@
 //! surface, face and curve entry has its outcome in the model's accounts (`account`).
 
 mod account;
+mod analytic;
 pub mod parse;
+mod topology;
 pub mod write;
 mod write_brep;
 
@@ -382,7 +384,17 @@ impl Reader<'_> {
         }
         Ok((loops, missing))
     }
-    fn surface(&self, de: usize) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
+    /// The NURBS form of surface entity `de`; `face`: the face using it (unbounded analytic
+    /// surfaces span its points).
+    fn surface(&self, de: usize, face: usize) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
+        if analytic::ANALYTIC.contains(&self.e[&de].etype) {
+            let pts = if face != de && self.e[&face].etype == 510 {
+                self.face_points(face)
+            } else {
+                vec![]
+            };
+            return self.analytic(de, &pts);
+        }
         match self.e[&de].etype {
             128 => Ok(Some((self.b128(de)?, SurfaceKind::BSpline))),
             120 => {
@@ -433,11 +445,11 @@ impl Reader<'_> {
     }
 }
 
-const SURFACES: [i64; 3] = [128, 120, 122];
+const SURFACES: [i64; 8] = [128, 120, 122, 190, 192, 194, 196, 198];
 
 /// Read IGES text.
 pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
-    let (e, unit, mut warnings) = parse(text, file)?;
+    let (e, unit, resolution, mut warnings) = parse(text, file)?;
     let r = Reader {
         e: &e,
         file,
@@ -472,14 +484,24 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     let mut skipped: BTreeMap<i64, usize> = BTreeMap::new();
     // What became of each visited entry (the model's accounts).
     let mut outcomes: BTreeMap<usize, Outcome> = BTreeMap::new();
+    // Model surface index of each face DE (the B-rep's faces refer to them).
+    let mut surface_of: BTreeMap<usize, usize> = BTreeMap::new();
     for (face, s) in faces {
-        match r.surface(s)? {
+        match r.surface(s, face)? {
             Some((nurbs, kind)) => {
                 outcomes.insert(face, Outcome::Converted);
                 if s != face {
                     outcomes.entry(s).or_insert(Outcome::Used);
                 }
-                let (trim_loops, missing) = r.trims(face)?;
+                // Parameter-space curves are in IGES's parametrization of the surface, which
+                // is the NURBS form's only for B-spline surfaces and those built from curves.
+                let (trim_loops, missing) =
+                    if kind.is_analytic() && analytic::ANALYTIC.contains(&e[&s].etype) {
+                        (vec![], 0)
+                    } else {
+                        r.trims(face)?
+                    };
+                surface_of.insert(face, model.surfaces.len());
                 if missing > 0 {
                     warnings.push(format!("DE {face}: {missing} boundary(ies) without a parameter-space curve, not kept as trims"));
                 }
@@ -516,8 +538,8 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
         }
     }
     let known = [
-        100, 102, 104, 106, 110, 116, 120, 122, 124, 126, 128, 141, 142, 143, 144, 186, 212, 314,
-        402, 406, 502, 504, 508, 510, 514,
+        100, 102, 104, 106, 110, 116, 120, 122, 123, 124, 126, 128, 141, 142, 143, 144, 186, 190,
+        192, 194, 196, 198, 212, 314, 402, 406, 502, 504, 508, 510, 514,
     ];
     let mut other: BTreeMap<i64, usize> = BTreeMap::new();
     for x in e.values() {
@@ -532,6 +554,25 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     }
     for (t, n) in other {
         warnings.push(format!("{n} entit(ies) of type {t} not supported, skipped"));
+    }
+    if e.values().any(|x| x.etype == 510) {
+        // The file's resolution, but at least 1e-9 times the diagonal of the control points'
+        // box (as for STEP's uncertainty).
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in model
+            .surfaces
+            .iter()
+            .flat_map(|s| s.nurbs.points_weights().0)
+        {
+            for i in 0..3 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        let size = crate::geom::dist(&lo, &hi);
+        let size = if size.is_finite() { size } else { 0.0 };
+        let tolerance = resolution.unwrap_or(0.0).max(1e-9 * size);
+        model.brep = Some(topology::read(&r, &surface_of, tolerance));
     }
     model.accounts = account::account(&e, &outcomes);
     warnings.extend(model.degeneracy_warnings());

@@ -160,8 +160,14 @@ fn field(l: &str, k: usize) -> &str {
     l.get(k * 8..(k + 1) * 8).unwrap_or("").trim()
 }
 
-/// Directory entries by DE number, the unit, and header warnings.
-pub type Parsed = (BTreeMap<usize, Entry>, Option<String>, Vec<String>);
+/// Directory entries by DE number, the unit, the minimum user-intended resolution (Global
+/// parameter 19, in the model's unit, when positive and finite), and header warnings.
+pub type Parsed = (
+    BTreeMap<usize, Entry>,
+    Option<String>,
+    Option<f64>,
+    Vec<String>,
+);
 
 /// Parse an IGES file into directory entries (by DE number), the unit and header warnings.
 pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
@@ -182,8 +188,13 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
         (pd, rd)
     };
     let mut unit = None;
+    let mut resolution = None;
     match split_params(g, pd, rd) {
         Ok(gp) => {
+            resolution = gp
+                .get(18)
+                .and_then(|p| p.num())
+                .filter(|r| *r > 0.0 && r.is_finite());
             let flag = gp.get(13).and_then(|p| p.num());
             // Units flag (Global 14): 1 inch (the IGES default), 2 mm, 3 named in Global 15,
             // 4 ft, 5 mi, 6 m, 7 km, 8 mil, 9 micron, 10 cm, 11 microinch.
@@ -210,8 +221,9 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
                 Some(3) => name.or(Some("inch".into())),
                 Some(f) if by_flag(f).is_some() => by_flag(f).map(String::from),
                 f => {
+                    let f = f.map_or("missing".to_string(), |f| f.to_string());
                     warnings.push(format!(
-                        "units flag {f:?} is not valid; the IGES default (inch) is used"
+                        "units flag {f} is not valid; the IGES default (inch) is used"
                     ));
                     Some("inch".into())
                 }
@@ -267,5 +279,5 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
             },
         );
     }
-    Ok((out, unit, warnings))
+    Ok((out, unit, resolution, warnings))
 }

@@ -250,7 +250,8 @@ fn closest_parameter(c: &NurbsCurve<f64, 3>, p: &[f64; 3]) -> f64 {
 }
 
 /// The sub-curve of `c` from the point nearest `a` to the point nearest `b` (the whole curve
-/// when they are its ends, or when `a` and `b` coincide on a closed curve).
+/// when they are its ends; when `a` and `b` coincide on a closed curve, the whole curve
+/// started at their point).
 fn bspline_range(
     c: &NurbsCurve<f64, 3>,
     a: &[f64; 3],
@@ -271,7 +272,16 @@ fn bspline_range(
         <= 1e-9 * (1.0 + a.iter().map(|x| x.abs()).fold(0.0, f64::max));
     let (mut ta, mut tb) = (snap(closest_parameter(c, a)), snap(closest_parameter(c, b)));
     if closed && a == b {
-        return Ok(c.clone());
+        if ta == d0 || ta == d1 {
+            return Ok(c.clone());
+        }
+        // A closed edge whose vertex lies inside the curve's range (periodic curves written
+        // from another start point): the curve from the vertex round to the vertex.
+        let head = c.hom.sub_curve(&ta, &d1).map_err(|e| e.to_string())?;
+        let tail = c.hom.sub_curve(&d0, &ta).map_err(|e| e.to_string())?;
+        return NurbsCurve { hom: head }
+            .joined(&NurbsCurve { hom: tail })
+            .map_err(|e| e.to_string());
     }
     if closed && ta == d1 {
         ta = d0;
@@ -365,7 +375,7 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
         let ty = ce.name().to_string();
         return Err(CurveFault {
             id: cid,
-            kind: IssueKind::UnsupportedCurve(format!("{ty} (as a pcurve of #{id})")),
+            kind: IssueKind::UnsupportedPCurve(format!("{ty} (as a pcurve of #{id})")),
             ty,
             unsupported: true,
         });
