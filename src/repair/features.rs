@@ -4,7 +4,7 @@
 //! way) has its normal reversed first. User overrides add or remove feature edges by
 //! `(patch, edge)`.
 
-use super::edges::{arc_length_samples, closest_on_curve, edge_curve, edge_uv};
+use super::edges::{CurveFoot, arc_length_samples, edge_curve, edge_uv};
 use super::verify::VerifiedEdge;
 use crate::spline::NurbsSurface;
 use serde::{Deserialize, Serialize};
@@ -63,8 +63,9 @@ pub fn max_normal_angle(patches: &[NurbsSurface<f64, 3>], v: &VerifiedEdge, n: u
     let (sp, sq) = (&patches[c.p], &patches[c.q]);
     let (a, b) = (edge_curve(sp, c.ep), edge_curve(sq, c.eq));
     let mut worst = 0.0f64;
+    let foot = CurveFoot::new(&b);
     for (t, x) in arc_length_samples(&a, n) {
-        let (s, _, _) = closest_on_curve(&b, &x);
+        let (s, _, _) = foot.closest(&x);
         let (Some(np), Some(nq)) = (
             unit_normal(sp, edge_uv(sp, c.ep, t)),
             unit_normal(sq, edge_uv(sq, c.eq, s)),

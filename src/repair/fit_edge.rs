@@ -15,7 +15,7 @@
 //! (at the data points), not a bound between them.
 
 use super::classes::{KnotClass, Member, expand, member_runs, side};
-use super::edges::{arc_length_samples, closest_on_curve, edge_curve, edge_uv};
+use super::edges::{CurveFoot, arc_length_samples, edge_curve, edge_uv};
 use crate::geom::{Hom, dist};
 use crate::spline::elevate::{elevate_curve_to, refine_to};
 use crate::spline::fit_knots::fit_rational_with_knots;
@@ -75,8 +75,9 @@ fn midpoints(
     let mut data: Vec<(f64, [f64; 3])> = Vec::with_capacity(2 * n + 2);
     for ((a, ea, ma), (b, eb, mb)) in [((p, ep, mp), (q, eq, mq)), ((q, eq, mq), (p, ep, mp))] {
         let (ca, cb) = (edge_curve(a, ea), edge_curve(b, eb));
+        let foot = CurveFoot::new(&cb);
         for (t, x) in arc_length_samples(&ca, n) {
-            let (tb, y, _) = closest_on_curve(&cb, &x);
+            let (tb, y, _) = foot.closest(&x);
             let sa = oriented_param(a, ma.dir, ma.flipped, edge_uv(a, ea, t));
             let sb = oriented_param(b, mb.dir, mb.flipped, edge_uv(b, eb, tb));
             let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (x[k] + y[k]));

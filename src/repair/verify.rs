@@ -4,7 +4,7 @@
 //! their measured gap (Fig. 6). The gap is measured at samples: evidence, named so.
 
 use super::connectivity::Connection;
-use super::edges::{arc_length_samples, closest_on_curve, edge_curve};
+use super::edges::{CurveFoot, arc_length_samples, edge_curve};
 use crate::spline::NurbsSurface;
 use serde::Serialize;
 
@@ -27,9 +27,10 @@ pub fn edge_gap(
 ) -> f64 {
     let (a, b) = (edge_curve(p, ep), edge_curve(q, eq));
     let one_way = |x: &crate::spline::NurbsCurve<f64, 3>, y: &crate::spline::NurbsCurve<f64, 3>| {
+        let foot = CurveFoot::new(y);
         arc_length_samples(x, n)
             .iter()
-            .map(|(_, pt)| closest_on_curve(y, pt).2)
+            .map(|(_, pt)| foot.closest(pt).2)
             .fold(0.0, f64::max)
     };
     one_way(&a, &b).max(one_way(&b, &a))
