@@ -1,0 +1,105 @@
+"""``vericad batch`` on a Dask cluster: one task per model, records gathered into one JSON-lines file.
+
+Each task calls :func:`vericad.batch_record_line`, the library's record of one model (the
+same code ``vericad batch`` runs per model), so every line has the format and the figures
+of ``vericad batch`` (only ``seconds`` differs run to run). Faults of a model (unreadable
+file, failed job, panic) are in its record. A task that fails outside the library (its
+worker died, the package is missing on the worker, ...) gets a ``failed`` record with
+``error.kind`` ``"worker"``; the other tasks go on. The driver appends each line as its task
+finishes and, like ``vericad batch``, skips models the output already has records for.
+
+Requires ``dask[distributed]``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+import uuid
+from typing import Any, Dict, Iterable, List, Optional
+
+from . import _vericad, discover, read_records
+
+__all__ = ["record_task", "run_batch"]
+
+
+def record_task(path: str, job: str, tol: float, time_limit: Optional[float]) -> str:
+    """The task run on a worker: one model's record line."""
+    return _vericad.batch_record_line(path, job, tol=tol, time_limit=time_limit)
+
+
+def _worker_failure(path: str, exc: BaseException) -> str:
+    rec = {
+        "path": path,
+        "status": "failed",
+        "seconds": 0.0,
+        "error": {"message": f"{type(exc).__name__}: {exc}", "kind": "worker"},
+    }
+    return json.dumps(rec, separators=(",", ":"))
+
+
+def run_batch(
+    inputs: Iterable["os.PathLike[str] | str"],
+    job: str = "info",
+    *,
+    out: "os.PathLike[str] | str",
+    client: Any = None,
+    tol: float = 1e-6,
+    time_limit: Optional[float] = None,
+) -> Dict[str, Any]:
+    """Run ``job`` (``info``, ``ssi`` or ``repair``) on every model of ``inputs`` (as
+    ``vericad batch`` finds them) on the Dask ``client`` (default: the current one), one
+    task per model, appending each record to ``out`` as it arrives.
+
+    Returns ``models`` (of this run, resumed included), ``resumed``, ``counts`` (by status)
+    and ``seconds`` (wall time of this run).
+    """
+    from distributed import as_completed, get_client
+
+    _vericad.batch_check(job, tol=tol, time_limit=time_limit)
+    if client is None:
+        client = get_client()
+    t0 = time.perf_counter()
+    models = discover(inputs)
+    out = os.fspath(out)
+    wanted = set(models)
+    done: List[Dict[str, Any]] = []
+    seen = set()
+    for r in read_records(out):
+        if r["path"] in wanted and r["path"] not in seen:
+            seen.add(r["path"])
+            done.append(r)
+    todo = [m for m in models if m not in seen]
+    counts: Dict[str, int] = {}
+    for r in done:
+        counts[r["status"]] = counts.get(r["status"], 0) + 1
+    run = uuid.uuid4().hex[:8]
+    futures = client.map(
+        record_task,
+        todo,
+        job=job,
+        tol=tol,
+        time_limit=time_limit,
+        key=[f"vericad-{job}-{run}-{k}" for k in range(len(todo))],
+        pure=False,
+    )
+    path_of = {f.key: p for f, p in zip(futures, todo)}
+    with open(out, "a", encoding="utf-8") as f:
+        for fut in as_completed(futures):
+            path = path_of[fut.key]
+            try:
+                line = fut.result()
+            except Exception as exc:  # the task failed outside the library
+                line = _worker_failure(path, exc)
+            status = json.loads(line)["status"]
+            counts[status] = counts.get(status, 0) + 1
+            f.write(line + "\n")
+            f.flush()
+            fut.release()
+    return {
+        "models": len(done) + len(todo),
+        "resumed": len(done),
+        "counts": counts,
+        "seconds": time.perf_counter() - t0,
+    }
