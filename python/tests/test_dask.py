@@ -1,0 +1,79 @@
+"""The batch on a Dask LocalCluster (2 worker processes) gives the records of `vericad batch`."""
+
+import json
+
+import pytest
+
+import vericad
+
+distributed = pytest.importorskip("distributed")
+from vericad.dask import _worker_failure, run_batch  # noqa: E402
+
+from conftest import MALFORMED, PUBLIC  # noqa: E402
+from test_batch import by_path, read_lines  # noqa: E402
+
+INPUTS = [str(PUBLIC), str(MALFORMED / "truncated.json"), str(PUBLIC / "no-such-model.step")]
+SSI_INPUTS = [
+    str(PUBLIC / n)
+    for n in ["gmsh-cube1000.igs", "gmsh-sphere_Rhino3D_default.igs", "occt-bad_header.igs"]
+] + [str(MALFORMED / "negative-weight.json")]
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    )
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+@pytest.mark.parametrize("job,inputs", [("info", INPUTS), ("repair", INPUTS), ("ssi", SSI_INPUTS)])
+def test_dask_batch_gives_the_records_of_vericad_batch(client, cli, tmp_path, job, inputs):
+    out = tmp_path / "dask.jsonl"
+    s = run_batch(inputs, job, out=out, client=client)
+    recs = read_lines(out)
+    assert s["models"] == len(recs) == len(vericad.discover(inputs)) and s["resumed"] == 0
+    ref_out = tmp_path / "cli.jsonl"
+    cli("batch", *inputs, "--job", job, "--out", ref_out, "--quiet")
+    assert by_path(recs) == by_path(read_lines(ref_out))
+    # The faulty models are isolated: their own records say why, the others finished.
+    unreadable = [r for r in recs if r.get("error", {}).get("kind") == "read"]
+    assert len(unreadable) == (2 if job != "ssi" else 1)
+    assert all(r["status"] == "bad_input" for r in unreadable)
+    assert sum(s["counts"].values()) == len(recs)
+    for status in ("ok", "uncertified", "bad_input", "failed", "panic"):
+        assert s["counts"].get(status, 0) == sum(r["status"] == status for r in recs)
+    assert s["counts"].get("ok", 0) > 0
+
+
+def test_dask_batch_resumes(client, tmp_path):
+    out = tmp_path / "dask.jsonl"
+    first = run_batch(INPUTS, "info", out=out, client=client)
+    text = out.read_text()
+    # Cut the last line short, as a killed run leaves it: only that model runs again.
+    lines = text.splitlines(keepends=True)
+    out.write_text("".join(lines[:-1]) + lines[-1][:10])
+    again = run_batch(INPUTS, "info", out=out, client=client)
+    assert again["resumed"] == first["models"] - 1 and again["models"] == first["models"]
+    assert by_path(read_lines(out)) == by_path([json.loads(x) for x in lines])
+    third = run_batch(INPUTS, "info", out=out, client=client)
+    assert third["resumed"] == first["models"]
+
+
+def test_a_failed_task_gets_a_record_vericad_batch_reads(tmp_path):
+    line = _worker_failure("m.step", RuntimeError("worker lost"))
+    out = tmp_path / "o.jsonl"
+    out.write_text(line + "\n")
+    (r,) = vericad.read_records(out)
+    assert r["status"] == "failed" and r["error"]["kind"] == "worker"
+    assert "worker lost" in r["error"]["message"]
+
+
+def test_dask_batch_bad_options(client, tmp_path):
+    with pytest.raises(vericad.BadInputError):
+        run_batch(INPUTS, "mesh", out=tmp_path / "o.jsonl", client=client)
+    with pytest.raises(vericad.BadInputError):
+        run_batch(INPUTS, "ssi", out=tmp_path / "o.jsonl", client=client, tol=float("nan"))
