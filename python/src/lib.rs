@@ -659,19 +659,31 @@ fn batch_check(job: &str, tol: f64, time_limit: Option<f64>) -> PyResult<()> {
 
 /// One model's batch record as the JSON line `vericad batch` writes (without the newline).
 /// Faults of the model (unreadable file, failed job, panic) are in the record, not raised.
+/// With `threads`, the job runs in a pool of that many threads (otherwise in rayon's global
+/// pool, one thread per core).
 #[pyfunction]
-#[pyo3(signature = (path, job="info", *, tol=1e-6, time_limit=None))]
+#[pyo3(signature = (path, job="info", *, tol=1e-6, time_limit=None, threads=None))]
 fn batch_record_line(
     py: Python<'_>,
     path: PathBuf,
     job: &str,
     tol: f64,
     time_limit: Option<f64>,
+    threads: Option<i64>,
 ) -> PyResult<String> {
     let job = batch_job(job, tol, time_limit)?;
+    let threads = threads_arg(threads)?;
     detached(py, || {
-        job.record(&path)
-            .to_line()
+        let record = || job.record(&path);
+        let r = match threads {
+            None => record(),
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| Fault::Computation(format!("thread pool: {e}")))?
+                .install(record),
+        };
+        r.to_line()
             .map_err(|e| Fault::Computation(format!("record: {e}")))
     })
 }

@@ -95,6 +95,15 @@ def test_batch_bad_options(kw, tmp_path):
         vericad.batch([str(PUBLIC)], job, out=tmp_path / "o.jsonl", **kw)
 
 
+def test_batch_record_in_its_own_pool_is_the_same():
+    p = PUBLIC / "gmsh-cube1000.igs"
+    a = strip_times(vericad.batch_record(p, "ssi"))
+    assert strip_times(vericad.batch_record(p, "ssi", threads=1)) == a
+    assert strip_times(vericad.batch_record(p, "ssi", threads=2)) == a
+    with pytest.raises(vericad.BadInputError, match="threads"):
+        vericad.batch_record(p, "ssi", threads=0)
+
+
 def test_batch_bad_arguments(tmp_path):
     with pytest.raises(vericad.BadInputError):
         vericad.batch([str(PUBLIC)], "info", out=tmp_path / "o.jsonl", shard="2/2")

@@ -77,3 +77,6 @@ def test_dask_batch_bad_options(client, tmp_path):
         run_batch(INPUTS, "mesh", out=tmp_path / "o.jsonl", client=client)
     with pytest.raises(vericad.BadInputError):
         run_batch(INPUTS, "ssi", out=tmp_path / "o.jsonl", client=client, tol=float("nan"))
+    with pytest.raises(vericad.BadInputError):
+        run_batch(INPUTS, "info", out=tmp_path / "o.jsonl", client=client, threads_per_task=0)
+    assert not (tmp_path / "o.jsonl").exists()

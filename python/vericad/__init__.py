@@ -373,11 +373,15 @@ def batch_record_line(
     *,
     tol: float = 1e-6,
     time_limit: Optional[float] = None,
+    threads: Optional[int] = None,
 ) -> str:
     """One model's record as the JSON line ``vericad batch --job JOB`` writes for it (without
     the newline). A fault of the model is in the record (``bad_input``, ``failed``,
-    ``panic``), never raised; bad options raise :class:`BadInputError`."""
-    return _vericad.batch_record_line(os.fspath(path), job, tol=tol, time_limit=time_limit)
+    ``panic``), never raised; bad options raise :class:`BadInputError`. ``threads``: the
+    job's thread pool (default: one thread per core)."""
+    return _vericad.batch_record_line(
+        os.fspath(path), job, tol=tol, time_limit=time_limit, threads=threads
+    )
 
 
 def batch_record(
@@ -386,9 +390,11 @@ def batch_record(
     *,
     tol: float = 1e-6,
     time_limit: Optional[float] = None,
+    threads: Optional[int] = None,
 ) -> Dict[str, Any]:
     """One model's batch record as a dict (see :func:`batch_record_line`)."""
-    rec: Dict[str, Any] = json.loads(batch_record_line(path, job, tol=tol, time_limit=time_limit))
+    line = batch_record_line(path, job, tol=tol, time_limit=time_limit, threads=threads)
+    rec: Dict[str, Any] = json.loads(line)
     return rec
 
 

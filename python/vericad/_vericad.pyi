@@ -98,7 +98,12 @@ def approximate(
 ) -> Dict[str, Any]: ...
 def batch_check(job: str = "info", *, tol: float = 1e-6, time_limit: Optional[float] = None) -> None: ...
 def batch_record_line(
-    path: str, job: str = "info", *, tol: float = 1e-6, time_limit: Optional[float] = None
+    path: str,
+    job: str = "info",
+    *,
+    tol: float = 1e-6,
+    time_limit: Optional[float] = None,
+    threads: Optional[int] = None,
 ) -> str: ...
 def discover(inputs: List[str]) -> List[str]: ...
 def batch(

@@ -19,14 +19,18 @@ import time
 import uuid
 from typing import Any, Dict, Iterable, List, Optional
 
-from . import _vericad, discover, read_records
+from . import BadInputError, _vericad, discover, read_records
 
 __all__ = ["record_task", "run_batch"]
 
 
-def record_task(path: str, job: str, tol: float, time_limit: Optional[float]) -> str:
+def record_task(
+    path: str, job: str, tol: float, time_limit: Optional[float], threads: Optional[int]
+) -> str:
     """The task run on a worker: one model's record line."""
-    return _vericad.batch_record_line(path, job, tol=tol, time_limit=time_limit)
+    return _vericad.batch_record_line(
+        path, job, tol=tol, time_limit=time_limit, threads=threads
+    )
 
 
 def _worker_failure(path: str, exc: BaseException) -> str:
@@ -47,10 +51,14 @@ def run_batch(
     client: Any = None,
     tol: float = 1e-6,
     time_limit: Optional[float] = None,
+    threads_per_task: Optional[int] = 1,
 ) -> Dict[str, Any]:
     """Run ``job`` (``info``, ``ssi`` or ``repair``) on every model of ``inputs`` (as
     ``vericad batch`` finds them) on the Dask ``client`` (default: the current one), one
-    task per model, appending each record to ``out`` as it arrives.
+    task per model, appending each record to ``out`` as it arrives. Each task runs its
+    model in a pool of ``threads_per_task`` threads (``None``: one per core of the worker's
+    machine); with one thread per Dask worker, the workers' count is the number of models
+    run at once, as ``vericad batch --threads N`` runs N.
 
     Returns ``models`` (of this run, resumed included), ``resumed``, ``counts`` (by status)
     and ``seconds`` (wall time of this run).
@@ -58,6 +66,8 @@ def run_batch(
     from distributed import as_completed, get_client
 
     _vericad.batch_check(job, tol=tol, time_limit=time_limit)
+    if threads_per_task is not None and not 1 <= threads_per_task <= 1024:
+        raise BadInputError(f"threads_per_task must be in 1..=1024, not {threads_per_task}")
     if client is None:
         client = get_client()
     t0 = time.perf_counter()
@@ -81,6 +91,7 @@ def run_batch(
         job=job,
         tol=tol,
         time_limit=time_limit,
+        threads=threads_per_task,
         key=[f"vericad-{job}-{run}-{k}" for k in range(len(todo))],
         pure=False,
     )
