@@ -511,7 +511,6 @@ fn reparam(
 }
 
 /// The Coons approximant's parameters, as `vericad coons` and `vericad approximate` take them.
-#[allow(clippy::too_many_arguments)]
 fn coons_params(
     tol: f64,
     m: i64,

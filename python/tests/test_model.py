@@ -83,3 +83,14 @@ def test_result_is_a_dict_with_attributes_and_json():
 
     back = json.loads(m.to_json())
     assert back["surfaces"][0]["control_points"] == m.surfaces[0].control_points.tolist()
+
+
+def test_results_pickle_for_sending_between_processes():
+    import pickle
+
+    import numpy as np
+
+    m = vericad.read_model(YANG)
+    back = pickle.loads(pickle.dumps(m))
+    assert type(back) is vericad.Model
+    np.testing.assert_array_equal(back.surfaces[0].control_points, m.surfaces[0].control_points)

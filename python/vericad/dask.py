@@ -97,7 +97,7 @@ def run_batch(
     )
     path_of = {f.key: p for f, p in zip(futures, todo)}
     with open(out, "a", encoding="utf-8") as f:
-        for fut in as_completed(futures):
+        for fut in as_completed(futures):  # type: ignore[no-untyped-call]
             path = path_of[fut.key]
             try:
                 line = fut.result()
