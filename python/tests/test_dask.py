@@ -80,3 +80,18 @@ def test_dask_batch_bad_options(client, tmp_path):
     with pytest.raises(vericad.BadInputError):
         run_batch(INPUTS, "info", out=tmp_path / "o.jsonl", client=client, threads_per_task=0)
     assert not (tmp_path / "o.jsonl").exists()
+
+
+def test_parquet_has_the_records(client, tmp_path):
+    pq = pytest.importorskip("pyarrow.parquet")
+    out = tmp_path / "dask.jsonl"
+    run_batch(INPUTS, "info", out=out, client=client, parquet=tmp_path / "r.parquet")
+    recs = read_lines(out)
+    t = pq.read_table(tmp_path / "r.parquet").to_pylist()
+    assert len(t) == len(recs)
+    for row, rec in zip(t, recs):
+        assert row["path"] == rec["path"] and row["status"] == rec["status"]
+        if "info" in rec:
+            assert row["info.faces"] == rec["info"]["faces"]
+        else:
+            assert row["info.faces"] is None and row["error.kind"] == rec["error"]["kind"]

@@ -21,7 +21,7 @@ from typing import Any, Dict, Iterable, List, Optional
 
 from . import BadInputError, _vericad, discover, read_records
 
-__all__ = ["record_task", "run_batch"]
+__all__ = ["record_task", "records_to_parquet", "run_batch"]
 
 
 def record_task(
@@ -52,13 +52,15 @@ def run_batch(
     tol: float = 1e-6,
     time_limit: Optional[float] = None,
     threads_per_task: Optional[int] = 1,
+    parquet: "os.PathLike[str] | str | None" = None,
 ) -> Dict[str, Any]:
     """Run ``job`` (``info``, ``ssi`` or ``repair``) on every model of ``inputs`` (as
     ``vericad batch`` finds them) on the Dask ``client`` (default: the current one), one
     task per model, appending each record to ``out`` as it arrives. Each task runs its
     model in a pool of ``threads_per_task`` threads (``None``: one per core of the worker's
     machine); with one thread per Dask worker, the workers' count is the number of models
-    run at once, as ``vericad batch --threads N`` runs N.
+    run at once, as ``vericad batch --threads N`` runs N. With ``parquet``, every record of
+    ``out`` is also written there as a table (see :func:`records_to_parquet`).
 
     Returns ``models`` (of this run, resumed included), ``resumed``, ``counts`` (by status)
     and ``seconds`` (wall time of this run).
@@ -108,9 +110,40 @@ def run_batch(
             f.write(line + "\n")
             f.flush()
             fut.release()
+    if parquet is not None:
+        records_to_parquet(out, parquet)
     return {
         "models": len(done) + len(todo),
         "resumed": len(done),
         "counts": counts,
         "seconds": time.perf_counter() - t0,
     }
+
+
+def _flatten(d: Dict[str, Any], prefix: str = "") -> Dict[str, Any]:
+    flat: Dict[str, Any] = {}
+    for k, v in d.items():
+        if isinstance(v, dict):
+            flat.update(_flatten(v, f"{prefix}{k}."))
+        else:
+            flat[f"{prefix}{k}"] = v
+    return flat
+
+
+def records_to_parquet(
+    jsonl: "os.PathLike[str] | str", parquet: "os.PathLike[str] | str"
+) -> int:
+    """Write the records of a batch output (JSON lines) as a Parquet table: one row per
+    record, nested fields as dotted columns (``ssi.certified``, ``error.message``), null where
+    a record has no such field. Requires ``pyarrow``. Returns the number of rows."""
+    import pyarrow as pa  # type: ignore[import-not-found, import-untyped, unused-ignore]
+    import pyarrow.parquet as pq  # type: ignore[import-not-found, import-untyped, unused-ignore]
+
+    rows = [_flatten(r) for r in read_records(jsonl)]
+    columns: Dict[str, None] = {}
+    for r in rows:
+        for k in r:
+            columns.setdefault(k, None)
+    table = pa.table({k: [r.get(k) for r in rows] for k in columns})
+    pq.write_table(table, os.fspath(parquet))
+    return len(rows)
