@@ -95,3 +95,28 @@ def test_parquet_has_the_records(client, tmp_path):
             assert row["info.faces"] == rec["info"]["faces"]
         else:
             assert row["info.faces"] is None and row["error.kind"] == rec["error"]["kind"]
+
+
+def failing_on_cube(path, job, tol, time_limit, threads):
+    """A task that fails outside the library for one model (run on the workers)."""
+    if path.endswith("gmsh-cube1000.igs"):
+        raise RuntimeError("worker-side failure")
+    from vericad.dask import record_task
+
+    return record_task(path, job, tol, time_limit, threads)
+
+
+def test_a_task_failing_outside_the_library_is_isolated(client, cli, tmp_path):
+    out = tmp_path / "dask.jsonl"
+    s = run_batch(INPUTS, "info", out=out, client=client, task=failing_on_cube)
+    recs = by_path(read_lines(out))
+    cube = str(PUBLIC / "gmsh-cube1000.igs")
+    assert recs[cube]["status"] == "failed" and recs[cube]["error"]["kind"] == "worker"
+    assert "worker-side failure" in recs[cube]["error"]["message"]
+    assert s["counts"]["failed"] == 1
+    # Every other model has the record vericad batch gives it.
+    ref_out = tmp_path / "cli.jsonl"
+    cli("batch", *INPUTS, "--job", "info", "--out", ref_out, "--quiet")
+    ref = by_path(read_lines(ref_out))
+    del recs[cube], ref[cube]
+    assert recs == ref

@@ -17,7 +17,7 @@ import json
 import os
 import time
 import uuid
-from typing import Any, Dict, Iterable, List, Optional
+from typing import Any, Callable, Dict, Iterable, List, Optional
 
 from . import BadInputError, _vericad, discover, read_records
 
@@ -53,6 +53,7 @@ def run_batch(
     time_limit: Optional[float] = None,
     threads_per_task: Optional[int] = 1,
     parquet: "os.PathLike[str] | str | None" = None,
+    task: Callable[[str, str, float, Optional[float], Optional[int]], str] = record_task,
 ) -> Dict[str, Any]:
     """Run ``job`` (``info``, ``ssi`` or ``repair``) on every model of ``inputs`` (as
     ``vericad batch`` finds them) on the Dask ``client`` (default: the current one), one
@@ -60,7 +61,9 @@ def run_batch(
     model in a pool of ``threads_per_task`` threads (``None``: one per core of the worker's
     machine); with one thread per Dask worker, the workers' count is the number of models
     run at once, as ``vericad batch --threads N`` runs N. With ``parquet``, every record of
-    ``out`` is also written there as a table (see :func:`records_to_parquet`).
+    ``out`` is also written there as a table (see :func:`records_to_parquet`). ``task`` is
+    the function run per model, ``task(path, job, tol, time_limit, threads) -> record line``
+    (default :func:`record_task`; it must be importable on the workers).
 
     Returns ``models`` (of this run, resumed included), ``resumed``, ``counts`` (by status)
     and ``seconds`` (wall time of this run).
@@ -88,7 +91,7 @@ def run_batch(
         counts[r["status"]] = counts.get(r["status"], 0) + 1
     run = uuid.uuid4().hex[:8]
     futures = client.map(
-        record_task,
+        task,
         todo,
         job=job,
         tol=tol,
