@@ -10,11 +10,14 @@ Two measurements, each the median of `--repeat` runs:
   temporary directory), so the time is mostly scheduling: (Dask wall - CLI wall) / models;
 * 1 vs 2 workers: the `ssi` job over the mid-sized public models (seconds each), with
   `vericad batch --threads 1/2` beside it.
-Cluster start-up is timed separately and not included in the runs.
+Cluster start-up is timed separately and not included in the runs. Beside wall time, the
+CPU time of all processes involved (the CLI; the driver with the scheduler, the workers and
+their nannies) is measured, which depends less on other load on the machine.
 """
 
 import argparse
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -36,22 +39,43 @@ SSI_MODELS = [
 ]
 
 
-def cli_run(cli, inputs, job, threads, out):
+CPU = {}
+
+
+def children_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def cli_run(cli, inputs, job, threads, out, name):
     out.unlink(missing_ok=True)
+    c = children_cpu()
     t = time.perf_counter()
     subprocess.run(
         [cli, "batch", *inputs, "--job", job, "--out", str(out), "--quiet", "--threads", str(threads)],
         check=False,
         capture_output=True,
     )
+    CPU.setdefault(name, []).append(children_cpu() - c)
     return time.perf_counter() - t
 
 
-def dask_run(client, inputs, job, out):
+def cluster_cpu(procs):
+    total = time.process_time()
+    for p in procs:
+        ct = p.cpu_times()
+        total += ct.user + ct.system
+    return total
+
+
+def dask_run(client, inputs, job, out, procs, name):
     out.unlink(missing_ok=True)
+    c = cluster_cpu(procs)
     t = time.perf_counter()
     run_batch(inputs, job, out=out, client=client)
-    return time.perf_counter() - t
+    w = time.perf_counter() - t
+    CPU.setdefault(name, []).append(cluster_cpu(procs) - c)
+    return w
 
 
 def median(f, repeat):
@@ -84,10 +108,12 @@ def main():
     res = {}
     for threads in (1, 2):
         res[f"cli info t{threads}"] = median(
-            lambda: cli_run(a.cli, info_inputs, "info", threads, out), a.repeat
+            lambda: cli_run(a.cli, info_inputs, "info", threads, out, f"cli info t{threads}"),
+            a.repeat,
         )
         res[f"cli ssi t{threads}"] = median(
-            lambda: cli_run(a.cli, SSI_MODELS, "ssi", threads, out), a.repeat
+            lambda: cli_run(a.cli, SSI_MODELS, "ssi", threads, out, f"cli ssi t{threads}"),
+            a.repeat,
         )
     t = time.perf_counter()
     for k, line in enumerate(lines):
@@ -101,21 +127,34 @@ def main():
         client = Client(cluster)
         client.run(lambda: __import__("vericad"))
         res[f"dask start w{workers}"] = time.perf_counter() - t
+        import psutil
+
+        procs = []
+        for pid in client.run(os.getpid).values():
+            p = psutil.Process(pid)
+            procs.append(p)
+            procs.append(p.parent())  # the nanny
         res[f"dask info w{workers}"] = median(
-            lambda: dask_run(client, info_inputs, "info", out), a.repeat
+            lambda: dask_run(client, info_inputs, "info", out, procs, f"dask info w{workers}"),
+            a.repeat,
         )
         res[f"dask ssi w{workers}"] = median(
-            lambda: dask_run(client, SSI_MODELS, "ssi", out), a.repeat
+            lambda: dask_run(client, SSI_MODELS, "ssi", out, procs, f"dask ssi w{workers}"),
+            a.repeat,
         )
         client.close()
         cluster.close()
     print(f"load average after: {os.getloadavg()}", file=sys.stderr)
     for k, v in res.items():
-        print(f"{k:28s} {v:9.3f} s")
+        cpu = f"  cpu {statistics.median(CPU[k]):8.3f} s" if k in CPU else ""
+        print(f"{k:28s} {v:9.3f} s{cpu}")
     print(f"models (info): {n_info}")
     for w in (1, 2):
         per = (res[f"dask info w{w}"] - res[f"cli info t{w}"]) / n_info
         print(f"overhead per task, {w} worker(s) vs CLI --threads {w}: {per * 1e3:.2f} ms")
+    for w in (1, 2):
+        per = (statistics.median(CPU[f"dask info w{w}"]) - statistics.median(CPU[f"cli info t{w}"])) / n_info
+        print(f"CPU overhead per task, {w} worker(s): {per * 1e3:.2f} ms")
     print(f"in-process per model (python, info): {res['python in-process info'] / n_info * 1e3:.3f} ms")
     print(f"cli per model (info, t1): {res['cli info t1'] / n_info * 1e3:.3f} ms")
     print(f"ssi: dask 1 worker / 2 workers: {res['dask ssi w1'] / res['dask ssi w2']:.2f}")
