@@ -222,6 +222,15 @@ def test_reparam_equals_the_cli(cli):
     assert r.within_tol is True
 
 
+def test_reparam_one_face_with_outputs(tmp_path):
+    r = vericad.reparam(f"{YANG}:0", tol=1e-3, out=tmp_path / "r.json", svg=tmp_path / "r.svg")
+    assert len(r.faces) == 1 and r.faces[0].index == 0
+    assert len(vericad.read_model(tmp_path / "r.json").surfaces) == 1
+    assert (tmp_path / "r.svg").read_text().lstrip().startswith("<")
+    with pytest.raises(vericad.BadInputError):
+        vericad.reparam(f"{YANG}:3")
+
+
 @pytest.mark.parametrize("kw", [{"tol": NAN}, {"tol": -1.0}, {"max_lines": -1}])
 def test_reparam_bad_options(kw):
     with pytest.raises(vericad.BadInputError):
@@ -260,7 +269,7 @@ def test_coons_on_a_plane(cli, tmp_path):
     assert without(plain(r.report), strip) == without(ref, strip)
 
 
-def test_approximate_one_approximant_layout(tmp_path):
+def test_approximate_one_approximant_layout(cli, tmp_path):
     sides = _square_sides()
     lay = tmp_path / "layout.json"
     lay.write_text(
@@ -273,10 +282,14 @@ def test_approximate_one_approximant_layout(tmp_path):
             }
         )
     )
-    r = vericad.approximate(BILINEAR, layout=lay)
+    r = vericad.approximate(BILINEAR, layout=lay, out=tmp_path / "a.json")
     assert isinstance(r, vericad.ApproximateResult)
     assert r.report.within_tol and len(r.surfaces) == 1
     assert r.surfaces[0].control_points.shape[2] == 3
+    back = vericad.read_model(tmp_path / "a.json")
+    np.testing.assert_array_equal(back.surfaces[0].control_points, r.surfaces[0].control_points)
+    ref = cli_json(cli, "approximate", BILINEAR, "--layout", lay)
+    assert without(plain(r.report), {"seconds"}) == without(ref, {"seconds"})
 
 
 @pytest.mark.parametrize("kw", [{"tol": NAN}, {"m": -1}, {"k": -2}, {"tol": -1.0}])
