@@ -1,4 +1,4 @@
-"""Shared paths and helpers: the repository's test data and the `vericad` command line.
+"""Shared paths and functions: the repository's test data and the `vericad` command line.
 
 The command line is taken from ``VERICAD_CLI`` or, failing that, from the repository's
 ``target/{debug,release}/vericad``; tests that compare with it are skipped without it unless
@@ -32,7 +32,7 @@ def _find_cli():
     return None
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def cli():
     """A function running the command line: cli(*args) -> CompletedProcess (text)."""
     exe = _find_cli()
