@@ -135,6 +135,27 @@ fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
+/// The record of `job` on one model, as [`execute`] writes it: the job timed (`seconds`,
+/// reading included) and a panic caught and turned into a `panic` record.
+pub fn isolated_record(job: &(dyn Fn(&Path) -> Outcome + Sync), path: &Path) -> Record {
+    let t = Instant::now();
+    let outcome = catch_unwind(AssertUnwindSafe(|| job(path)))
+        .unwrap_or_else(|payload| error(Status::Panic, "panic", panic_message(payload.as_ref())));
+    Record::new(
+        path.display().to_string(),
+        t.elapsed().as_secs_f64(),
+        outcome,
+    )
+}
+
+impl Job {
+    /// The record of this job on one model, exactly as a batch writes it (see
+    /// [`isolated_record`]); for callers that schedule the models themselves.
+    pub fn record(&self, path: &Path) -> Record {
+        isolated_record(&|p: &Path| self.run(p), path)
+    }
+}
+
 /// The records of one [`execute`] call.
 #[derive(Clone, Debug)]
 pub struct Executed {
@@ -184,11 +205,7 @@ pub fn execute<W: Write + Send>(
             if stop.load(Ordering::Relaxed) {
                 return;
             }
-            let t = Instant::now();
-            let outcome = catch_unwind(AssertUnwindSafe(|| job(p))).unwrap_or_else(|payload| {
-                error(Status::Panic, "panic", panic_message(payload.as_ref()))
-            });
-            let r = Record::new(p.display().to_string(), t.elapsed().as_secs_f64(), outcome);
+            let r = isolated_record(job, p);
             // A poisoned lock only means another worker panicked while holding it, which the
             // writes below do not do; the data is still consistent.
             let mut s = shared.lock().unwrap_or_else(|e| e.into_inner());

@@ -1,7 +1,7 @@
 //! The `repair` job: read a patch set, repair, write the patches, the report and a VTK view.
 
 use super::features::FeatureOverrides;
-use super::{RepairError, RepairParams, RepairReport, repair};
+use super::{RepairError, RepairParams, RepairReport, RepairResult, repair};
 use crate::io::vtk::{Array, PolyData, render};
 use crate::model::{Model, Surface};
 use std::path::Path;
@@ -37,12 +37,23 @@ fn write(path: &Path, text: &str) -> Result<(), JobError> {
         .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
 }
 
+/// Run the job; returns the report (the patches are in [`run_result`]).
 pub fn run(
     input: &Path,
     prm: &RepairParams,
     features: Option<&Path>,
     out: Outputs,
 ) -> Result<RepairReport, JobError> {
+    run_result(input, prm, features, out).map(|r| r.report)
+}
+
+/// Run the job and return the whole result: the report and the repaired patches.
+pub fn run_result(
+    input: &Path,
+    prm: &RepairParams,
+    features: Option<&Path>,
+    out: Outputs,
+) -> Result<RepairResult, JobError> {
     let m = crate::io::read_model(input)?;
     let overrides: FeatureOverrides = match features {
         Some(p) => {
@@ -140,7 +151,7 @@ pub fn run(
         ];
         write(p, &render(&pd))?;
     }
-    Ok(r.report)
+    Ok(r)
 }
 
 impl std::fmt::Display for RepairReport {

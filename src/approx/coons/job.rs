@@ -6,6 +6,7 @@ use super::boundary::BoundarySpec;
 use super::{Approximant, CoonsError, Params, Report, approximate_with_progress};
 use crate::io::vtk::{Array, PolyData};
 use crate::model::{Model, Surface};
+use crate::spline::NurbsSurface;
 use serde::Serialize;
 use std::path::Path;
 
@@ -157,6 +158,16 @@ pub fn run(
     params: &Params,
     out: Outputs,
 ) -> Result<JobReport, JobError> {
+    run_surface(model_path, boundary_path, params, out).map(|(r, _)| r)
+}
+
+/// Run the job; returns the report and the approximant.
+pub fn run_surface(
+    model_path: &Path,
+    boundary_path: &Path,
+    params: &Params,
+    out: Outputs,
+) -> Result<(JobReport, NurbsSurface<f64, 3>), JobError> {
     params.validate().map_err(JobError::Coons)?;
     out.check()?;
     let bfile = boundary_path.display().to_string();
@@ -197,7 +208,7 @@ pub fn run(
         warnings,
     };
     out.write_report(&report)?;
-    Ok(report)
+    Ok((report, ap.surface))
 }
 
 /// The VTK view: the approximant (quads, `part` 0), the projected points as small
