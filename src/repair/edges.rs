@@ -156,7 +156,7 @@ impl<'a> CurveFoot<'a> {
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let newton = |(mut t, mut p): (f64, [f64; 3])| -> (f64, [f64; 3]) {
             for _ in 0..20 {
-                let (q, d1, dd) = c.derivatives2_at(&t);
+                let (q, d1, dd) = c.derivatives2_f64(t);
                 let r = [q[0] - x[0], q[1] - x[1], q[2] - x[2]];
                 let f = r[0] * d1[0] + r[1] * d1[1] + r[2] * d1[2];
                 let fp = d1[0] * d1[0]

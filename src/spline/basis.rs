@@ -154,11 +154,114 @@ pub fn ders_basis_funs<S: Scalar>(
     ders
 }
 
+/// Largest order (degree + 1) of [`ders2_f64`].
+pub const DERS2_MAX_ORDER: usize = 16;
+
+/// [`ders_basis_funs`] up to the second derivative in `f64` without allocating (degree below
+/// [`DERS2_MAX_ORDER`], else `None`): the same operations in the same order, so the same
+/// numbers. `out[k][j]` is the k-th derivative of `N_{span-p+j,p}` at `t`.
+pub fn ders2_f64(kv: &KnotVector<f64>, span: usize, t: f64) -> Option<[[f64; DERS2_MAX_ORDER]; 3]> {
+    const M: usize = DERS2_MAX_ORDER;
+    let p = kv.degree();
+    if p >= M {
+        return None;
+    }
+    let u = kv.knots();
+    let mut ndu = [[0.0f64; M]; M];
+    let (mut left, mut right) = ([0.0f64; M], [0.0f64; M]);
+    ndu[0][0] = 1.0;
+    for j in 1..=p {
+        left[j] = t - u[span + 1 - j];
+        right[j] = u[span + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            ndu[j][r] = right[r + 1] + left[j - r];
+            let temp = ndu[r][j - 1] / ndu[j][r];
+            ndu[r][j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j][j] = saved;
+    }
+    let nd = 2;
+    let mut ders = [[0.0f64; M]; 3];
+    for j in 0..=p {
+        ders[0][j] = ndu[j][p];
+    }
+    let mut a = [[0.0f64; M]; 2];
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0usize, 1usize);
+        a[0][0] = 1.0;
+        for k in 1..=nd.min(p) {
+            let mut d = 0.0;
+            let rk = r as isize - k as isize;
+            let pk = p - k;
+            if r >= k {
+                a[s2][0] = a[s1][0] / ndu[pk + 1][rk as usize];
+                d = a[s2][0] * ndu[rk as usize][pk];
+            }
+            let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2 = if (r as isize - 1) <= pk as isize {
+                k - 1
+            } else {
+                p - r
+            };
+            for j in j1..=j2 {
+                let idx = (rk + j as isize) as usize;
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
+                d += a[s2][j] * ndu[idx][pk];
+            }
+            if r <= pk {
+                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                d += a[s2][k] * ndu[r][pk];
+            }
+            ders[k][r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    let mut fac = p as f64;
+    for (k, row) in ders.iter_mut().enumerate().take(nd.min(p) + 1).skip(1) {
+        for x in row.iter_mut().take(p + 1) {
+            *x *= fac;
+        }
+        fac *= (p - k) as f64;
+    }
+    Some(ders)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scalar::Scalar;
     use num_rational::BigRational;
+
+    #[test]
+    fn ders2_f64_is_ders_basis_funs_bit_for_bit() {
+        let knots = [0.0, 0.0, 0.0, 0.0, 0.13, 0.5, 0.5, 0.71, 1.0, 1.0, 1.0, 1.0];
+        let kv = KnotVector::new(knots.to_vec(), 3, 8).unwrap();
+        let kv1 = KnotVector::new(vec![0.0, 0.0, 0.3, 1.0, 1.0], 1, 3).unwrap();
+        let kv5 = KnotVector::new(
+            vec![
+                -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, 0.2, 2.0, 2.0, 2.0, 2.0, 2.0, 2.0,
+            ],
+            5,
+            7,
+        )
+        .unwrap();
+        for kv in [&kv, &kv1, &kv5] {
+            let (a, b) = kv.domain();
+            for i in 0..=97 {
+                let t = a + (b - a) * i as f64 / 97.0;
+                let span = kv.find_span(&t);
+                let g = ders_basis_funs(kv, span, &t, 2);
+                let f = ders2_f64(kv, span, t).unwrap();
+                for (k, row) in g.iter().enumerate() {
+                    for (j, x) in row.iter().enumerate() {
+                        assert_eq!(x.to_bits(), f[k][j].to_bits(), "t {t} k {k} j {j}");
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn partition_of_unity_exact() {

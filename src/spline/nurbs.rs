@@ -204,6 +204,33 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
     }
 }
 
+impl<const D: usize> NurbsCurve<f64, D> {
+    /// [`NurbsCurve::derivatives2_at`] in `f64` without allocating (the same operations in
+    /// the same order, so the same numbers; degrees of 16 and more take the general path).
+    pub fn derivatives2_f64(&self, t: f64) -> ([f64; D], [f64; D], [f64; D]) {
+        let span = self.hom.knots.find_span(&t);
+        let p = self.hom.degree();
+        let Some(ders) = super::basis::ders2_f64(&self.hom.knots, span, t) else {
+            return self.derivatives2_at(&t);
+        };
+        let mut a = [Hom::origin(), Hom::origin(), Hom::origin()];
+        for (k, ak) in a.iter_mut().enumerate() {
+            for j in 0..=p {
+                *ak = ak.add(&self.hom.control[span - p + j].scale(&ders[k][j]));
+            }
+        }
+        let inv = 1.0 / a[0].w;
+        let c = a[0].wp.scale(&inv);
+        let c1 = a[1].wp.sub(&c.scale(&a[1].w)).scale(&inv);
+        let c2 = a[2]
+            .wp
+            .sub(&c1.scale(&(2.0 * a[1].w)))
+            .sub(&c.scale(&a[2].w))
+            .scale(&inv);
+        (c, c1, c2)
+    }
+}
+
 impl<S: Scalar, const D: usize> NurbsSurface<S, D> {
     /// From a row-major Cartesian net and positive weights.
     #[allow(clippy::too_many_arguments)]
