@@ -1,0 +1,136 @@
+//! Trim loops of IGES faces in their surface's parameter plane: trimmed surfaces (144) over
+//! curves on a surface (142, the parameter-space curve BPTR), bounded surfaces (143) over
+//! boundaries (141, the parameter-space curves PSCPT of each model-space curve), and B-rep
+//! faces (510) over loops (508, the parameter-space curves of each edge use).
+
+use super::{R, Reader};
+use crate::model::TrimLoop;
+use crate::spline::NurbsCurve;
+
+impl Reader<'_> {
+    /// A parameter-space loop from a curve entity (x, y are u, v).
+    pub(super) fn loop_2d(&self, de: usize, outer: bool) -> R<Option<TrimLoop>> {
+        let Some(segs) = self.segments(de, 0)? else {
+            return Ok(None);
+        };
+        // Parameter-space curves: x, y are u, v (z, normally 0, is dropped as IGES prescribes).
+        let curves: Vec<NurbsCurve<f64, 2>> = segs
+            .into_iter()
+            .map(|c| NurbsCurve {
+                hom: c.hom.map(
+                    |k| *k,
+                    |h| crate::geom::Hom {
+                        wp: [h.wp[0], h.wp[1]],
+                        w: h.w,
+                    },
+                ),
+            })
+            .collect();
+        Ok(Some(TrimLoop { outer, curves }))
+    }
+    /// Trim loops of a face entity (144 via 142 curves on surface, 143 via 141 boundaries);
+    /// the number of boundaries given only in model space is returned too.
+    pub(super) fn trims(&self, face: usize) -> R<(Vec<TrimLoop>, usize)> {
+        let x = &self.e[&face];
+        let mut loops = Vec::new();
+        let mut missing = 0;
+        match x.etype {
+            144 => {
+                let h = self.nums(face, 2, 3)?;
+                let (n1, n2) = (h[0] as usize, h[1] as usize);
+                let mut bounds = Vec::new();
+                if n1 != 0 {
+                    bounds.push((self.ptr(face, 4)?, true));
+                }
+                for k in 0..n2.min(100_000) {
+                    bounds.push((self.ptr(face, 5 + k)?, false));
+                }
+                for (b, outer) in bounds {
+                    // 142: CRTN, SPTR, BPTR (parameter space), CPTR, PREF.
+                    let bp = self.nums(b, 3, 1)?[0];
+                    if bp >= 1.0 && self.e.contains_key(&(bp as usize)) {
+                        match self.loop_2d(bp as usize, outer)? {
+                            Some(l) => loops.push(l),
+                            None => missing += 1,
+                        }
+                    } else {
+                        missing += 1;
+                    }
+                }
+            }
+            143 => {
+                let n = self.nums(face, 3, 1)?[0] as usize;
+                for k in 0..n.min(100_000) {
+                    let b = self.ptr(face, 4 + k)?;
+                    // 141: TYPE, PREF, SPTR, N, then (CRVPT, SENSE, K, PSCPT x K) per curve.
+                    let nc = self.nums(b, 4, 1)?[0] as usize;
+                    let mut at = 5;
+                    let mut curves = Vec::new();
+                    let mut ok = true;
+                    for _ in 0..nc.min(100_000) {
+                        let v = self.nums(b, at, 3)?;
+                        // SENSE (v[1]) orients the shared model-space curve; the parameter-space
+                        // curves of a face are already oriented along its loop (checked on
+                        // real files: reversing them by SENSE opens the loops).
+                        let kk = v[2] as usize;
+                        if kk == 0 {
+                            ok = false;
+                        }
+                        for j in 0..kk {
+                            match self.loop_2d(self.ptr(b, at + 3 + j)?, k == 0)? {
+                                Some(l) => curves.extend(l.curves),
+                                None => ok = false,
+                            }
+                        }
+                        at += 3 + kk;
+                    }
+                    if ok {
+                        loops.push(TrimLoop {
+                            outer: k == 0,
+                            curves,
+                        });
+                    } else {
+                        missing += 1;
+                    }
+                }
+            }
+            510 => {
+                // 510: SURF, N, OF, LOOP x N (508 loops). 508: N, then per edge TYPE, EDGE,
+                // NDX, OF, K, (ISOP, CURV) x K: the CURV are the parameter-space curves.
+                let h = self.nums(face, 2, 2)?;
+                let (n, first_outer) = (h[0] as usize, h[1] == 1.0);
+                for k in 0..n.min(100_000) {
+                    let outer = k == 0 && first_outer;
+                    let lp = self.ptr(face, 4 + k)?;
+                    if self.e[&lp].etype != 508 {
+                        return self.err(face, format!("loop {k} (DE {lp}) is not a 508 loop"));
+                    }
+                    let ne = self.nums(lp, 1, 1)?[0] as usize;
+                    let mut at = 2;
+                    let mut curves = Vec::new();
+                    let mut ok = ne > 0;
+                    for _ in 0..ne.min(100_000) {
+                        let kk = self.nums(lp, at + 4, 1)?[0] as usize;
+                        if kk == 0 {
+                            ok = false;
+                        }
+                        for j in 0..kk.min(100_000) {
+                            match self.loop_2d(self.ptr(lp, at + 6 + 2 * j)?, outer)? {
+                                Some(l) => curves.extend(l.curves),
+                                None => ok = false,
+                            }
+                        }
+                        at += 5 + 2 * kk;
+                    }
+                    if ok {
+                        loops.push(TrimLoop { outer, curves });
+                    } else {
+                        missing += 1;
+                    }
+                }
+            }
+            _ => {}
+        }
+        Ok((loops, missing))
+    }
+}
