@@ -14,6 +14,7 @@
 pub mod check;
 pub mod counts;
 pub mod report;
+pub mod sew;
 
 use crate::spline::NurbsCurve;
 pub use counts::BrepCounts;

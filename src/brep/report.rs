@@ -140,4 +140,25 @@ impl BrepReport {
         }
         out
     }
+
+    /// The lines a reader adds to the model's warnings: [`Self::summary_lines`], then one line
+    /// per topology issue up to [`MAX_LISTED_ISSUES`] and a count of the rest (all stay in the
+    /// report).
+    pub fn warning_lines(&self) -> Vec<String> {
+        let mut out = self.summary_lines();
+        let n = self.issues.len();
+        for i in self.issues.iter().take(MAX_LISTED_ISSUES) {
+            out.push(format!("topology: {i}"));
+        }
+        if n > MAX_LISTED_ISSUES {
+            out.push(format!(
+                "topology: {} more issue(s) in the B-rep report",
+                n - MAX_LISTED_ISSUES
+            ));
+        }
+        out
+    }
 }
+
+/// Topology issues listed one per warning; the rest are counted (all are in the B-rep report).
+pub const MAX_LISTED_ISSUES: usize = 50;

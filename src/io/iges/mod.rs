@@ -378,7 +378,8 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
                         r.trims(face)?
                     };
                 surface_of.insert(face, model.surfaces.len());
-                if missing > 0 {
+                // A 510 face's loops are kept in the B-rep whatever their parameter-space curves.
+                if missing > 0 && e[&face].etype != 510 {
                     warnings.push(format!("DE {face}: {missing} boundary(ies) without a parameter-space curve, not kept as trims"));
                 }
                 model.surfaces.push(Surface {
@@ -431,24 +432,48 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     for (t, n) in other {
         warnings.push(format!("{n} entit(ies) of type {t} not supported, skipped"));
     }
-    if e.values().any(|x| x.etype == 510) {
-        // The file's resolution, but at least 1e-9 times the diagonal of the control points'
-        // box (as for STEP's uncertainty).
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in model
-            .surfaces
-            .iter()
-            .flat_map(|s| s.nurbs.points_weights().0)
-        {
-            for i in 0..3 {
-                lo[i] = lo[i].min(p[i]);
-                hi[i] = hi[i].max(p[i]);
-            }
+    // The file's resolution, but at least 1e-9 times the diagonal of the control points' box
+    // (as for STEP's uncertainty).
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in model
+        .surfaces
+        .iter()
+        .flat_map(|s| s.nurbs.points_weights().0)
+    {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
         }
-        let size = crate::geom::dist(&lo, &hi);
-        let size = if size.is_finite() { size } else { 0.0 };
-        let tolerance = resolution.unwrap_or(0.0).max(1e-9 * size);
+    }
+    let size = crate::geom::dist(&lo, &hi);
+    let size = if size.is_finite() { size } else { 0.0 };
+    let tolerance = resolution.unwrap_or(0.0).max(1e-9 * size);
+    if e.values().any(|x| x.etype == 510) {
         model.brep = Some(topology::read(&r, &surface_of, tolerance));
+    } else if !surface_of.is_empty()
+        && surface_of.len() == model.surfaces.len()
+        && surface_of.keys().all(|f| matches!(e[f].etype, 143 | 144))
+    {
+        // Trimmed and bounded faces only: sewn into a B-rep by their model-space boundaries.
+        let sew_tol = tolerance.max(1e-7 * size);
+        if let Some((b, st)) = sewn(&r, &surface_of, sew_tol)? {
+            warnings.push(format!(
+                "B-rep sewn from the {} faces' boundary curves (tolerance {sew_tol:e}): {} edge(s) shared by two faces, {} free, {} used more than twice, {} degenerate piece(s) left out",
+                b.faces.len(),
+                st.shared,
+                st.free,
+                st.more,
+                st.degenerate
+            ));
+            model.brep = Some(b);
+        } else {
+            warnings.push(
+                "no B-rep: a face boundary has no model-space curve (or one not converted); faces keep their parameter-space trims".into(),
+            );
+        }
+    }
+    if let Some(b) = &model.brep {
+        warnings.extend(b.report.warning_lines());
     }
     model.accounts = account::account(&e, &outcomes);
     warnings.extend(model.degeneracy_warnings());
@@ -460,6 +485,29 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
             .or_insert(0) += 1;
     }
     Ok(model)
+}
+
+/// The B-rep of a file of trimmed (144) and bounded (143) faces, sewn by their model-space
+/// boundary curves; `None` when a face's boundary has none.
+fn sewn(
+    r: &Reader,
+    surface_of: &BTreeMap<usize, usize>,
+    tol: f64,
+) -> R<Option<(crate::brep::Brep, crate::brep::sew::SewStats)>> {
+    let mut faces = Vec::with_capacity(surface_of.len());
+    for (f, si) in surface_of {
+        let Some(loops) = r.space_loops(*f)? else {
+            return Ok(None);
+        };
+        let s = r.ptr(*f, if r.e[f].etype == 143 { 2 } else { 1 })?;
+        faces.push(crate::brep::sew::FaceBoundary {
+            source: format!("DE {f}"),
+            surface: *si,
+            surface_source: format!("DE {s}"),
+            loops,
+        });
+    }
+    Ok(Some(crate::brep::sew::sew(&faces, tol)))
 }
 
 /// Read an IGES file.

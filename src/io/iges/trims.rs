@@ -4,6 +4,7 @@
 //! faces (510) over loops (508, the parameter-space curves of each edge use).
 
 use super::{R, Reader};
+use crate::brep::sew::BoundaryLoop;
 use crate::model::TrimLoop;
 use crate::spline::NurbsCurve;
 
@@ -132,5 +133,88 @@ impl Reader<'_> {
             _ => {}
         }
         Ok((loops, missing))
+    }
+}
+
+/// A model-space curve with its source id.
+type Named = (String, NurbsCurve<f64, 3>);
+
+impl Reader<'_> {
+    /// A model-space curve entity as `(source, curve)` segments, reversed when `reverse`;
+    /// `None` when a member is not converted.
+    fn space_curves(&self, de: usize, reverse: bool) -> R<Option<Vec<Named>>> {
+        let Some(segs) = self.segments(de, 0)? else {
+            return Ok(None);
+        };
+        let mut out: Vec<Named> = segs
+            .into_iter()
+            .enumerate()
+            .map(|(k, c)| (format!("DE {de}#{}", k + 1), c))
+            .collect();
+        if reverse {
+            out.reverse();
+            for (_, c) in &mut out {
+                *c = c.reversed();
+            }
+        }
+        Ok(Some(out))
+    }
+
+    /// The loops of a trimmed (144) or bounded (143) face as model-space curves (142 CPTR,
+    /// 141 CRVPT with its SENSE); `None` when a boundary has no model-space curve or one
+    /// that is not converted.
+    pub(super) fn space_loops(&self, face: usize) -> R<Option<Vec<BoundaryLoop>>> {
+        let mut out = Vec::new();
+        match self.e[&face].etype {
+            144 => {
+                let h = self.nums(face, 2, 3)?;
+                let (n1, n2) = (h[0] as usize, h[1] as usize);
+                let mut bounds = Vec::new();
+                if n1 != 0 {
+                    bounds.push((self.ptr(face, 4)?, true));
+                }
+                for k in 0..n2.min(100_000) {
+                    bounds.push((self.ptr(face, 5 + k)?, false));
+                }
+                for (b, outer) in bounds {
+                    let cp = self.nums(b, 4, 1)?[0];
+                    if !(cp >= 1.0 && self.e.contains_key(&(cp as usize))) {
+                        return Ok(None);
+                    }
+                    let Some(curves) = self.space_curves(cp as usize, false)? else {
+                        return Ok(None);
+                    };
+                    out.push(BoundaryLoop {
+                        outer,
+                        source: format!("DE {b}"),
+                        curves,
+                    });
+                }
+            }
+            143 => {
+                let n = self.nums(face, 3, 1)?[0] as usize;
+                for k in 0..n.min(100_000) {
+                    let b = self.ptr(face, 4 + k)?;
+                    let nc = self.nums(b, 4, 1)?[0] as usize;
+                    let mut at = 5;
+                    let mut curves = Vec::new();
+                    for _ in 0..nc.min(100_000) {
+                        let v = self.nums(b, at, 3)?;
+                        let Some(c) = self.space_curves(self.ptr(b, at)?, v[1] == 2.0)? else {
+                            return Ok(None);
+                        };
+                        curves.extend(c);
+                        at += 3 + v[2].max(0.0) as usize;
+                    }
+                    out.push(BoundaryLoop {
+                        outer: k == 0,
+                        source: format!("DE {b}"),
+                        curves,
+                    });
+                }
+            }
+            _ => return Ok(None),
+        }
+        Ok(Some(out))
     }
 }

@@ -58,9 +58,6 @@ const SURFACE_TYPES: [&str; 9] = [
     "SURFACE_OF_LINEAR_EXTRUSION",
 ];
 
-/// Topology issues listed one per warning; the rest are counted (all are in the B-rep report).
-const MAX_LISTED_ISSUES: usize = 50;
-
 /// Largest vertex-to-curve distance accepted without a report: the file's length
 /// uncertainty (`uncertainty_measure_with_unit` of a `length_measure`), but at least `1e-9`
 /// times the diagonal of the box of all 3D points (files declare uncertainties like
@@ -200,17 +197,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     if !faces.is_empty() {
         let brep = topology::TopologyReader::new(&r, vertex_tolerance(&p))
             .read(&surface_of, &unsupported_surface);
-        model.warnings.extend(brep.report.summary_lines());
-        let n = brep.report.issues.len();
-        for i in brep.report.issues.iter().take(MAX_LISTED_ISSUES) {
-            model.warnings.push(format!("topology: {i}"));
-        }
-        if n > MAX_LISTED_ISSUES {
-            model.warnings.push(format!(
-                "topology: {} more issue(s) in the B-rep report",
-                n - MAX_LISTED_ISSUES
-            ));
-        }
+        model.warnings.extend(brep.report.warning_lines());
         model.brep = Some(brep);
     }
     // Free B-spline curves (not referenced by edges or surfaces are still listed); one
