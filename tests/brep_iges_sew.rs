@@ -165,3 +165,36 @@ fn a_face_without_model_space_curves_keeps_its_trims_and_gets_no_b_rep() {
     );
     assert_eq!(m.surfaces[0].trim_loops.len(), 1);
 }
+
+#[test]
+fn surfaces_of_revolution_and_planes_carry_their_faces_boundaries() {
+    // abc-0000 written by Open CASCADE in faces mode: spheres, cones and tori as surfaces of
+    // revolution (120) placed by their own transformation matrices (124), planes as 108
+    // entities. Every sewn vertex lies on the surfaces of the faces using it (distance by
+    // projection, within 1e-6 of the part's size) — a 120 built without its own
+    // transformation puts it millimetres away.
+    let m = model("tests/data/public/occt-written/abc-0000-faces.igs");
+    let b = m.brep.as_ref().expect("a sewn B-rep");
+    assert_eq!(b.faces.len(), 25);
+    let mut size: f64 = 0.0;
+    for v in &b.vertices {
+        for w in &b.vertices {
+            size = size.max(vericad::geom::dist(&v.point, &w.point));
+        }
+    }
+    let mut checked = 0;
+    for f in &b.faces {
+        let s = &m.surfaces[f.surface.unwrap()].nurbs;
+        let vericad::brep::LoopKind::Edges(es) = &f.loops[0].kind else {
+            panic!("a vertex loop")
+        };
+        for o in es {
+            let p = b.vertices[b.edges[o.edge].start].point;
+            let uv = vericad::spline::project::project(s, &p);
+            let d = vericad::geom::dist(&s.eval(&uv[0], &uv[1]), &p);
+            assert!(d <= 1e-6 * size, "{}: {d:e}", f.source);
+            checked += 1;
+        }
+    }
+    assert!(checked >= 50, "{checked}");
+}

@@ -7,13 +7,15 @@
 //!
 //! | type | parameters |
 //! |---|---|
+//! | 108 | A, B, C, D (the plane `Ax + By + Cz = D`), PTR, X, Y, Z, SIZE |
 //! | 190 | LOCATION, NORMAL[, REFDIR] |
 //! | 192 | LOCATION, AXIS, RADIUS[, REFDIR] |
 //! | 194 | LOCATION, AXIS, RADIUS (at LOCATION), SANGLE (semi-angle, degrees)[, REFDIR] |
 //! | 196 | LOCATION (centre), RADIUS[, AXIS, REFDIR] |
 //! | 198 | LOCATION (centre), AXIS, MAJRAD, MINRAD[, REFDIR] |
 //!
-//! The plane, the cylinder and the cone are unbounded: their NURBS forms span the points of
+//! The plane entity 108 has no parametrization (its face's boundary curves bound it). The
+//! planes, the cylinder and the cone are unbounded: their NURBS forms span the points of
 //! the face that uses them (the vertices and the control points of its edge curves, whose
 //! convex hull holds the edges), as for STEP's planes and cylinders. Spheres and tori are
 //! whole. A transformation (124) of the surface entity moves the frame; one that is not a
@@ -29,7 +31,7 @@ use crate::spline::NurbsSurface;
 use crate::spline::construct::{self, Frame};
 
 /// Analytic surface entity types.
-pub(super) const ANALYTIC: [i64; 5] = [190, 192, 194, 196, 198];
+pub(super) const ANALYTIC: [i64; 6] = [108, 190, 192, 194, 196, 198];
 
 impl Reader<'_> {
     /// The coordinates of a point entity (116) in model space (its own transformation
@@ -156,9 +158,21 @@ impl Reader<'_> {
             if lo < hi { (lo, hi) } else { (0.0, 1.0) }
         };
         let out = match x.etype {
-            190 => {
-                let o = self.vector(de, 1, 116)?;
-                let f = self.frame(de, o, self.unit(de, 2)?, refdir(3)?)?;
+            108 | 190 => {
+                let f = if x.etype == 108 {
+                    let c = self.nums(de, 1, 4)?;
+                    let n = [c[0], c[1], c[2]];
+                    let l2 = crate::geom::dot(&n, &n);
+                    if !(l2 > 0.0 && l2.is_finite() && c[3].is_finite()) {
+                        return self.err(de, format!("plane coefficients {c:?} define no plane"));
+                    }
+                    // The point of the plane nearest the origin, the normal, any x.
+                    let o = n.scale(&(c[3] / l2));
+                    self.frame(de, o, n.scale(&(1.0 / l2.sqrt())), None)?
+                } else {
+                    let o = self.vector(de, 1, 116)?;
+                    self.frame(de, o, self.unit(de, 2)?, refdir(3)?)?
+                };
                 let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
                 for p in pts {
                     let d = p.sub(&f.o);

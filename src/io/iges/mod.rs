@@ -260,14 +260,43 @@ impl Reader<'_> {
         }
         Ok(self.curve(de)?.map(|c| vec![c]))
     }
+    /// `s` (built in the definition space of entity `de` from its member curves) moved by
+    /// `de`'s own transformation (124) into model space: the control points mapped, exact
+    /// for NURBS (affine invariance).
+    fn placed(&self, de: usize, s: NurbsSurface<f64, 3>) -> R<NurbsSurface<f64, 3>> {
+        if self.e[&de].transform == 0 {
+            return Ok(s);
+        }
+        let (mut pts, w) = s.points_weights();
+        self.apply(de, &mut pts)?;
+        let h = &s.hom;
+        NurbsSurface::new(
+            h.ku.knots().to_vec(),
+            h.ku.degree(),
+            h.kv.knots().to_vec(),
+            h.kv.degree(),
+            h.ku.n_ctrl(),
+            h.kv.n_ctrl(),
+            pts,
+            w,
+        )
+        .or_else(|e| self.err(de, e.to_string()))
+    }
     /// The NURBS form of surface entity `de`; `face`: the face using it (unbounded analytic
     /// surfaces span its points).
     fn surface(&self, de: usize, face: usize) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
         if analytic::ANALYTIC.contains(&self.e[&de].etype) {
-            let pts = if face != de && self.e[&face].etype == 510 {
-                self.face_points(face)
-            } else {
-                vec![]
+            let pts = match self.e[&face].etype {
+                _ if face == de => vec![],
+                510 => self.face_points(face),
+                143 | 144 => self
+                    .space_loops(face)?
+                    .into_iter()
+                    .flatten()
+                    .flat_map(|l| l.curves)
+                    .flat_map(|(_, c)| c.points_weights().0)
+                    .collect(),
+                _ => vec![],
             };
             return self.analytic(de, &pts);
         }
@@ -300,7 +329,7 @@ impl Reader<'_> {
                 );
                 let s = construct::revolve_curve_range(&ap[0], &d.scale(&(1.0 / l)), &g, sa, ta)
                     .or_else(|e| self.err(de, e.to_string()))?;
-                Ok(Some((s, SurfaceKind::Revolution)))
+                Ok(Some((self.placed(de, s)?, SurfaceKind::Revolution)))
             }
             122 => {
                 let dir = self.ptr(de, 1)?;
@@ -314,14 +343,14 @@ impl Reader<'_> {
                     &[end[0] - start[0], end[1] - start[1], end[2] - start[2]],
                 )
                 .or_else(|e| self.err(de, e.to_string()))?;
-                Ok(Some((s, SurfaceKind::Extrusion)))
+                Ok(Some((self.placed(de, s)?, SurfaceKind::Extrusion)))
             }
             _ => Ok(None),
         }
     }
 }
 
-const SURFACES: [i64; 8] = [128, 120, 122, 190, 192, 194, 196, 198];
+const SURFACES: [i64; 9] = [128, 120, 122, 108, 190, 192, 194, 196, 198];
 
 /// Read IGES text.
 pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
