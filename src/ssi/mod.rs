@@ -40,6 +40,7 @@ pub mod overlap;
 pub mod pair;
 pub mod refine;
 pub mod report;
+pub mod sign_change;
 pub mod singular;
 pub mod topology;
 pub mod touch;
