@@ -312,3 +312,54 @@ fn torus_figure_eight_is_certified() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// The certificate alone: a claim only where the surfaces cross.
+
+/// The exact sphere of radius 3 and planes parallel to its tangent plane at (1, 2, 2): above
+/// it (no crossing: `h` keeps one sign) nothing is claimed; 3e-12 below it the plane cuts a
+/// small circle, of radius about `sqrt(2 · 3 · 3e-12)`, and the radius of the point at the
+/// touching point bounds its distance to that circle.
+#[test]
+fn claims_only_where_the_surfaces_cross() {
+    use common::shapes::exact_sphere;
+    let s = exact_sphere(3.0);
+    let es = ExactSurface::new(&s);
+    // (1, 2, 2)/3 on the sphere: u from the angle in the xy plane, v from the height.
+    let n = [1.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0];
+    let e1 = [4.0, -2.0, 0.0];
+    let e2 = [2.0, 4.0, -5.0];
+    // Parameters of the point on the sphere (f64 projection).
+    let uv = vericad::spline::project::project(&s, &[1.0, 2.0, 2.0]);
+    let x = s.eval(&uv[0], &uv[1]);
+    assert!(dist(&x, &[1.0, 2.0, 2.0]) < 1e-9);
+    // Above the sphere (by far more than the rounding of the plane's data), and below.
+    for off in [1e-9, 1e-12, -1e-12] {
+        let c: [f64; 3] = std::array::from_fn(|k| [1.0, 2.0, 2.0][k] + off * n[k] * 3.0);
+        let p = plane(c, e1, e2);
+        let ep = ExactSurface::new(&p);
+        // The plane's parameters of x: its centre is (0.5, 0.5).
+        let w: [f64; 3] = std::array::from_fn(|k| x[k] - c[k]);
+        let dd = |e: &[f64; 3]| {
+            (w[0] * e[0] + w[1] * e[1] + w[2] * e[2]) / (e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
+        };
+        let uv_p = [0.5 + 0.5 * dd(&e1), 0.5 + 0.5 * dd(&e2)];
+        let r = certify_by_sign_change(&s, &p, &es, &ep, &x, &uv, &uv_p, 1.0);
+        println!("{off}: {r:?}");
+        if off >= 0.0 {
+            assert_eq!(r.unwrap_err(), SignChangeFail::NoSignChange, "{off}");
+        } else {
+            // The circle of the cut: centre on the normal line, radius sqrt(9 − (3 − |off|·3)²).
+            let depth = -off * 3.0;
+            let rho = (9.0 - (3.0 - depth) * (3.0 - depth)).sqrt();
+            let centre: [f64; 3] = std::array::from_fn(|k| n[k] * (3.0 - depth));
+            let radial = dist(&x, &centre);
+            let along = (0..3).map(|k| (x[k] - centre[k]) * n[k]).sum::<f64>();
+            let in_plane = (radial * radial - along * along).max(0.0).sqrt();
+            let truth = (along * along + (in_plane - rho).powi(2)).sqrt();
+            let c = r.unwrap();
+            assert!(c.radius >= truth - 1e-12, "{} < {truth}", c.radius);
+            assert!(c.radius < 1e-4, "{}", c.radius);
+        }
+    }
+}

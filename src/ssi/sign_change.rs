@@ -55,6 +55,7 @@ use super::refine::{domain, point_d1};
 use crate::geom::{cross, dot, norm};
 use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
+use rayon::prelude::*;
 
 type I = Interval;
 type M2 = [[f64; 2]; 2];
@@ -212,8 +213,8 @@ impl Foot<'_> {
     }
 
     /// Proven sign of `h(x) = H(x, y(x))` at the `f64` point `x` of the foot box's segment
-    /// box; `None` when undecided.
-    fn sign_at(&self, x: &[f64; 2], fb: &FootBox) -> Option<bool> {
+    /// box, with the box `Z ⊂ Y` holding `y(x)`; `None` when undecided.
+    fn sign_at(&self, x: &[f64; 2], fb: &FootBox) -> Option<(bool, [I; 2])> {
         let sx = enclose_point(self.s, pt(x[0]), pt(x[1]))?;
         let yc = self.newton(x, fb.y0)?;
         let yc = [
@@ -262,9 +263,9 @@ impl Foot<'_> {
             h = d3(&d, &self.n) - rest;
         }
         if h.is_pos() {
-            Some(true)
+            Some((true, z))
         } else if h.is_neg() {
-            Some(false)
+            Some((false, z))
         } else {
             None
         }
@@ -297,7 +298,7 @@ impl Foot<'_> {
                 if m == a || m == b {
                     break 'outer;
                 }
-                match self.sign_at(&m, fb) {
+                match self.sign_at(&m, fb).map(|s| s.0) {
                     Some(true) => {
                         a = m;
                         continue 'outer;
@@ -424,6 +425,8 @@ fn with_roles(
     let (_, su, sv) = point_d1(s, x[0], x[1]);
     let w = [norm(&su), norm(&sv)];
     let mut eps = EPS_MIN * scale;
+    // The previous circle's decided samples: point, sign, box of its foot.
+    let mut prev: Vec<([f64; 2], bool, [I; 2])> = Vec::new();
     while eps <= EPS_MAX * scale {
         let samples: Vec<Option<[f64; 2]>> = dirs
             .iter()
@@ -440,19 +443,37 @@ fn with_roles(
                 I::new(lo, hi)
             });
             if let Some(fb) = foot.foot_box(&bx, *y) {
-                let signs: Vec<Option<bool>> = samples
-                    .iter()
+                let signs: Vec<Option<(bool, [I; 2])>> = samples
+                    .par_iter()
                     .map(|z| z.and_then(|z| foot.sign_at(&z, &fb)))
                     .collect();
+                let mut decided: Vec<([f64; 2], bool)> = Vec::new();
+                let mut next = Vec::new();
+                for (z, sg) in samples.iter().zip(&signs) {
+                    if let (Some(z), Some((sg, zb))) = (z, sg) {
+                        decided.push((*z, *sg));
+                        next.push((*z, *sg, *zb));
+                    }
+                }
+                // A previous sample whose foot box lies in Y has the same foot here (the only
+                // zero in Y), so its sign holds for this h: pairs across the two circles catch
+                // a curve between them.
+                let within = |v: f64, i: I| i.lo <= v && v <= i.hi;
+                let sub = |a: &[I; 2], b: &[I; 2]| {
+                    (0..2).all(|i| b[i].lo <= a[i].lo && a[i].hi <= b[i].hi)
+                };
+                for (z, sg, zb) in &prev {
+                    if within(z[0], bx[0]) && within(z[1], bx[1]) && sub(zb, &fb.y) {
+                        decided.push((*z, *sg));
+                    }
+                }
+                prev = next;
                 // Pairs with proven opposite signs, nearest to x first.
                 let mut pairs = Vec::new();
-                for i in 0..SAMPLES {
-                    for j in i + 1..SAMPLES {
-                        if let (Some(a), Some(b), Some(sa), Some(sb)) =
-                            (samples[i], samples[j], signs[i], signs[j])
-                            && sa != sb
-                        {
-                            let (a, b) = if sa { (a, b) } else { (b, a) };
+                for (i, (a, sa)) in decided.iter().enumerate() {
+                    for (b, sb) in &decided[i + 1..] {
+                        if sa != sb {
+                            let (a, b) = if *sa { (*a, *b) } else { (*b, *a) };
                             pairs.push((seg_dist(x, &a, &b, &w), a, b));
                         }
                     }
