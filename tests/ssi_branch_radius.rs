@@ -76,6 +76,12 @@ fn check_radii(
             }
             for c in &b.curve_cert {
                 assert_eq!(c.kind, CurveCertKind::SignChange);
+                println!(
+                    "  sign change at {:?}: radius {:.3e}, true distance {:.3e}",
+                    b.points[c.index],
+                    b.curve_radius[c.index].unwrap_or(f64::NAN),
+                    truth(&b.points[c.index])
+                );
                 assert!(
                     b.curve_radius[c.index]
                         .is_some_and(|x| x <= r.summary.dist_curve_max.unwrap_or(f64::INFINITY))

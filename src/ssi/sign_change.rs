@@ -38,7 +38,9 @@
 //! non-degenerate saddle (proven by [`super::singular`]) with value near 0, so on a small
 //! circle of parameters around the point it takes both signs; along a branch next to it, a
 //! segment across the branch changes sign. The segments tried are the diameters and chords of
-//! such circles (radius `ε` in model units, `ε` growing from `1e-9` of the scale); the first
+//! such circles (radius `ε` in model units, `ε` doubling from `1e-9` of the scale), and radial
+//! pairs between consecutive circles (a sample's sign carries over when its foot box lies
+//! in the new `Y`: the foot is then the same, the only one in `Y`); the first
 //! `ε` with a proven sign change gives the radius, about `ε` — at a branch point about
 //! `sqrt(δ / κ)` for the enclosure width `δ` of `h` and the curvature difference `κ`, which is
 //! what any argument from signs of `h` can reach.
@@ -87,7 +89,7 @@ pub enum SignChangeFail {
 }
 
 /// Samples per circle.
-const SAMPLES: usize = 16;
+const SAMPLES: usize = 8;
 /// Growth of the circle radius per step.
 const GROWTH: f64 = 2.0;
 /// Smallest and largest circle radius, relative to the point's scale `1 + max |p_k|`.
@@ -481,10 +483,10 @@ fn with_roles(
                 pairs.sort_by(|u, v| u.0.total_cmp(&v.0));
                 let mut best: Option<SignChangeCert> = None;
                 for (_, a, b) in pairs.into_iter().take(PAIRS) {
-                    // Bisection to 1/1000 of the distance from p (or of tol).
+                    // Bisection to 1/100 of the distance from p (or of tol).
                     let pa = s.eval(&a[0], &a[1]);
                     let d = (0..3).map(|k| (pa[k] - p[k]).powi(2)).sum::<f64>().sqrt();
-                    let xs = foot.bisect(a, b, &fb, &w, 1e-3 * d.min(tol));
+                    let xs = foot.bisect(a, b, &fb, &w, 1e-2 * d.min(tol));
                     let Some(q) = enclose_point(s, xs[0], xs[1]) else {
                         continue;
                     };
