@@ -248,6 +248,7 @@ fn border_edge(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> bool {
 /// Refine, certify and fit one traced branch. `stop(done, total)` is asked before every
 /// point of each step (refinement, insertion, certification; a point costs far more than
 /// the question); `None` when it said stop.
+#[allow(clippy::too_many_arguments)]
 pub fn refine_branch(
     t: &Topology,
     b: &Branch,
