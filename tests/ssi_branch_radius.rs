@@ -261,7 +261,10 @@ fn plane(p: [f64; 3], e1: [f64; 3], e2: [f64; 3]) -> NurbsSurface<f64, 3> {
 
 #[test]
 fn torus_figure_eight_is_certified() {
-    for (alpha, psi) in [(0.3f64, 1.1f64), (0.0, 0.45), (1.2, 2.5)] {
+    // ψ = 0: the branch point on the torus's seam (u = 0), where the circle of samples is cut
+    // by the domain's border (every point certified against the curve; the run is not
+    // certified there because the coverage certificate leaves box pairs at the seam).
+    for (alpha, psi) in [(0.3f64, 1.1f64), (0.0, 0.45), (1.2, 2.5), (0.3, 0.0)] {
         let f = Frame {
             o: [0.25, -0.5, 0.125],
             x: [alpha.cos(), alpha.sin(), 0.0],
@@ -311,7 +314,13 @@ fn torus_figure_eight_is_certified() {
         let margin = |x: &[f64; 3]| 1e-13 + 1e-15 / dist(x, &q).max(1e-9);
         let (sign_change, largest) = check_radii(&r, &truth, &margin);
         assert_eq!(s.points_curve_uncertified, 0, "{alpha} {psi}");
-        assert!(s.certified, "{alpha} {psi}: {s:?}");
+        assert!(s.all_points_within_tol, "{alpha} {psi}");
+        println!(
+            "  no missed branches: {}, uncertified box pairs {}",
+            s.no_missed_branches, s.uncertified_box_pairs
+        );
+        // On the seam the coverage certificate (not this one) leaves box pairs uncertified.
+        assert!(s.certified || psi == 0.0, "{alpha} {psi}: {s:?}");
         assert!(
             sign_change >= 1 && largest <= TOL,
             "{sign_change} {largest}"
