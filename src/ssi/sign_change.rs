@@ -48,8 +48,7 @@
 //! **Hypotheses.** Continuous surfaces, weights not vanishing on the boxes (refused by the
 //! interval quotients otherwise). Nothing about the branch point itself is used in the proof:
 //! the singular proof only decides where this certificate is tried (points near a proven
-//! branch point, where Krawczyk's test fails). The full statement: docs/ssi.md, "Points at
-//! branch points".
+//! branch point, where Krawczyk's test fails). The full statement: docs/ssi-branch-points.md.
 
 use super::certify::{ExactSurface, distance_upper, rat_interval};
 use super::enclose::{enclose_jet, enclose_point};
