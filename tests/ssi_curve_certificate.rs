@@ -450,14 +450,16 @@ fn summary_speaks_of_the_curve() {
             plane_z(2.0 - 2f64.powi(-18), 3.0),
             Some(true),
         ),
-        // Equal cylinders: the branch points, where they are tangent, are uncertified.
+        // Equal cylinders: at the branch points (0, ±1, 0), where
+        // the surfaces are tangent and Krawczyk's test fails, the radius comes from a proven
+        // sign change (listed in curve_cert): proven within tol of the curve too.
         (
             cylinder(&axis_z, 1.0, -3.0, 3.0).unwrap(),
             cylinder(&axis_x, 1.0, 0.0, 6.0).unwrap(),
-            None,
+            Some(true),
         ),
     ];
-    for (a, b, within) in cases {
+    for (k, (a, b, within)) in cases.into_iter().enumerate() {
         let m = Model {
             surfaces: vec![face(a), face(b)],
             ..Default::default()
@@ -485,6 +487,18 @@ fn summary_speaks_of_the_curve() {
             Some(w) => assert!(unproven == 0 && s.all_points_within_tol == w, "{s:?}"),
             None => assert!(unproven > 0 && !s.all_points_within_tol, "{s:?}"),
         }
+        let sign_change: usize = r
+            .pairs
+            .iter()
+            .flat_map(|p| &p.branches)
+            .map(|b| b.curve_cert.len())
+            .sum();
+        assert_eq!(sign_change > 0, k == 2, "{k}: {sign_change}");
+        assert_eq!(
+            sign_change > 0,
+            s.certificate.iter().any(|c| c.contains("sign change")),
+            "{k}"
+        );
         assert!(
             s.certificate
                 .iter()

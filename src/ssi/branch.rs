@@ -10,7 +10,8 @@ use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
     sin_between,
 };
-use super::report::{BranchOut, EndKind, TouchOut};
+use super::report::{BranchOut, CurveCertKind, CurveResult, EndKind, TouchOut};
+use super::sign_change::{SignChangeCert, SignChangeFail, certify_by_sign_change};
 use super::topology::Topology;
 use super::touch::touch_out;
 use super::trace::Branch;
@@ -20,6 +21,8 @@ use crate::geom::{dist, dist_to_segment};
 use crate::spline::NurbsSurface;
 use crate::spline::project::point_d1;
 use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// The two surfaces of a pair with their meshes and exact forms.
 pub struct PairGeometry<'a> {
@@ -29,6 +32,55 @@ pub struct PairGeometry<'a> {
     pub mb: &'a SurfaceMesh,
     pub ea: &'a ExactSurface,
     pub eb: &'a ExactSurface,
+}
+
+/// The proven branch points of a pair: points where Krawczyk's test fails within
+/// [`BranchNear::radius`] of one get the sign-change certificate ([`super::sign_change`])
+/// instead, if its radius is within tol. A branch point's vertex ends several branches: the
+/// result is computed once per point.
+pub struct BranchNear {
+    /// Root points of the proven branch points.
+    pub points: Vec<[f64; 3]>,
+    /// How far from a proven branch point the certificate is tried (100 tol).
+    pub radius: f64,
+    pub tol: f64,
+    cache: Mutex<HashMap<[u64; 7], Result<SignChangeCert, SignChangeFail>>>,
+}
+
+impl BranchNear {
+    pub fn new(points: Vec<[f64; 3]>, tol: f64) -> Self {
+        BranchNear {
+            points,
+            radius: 100.0 * tol,
+            tol,
+            cache: Mutex::new(HashMap::new()),
+        }
+    }
+
+    /// The curve result of `r`, whose Krawczyk test failed with `reason`.
+    fn certify(&self, g: &PairGeometry, r: &Refined, reason: Uncertified) -> CurveResult {
+        if !self.points.iter().any(|b| dist(b, &r.xyz) <= self.radius) {
+            return Err(reason);
+        }
+        let key: [u64; 7] = [
+            r.xyz[0], r.xyz[1], r.xyz[2], r.uv_a[0], r.uv_a[1], r.uv_b[0], r.uv_b[1],
+        ]
+        .map(f64::to_bits);
+        let cached = self.cache.lock().ok().and_then(|c| c.get(&key).copied());
+        let res = cached.unwrap_or_else(|| {
+            let res =
+                certify_by_sign_change(g.sa, g.sb, g.ea, g.eb, &r.xyz, &r.uv_a, &r.uv_b, self.tol);
+            if let Ok(mut c) = self.cache.lock() {
+                c.insert(key, res);
+            }
+            res
+        });
+        match res {
+            Ok(c) => Ok((c.radius, CurveCertKind::SignChange)),
+            Err(SignChangeFail::AboveTol(_)) => Err(Uncertified::SignChangeAboveTol),
+            Err(SignChangeFail::NoSignChange) => Err(reason),
+        }
+    }
 }
 
 /// A refined branch, or a touching point when the branch has zero length.
@@ -196,6 +248,7 @@ fn border_edge(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> bool {
 /// Refine, certify and fit one traced branch. `stop(done, total)` is asked before every
 /// point of each step (refinement, insertion, certification; a point costs far more than
 /// the question); `None` when it said stop.
+#[allow(clippy::too_many_arguments)]
 pub fn refine_branch(
     t: &Topology,
     b: &Branch,
@@ -203,6 +256,7 @@ pub fn refine_branch(
     prm: &RefineParams,
     max_insert_depth: u32,
     singular: &[Refined],
+    near: &BranchNear,
     stop: &dyn Fn(usize, usize) -> bool,
 ) -> Option<BranchResult> {
     let check = |k: usize, n: usize| stop(k, n);
@@ -318,7 +372,15 @@ pub fn refine_branch(
     }
     let da_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.1));
     let db_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.2));
-    let radii: Vec<_> = per_point.into_iter().map(|p| p.0).collect();
+    // Krawczyk's failures next to a proven branch point: the sign-change certificate.
+    let radii: Vec<CurveResult> = per_point
+        .into_iter()
+        .zip(&all)
+        .map(|(p, r)| match p.0 {
+            Ok(x) => Ok((x, CurveCertKind::Krawczyk)),
+            Err(u) => near.certify(g, r, u),
+        })
+        .collect();
     let ends = if b.closed {
         Vec::new()
     } else {
@@ -370,7 +432,8 @@ pub fn refine_branch(
         curve_uncertified_points: 0,
         curve_radius: Vec::new(),
         curve_uncertified: Vec::new(),
+        curve_cert: Vec::new(),
     };
-    out.set_curve_radii(radii);
+    out.set_curve_results(radii);
     Some(BranchResult::Curve(out))
 }

@@ -84,6 +84,49 @@ impl ExactSurface {
     }
 }
 
+impl ExactSurface {
+    /// `S(u, v)` exactly, in rationals (the parameters are finite `f64` values, taken
+    /// exactly; a weight sum of 0 — refused for the surfaces used — gives `None`).
+    pub fn eval_exact(&self, uv: &[f64; 2]) -> Option<[BigRational; 3]> {
+        if !uv.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        let (u, v) = (lift::<BigRational>(uv[0]), lift::<BigRational>(uv[1]));
+        let h = self.s.hom.eval(&u, &v);
+        if h.w.is_zero() {
+            return None;
+        }
+        Some(std::array::from_fn(|k| h.wp[k].clone() / h.w.clone()))
+    }
+}
+
+/// The tightest `f64` interval found holding the rational `q` (end points proven by exact
+/// comparison); `None` when `q` is beyond the `f64` range.
+pub fn rat_interval(q: &BigRational) -> Option<Interval> {
+    let a = ToPrimitive::to_f64(q)?;
+    if !a.is_finite() {
+        return None;
+    }
+    let (mut lo, mut hi) = (a, a);
+    for _ in 0..8 {
+        if lift::<BigRational>(lo) <= *q {
+            break;
+        }
+        lo = lo.next_down();
+    }
+    for _ in 0..8 {
+        if lift::<BigRational>(hi) >= *q {
+            break;
+        }
+        hi = hi.next_up();
+    }
+    (lift::<BigRational>(lo) <= *q
+        && lift::<BigRational>(hi) >= *q
+        && lo.is_finite()
+        && hi.is_finite())
+    .then(|| Interval::new(lo, hi))
+}
+
 /// Smallest `f64` `r` tried with `r² >= q` (proven in rationals).
 pub fn sqrt_upper(q: &BigRational) -> f64 {
     if q.is_zero() {

@@ -336,6 +336,14 @@ pub fn intersect_models(
             .fold(0.0, f64::max)
     });
     let all_points_within_tol = dist_curve_max.is_some_and(|d| d <= prm.tol);
+    let points_sign_change: usize = branches.iter().map(|b| b.curve_cert.len()).sum();
+    let sign_change_note = if points_sign_change > 0 {
+        format!(
+            "; at {points_sign_change} points next to proven branch points, where that test cannot succeed, by a proven sign change instead: the signed distance along a fixed direction changes sign between the ends of a parameter segment on which the foot point is unique and continuous (Krawczyk's test for the 2 x 2 foot system over the segment's box), so a true common point lies on the segment (intermediate value theorem; existence, not uniqueness; listed per branch as curve_cert)"
+        )
+    } else {
+        String::new()
+    };
     let uncertified: usize = pairs
         .iter()
         .filter_map(|p| p.coverage.as_ref())
@@ -378,9 +386,9 @@ pub fn intersect_models(
         if meshes {
             "distance to the curve (mesh mode): the same bound, to the exact crossing of the triangulations".to_string()
         } else if points_curve_uncertified == 0 {
-            "every point's distance to the intersection curve is bounded rigorously: a true common point of both faces (parameters in both domains) lies within curve_radius, the unique zero in its parameter box (Krawczyk's test on S_A(u,v) = S_B(s,t) plus a plane across the curve, interval enclosures over the box; hypotheses: continuous surfaces, weights not vanishing, both proven or refused)".to_string()
+            format!("every point's distance to the intersection curve is bounded rigorously: a true common point of both faces (parameters in both domains) lies within curve_radius, the unique zero in its parameter box (Krawczyk's test on S_A(u,v) = S_B(s,t) plus a plane across the curve, interval enclosures over the box; hypotheses: continuous surfaces, weights not vanishing, both proven or refused){sign_change_note}")
         } else {
-            format!("distance to the intersection curve: proven for every point but {points_curve_uncertified}, which are uncertified (listed per branch with the reason: tangency, singular points, no contraction of the Krawczyk box); dist_curve_max is null")
+            format!("distance to the intersection curve: proven for every point but {points_curve_uncertified}, which are uncertified (listed per branch with the reason: tangency, singular points, no contraction of the Krawczyk box, a sign-change radius above tol){sign_change_note}; dist_curve_max is null")
         },
         "branch topology comes from exact signs with symbolic perturbation; every segment is used once (checked)".to_string(),
         if meshes {

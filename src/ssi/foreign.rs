@@ -207,6 +207,7 @@ fn fail_name(e: Uncertified) -> &'static str {
         Uncertified::NoContraction => "no_contraction",
         Uncertified::OutsideDomain => "face_border",
         Uncertified::Enclosure => "no_enclosure",
+        Uncertified::SignChangeAboveTol => "sign_change_above_tol",
     }
 }
 

@@ -313,9 +313,10 @@ impl std::fmt::Display for SsiResult {
                     b.points.len(),
                     b.dist_a_max,
                     b.dist_b_max,
-                    match b.dist_curve_max {
-                        Some(d) => format!("{d:.2e}"),
-                        None => format!("unproven at {} points", b.curve_uncertified_points),
+                    match (b.dist_curve_max, b.curve_cert.len()) {
+                        (Some(d), 0) => format!("{d:.2e}"),
+                        (Some(d), n) => format!("{d:.2e} ({n} by sign change at a branch point)"),
+                        (None, _) => format!("unproven at {} points", b.curve_uncertified_points),
                     },
                     if b.ends.is_empty() {
                         "none".to_string()

@@ -76,6 +76,10 @@ pub enum Uncertified {
     OutsideDomain,
     /// An interval enclosure failed (a weight enclosure holds 0, or overflow).
     Enclosure,
+    /// Near a proven branch point, where this test fails: a true intersection point was
+    /// proven by a sign change ([`super::sign_change`]), but farther from the point than tol
+    /// (the radius is not reported as a certificate).
+    SignChangeAboveTol,
 }
 
 /// A proven curve point near `p`.

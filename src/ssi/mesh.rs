@@ -125,6 +125,7 @@ pub fn intersect_meshes(
                 .map(|&p| Some(topo.points[p as usize].err))
                 .collect(),
             curve_uncertified: Vec::new(),
+            curve_cert: Vec::new(),
         });
     }
     stats.seconds = t0.elapsed().as_secs_f64();

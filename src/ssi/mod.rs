@@ -17,6 +17,7 @@
 //! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`] (curve points by [`krawczyk`]) |
 //! | tangential contacts | [`touch`] |
 //! | singular points (touching, branch) proven by Krawczyk's test on the tangency system | [`singular`] |
+//! | certificate of the points at and next to a proven branch point: a proven sign change | [`sign_change`] |
 //! | two surfaces / many faces / meshes | [`pair`], [`driver`], [`mesh`] |
 //! | cancel flag and progress inside a pair | [`control`] |
 
@@ -40,6 +41,7 @@ pub mod overlap;
 pub mod pair;
 pub mod refine;
 pub mod report;
+pub mod sign_change;
 pub mod singular;
 pub mod topology;
 pub mod touch;

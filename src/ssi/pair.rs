@@ -1,13 +1,13 @@
 //! The intersection of two parametric surfaces (paper §4, steps 1–9 for one pair).
 
-use super::branch::{BranchResult, PairGeometry, refine_branch};
+use super::branch::{BranchNear, BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
 use super::coincide::coincidence;
 use super::control::CHECK_EVERY;
 use super::coverage::{CoverageParams, coverage};
 use super::refine::RefineParams;
 use super::refine::Refined;
-use super::report::{ContactOut, PairOut, PairStats};
+use super::report::{ContactOut, PairOut, PairStats, SingularKind};
 use super::topology::Topology;
 use super::touch::{region, tangential_points, touch_out};
 use super::trace::{check_invariants, trace};
@@ -216,6 +216,17 @@ pub fn intersect_surfaces(
             prm.tol,
         ));
     }
+    // Proven branch points: the points next to them get the sign-change certificate where
+    // Krawczyk's test fails.
+    let near = BranchNear::new(
+        out.touch_points
+            .iter()
+            .filter_map(|t| t.singular.as_ref())
+            .filter(|s| s.kind == SingularKind::BranchPoint)
+            .filter_map(|s| s.root_point)
+            .collect(),
+        prm.tol,
+    );
     for (k, b) in branches.iter().enumerate() {
         ctl.report(ids, "refine branches", k, branches.len());
         if stop() {
@@ -226,7 +237,16 @@ pub fn intersect_surfaces(
             ctl.report(ids, "certify branch points", done, total);
             stop()
         };
-        match refine_branch(&topo, b, &g, &rp, prm.max_insert_depth, &singular, &step) {
+        match refine_branch(
+            &topo,
+            b,
+            &g,
+            &rp,
+            prm.max_insert_depth,
+            &singular,
+            &near,
+            &step,
+        ) {
             Some(BranchResult::Curve(c)) => out.branches.push(c),
             Some(BranchResult::Touch(t)) => out.touch_points.push(t),
             None => {

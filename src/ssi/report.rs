@@ -58,6 +58,10 @@ pub struct BranchOut {
     pub curve_radius: Vec<Option<f64>>,
     /// The uncertified points: index into `points` and the reason.
     pub curve_uncertified: Vec<CurveUncertified>,
+    /// Points whose `curve_radius` comes from another argument than Krawczyk's test (index
+    /// and kind: `sign_change` near a proven branch point, [`super::sign_change`]); every
+    /// other point with a radius has Krawczyk's.
+    pub curve_cert: Vec<CurveCertOut>,
     /// Ends of an open branch (empty for closed ones).
     pub ends: Vec<EndKind>,
     /// Points whose refinement met tangential surfaces / did not converge.
@@ -81,15 +85,56 @@ pub struct CurveUncertified {
     pub reason: super::krawczyk::Uncertified,
 }
 
+/// The argument behind a point's curve radius.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CurveCertKind {
+    /// Krawczyk's test on the plane across the curve ([`super::krawczyk`]): a unique zero.
+    Krawczyk,
+    /// A proven sign change of the signed distance along a segment, next to a proven branch
+    /// point ([`super::sign_change`]): a zero exists, not claimed unique.
+    SignChange,
+}
+
+/// A point whose curve radius is not from Krawczyk's test.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct CurveCertOut {
+    pub index: usize,
+    pub kind: CurveCertKind,
+}
+
+/// A point's curve result: the radius and its argument, or why there is none.
+pub type CurveResult = Result<(f64, CurveCertKind), super::krawczyk::Uncertified>;
+
 impl BranchOut {
-    /// Set the curve certificate from per-point results (radius, or why there is none).
+    /// Set the curve certificate from per-point Krawczyk results (radius, or why there is
+    /// none).
     pub fn set_curve_radii(&mut self, radii: Vec<Result<f64, super::krawczyk::Uncertified>>) {
+        self.set_curve_results(
+            radii
+                .into_iter()
+                .map(|r| r.map(|x| (x, CurveCertKind::Krawczyk)))
+                .collect(),
+        );
+    }
+    /// Set the curve certificate from per-point results with their kinds.
+    pub fn set_curve_results(&mut self, radii: Vec<CurveResult>) {
         self.curve_uncertified = radii
             .iter()
             .enumerate()
             .filter_map(|(index, r)| r.err().map(|reason| CurveUncertified { index, reason }))
             .collect();
-        self.curve_radius = radii.into_iter().map(|r| r.ok()).collect();
+        self.curve_cert = radii
+            .iter()
+            .enumerate()
+            .filter_map(|(index, r)| match r {
+                Ok((_, kind)) if *kind != CurveCertKind::Krawczyk => {
+                    Some(CurveCertOut { index, kind: *kind })
+                }
+                _ => None,
+            })
+            .collect();
+        self.curve_radius = radii.into_iter().map(|r| r.ok().map(|x| x.0)).collect();
         self.curve_uncertified_points = self.curve_uncertified.len();
         self.dist_curve_max = (self.curve_uncertified_points == 0).then(|| {
             self.curve_radius
@@ -98,13 +143,21 @@ impl BranchOut {
                 .fold(0.0f64, |m, r| m.max(*r))
         });
     }
-    /// The per-point curve results (inverse of [`BranchOut::set_curve_radii`]).
-    pub fn curve_results(&self) -> Vec<Result<f64, super::krawczyk::Uncertified>> {
-        let mut out: Vec<_> = self
+    /// The per-point curve results (inverse of [`BranchOut::set_curve_results`]).
+    pub fn curve_results(&self) -> Vec<CurveResult> {
+        let mut out: Vec<CurveResult> = self
             .curve_radius
             .iter()
-            .map(|r| r.ok_or(super::krawczyk::Uncertified::NotFinite))
+            .map(|r| {
+                r.map(|x| (x, CurveCertKind::Krawczyk))
+                    .ok_or(super::krawczyk::Uncertified::NotFinite)
+            })
             .collect();
+        for c in &self.curve_cert {
+            if let Some(Ok(o)) = out.get_mut(c.index) {
+                o.1 = c.kind;
+            }
+        }
         for c in &self.curve_uncertified {
             if let Some(o) = out.get_mut(c.index) {
                 *o = Err(c.reason);

@@ -150,7 +150,7 @@ pub fn clip_mask(b: &BranchOut, keep: &[bool]) -> Vec<BranchOut> {
                 fit: None,
                 ..b.clone()
             };
-            out.set_curve_radii(
+            out.set_curve_results(
                 r.iter()
                     .map(|&i| curve.get(i).copied().unwrap_or(Err(Uncertified::NotFinite)))
                     .collect(),
