@@ -14,7 +14,7 @@
 //! * [`elevate`] — degree elevation and refinement to a knot vector, exact;
 //! * [`fit_knots`] — least-squares fitting on a given knot vector;
 //! * [`linalg`] — the small dense solver both use;
-//! * [`enclose`], [`enclosed_bezier`] — outward-rounded interval enclosures of a surface and
+//! * [`enclose`], [`enclose_net`] (centred, with derivative nets), [`enclosed_bezier`] — outward-rounded interval enclosures of a surface and
 //!   its first derivatives over parameter boxes, and of its Bézier pieces.
 
 pub mod basis;
@@ -27,6 +27,7 @@ pub mod compose;
 pub mod construct;
 pub mod elevate;
 pub mod enclose;
+pub mod enclose_net;
 pub mod enclosed_bezier;
 pub mod fit;
 pub mod fit_knots;
