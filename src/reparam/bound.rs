@@ -285,18 +285,29 @@ fn box_bound(s: &NurbsSurface<f64, 3>, nets: &Nets, d: [f64; 4], qs: I, qt: I) -
     // On a box touching a side, φ's fixed coordinate there is exact (hypothesis 3), so
     // `φ_v(s, t) = v0 + ∫_0^t ∂_t φ_v ∈ v0 + [t]·∂_t φ_v(Q)` (likewise on the other sides):
     // with a positive derivative this keeps φ(Q) inside D, where the clamp is inactive.
+    // With `∂_t φ_v ≥ 0` on Q this is exactly `φ_v ≥ v0` (no rounding in the conclusion).
     let one = I::point(1.0);
+    let side = |x: &mut I, at: f64, from: I, deriv: I, low: bool| {
+        *x = meet(*x, I::point(at) + from * deriv);
+        if deriv.lo >= 0.0 {
+            if low && x.lo < at {
+                *x = I::new(at, x.hi.max(at));
+            } else if !low && x.hi > at {
+                *x = I::new(x.lo.min(at), at);
+            }
+        }
+    };
     if qt.lo == 0.0 {
-        fq[1] = meet(fq[1], I::point(d[2]) + qt * dft[1]);
+        side(&mut fq[1], d[2], qt, dft[1], true);
     }
     if qt.hi == 1.0 {
-        fq[1] = meet(fq[1], I::point(d[3]) + (qt - one) * dft[1]);
+        side(&mut fq[1], d[3], qt - one, dft[1], false);
     }
     if qs.lo == 0.0 {
-        fq[0] = meet(fq[0], I::point(d[0]) + qs * dfs[0]);
+        side(&mut fq[0], d[0], qs, dfs[0], true);
     }
     if qs.hi == 1.0 {
-        fq[0] = meet(fq[0], I::point(d[1]) + (qs - one) * dfs[0]);
+        side(&mut fq[0], d[1], qs - one, dfs[0], false);
     }
     let (cu, ku) = clamp(fq[0], d[0], d[1]);
     let (cv, kv) = clamp(fq[1], d[2], d[3]);
