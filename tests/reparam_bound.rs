@@ -40,7 +40,10 @@ fn check(
         rep.seconds,
         rep.control_points_after
     );
-    assert!(worst <= rep.deviation.e_max * 1.5 + 1e-12, "{name}: evidence");
+    assert!(
+        worst <= rep.deviation.e_max * 1.5 + 1e-12,
+        "{name}: evidence"
+    );
     if let Some(proven) = b.e_max_proven {
         assert!(
             worst <= proven,
@@ -196,7 +199,6 @@ fn a_grid_off_its_side_has_no_bound() {
     assert!(r.report.within_tol && !r.report.within_tol_proven);
 }
 
-
 /// A plane parametrized uniformly (a bilinear patch): N and φ are exact up to rounding, the
 /// bound is proven far below ε, and it decides.
 #[test]
@@ -233,7 +235,9 @@ fn t20_faces_bound() {
         ..Params::default()
     };
     let (mut faces, mut proven_le, mut t_on, mut t_off) = (0, 0, 0.0, 0.0);
-    eprintln!("| face | E_max (evidence) | e_max_proven | boxes | bound s | run s | run s without |");
+    eprintln!(
+        "| face | E_max (evidence) | e_max_proven | boxes | bound s | run s | run s without |"
+    );
     for (k, f) in m.surfaces.iter().enumerate() {
         let (Ok(a), Ok(b)) = (reparametrize(&f.nurbs, &on), reparametrize(&f.nurbs, &off)) else {
             continue;
@@ -259,6 +263,8 @@ fn t20_faces_bound() {
             b.report.seconds
         );
     }
-    eprintln!("t20: {proven_le} of {faces} faces proven ≤ ε; {t_on:.2} s with the bound, {t_off:.2} s without");
+    eprintln!(
+        "t20: {proven_le} of {faces} faces proven ≤ ε; {t_on:.2} s with the bound, {t_off:.2} s without"
+    );
     assert_eq!(faces, 21);
 }

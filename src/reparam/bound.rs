@@ -131,11 +131,10 @@ pub fn phi(s: &NurbsSurface<f64, 3>, g: &Grid) -> Result<NurbsSurface<f64, 3>, S
             }
         }
     }
-    let vals: Vec<Vec<[f64; 3]>> = g
-        .uv
-        .iter()
-        .map(|row| row.iter().map(|p| [p[0], p[1], 0.0]).collect())
-        .collect();
+    let vals: Vec<Vec<[f64; 3]>> =
+        g.uv.iter()
+            .map(|row| row.iter().map(|p| [p[0], p[1], 0.0]).collect())
+            .collect();
     let mut f = surface::interpolate_values(&g.xi, &g.eta, &vals)
         .map_err(|e: ReparamError| format!("φ: {e}"))?;
     // Hypothesis 2: clamped knots on [0, 1].
@@ -150,7 +149,11 @@ pub fn phi(s: &NurbsSurface<f64, 3>, g: &Grid) -> Result<NurbsSurface<f64, 3>, S
     }
     // Hypothesis 3: boundary control rows on their sides within rounding, then exactly.
     let (nu, nv) = (f.hom.nu(), f.hom.nv());
-    let scale = (u1 - u0).abs().max((v1 - v0).abs()).max(u0.abs()).max(u1.abs());
+    let scale = (u1 - u0)
+        .abs()
+        .max((v1 - v0).abs())
+        .max(u0.abs())
+        .max(u1.abs());
     let scale = scale.max(v0.abs()).max(v1.abs());
     let mut set = |k: usize, c: usize, want: f64| -> Result<(), String> {
         let h = &mut f.hom.net[k];
@@ -272,7 +275,11 @@ fn box_bound(s: &NurbsSurface<f64, 3>, nets: &Nets, d: [f64; 4], qs: I, qt: I) -
     let s_rel = |u: I, v: I| -> Option<[I; 3]> {
         let y = h.enclose_map(u, v, shifted(c))?;
         let w = y[3];
-        Some([y[0].checked_div(w)?, y[1].checked_div(w)?, y[2].checked_div(w)?])
+        Some([
+            y[0].checked_div(w)?,
+            y[1].checked_div(w)?,
+            y[2].checked_div(w)?,
+        ])
     };
     // f(q0) − nothing: N(q0) − c − (S(c(φ(q0))) − c).
     let n0 = n.enclose_map(ps, pt, shift)?;
@@ -315,7 +322,11 @@ fn box_bound(s: &NurbsSurface<f64, 3>, nets: &Nets, d: [f64; 4], qs: I, qt: I) -
     let yu = hu.enclose_map(cu, cv, shifted(c))?;
     let yv = hv.enclose_map(cu, cv, shifted(c))?;
     let w = y[3];
-    let sq_rel: [I; 3] = [y[0].checked_div(w)?, y[1].checked_div(w)?, y[2].checked_div(w)?];
+    let sq_rel: [I; 3] = [
+        y[0].checked_div(w)?,
+        y[1].checked_div(w)?,
+        y[2].checked_div(w)?,
+    ];
     let mut su = [I::point(0.0); 3];
     let mut sv = [I::point(0.0); 3];
     for k in 0..3 {
@@ -399,8 +410,16 @@ fn second_order(
     let [nss, nst, ntt] = n2;
     let [fss, fst, ftt] = f2;
     let [huu, huv, hvv] = h2;
-    let (a_ss, a_st, a_tt) = (nss.enclose(qs, qt)?, nst.enclose(qs, qt)?, ntt.enclose(qs, qt)?);
-    let (p_ss, p_st, p_tt) = (fss.enclose(qs, qt)?, fst.enclose(qs, qt)?, ftt.enclose(qs, qt)?);
+    let (a_ss, a_st, a_tt) = (
+        nss.enclose(qs, qt)?,
+        nst.enclose(qs, qt)?,
+        ntt.enclose(qs, qt)?,
+    );
+    let (p_ss, p_st, p_tt) = (
+        fss.enclose(qs, qt)?,
+        fst.enclose(qs, qt)?,
+        ftt.enclose(qs, qt)?,
+    );
     let (dfs, dft) = (fs.enclose(qs, qt)?, ft.enclose(qs, qt)?);
     let yu = hu.enclose_map(cu, cv, &sh)?;
     let yv = hv.enclose_map(cu, cv, &sh)?;

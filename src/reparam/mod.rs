@@ -167,7 +167,11 @@ impl Params {
             return bad("bound_ratio", self.bound_ratio, "must be at least 1");
         }
         if self.bound_boxes < 16 {
-            return bad("bound_boxes", self.bound_boxes as f64, "must be at least 16");
+            return bad(
+                "bound_boxes",
+                self.bound_boxes as f64,
+                "must be at least 16",
+            );
         }
         if self.quality_grid < 2 || self.quality_grid > 1000 {
             return bad(

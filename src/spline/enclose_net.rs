@@ -188,11 +188,20 @@ impl<const D: usize> INet<D> {
     }
 
     /// The derivative spline in u (`du = true`) or v (degree one less, knots without the
-    /// first and last), control points enclosed; `None` for degree 0.
+    /// first and last), control points enclosed. In a direction of degree 0 the derivative
+    /// is zero on every span (the one-sided derivatives of the pieces): the same net with
+    /// zero control points.
     pub fn derivative(&self, du: bool) -> Option<INet<D>> {
         let k = if du { &self.ku } else { &self.kv };
         let p = k.p;
-        if p == 0 || k.n_ctrl() < 2 {
+        if p == 0 {
+            return Some(INet {
+                ku: self.ku.clone(),
+                kv: self.kv.clone(),
+                ctrl: vec![[I::point(0.0); D]; self.ctrl.len()],
+            });
+        }
+        if k.n_ctrl() < 2 {
             return None;
         }
         let t = &k.t;
@@ -319,7 +328,11 @@ mod tests {
         let s = sphere(&Frame::WORLD, 100.0).unwrap();
         let h = INet::homogeneous(&s);
         let (hu, hv) = (h.derivative(true).unwrap(), h.derivative(false).unwrap());
-        for (u0, v0, w) in [(0.1, 0.3, 1e-3), (0.25 - 1e-4, 0.5 - 2e-4, 4e-4), (0.6, 0.1, 0.0)] {
+        for (u0, v0, w) in [
+            (0.1, 0.3, 1e-3),
+            (0.25 - 1e-4, 0.5 - 2e-4, 4e-4),
+            (0.6, 0.1, 0.0),
+        ] {
             let (u, v) = (I::new(u0, u0 + w), I::new(v0, v0 + w));
             let x = h.enclose(u, v).unwrap();
             let xu = hu.enclose(u, v).unwrap();
