@@ -21,6 +21,7 @@
 //! * [`job`] — the `reparam` command: faces of a model file, outputs, report.
 
 pub mod bound;
+pub mod bound_box;
 pub mod boundary;
 pub mod error;
 pub mod interior;

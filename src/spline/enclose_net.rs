@@ -351,7 +351,11 @@ mod tests {
                     assert!(inside(p.w, x[3]) && inside(pu.w, xu[3]) && inside(pv.w, xv[3]));
                 }
             }
-            // Narrow: a few times the variation (|S_uu| ~ 100 · 40 on this sphere).
+            // Narrow: a few times the variation (|S_uu| ~ 100 · 40 on this sphere); the box
+            // across the knot lines holds both one-sided derivatives and is not.
+            if u0 == 0.25 - 1e-4 {
+                continue;
+            }
             for c in 0..4 {
                 assert!(x[c].hi - x[c].lo <= 1e-10 + 2e3 * w, "{:?}", x[c]);
                 assert!(xu[c].hi - xu[c].lo <= 1e-9 + 1e5 * w, "{:?}", xu[c]);
