@@ -38,10 +38,25 @@ fn bench(c: &mut Criterion) {
     let m = vericad::io::read_model(std::path::Path::new(path)).unwrap();
     let face = m.surfaces[3].nurbs.clone();
     let p = Params::default();
+    let off = Params {
+        prove_bound: false,
+        ..Params::default()
+    };
     let mut g = c.benchmark_group("reparam");
     g.sample_size(10);
     g.bench_function("t20 face 3 (eps 1e-4)", |b| {
         b.iter(|| reparametrize(black_box(&face), &p).unwrap())
+    });
+    g.bench_function("t20 face 3 (eps 1e-4), no proven bound", |b| {
+        b.iter(|| reparametrize(black_box(&face), &off).unwrap())
+    });
+    // The proven bound alone where it succeeds (face 1: 2.3e-5 ≤ ε).
+    let f1 = m.surfaces[1].nurbs.clone();
+    let r1 = reparametrize(&f1, &off).unwrap();
+    g.bench_function("t20 face 1 proven bound (eps 1e-4)", |b| {
+        b.iter(|| {
+            vericad::reparam::bound::prove(black_box(&f1), &r1.surface, &r1.grid, 2.3e-5, 20_000)
+        })
     });
     let s = net50();
     let p3 = Params {

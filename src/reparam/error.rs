@@ -16,11 +16,9 @@
 //!
 //! The projections start where `g` is measured and only accept decreasing distances, so
 //! both one-sided values are ≤ `g` at every sample. Everything here is *evidence*: the
-//! maxima over samples are not bounds of the suprema. What would be a theorem: since φ̃ maps
-//! `[0,1]²` onto the domain of S, `sup g` bounds the Hausdorff distance of the two surfaces
-//! (every point of either is within `g` of a point of the other); a proven bound needs
-//! `sup g` bounded from samples by a Lipschitz constant of `g`, i.e. certified derivative
-//! bounds of R, of the rational S and of φ̃ — not done yet (see `docs/reparam.md`).
+//! maxima over samples are not bounds of the suprema. The proven bound is
+//! [`super::bound`]: the same argument with φ a spline interpolating the grid's domain points
+//! and `sup |R − S∘φ|` bounded by interval forms over parameter boxes.
 //!
 //! Refinement ("knot insertion at the worst point"): every grid span in ξ (η) holding a
 //! sample above ε gets a new parameter line through its worst such sample (kept in the

@@ -234,14 +234,14 @@ impl std::fmt::Display for JobReport {
         writeln!(f, "reparam {} (ε = {:e})", self.file, self.params.tol)?;
         writeln!(
             f,
-            "{:>5}  {:<10} {:>17} {:>17} {:>10} {:>9} {:>7}  status",
-            "face", "kind", "spacing before", "spacing after", "E_max", "ctrl", "s"
+            "{:>5}  {:<10} {:>17} {:>17} {:>10} {:>10} {:>9} {:>7}  status",
+            "face", "kind", "spacing before", "spacing after", "E_max", "proven", "ctrl", "s"
         )?;
         for e in &self.faces {
             match (&e.result, &e.error) {
                 (Some(r), _) => writeln!(
                     f,
-                    "{:>5}  {:<10} {:>8.3}..{:<7.3} {:>8.4}..{:<7.4} {:>10.3e} {:>4}x{:<4} {:>7.2}  {}",
+                    "{:>5}  {:<10} {:>8.3}..{:<7.3} {:>8.4}..{:<7.4} {:>10.3e} {:>10} {:>4}x{:<4} {:>7.2}  {}",
                     e.index,
                     format!("{:?}", e.kind),
                     r.spacing_before.min,
@@ -249,11 +249,16 @@ impl std::fmt::Display for JobReport {
                     r.spacing_after.min,
                     r.spacing_after.max,
                     r.deviation.e_max,
+                    r.deviation
+                        .e_max_proven
+                        .map_or("—".to_string(), |b| format!("{b:.3e}")),
                     r.control_points_after[0],
                     r.control_points_after[1],
                     r.seconds,
-                    if r.within_tol {
-                        "E_max ≤ ε (measured)"
+                    if r.within_tol_proven {
+                        "E_max ≤ ε (proven)"
+                    } else if r.within_tol {
+                        "E_max ≤ ε (measured only; not proven)"
                     } else if !r.relaxation.converged {
                         "relaxation not converged"
                     } else {
@@ -276,7 +281,7 @@ impl std::fmt::Display for JobReport {
             f,
             "{} ({:.2} s)",
             if self.within_tol {
-                "every face within ε at the samples"
+                "every face within ε (proven or at the samples: see status)"
             } else {
                 "not every face within ε"
             },

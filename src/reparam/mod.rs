@@ -13,10 +13,15 @@
 //! * [`error`] — `E_max`: one-sided distances between the new and the given surface by
 //!   closest-point projection at dense samples (evidence), and the lines inserted where
 //!   `E_max > ε` ("knot insertion at the worst point");
+//! * [`bound`] — a proven bound on the Hausdorff distance between the new and the given
+//!   surface (a mean-value form in interval arithmetic over parameter boxes, for the map φ
+//!   interpolating the grid's domain points), or the hypothesis that failed;
 //! * [`quality`] — the spacing ratio along iso-lines of a uniform parameter grid;
 //! * [`plot`] — SVG (projected view, side by side) and VTK views of both surfaces;
 //! * [`job`] — the `reparam` command: faces of a model file, outputs, report.
 
+pub mod bound;
+pub mod bound_box;
 pub mod boundary;
 pub mod error;
 pub mod interior;
@@ -85,6 +90,18 @@ pub struct Params {
     pub max_lines: usize,
     /// Quality: intervals of the uniform parameter grid the spacing ratio is measured on.
     pub quality_grid: usize,
+    /// Step 4: compute the proven deviation bound ([`bound`]); without it only the sampled
+    /// evidence decides ε.
+    pub prove_bound: bool,
+    /// The proven bound: most parameter boxes evaluated per round.
+    pub bound_boxes: usize,
+    /// The proven bound: boxes are refined until their bound is at most this factor times the
+    /// sampled `E_max` (at least 10⁻³ ε; at most ε when the samples are within ε).
+    pub bound_ratio: f64,
+    /// The most rounds of lines inserted because the proven bound exceeded ε although the
+    /// samples did not (default 0: where the bound is loose, it is loose because of the
+    /// method, not of the surface — see `docs/reparam.md` — and lines do not help).
+    pub bound_rounds: usize,
 }
 
 impl Default for Params {
@@ -102,6 +119,10 @@ impl Default for Params {
             samples_per_cell: 4,
             max_lines: 500,
             quality_grid: 20,
+            prove_bound: true,
+            bound_boxes: 20_000,
+            bound_ratio: 2.0,
+            bound_rounds: 0,
         }
     }
 }
@@ -141,6 +162,16 @@ impl Params {
                 "samples_per_cell",
                 self.samples_per_cell as f64,
                 "must lie in 2..=64",
+            );
+        }
+        if !(self.bound_ratio >= 1.0 && self.bound_ratio.is_finite()) {
+            return bad("bound_ratio", self.bound_ratio, "must be at least 1");
+        }
+        if self.bound_boxes < 16 {
+            return bad(
+                "bound_boxes",
+                self.bound_boxes as f64,
+                "must be at least 16",
             );
         }
         if self.quality_grid < 2 || self.quality_grid > 1000 {
@@ -184,8 +215,11 @@ pub struct Deviation {
     /// Largest `|R(ξ,η) − S(φ(ξ,η))|` with φ the bilinear map of the grid cells: at every
     /// sample it is at least both one-sided distances there (see `docs/reparam.md`).
     pub correspondence: f64,
-    /// `E_max = max(r_to_s, s_to_r)`.
+    /// `E_max = max(r_to_s, s_to_r)`: measured, evidence.
     pub e_max: f64,
+    /// The proven upper bound of the Hausdorff distance between R and S ([`bound`]), when
+    /// its hypotheses hold (`FaceReport::bound` says which were checked, or why not).
+    pub e_max_proven: Option<f64>,
     /// `(ξ, η)` of the worst sample.
     pub worst: [f64; 2],
     /// Number of samples.
@@ -222,8 +256,16 @@ pub struct FaceReport {
     pub rounds: usize,
     pub relaxation: Relaxation,
     pub deviation: Deviation,
-    /// `E_max ≤ ε` at the samples and the relaxation converged.
+    /// The proven bound's details (`None` when [`Params::prove_bound`] is off).
+    pub bound: Option<bound::ProvenBound>,
+    /// What decided ε: `"proven"` (a proven bound ≤ ε) or `"evidence"` (no proven bound,
+    /// or one above ε: the sampled `E_max` alone, which is not a proof).
+    pub decided_by: &'static str,
+    /// The relaxation converged and `E_max ≤ ε`: proven (`within_tol_proven`) or at the
+    /// samples only (`decided_by = "evidence"`).
     pub within_tol: bool,
+    /// The relaxation converged and a proven bound ≤ ε exists.
+    pub within_tol_proven: bool,
     pub control_points_before: [usize; 2],
     pub control_points_after: [usize; 2],
     pub rational_before: bool,
@@ -292,13 +334,38 @@ pub fn reparametrize_with_progress(
     // Step 4: interpolate, measure, insert lines until E_max ≤ ε.
     let mut rounds = 0;
     let mut inserted = 0;
-    let (surface, deviation) = loop {
+    let mut bound_rounds = 0;
+    let prove = |rs: &NurbsSurface<f64, 3>, grid: &interior::Grid, e: f64| {
+        params.prove_bound.then(|| {
+            let target = bound::target(e, params.tol, params.bound_ratio);
+            bound::prove(s, rs, grid, target, params.bound_boxes)
+        })
+    };
+    let (surface, mut deviation, proven) = loop {
         let rs = surface::interpolate(&grid)?;
-        let (dev, lines) = error::measure(s, &rs, &grid, params);
+        let (dev, mut lines) = error::measure(s, &rs, &grid, params);
         rounds += 1;
         progress("E_max round", rounds);
-        if dev.e_max <= params.tol || inserted >= params.max_lines || lines.is_empty() {
-            break (rs, dev);
+        let full = inserted >= params.max_lines;
+        if dev.e_max <= params.tol {
+            let pb = prove(&rs, &grid, dev.e_max);
+            let over = pb
+                .as_ref()
+                .and_then(|b| b.e_max_proven)
+                .is_some_and(|b| b > params.tol);
+            if !over || full || bound_rounds >= params.bound_rounds {
+                break (rs, dev, pb);
+            }
+            // The proof exceeds ε where the samples do not: lines at its worst boxes.
+            bound_rounds += 1;
+            lines = pb.map_or(vec![], |b| bound::lines_over(&b, &grid, params.tol));
+            if lines.is_empty() {
+                let pb = prove(&rs, &grid, dev.e_max);
+                break (rs, dev, pb);
+            }
+        } else if full || lines.is_empty() {
+            let pb = prove(&rs, &grid, dev.e_max);
+            break (rs, dev, pb);
         }
         let room = params.max_lines - inserted;
         let lines = error::limit(lines, room);
@@ -311,7 +378,13 @@ pub fn reparametrize_with_progress(
         relaxation.add(&r);
     };
     relaxation.penalty_final = grid.total_penalty();
-    let within_tol = deviation.e_max <= params.tol && relaxation.converged;
+    deviation.e_max_proven = proven.as_ref().and_then(|b| b.e_max_proven);
+    // A proven bound ≤ ε decides; otherwise the samples do, and the report says so
+    // (`decided_by`, `within_tol_proven`, the bound's value and reason).
+    let proven_ok = deviation.e_max_proven.is_some_and(|b| b <= params.tol);
+    let decided_by = if proven_ok { "proven" } else { "evidence" };
+    let within_tol = (proven_ok || deviation.e_max <= params.tol) && relaxation.converged;
+    let within_tol_proven = proven_ok && relaxation.converged;
     let h = &s.hom;
     let report = FaceReport {
         boundary_lengths: sides.each_ref().map(|c| c.length),
@@ -325,7 +398,10 @@ pub fn reparametrize_with_progress(
         rounds,
         relaxation,
         deviation,
+        bound: proven,
+        decided_by,
         within_tol,
+        within_tol_proven,
         control_points_before: [h.nu(), h.nv()],
         control_points_after: [surface.hom.nu(), surface.hom.nv()],
         rational_before: !s.is_polynomial(),

@@ -11,7 +11,18 @@ use crate::spline::interpolate::interpolate_with_parameters;
 
 /// The bicubic (degree `min(3, lines − 1)` per direction) through the grid, on `[0, 1]²`.
 pub fn interpolate(g: &Grid) -> Result<NurbsSurface<f64, 3>, ReparamError> {
-    let (n, m) = (g.xi.len(), g.eta.len());
+    interpolate_values(&g.xi, &g.eta, &g.x)
+}
+
+/// The same interpolation (same knots, same degrees: the knots depend on `ξ`, `η` only)
+/// of any values `x_ij` at `(ξ_i, η_j)`. It is linear in the values; [`super::bound`] uses it
+/// for the domain points `(u_ij, v_ij, 0)`, which gives the map φ of the proven bound.
+pub fn interpolate_values(
+    xi: &[f64],
+    eta: &[f64],
+    x: &[Vec<[f64; 3]>],
+) -> Result<NurbsSurface<f64, 3>, ReparamError> {
+    let (n, m) = (xi.len(), eta.len());
     let fail = |e: crate::spline::SplineError| {
         ReparamError::Degenerate(format!("interpolating the grid failed: {e}"))
     };
@@ -19,8 +30,8 @@ pub fn interpolate(g: &Grid) -> Result<NurbsSurface<f64, 3>, ReparamError> {
     let mut r = vec![vec![[0.0; 3]; m]; n];
     let mut ku = vec![];
     for j in 0..m {
-        let col: Vec<[f64; 3]> = (0..n).map(|i| g.x[i][j]).collect();
-        let c = interpolate_with_parameters(&col, &g.xi, 3.min(n - 1)).map_err(fail)?;
+        let col: Vec<[f64; 3]> = (0..n).map(|i| x[i][j]).collect();
+        let c = interpolate_with_parameters(&col, xi, 3.min(n - 1)).map_err(fail)?;
         for i in 0..n {
             r[i][j] = c.control[i];
         }
@@ -30,7 +41,7 @@ pub fn interpolate(g: &Grid) -> Result<NurbsSurface<f64, 3>, ReparamError> {
     let mut net = Vec::with_capacity(n * m);
     let mut kv = vec![];
     for row in &r {
-        let c = interpolate_with_parameters(row, &g.eta, 3.min(m - 1)).map_err(fail)?;
+        let c = interpolate_with_parameters(row, eta, 3.min(m - 1)).map_err(fail)?;
         net.extend_from_slice(&c.control);
         kv = c.knots.knots().to_vec();
     }

@@ -13,7 +13,9 @@
 //! * [`interpolate`], [`fit`] — cubic interpolation and least-squares fitting;
 //! * [`elevate`] — degree elevation and refinement to a knot vector, exact;
 //! * [`fit_knots`] — least-squares fitting on a given knot vector;
-//! * [`linalg`] — the small dense solver both use.
+//! * [`linalg`] — the small dense solver both use;
+//! * [`enclose`], [`enclose_net`] (centred, with derivative nets), [`enclosed_bezier`] — outward-rounded interval enclosures of a surface and
+//!   its first derivatives over parameter boxes, and of its Bézier pieces.
 
 pub mod basis;
 pub mod bezier_curve;
@@ -24,6 +26,8 @@ pub mod closure;
 pub mod compose;
 pub mod construct;
 pub mod elevate;
+pub mod enclose;
+pub mod enclose_net;
 pub mod enclosed_bezier;
 pub mod fit;
 pub mod fit_knots;

@@ -1,7 +1,8 @@
 //! Rigorous enclosures of a NURBS surface and of its first partial derivatives over a
 //! parameter *box* `U × V` (intervals), in outward-rounded interval arithmetic
-//! ([`Interval`]). Used by the point certificate ([`super::certify`], boxes of zero width) and
-//! by the Krawczyk test ([`super::krawczyk`], small boxes).
+//! ([`Interval`]). Kernel code shared by the pipelines: the intersection's point certificate
+//! and Krawczyk test (`ssi`, boxes of zero width and small boxes) and the proven deviation
+//! bound of the reparametrization (`reparam::bound`, a mean-value form over parameter boxes).
 //!
 //! **Method.** On one knot span the surface is one rational function: the basis functions
 //! `N_{span-p..=span}` of that span are polynomials, evaluated by the Cox–de Boor recurrence
@@ -268,7 +269,7 @@ mod tests {
                 for a in 0..5 {
                     for b in 0..5 {
                         let (x, y) = (u0 + w * a as f64 / 4.0, v0 + w * b as f64 / 4.0);
-                        let (p, su, sv) = super::super::refine::point_d1(&s, x, y);
+                        let (p, su, sv) = crate::spline::project::point_d1(&s, x, y);
                         for k in 0..3 {
                             let e = 1e-13;
                             let grow = |i: Interval| Interval::new(i.lo - e, i.hi + e);
