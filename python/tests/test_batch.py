@@ -45,7 +45,14 @@ def test_discover_matches_the_cli(cli, tmp_path, monkeypatch):
     found = vericad.discover(INPUTS)
     recs = cli_batch(cli, tmp_path, INPUTS, "info")
     assert found == sorted(r["path"] for r in recs)
-    assert len(found) == len(list(PUBLIC.glob("*.*"))) - 1 + 2  # README.md is not a model
+    # Every model file under the directory (recursively; the READMEs are not models), plus the
+    # two other inputs.
+    models = [
+        p
+        for p in PUBLIC.rglob("*")
+        if p.is_file() and p.suffix.lower() in {".step", ".stp", ".igs", ".iges", ".json", ".stl"}
+    ]
+    assert len(found) == len(models) + 2
 
 
 @pytest.mark.parametrize("job,inputs", [("info", INPUTS), ("repair", INPUTS), ("ssi", SSI_INPUTS)])
