@@ -3,42 +3,12 @@
 //! deviations measured independently (analytic distance to the plane, cylinder, sphere),
 //! not by the pipeline's own E_max.
 
-use std::f64::consts::{FRAC_1_SQRT_2, PI};
+use std::f64::consts::PI;
 use vericad::reparam::{Params, ReparamError, reparametrize};
 use vericad::spline::NurbsSurface;
 
-/// Tensor-product net `P_ij = (x_i, y_j, 0)` with product weights `a_i b_j`: the map is
-/// `(X(u), Y(v))`, so the chord-length parametrization is `(x_max ξ, y_max η)`.
-fn separable_plane() -> NurbsSurface<f64, 3> {
-    let xs = [0.0, 0.2, 0.9, 2.5, 3.5, 4.0];
-    let a = [1.0, 3.0, 0.5, 2.0, 1.0, 4.0];
-    let ys = [0.0, 0.1, 1.5, 2.0];
-    let b = [1.0, 0.3, 2.0, 1.0];
-    let mut pts = vec![];
-    let mut w = vec![];
-    for i in 0..6 {
-        for j in 0..4 {
-            pts.push([xs[i], ys[j], 0.0]);
-            w.push(a[i] * b[j]);
-        }
-    }
-    NurbsSurface::new(
-        vec![0.0, 0.0, 0.0, 0.0, 0.05, 0.1, 1.0, 1.0, 1.0, 1.0],
-        3,
-        vec![0.0, 0.0, 0.0, 0.8, 1.0, 1.0, 1.0],
-        2,
-        6,
-        4,
-        pts,
-        w,
-    )
-    .unwrap()
-}
-
-/// Samples `(ξ, η)` of `[0,1]²`, `k + 1` per direction.
-fn lattice(k: usize) -> impl Iterator<Item = (f64, f64)> {
-    (0..=k).flat_map(move |i| (0..=k).map(move |j| (i as f64 / k as f64, j as f64 / k as f64)))
-}
+mod common;
+use common::reparam::{lattice, pole_sphere_patch, quarter_cylinder, separable_plane};
 
 #[test]
 fn plane_with_nonuniform_knots_and_weights_becomes_its_chord_length_map() {
@@ -134,32 +104,7 @@ fn tilted_plane_with_coupled_distortion() {
 #[test]
 fn cylinder_patch_with_nonuniform_weights() {
     let (rad, h, rho) = (2.0, 3.0, 5.0);
-    let arc = [
-        ([rad, 0.0], 1.0),
-        ([rad, rad], rho * FRAC_1_SQRT_2),
-        ([0.0, rad], rho * rho),
-    ];
-    let zs = [0.0, 0.05, 0.3, h];
-    let wz = [1.0, 4.0, 0.5, 1.0];
-    let mut pts = vec![];
-    let mut w = vec![];
-    for (p, wa) in arc {
-        for (z, wb) in zs.iter().zip(wz) {
-            pts.push([p[0], p[1], *z]);
-            w.push(wa * wb);
-        }
-    }
-    let s = NurbsSurface::new(
-        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        2,
-        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
-        3,
-        3,
-        4,
-        pts,
-        w,
-    )
-    .unwrap();
+    let s = quarter_cylinder(rad, h, rho);
     let p = Params {
         tol: 1e-4,
         ..Params::default()
@@ -198,10 +143,7 @@ fn cylinder_patch_with_nonuniform_weights() {
 /// pole. It is handled: the pole side takes the opposite side's fractions.
 #[test]
 fn sphere_patch_with_a_pole() {
-    let sph =
-        vericad::spline::construct::sphere(&vericad::spline::construct::Frame::WORLD, 1.5).unwrap();
-    let hom = sph.hom.sub_patch(&0.0, &0.25, &0.5, &1.0).unwrap();
-    let s = NurbsSurface { hom };
+    let s = pole_sphere_patch();
     let p = Params {
         tol: 1e-4,
         ..Params::default()

@@ -5,13 +5,11 @@
 //! (ratio to the sampled evidence). A grid that breaks a hypothesis gives no bound and a
 //! reason.
 
-use std::f64::consts::{FRAC_1_SQRT_2, PI};
+use std::f64::consts::PI;
 use vericad::reparam::{Params, Reparametrized, bound, reparametrize};
-use vericad::spline::NurbsSurface;
 
-fn lattice(k: usize) -> impl Iterator<Item = (f64, f64)> {
-    (0..=k).flat_map(move |i| (0..=k).map(move |j| (i as f64 / k as f64, j as f64 / k as f64)))
-}
+mod common;
+use common::reparam::{lattice, pole_sphere_patch, quarter_cylinder, separable_plane};
 
 /// The proven bound (when there is one) is at least the oracle distance of every sample of N
 /// to the analytic set; the figures are printed (the docs' table is this output).
@@ -60,28 +58,7 @@ fn check(
 /// Product weights on a rectangular net: the set is the rectangle `[0,4] × [0,2]`.
 #[test]
 fn separable_plane_bound() {
-    let xs = [0.0, 0.2, 0.9, 2.5, 3.5, 4.0];
-    let a = [1.0, 3.0, 0.5, 2.0, 1.0, 4.0];
-    let ys = [0.0, 0.1, 1.5, 2.0];
-    let b = [1.0, 0.3, 2.0, 1.0];
-    let (mut pts, mut w) = (vec![], vec![]);
-    for i in 0..6 {
-        for j in 0..4 {
-            pts.push([xs[i], ys[j], 0.0]);
-            w.push(a[i] * b[j]);
-        }
-    }
-    let s = NurbsSurface::new(
-        vec![0.0, 0.0, 0.0, 0.0, 0.05, 0.1, 1.0, 1.0, 1.0, 1.0],
-        3,
-        vec![0.0, 0.0, 0.0, 0.8, 1.0, 1.0, 1.0],
-        2,
-        6,
-        4,
-        pts,
-        w,
-    )
-    .unwrap();
+    let s = separable_plane();
     let p = Params {
         tol: 1e-5,
         ..Params::default()
@@ -102,31 +79,7 @@ fn separable_plane_bound() {
 #[test]
 fn cylinder_bound_against_the_exact_distance() {
     let (rad, h, rho) = (2.0, 3.0, 5.0);
-    let arc = [
-        ([rad, 0.0], 1.0),
-        ([rad, rad], rho * FRAC_1_SQRT_2),
-        ([0.0, rad], rho * rho),
-    ];
-    let zs = [0.0, 0.05, 0.3, h];
-    let wz = [1.0, 4.0, 0.5, 1.0];
-    let (mut pts, mut w) = (vec![], vec![]);
-    for (q, wa) in arc {
-        for (z, wb) in zs.iter().zip(wz) {
-            pts.push([q[0], q[1], *z]);
-            w.push(wa * wb);
-        }
-    }
-    let s = NurbsSurface::new(
-        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        2,
-        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
-        3,
-        3,
-        4,
-        pts,
-        w,
-    )
-    .unwrap();
+    let s = quarter_cylinder(rad, h, rho);
     let p = Params {
         tol: 1e-4,
         ..Params::default()
@@ -149,10 +102,7 @@ fn cylinder_bound_against_the_exact_distance() {
 /// least `||x| − R|` from the sphere, so that is a lower bound of its distance to the patch.
 #[test]
 fn sphere_patch_with_a_pole_bound() {
-    let sph =
-        vericad::spline::construct::sphere(&vericad::spline::construct::Frame::WORLD, 1.5).unwrap();
-    let hom = sph.hom.sub_patch(&0.0, &0.25, &0.5, &1.0).unwrap();
-    let s = NurbsSurface { hom };
+    let s = pole_sphere_patch();
     let p = Params {
         tol: 1e-4,
         ..Params::default()

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod coons;
+pub mod reparam;
 pub mod shapes;
 
 use num_rational::BigRational;
