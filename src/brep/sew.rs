@@ -8,13 +8,14 @@
 //! previous curve's end is reversed). Curves shorter than the tolerance (degenerate boundary
 //! pieces at poles) are left out; the neighbours meet at their vertex. Two curves count as
 //! one edge when seven interior points of each lie within the tolerance of the other (closest
-//! points by sampling and Newton: evidence, not a proof). The shell holds every face; it is
+//! points by [`CurveFoot`]: evidence, not a proof). The shell holds every face; it is
 //! closed when every edge is used exactly twice. Nothing here changes the faces' surfaces
 //! or trims.
 
 use super::{Brep, CurveKind, Edge, EdgeCurve, Face, Loop, LoopKind, OrientedEdge, Shell, Vertex};
-use crate::geom::{Point, dist};
+use crate::geom::dist;
 use crate::spline::NurbsCurve;
+use crate::spline::project::CurveFoot;
 use std::collections::HashMap;
 
 /// One loop of a face: declared outer, its source id, and its curves in loop order (source
@@ -51,41 +52,12 @@ fn ends(c: &NurbsCurve<f64, 3>) -> ([f64; 3], [f64; 3]) {
     (c.eval(&a), c.eval(&b))
 }
 
-/// Distance from `x` to curve `c`: the best of 33 samples refined by Newton.
-fn distance_to(c: &NurbsCurve<f64, 3>, x: &[f64; 3]) -> f64 {
-    let (t0, t1) = c.hom.domain();
-    let mut best = (f64::INFINITY, t0);
-    for i in 0..=32 {
-        let t = t0 + (t1 - t0) * i as f64 / 32.0;
-        let d = dist(&c.eval(&t), x);
-        if d < best.0 {
-            best = (d, t);
-        }
-    }
-    let (mut d, mut t) = best;
-    for _ in 0..12 {
-        let (p, d1, d2) = c.derivatives2_f64(t);
-        let r = p.sub(x);
-        let g = crate::geom::dot(&r, &d1);
-        let h = crate::geom::dot(&d1, &d1) + crate::geom::dot(&r, &d2);
-        if h.is_nan() || h <= 0.0 {
-            break;
-        }
-        let tn = (t - g / h).clamp(t0, t1);
-        let dn = dist(&c.eval(&tn), x);
-        if dn >= d {
-            break;
-        }
-        (d, t) = (dn, tn);
-    }
-    d
-}
-
 /// Whether `a` and `b` are the same curve within `tol` (seven interior points each way).
 fn same_curve(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>, tol: f64) -> bool {
     let inside = |x: &NurbsCurve<f64, 3>, y: &NurbsCurve<f64, 3>| {
         let (t0, t1) = x.hom.domain();
-        (1..8).all(|i| distance_to(y, &x.eval(&(t0 + (t1 - t0) * i as f64 / 8.0))) <= tol)
+        let foot = CurveFoot::new(y);
+        (1..8).all(|i| foot.closest(&x.eval(&(t0 + (t1 - t0) * i as f64 / 8.0))).2 <= tol)
     };
     inside(a, b) && inside(b, a)
 }

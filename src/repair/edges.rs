@@ -6,6 +6,7 @@
 //! to corner `k+1`: 0 south (v = v0), 1 east (u = u1), 2 north (v = v1), 3 west (u = u0).
 
 use crate::geom::Hom;
+pub use crate::spline::project::CurveFoot;
 use crate::spline::{BSplineCurve, NurbsCurve, NurbsSurface};
 
 /// Names of the edges, by index.
@@ -118,73 +119,6 @@ pub fn arc_length_samples(c: &NurbsCurve<f64, 3>, n: usize) -> Vec<(f64, [f64; 3
             (t, c.eval(&t))
         })
         .collect()
-}
-
-/// Samples per closest-point search (plus one): the curve's domain in 32 equal steps.
-const FOOT_SAMPLES: usize = 33;
-
-/// Closest points on one curve to many points: the curve's 33 samples (32 equal parameter
-/// steps) are evaluated once; each query takes the best three (by distance, ties by
-/// parameter order), refines each by Newton on `(C - x)·C' = 0` (accepting only improving
-/// steps) and returns the best result.
-pub struct CurveFoot<'a> {
-    c: &'a NurbsCurve<f64, 3>,
-    samples: [(f64, [f64; 3]); FOOT_SAMPLES],
-}
-
-impl<'a> CurveFoot<'a> {
-    pub fn new(c: &'a NurbsCurve<f64, 3>) -> Self {
-        let (t0, t1) = c.hom.domain();
-        let n = (FOOT_SAMPLES - 1) as f64;
-        CurveFoot {
-            c,
-            samples: std::array::from_fn(|i| {
-                let t = t0 + (t1 - t0) * i as f64 / n;
-                (t, c.eval(&t))
-            }),
-        }
-    }
-
-    /// `(t, C(t), |C(t) - x|)` of the closest point found.
-    pub fn closest(&self, x: &[f64; 3]) -> (f64, [f64; 3], f64) {
-        let c = self.c;
-        let (t0, t1) = c.hom.domain();
-        let d2 =
-            |p: &[f64; 3]| (p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2);
-        let mut order: [(f64, usize); FOOT_SAMPLES] =
-            std::array::from_fn(|i| (d2(&self.samples[i].1), i));
-        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let newton = |(mut t, mut p): (f64, [f64; 3])| -> (f64, [f64; 3]) {
-            for _ in 0..20 {
-                let (q, d1, dd) = c.derivatives2_f64(t);
-                let r = [q[0] - x[0], q[1] - x[1], q[2] - x[2]];
-                let f = r[0] * d1[0] + r[1] * d1[1] + r[2] * d1[2];
-                let fp = d1[0] * d1[0]
-                    + d1[1] * d1[1]
-                    + d1[2] * d1[2]
-                    + r[0] * dd[0]
-                    + r[1] * dd[1]
-                    + r[2] * dd[2];
-                if fp.is_nan() || fp <= 0.0 {
-                    break;
-                }
-                let tn = (t - f / fp).clamp(t0, t1);
-                let pn = c.eval(&tn);
-                if d2(&pn) >= d2(&p) {
-                    break;
-                }
-                (t, p) = (tn, pn);
-            }
-            (t, p)
-        };
-        let (t, p) = order
-            .iter()
-            .take(3)
-            .map(|(_, i)| newton(self.samples[*i]))
-            .min_by(|a, b| d2(&a.1).total_cmp(&d2(&b.1)))
-            .unwrap_or((t0, c.eval(&t0)));
-        (t, p, d2(&p).sqrt())
-    }
 }
 
 /// Closest point of curve `c` to `x` ([`CurveFoot`] for one query).
