@@ -398,12 +398,8 @@ fn curve_on_surface(
     vtk: Option<PathBuf>,
 ) -> PyResult<Py<PyAny>> {
     use vericad::curve_on_surface::{Arithmetic, Bound, Params, job};
-    let bound = match bound {
-        "local" => Bound::Local,
-        "paper" => Bound::PaperEq12,
-        other => {
-            return Err(bad(format!("bound must be `local` or `paper`, not `{other}`")).into());
-        }
+    let Some(bound) = Bound::from_name(bound) else {
+        return Err(bad(format!("bound must be `local` or `paper`, not `{bound}`")).into());
     };
     let v = detached(py, || {
         let params = Params {

@@ -310,10 +310,8 @@ pub fn run(cli: Cli) -> i32 {
             json,
         } => {
             use crate::curve_on_surface::{Arithmetic, Bound, Params, job};
-            let bound = match bound.as_str() {
-                "local" => Bound::Local,
-                "paper" => Bound::PaperEq12,
-                other => return bad(format!("--bound must be `local` or `paper`, not `{other}`")),
+            let Some(bound) = Bound::from_name(&bound) else {
+                return bad(format!("--bound must be `local` or `paper`, not `{bound}`"));
             };
             let params = Params {
                 eps_d: tol,

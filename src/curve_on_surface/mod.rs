@@ -74,6 +74,17 @@ pub enum Bound {
     Local,
 }
 
+impl Bound {
+    /// The bound by its option name: `local` or `paper`; `None` for any other name.
+    pub fn from_name(name: &str) -> Option<Bound> {
+        match name {
+            "local" => Some(Bound::Local),
+            "paper" => Some(Bound::PaperEq12),
+            _ => None,
+        }
+    }
+}
+
 /// Which arithmetic runs the steps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Arithmetic {
