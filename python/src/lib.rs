@@ -471,14 +471,15 @@ fn repair(
 
 /// Reparametrize faces to chord length: `vericad reparam`.
 #[pyfunction]
-#[pyo3(signature = (model, *, tol=1e-4, max_lines=500, out=None, report=None, svg=None,
-    vtk=None))]
+#[pyo3(signature = (model, *, tol=1e-4, max_lines=500, bound=true, out=None, report=None,
+    svg=None, vtk=None))]
 #[allow(clippy::too_many_arguments)]
 fn reparam(
     py: Python<'_>,
     model: String,
     tol: f64,
     max_lines: i64,
+    bound: bool,
     out: Option<PathBuf>,
     report: Option<PathBuf>,
     svg: Option<PathBuf>,
@@ -491,6 +492,7 @@ fn reparam(
         let params = vericad::reparam::Params {
             tol,
             max_lines,
+            prove_bound: bound,
             ..Default::default()
         };
         let outputs = job::Outputs {

@@ -222,6 +222,14 @@ def test_reparam_equals_the_cli(cli):
     assert r.within_tol is True
 
 
+def test_reparam_without_the_bound_equals_the_cli(cli):
+    r = vericad.reparam(YANG, bound=False)
+    ref = cli_json(cli, "reparam", YANG, "--no-bound")
+    assert without(plain(r), {"seconds"}) == without(ref, {"seconds"})
+    assert r.faces[0].result.bound is None
+    assert r.faces[0].result.decided_by == "evidence"
+
+
 def test_reparam_one_face_with_outputs(tmp_path):
     r = vericad.reparam(f"{YANG}:0", tol=1e-3, out=tmp_path / "r.json", svg=tmp_path / "r.svg")
     assert len(r.faces) == 1 and r.faces[0].index == 0

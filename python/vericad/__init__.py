@@ -283,18 +283,21 @@ def reparam(
     *,
     tol: float = 1e-4,
     max_lines: int = 500,
+    bound: bool = True,
     out: Optional[PathLike] = None,
     report: Optional[PathLike] = None,
     svg: Optional[PathLike] = None,
     vtk: Optional[PathLike] = None,
 ) -> ReparamResult:
     """Reparametrize faces to chord length within ``tol`` (``vericad reparam``); ``model``
-    optionally followed by ``:FACE``."""
+    optionally followed by ``:FACE``. ``bound=False`` skips the proven deviation bound
+    (``--no-bound``): the measured E_max decides."""
     return ReparamResult(
         _vericad.reparam(
             os.fspath(model),
             tol=tol,
             max_lines=max_lines,
+            bound=bound,
             out=_p(out),
             report=_p(report),
             svg=_p(svg),

@@ -63,6 +63,7 @@ def reparam(
     *,
     tol: float = 1e-4,
     max_lines: int = 500,
+    bound: bool = True,
     out: Optional[str] = None,
     report: Optional[str] = None,
     svg: Optional[str] = None,
