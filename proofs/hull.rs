@@ -72,8 +72,13 @@ fn dist2_to(x: &Q3, segs: &[([f64; 3], [f64; 3])]) -> Q {
 
 /// If `Near::box_within(b, d)` holds, every point of the box (its 8 corners and random
 /// interior rationals) lies within `d` of the output segments, exactly. Returns the answer.
-pub fn prop_box_within(segs: &[([f64; 3], [f64; 3])], b: &Box3, d: f64, rng: &mut Rng) -> bool {
-    let near = Near::new(segs.to_vec());
+pub fn prop_box_within(
+    segs: &[([f64; 3], [f64; 3])],
+    near: &Near,
+    b: &Box3,
+    d: f64,
+    rng: &mut Rng,
+) -> bool {
     if !near.box_within(b, d) {
         return false;
     }
@@ -96,8 +101,13 @@ pub fn prop_box_within(segs: &[([f64; 3], [f64; 3])], b: &Box3, d: f64, rng: &mu
 /// If `Near::net_within(pts, d)` holds, every point of the convex hull of the enclosed
 /// points (exact points chosen inside the interval boxes, and random convex combinations of
 /// them) lies within `d` of the output segments, exactly. Returns the answer.
-pub fn prop_net_within(segs: &[([f64; 3], [f64; 3])], pts: &[V], d: f64, rng: &mut Rng) -> bool {
-    let near = Near::new(segs.to_vec());
+pub fn prop_net_within(
+    segs: &[([f64; 3], [f64; 3])],
+    near: &Near,
+    pts: &[V],
+    d: f64,
+    rng: &mut Rng,
+) -> bool {
     if !near.net_within(pts, d) {
         return false;
     }
@@ -196,7 +206,8 @@ fn near_decisions_are_sound() {
         } else {
             rng.range(0.0, 4.0 * r)
         };
-        yes_box += usize::from(prop_box_within(&segs, &b, d, &mut rng));
+        let near = Near::new(segs.clone());
+        yes_box += usize::from(prop_box_within(&segs, &near, &b, d, &mut rng));
         let net: Vec<V> = (0..1 + rng.below(6))
             .map(|_| {
                 std::array::from_fn(|k| {
@@ -209,10 +220,82 @@ fn near_decisions_are_sound() {
                 })
             })
             .collect();
-        yes_net += usize::from(prop_net_within(&segs, &net, d, &mut rng));
+        yes_net += usize::from(prop_net_within(&segs, &near, &net, d, &mut rng));
     }
     // The harness is not vacuous: both tests said "near" often.
     assert!(yes_box > n / 10 && yes_net > n / 10, "{yes_box} {yes_net}");
+}
+
+/// Chords ([`Near::with_chords`]): polylines sampling a circular arc or a gently wandering
+/// curve with short segments (the output of a traced branch), boxes and nets straddling their
+/// vertices, match distances around the chords' slack. Every "near" must hold exactly
+/// against the output segments themselves (the chords are not part of the output); the
+/// harness asserts that chords decided cases single segments could not.
+#[test]
+fn chord_decisions_are_sound() {
+    let n = cases(400, 50_000);
+    let mut rng = Rng::new(17);
+    let (mut yes, mut by_chord) = (0, 0);
+    for i in 0..n {
+        let m = 3 + rng.below(40) as usize;
+        let radius = [2.0, 1.0, 1e3, 1e-3][rng.below(4) as usize];
+        let step = radius * rng.range(1e-4, 2e-2);
+        let wander = i % 3 == 0;
+        let c: [f64; 3] = std::array::from_fn(|_| rng.range(-1.0, 1.0));
+        let pts: Vec<[f64; 3]> = (0..=m)
+            .map(|k| {
+                let a = k as f64 * step / radius;
+                let z = if wander {
+                    rng.range(-1.0, 1.0) * step * 1e-3
+                } else {
+                    0.0
+                };
+                [c[0] + radius * a.cos(), c[1] + radius * a.sin(), c[2] + z]
+            })
+            .collect();
+        let segs: Vec<_> = pts.windows(2).map(|w| (w[0], w[1])).collect();
+        let sag = step * step / (8.0 * radius);
+        let d = sag * [0.5, 1.0, 4.0, 16.0, 64.0][rng.below(5) as usize];
+        let near = Near::with_chords(segs.clone(), d);
+        let single = Near::new(segs.clone());
+        // A curve piece along the polyline: points on the arc between two parameters
+        // straddling a vertex, as a net of point and interval control points.
+        let k = rng.below(m as u64) as f64;
+        let (a0, a1) = (
+            (k + rng.range(-1.5, 0.5)) * step / radius,
+            (k + rng.range(0.5, 2.5)) * step / radius,
+        );
+        let net: Vec<V> = (0..2 + rng.below(4))
+            .map(|j| {
+                let a = a0 + (a1 - a0) * rng.unit() * f64::from(j as u8 > 0);
+                let r = radius * (1.0 + rng.range(-1.0, 1.0) * sag / radius);
+                let x = [c[0] + r * a.cos(), c[1] + r * a.sin(), c[2]];
+                std::array::from_fn(|q| {
+                    if rng.coin() {
+                        Interval::point(x[q])
+                    } else {
+                        Interval::new(x[q], x[q] + rng.range(0.0, sag))
+                    }
+                })
+            })
+            .collect();
+        let nb = prop_net_within(&segs, &near, &net, d, &mut rng);
+        let lo: [f64; 3] =
+            std::array::from_fn(|q| net.iter().map(|p| p[q].lo).fold(f64::INFINITY, f64::min));
+        let hi: [f64; 3] = std::array::from_fn(|q| {
+            net.iter()
+                .map(|p| p[q].hi)
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
+        let bb = prop_box_within(&segs, &near, &(lo, hi), d, &mut rng);
+        yes += usize::from(nb) + usize::from(bb);
+        by_chord += usize::from(nb && !single.net_within(&net, d))
+            + usize::from(bb && !single.box_within(&(lo, hi), d));
+    }
+    assert!(
+        yes > n / 10 && by_chord > n / 20,
+        "{yes} near, {by_chord} by a chord"
+    );
 }
 
 // ---------------------------------------------------------------- separated_along

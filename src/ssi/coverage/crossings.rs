@@ -76,8 +76,12 @@ pub(crate) fn search(
         }
         // Split the curve unless the piece is more than twice as large (the near test looks
         // at the curve's control points, so the curve should shrink first), else the piece
-        // along its longer direction.
-        if 2.0 * diagonal(&hc) >= diagonal(&hs) {
+        // along its longer direction. A planar piece (flat to 1e-10 of its size) is not
+        // split: its halves lie in the same slab, so separation along the normal gains
+        // nothing, and a curve lying in the plane along the output is decided by its own
+        // control points (a scheduling choice: any order of splits is sound).
+        let planar = thickness(ps, &s.rough_normal()) <= 1e-10 * diagonal(&hs);
+        if 2.0 * diagonal(&hc) >= diagonal(&hs) || planar {
             let (l, r) = c.halve();
             stack.push((l, sp.clone(), depth + 1));
             stack.push((r, sp, depth + 1));
@@ -88,4 +92,18 @@ pub(crate) fn search(
         }
     }
     out
+}
+
+/// Width of the enclosed points along `n` (a scheduling figure only, rounded to nearest).
+fn thickness(p: &[V], n: &[f64; 3]) -> f64 {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for q in p {
+        let (a, b) = (0..3).fold((0.0, 0.0), |(a, b), k| {
+            let (x, y) = (n[k] * q[k].lo, n[k] * q[k].hi);
+            (a + x.min(y), b + x.max(y))
+        });
+        lo = lo.min(a);
+        hi = hi.max(b);
+    }
+    hi - lo
 }

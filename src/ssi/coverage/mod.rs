@@ -310,7 +310,7 @@ pub(crate) fn roots_exact(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
 }
 
 /// The output set: branch polylines and touching points.
-pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut]) -> Near {
+pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut], d: f64) -> Near {
     let mut segs = Vec::new();
     for b in branches {
         let n = b.points.len();
@@ -327,7 +327,7 @@ pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut]) -> Near {
     for t in touches {
         segs.push((t.point, t.point));
     }
-    Near::new(segs)
+    Near::with_chords(segs, d)
 }
 
 /// A border curve of a piece (which surface, the fixed parameter and its value, the range of
@@ -369,7 +369,7 @@ pub fn coverage(
     prm: &CoverageParams,
 ) -> CoverageOut {
     let t0 = Instant::now();
-    let near = output_set(branches, touches);
+    let near = output_set(branches, touches, prm.match_distance);
     let d = prm.match_distance;
     let (ra, rb) = (roots(sa), roots(sb));
     let mut out = CoverageOut {

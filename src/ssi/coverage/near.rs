@@ -6,6 +6,18 @@
 //! any point `s(t)` of the segment bounds the distance from above; `t` is chosen by rounded
 //! projection and `‖c − s(t)‖` is enclosed in interval arithmetic, so the test never says
 //! "near" wrongly.
+//!
+//! **Chords** ([`Near::with_chords`]). Let `p_i, …, p_j` be consecutive vertices of an output
+//! polyline and `δ ≥ max_m dist(p_m, line p_i p_j)`. Every point `x` of the chord `[p_i, p_j]`
+//! lies within `δ` of the polyline: the plane through `x` perpendicular to the chord separates
+//! `p_i` from `p_j`, so the polyline meets it at some `y` on a segment `[p_m, p_{m+1}]`; the
+//! distance to the line is convex along that segment, so `dist(y, line) ≤ δ`, and `x` is the
+//! foot of `y` on the line, so `‖x − y‖ = dist(y, line) ≤ δ`. Hence a point within `d − δ` of
+//! the chord is within `d` of the polyline (triangle inequality), and a box or hull can be
+//! decided against a chord with the slack `δ` (taken as the rounded-up distance to the chord
+//! *segment*, which is at least the distance to its line). Chords let a piece lying along the
+//! output be decided whole where it spans several short segments (a curve piece straddling a
+//! vertex is otherwise never within `d` of *one* segment, whatever its size).
 
 use super::patch::{Box3, V};
 use crate::scalar::Interval;
@@ -13,6 +25,8 @@ use crate::scalar::Interval;
 /// Segments of the output with a bounding-volume tree over their boxes.
 pub struct Near {
     segs: Vec<([f64; 3], [f64; 3])>,
+    /// Per entry of `segs`: `δ` (0 for an output segment, the chord bound for a chord).
+    slack: Vec<f64>,
     /// Tree nodes: box, and either two children or a range of `order`.
     nodes: Vec<Node>,
     order: Vec<u32>,
@@ -63,9 +77,59 @@ impl Near {
             .into_iter()
             .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
             .collect();
+        let slack = vec![0.0; segs.len()];
+        Near::build_all(segs, slack)
+    }
+    /// The output segments `segs` and chords over runs of 2, 4, …, 64 consecutive segments
+    /// (`segs[k].1 == segs[k + 1].0` exactly) whose slack `δ` is at most `d / 2` (see the
+    /// module comment). A chord of `L` segments starts every `L / 2` segments, so any part of
+    /// the polyline at most `L / 2` segments long lies under one chord.
+    pub fn with_chords(segs: Vec<([f64; 3], [f64; 3])>, d: f64) -> Near {
+        let segs: Vec<_> = segs
+            .into_iter()
+            .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
+            .collect();
+        let mut slack = vec![0.0; segs.len()];
+        let mut chords = Vec::new();
+        let mut start = 0;
+        while start < segs.len() {
+            let mut end = start + 1;
+            while end < segs.len() && segs[end - 1].1 == segs[end].0 {
+                end += 1;
+            }
+            let pts: Vec<[f64; 3]> = std::iter::once(segs[start].0)
+                .chain(segs[start..end].iter().map(|s| s.1))
+                .collect();
+            let mut len = 2;
+            while len <= 64 && len < pts.len() {
+                let mut i = 0;
+                while i + len < pts.len() {
+                    let (p, q) = (pts[i], pts[i + len]);
+                    let delta = pts[i + 1..i + len]
+                        .iter()
+                        .map(|m| dist_upper(m, &p, &q))
+                        .fold(0.0, f64::max);
+                    if delta <= 0.5 * d {
+                        chords.push(((p, q), delta));
+                    }
+                    i += len / 2;
+                }
+                len *= 2;
+            }
+            start = end;
+        }
+        let mut segs = segs;
+        for (c, delta) in chords {
+            segs.push(c);
+            slack.push(delta);
+        }
+        Near::build_all(segs, slack)
+    }
+    fn build_all(segs: Vec<([f64; 3], [f64; 3])>, slack: Vec<f64>) -> Near {
         let mut n = Near {
             order: (0..segs.len() as u32).collect(),
             segs,
+            slack,
             nodes: Vec::new(),
         };
         if !n.segs.is_empty() {
@@ -108,7 +172,8 @@ impl Near {
         }
         id
     }
-    /// Whether every point of box `b` is proven within `d` of one output segment.
+    /// Whether every point of box `b` is proven within `d` of the output (of one output
+    /// segment, or of one chord with its slack).
     pub fn box_within(&self, b: &Box3, d: f64) -> bool {
         let corners: Vec<[f64; 3]> = (0..8)
             .map(|m| std::array::from_fn(|k| if m >> k & 1 == 0 { b.0[k] } else { b.1[k] }))
@@ -116,7 +181,8 @@ impl Near {
         self.hull_within(&corners, b, d)
     }
     /// Whether the convex hull of enclosed control points (each an interval box, given as
-    /// Cartesian enclosures) is proven within `d` of one output segment. A piece with
+    /// Cartesian enclosures) is proven within `d` of the output (one segment, or one chord with
+    /// its slack). A piece with
     /// positive weights lies in that hull, and the distance to a segment is convex, so its
     /// largest value over the hull is taken at a corner of one of the boxes.
     pub fn net_within(&self, pts: &[V], d: f64) -> bool {
@@ -169,7 +235,11 @@ impl Near {
                 None => {
                     for &s in &self.order[n.range.0 as usize..n.range.1 as usize] {
                         let (p, q) = &self.segs[s as usize];
-                        if corners.iter().all(|c| dist_upper(c, p, q) <= d) {
+                        let slack = Interval::point(self.slack[s as usize]);
+                        if corners
+                            .iter()
+                            .all(|c| (Interval::point(dist_upper(c, p, q)) + slack).hi <= d)
+                        {
                             return true;
                         }
                     }
