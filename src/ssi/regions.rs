@@ -52,6 +52,8 @@ pub struct RegionRefinement {
     pub rounds: u32,
     /// Region runs in the kept rounds.
     pub runs: usize,
+    /// Region runs in all, kept or not.
+    pub runs_tried: usize,
     /// Clusters not run: a branch crossing the cluster's border, a box too large, or a
     /// failed sub-surface.
     pub skipped: usize,
@@ -282,6 +284,7 @@ pub fn refine_undecided(
             runs += 1;
         }
         rec.skipped += skipped;
+        rec.runs_tried += runs;
         if runs == 0 || stop() {
             break;
         }
