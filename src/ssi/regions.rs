@@ -84,13 +84,10 @@ pub fn clusters(regions: &[RegionOut]) -> Vec<([f64; 4], [f64; 4])> {
     for r in regions {
         let mut c = (r.uv_a, r.uv_b);
         // Merge every cluster this one touches, until none does.
-        loop {
-            let Some(k) = out
-                .iter()
-                .position(|(a, b)| touches(a, &c.0) && touches(b, &c.1))
-            else {
-                break;
-            };
+        while let Some(k) = out
+            .iter()
+            .position(|(a, b)| touches(a, &c.0) && touches(b, &c.1))
+        {
             let (a, b) = out.swap_remove(k);
             c = (hull(&a, &c.0), hull(&b, &c.1));
         }
