@@ -19,6 +19,7 @@ use super::tri_tri::Feature;
 use super::triangulate::SurfaceMesh;
 use crate::geom::{dist, dist_to_segment};
 use crate::spline::NurbsSurface;
+use crate::spline::closure::Closure;
 use crate::spline::project::point_d1;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -91,11 +92,38 @@ pub enum BranchResult {
     Touch(TouchOut),
 }
 
-fn average_uv(a: &[f64; 2], b: &[f64; 2], dom: &[f64; 4]) -> Option<[f64; 2]> {
-    // Across a periodic seam the average would land on the far side: refuse.
-    let close = (a[0] - b[0]).abs() <= 0.25 * (dom[1] - dom[0])
-        && (a[1] - b[1]).abs() <= 0.25 * (dom[3] - dom[2]);
-    close.then(|| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])])
+/// The parameter midpoint of `a` and `b`, or `None` when they are more than a quarter of the
+/// domain apart in a direction. In a closed direction (`seam`: `S(d0, ·) = S(d1, ·)`) the
+/// midpoint is taken the short way round, across the seam, and brought back into the domain:
+/// a branch ending at a point on the seam (a tangent point at `u = d1`, its neighbours just past
+/// `u = d0`) is refined like any other. The midpoint only steers the refinement.
+fn average_uv(a: &[f64; 2], b: &[f64; 2], dom: &[f64; 4], seam: [bool; 2]) -> Option<[f64; 2]> {
+    let mut m = [0.0; 2];
+    for k in 0..2 {
+        let (lo, hi) = (dom[2 * k], dom[2 * k + 1]);
+        let per = hi - lo;
+        let (x, mut y) = (a[k], b[k]);
+        if seam[k] && (x - y).abs() > 0.5 * per {
+            y += if x > y { per } else { -per };
+        }
+        if (x - y).abs() > 0.25 * per {
+            return None;
+        }
+        let mut c = 0.5 * (x + y);
+        if c < lo {
+            c += per;
+        } else if c > hi {
+            c -= per;
+        }
+        m[k] = c.clamp(lo, hi);
+    }
+    Some(m)
+}
+
+/// Which directions of `s` are closed (`[u, v]`), from the control net.
+fn seams(s: &NurbsSurface<f64, 3>) -> [bool; 2] {
+    let c = Closure::of(s);
+    [c.seam_u, c.seam_v]
 }
 
 struct Inserter<'a, 'g> {
@@ -108,6 +136,9 @@ struct Inserter<'a, 'g> {
     /// Asked before each insertion; once it says stop, nothing more is inserted.
     stop: &'a dyn Fn() -> bool,
     stopped: bool,
+    /// Closed directions of A and of B ([`seams`]).
+    seam_a: [bool; 2],
+    seam_b: [bool; 2],
 }
 
 impl Inserter<'_, '_> {
@@ -127,8 +158,8 @@ impl Inserter<'_, '_> {
         }
         let (da, db) = (domain(self.g.sa), domain(self.g.sb));
         let (ga, gb) = match (
-            average_uv(&p.uv_a, &q.uv_a, &da),
-            average_uv(&p.uv_b, &q.uv_b, &db),
+            average_uv(&p.uv_a, &q.uv_a, &da, self.seam_a),
+            average_uv(&p.uv_b, &q.uv_b, &db, self.seam_b),
         ) {
             (Some(a), Some(b)) => (a, b),
             _ => {
@@ -323,6 +354,8 @@ pub fn refine_branch(
         refused: 0,
         stop: &|| stop(0, 0),
         stopped: false,
+        seam_a: seams(g.sa),
+        seam_b: seams(g.sb),
     };
     let mut all: Vec<Refined> = Vec::with_capacity(refined.len() * 2);
     let n = refined.len();
@@ -436,4 +469,28 @@ pub fn refine_branch(
     };
     out.set_curve_results(radii);
     Some(BranchResult::Curve(out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::average_uv;
+
+    /// Midpoints across a closed direction go the short way round; in an open direction, or
+    /// for points a quarter of the domain apart, there is none.
+    #[test]
+    fn midpoint_across_the_seam() {
+        let dom = [0.0, 1.0, 0.0, 2.0];
+        let m = average_uv(&[1.0, 0.5], &[0.0125, 0.5], &dom, [true, false]).unwrap();
+        assert!((m[0] - 0.00625).abs() < 1e-15 && m[1] == 0.5, "{m:?}");
+        let m = average_uv(&[0.0, 1.0], &[0.9875, 1.0], &dom, [true, false]).unwrap();
+        assert!((m[0] - 0.99375).abs() < 1e-15 && m[1] == 1.0, "{m:?}");
+        let m = average_uv(&[0.5, 1.99], &[0.5, 0.01], &dom, [false, true]).unwrap();
+        assert_eq!(m, [0.5, 2.0]);
+        assert!(average_uv(&[1.0, 0.5], &[0.0125, 0.5], &dom, [false, true]).is_none());
+        assert!(average_uv(&[0.7, 0.5], &[0.2, 0.5], &dom, [true, true]).is_none());
+        assert_eq!(
+            average_uv(&[0.2, 0.5], &[0.3, 0.7], &dom, [true, true]),
+            Some([0.25, 0.6])
+        );
+    }
 }

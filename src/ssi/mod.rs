@@ -42,6 +42,7 @@ pub mod mesh;
 pub mod overlap;
 pub mod pair;
 pub mod refine;
+pub mod regions;
 pub mod report;
 pub mod sign_change;
 pub mod singular;

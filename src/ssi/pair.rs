@@ -270,6 +270,7 @@ pub fn intersect_surfaces(
             outside: prm.coverage_outside.clone(),
         };
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
+        super::regions::refine_undecided(&mut out, sa, sb, prm, &cp, deadline);
         let parallel = out.coverage.as_ref().is_some_and(|c| {
             c.uncertified_regions
                 .iter()

@@ -173,6 +173,10 @@ pub struct CoverageOut {
     /// 2·10⁷ point–pair tests).
     pub free_pairs_with_branch_points: Option<usize>,
     pub seconds: f64,
+    /// The adaptive refinement of undecided regions ([`crate::ssi::regions`]), when it ran:
+    /// this certificate is then the one computed on the refined output.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub refinement: Option<crate::ssi::regions::RegionRefinement>,
 }
 
 /// One piece of a domain: its exact-enclosed patch, uv label, box and cached data.
