@@ -287,3 +287,24 @@ fn iges_colours_are_unsupported_attributes() {
     assert_eq!((a.read, a.used), (matrices.len(), pointed));
     assert_eq!(a.unsupported.len(), matrices.len() - pointed);
 }
+
+#[test]
+fn iges_entries_without_parameter_data_are_invalid_with_ids() {
+    // The parameter line of colour DE 1 (columns 65–72 hold the DE it belongs to) removed:
+    // the entry is still in the directory, so the account must name it.
+    let p = data("public").join("gmsh-sphere_Rhino3D_default.igs");
+    let text = std::fs::read_to_string(&p).unwrap();
+    let kept: Vec<&str> = text
+        .lines()
+        .filter(|l| {
+            !(l.len() >= 80 && &l[72..73] == "P" && l[64..72].trim().parse::<u32>() == Ok(1))
+        })
+        .collect();
+    assert_eq!(kept.len() + 1, text.lines().count());
+    let m = vericad::io::iges::from_str(&kept.join("\n"), "x.igs").unwrap();
+    balanced("x.igs", &m);
+    let a = &m.accounts.kinds["314"];
+    assert_eq!((a.read, a.unsupported.len()), (6, 5));
+    assert_eq!(ids(&a.invalid), ["DE 1"]);
+    assert!(a.invalid[0].reason.contains("no parameter data"));
+}

@@ -15,6 +15,7 @@
 //!   topology entity (502, 504, 508, 514, 186) of a file whose B-rep was built; otherwise it
 //!   is an independent entity of a type the reader does not convert on its own:
 //!   `unsupported`, with its id.
+//! - A directory entry without parameter data is `invalid`, with its id.
 
 use super::Entry;
 use crate::model::{Accounting, Outcome};
@@ -77,11 +78,13 @@ fn edge_curves(e: &BTreeMap<usize, Entry>) -> BTreeSet<usize> {
 }
 
 /// The account of a file. `outcomes` holds what the reader decided for the entries it
-/// visited; `brep`: whether the model's B-rep was read from the file's topology entities.
+/// visited; `brep`: whether the model's B-rep was read from the file's topology entities;
+/// `no_params`: the `(DE, type)` of directory entries without parameter data (invalid).
 pub(super) fn account(
     e: &BTreeMap<usize, Entry>,
     outcomes: &BTreeMap<usize, Outcome>,
     brep: bool,
+    no_params: &[(usize, i64)],
 ) -> Accounting {
     let edge_curves = edge_curves(e);
     let transforms: BTreeSet<usize> = e.values().map(|x| x.transform).collect();
@@ -102,6 +105,14 @@ pub(super) fn account(
             }
         };
         acc.record(&t.to_string(), format!("DE {de}"), outcome);
+    }
+    for (de, t) in no_params {
+        let why = "no parameter data (no parameter line points to this directory entry)";
+        acc.record(
+            &t.to_string(),
+            format!("DE {de}"),
+            Outcome::Invalid(why.into()),
+        );
     }
     acc
 }

@@ -354,7 +354,7 @@ const SURFACES: [i64; 9] = [128, 120, 122, 108, 190, 192, 194, 196, 198];
 
 /// Read IGES text.
 pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
-    let (e, unit, resolution, mut warnings) = parse(text, file)?;
+    let (e, unit, resolution, mut warnings, no_params) = parse(text, file)?;
     let r = Reader {
         e: &e,
         file,
@@ -505,7 +505,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
         warnings.extend(b.report.warning_lines());
     }
     let from_topology = model.brep.is_some() && e.values().any(|x| x.etype == 510);
-    model.accounts = account::account(&e, &outcomes, from_topology);
+    model.accounts = account::account(&e, &outcomes, from_topology, &no_params);
     warnings.extend(model.degeneracy_warnings());
     model.warnings = warnings;
     for x in e.values() {

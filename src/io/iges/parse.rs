@@ -182,12 +182,15 @@ fn field(l: &str, k: usize) -> &str {
 }
 
 /// Directory entries by DE number, the unit, the minimum user-intended resolution (Global
-/// parameter 19, in the model's unit, when positive and finite), and header warnings.
+/// parameter 19, in the model's unit, when positive and finite), header warnings, and the
+/// `(DE, type)` of the directory entries no parameter line points to (left out of the
+/// entries, each with a warning).
 pub type Parsed = (
     BTreeMap<usize, Entry>,
     Option<String>,
     Option<f64>,
     Vec<String>,
+    Vec<(usize, i64)>,
 );
 
 /// Parse an IGES file into directory entries (by DE number), the unit and header warnings.
@@ -274,6 +277,7 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
         ptext.entry(*de).or_default().push_str(t);
     }
     let mut out = BTreeMap::new();
+    let mut no_params = Vec::new();
     for k in 0..s.dir.len() / 2 {
         let (l1, l2) = (&s.dir[2 * k], &s.dir[2 * k + 1]);
         let de = 2 * k + 1;
@@ -281,6 +285,7 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
         let etype = int(field(l1, 0));
         let Some(t) = ptext.get(&de) else {
             warnings.push(format!("DE {de} (type {etype}) has no parameter data"));
+            no_params.push((de, etype));
             continue;
         };
         let params = split_params(t, pd, rd).map_err(|r| IgesError {
@@ -300,5 +305,5 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
             },
         );
     }
-    Ok((out, unit, resolution, warnings))
+    Ok((out, unit, resolution, warnings, no_params))
 }
