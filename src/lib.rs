@@ -9,6 +9,7 @@
 pub mod approx;
 pub mod batch;
 pub mod brep;
+pub mod budget;
 pub mod cli;
 pub mod curve_on_surface;
 pub mod demo;

@@ -2,12 +2,16 @@
 //! Exit codes: 0 success (for `ssi` and `certify-ssi`: everything reported is proven),
 //! 3 finished but not certified (uncertified regions, points or curves not within tol,
 //! uncertified singular points, missing branches, partial run), 2 bad input (unreadable or invalid file, bad arguments),
-//! 1 failure of the computation or of writing outputs.
+//! 1 failure of the computation or of writing outputs (a computation budget exhausted
+//! included: `--max-memory`, see [`memory`]).
 
 pub mod approximate;
 pub mod batch;
+mod convert;
 pub mod coons;
+mod memory;
 mod output;
+pub use memory::set_memory_probe;
 
 use clap::{Parser, Subcommand};
 use output::{bad, finish, print};
@@ -106,6 +110,10 @@ pub enum Command {
         /// VTK PolyData (.vtp) here.
         #[arg(long)]
         vtk: Option<PathBuf>,
+        /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
+        /// `budget exhausted: memory ...` and exit code 1.
+        #[arg(long, allow_hyphen_values = true)]
+        max_memory: Option<f64>,
         /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
@@ -155,6 +163,10 @@ pub enum Command {
         /// in the JSON result; off by default (about four times the size of the points).
         #[arg(long)]
         fits: bool,
+        /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
+        /// `budget exhausted: memory ...` and exit code 1.
+        #[arg(long, allow_hyphen_values = true)]
+        max_memory: Option<f64>,
         /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
@@ -186,6 +198,10 @@ pub enum Command {
         /// Write the JSON verdict (per curve, per point, missing branches) here.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
+        /// `budget exhausted: memory ...` and exit code 1.
+        #[arg(long, allow_hyphen_values = true)]
+        max_memory: Option<f64>,
         /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
@@ -217,6 +233,10 @@ pub enum Command {
         /// VTK view: patches, feature edges, gaps left.
         #[arg(long)]
         vtk: Option<PathBuf>,
+        /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
+        /// `budget exhausted: memory ...` and exit code 1.
+        #[arg(long, allow_hyphen_values = true)]
+        max_memory: Option<f64>,
         /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
@@ -307,6 +327,7 @@ pub fn run(cli: Cli) -> i32 {
             svg,
             iges,
             vtk,
+            max_memory,
             json,
         } => {
             use crate::curve_on_surface::{Arithmetic, Bound, Params, job};
@@ -330,6 +351,11 @@ pub fn run(cli: Cli) -> i32 {
                 iges: iges.as_deref(),
                 vtk: vtk.as_deref(),
             };
+            let memory = match memory::budget(max_memory) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
+            memory::watch(&memory, "curve-on-surface");
             finish(job::run(&surface, &curve, &params, outputs), json, |e| {
                 e.is_bad_input()
             })
@@ -346,6 +372,7 @@ pub fn run(cli: Cli) -> i32 {
             vtk,
             iges,
             fits,
+            max_memory,
             json,
         } => {
             use crate::ssi::job;
@@ -354,11 +381,19 @@ pub fn run(cli: Cli) -> i32 {
             {
                 return bad(format!("--threads must be in 1..={MAX_THREADS}, not {n}"));
             }
+            let memory = match memory::budget(max_memory) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
             let prm = crate::ssi::SsiParams {
                 tol,
                 flatness,
                 time_limit,
                 respect_trims: !untrimmed,
+                control: crate::ssi::control::Control {
+                    memory: memory.clone(),
+                    ..Default::default()
+                },
                 ..Default::default()
             };
             let outputs = job::Outputs {
@@ -367,7 +402,11 @@ pub fn run(cli: Cli) -> i32 {
                 iges: iges.as_deref(),
                 fits,
             };
-            match job::run(&file, file2.as_deref(), &prm, threads, outputs) {
+            let r = job::run(&file, file2.as_deref(), &prm, threads, outputs);
+            if let Some(code) = memory::exhausted(&memory) {
+                return code;
+            }
+            match r {
                 Ok(r) => {
                     print(&r, json);
                     if r.summary.certified {
@@ -390,20 +429,33 @@ pub fn run(cli: Cli) -> i32 {
             tol,
             match_distance,
             out,
+            max_memory,
             json,
         } => {
+            let memory = match memory::budget(max_memory) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
             let prm = crate::ssi::SsiParams {
                 tol,
+                control: crate::ssi::control::Control {
+                    memory: memory.clone(),
+                    ..Default::default()
+                },
                 ..Default::default()
             };
-            match crate::ssi::job::run_certify(
+            let r = crate::ssi::job::run_certify(
                 &a,
                 b.as_deref(),
                 &curves,
                 &prm,
                 match_distance,
                 out.as_deref(),
-            ) {
+            );
+            if let Some(code) = memory::exhausted(&memory) {
+                return code;
+            }
+            match r {
                 Ok(r) => {
                     print(&r, json);
                     if r.certified { 0 } else { EXIT_UNCERTIFIED }
@@ -424,6 +476,7 @@ pub fn run(cli: Cli) -> i32 {
             out,
             report,
             vtk,
+            max_memory,
             json,
         } => {
             let prm = crate::repair::RepairParams {
@@ -432,6 +485,11 @@ pub fn run(cli: Cli) -> i32 {
                 feature_angle_deg: feature_angle,
                 ..Default::default()
             };
+            let memory = match memory::budget(max_memory) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
+            memory::watch(&memory, "repair");
             let outputs = crate::repair::job::Outputs {
                 model: out.as_deref(),
                 report: report.as_deref(),
@@ -482,49 +540,7 @@ pub fn run(cli: Cli) -> i32 {
             input,
             output,
             format,
-        } => {
-            let m = match crate::io::read_model(&input) {
-                Ok(m) => m,
-                Err(e) => return bad(e),
-            };
-            match crate::io::write_model_as(&output, &m, format.as_deref()) {
-                Ok(warnings) => {
-                    for w in warnings {
-                        eprintln!("warning: {w}");
-                    }
-                    let ext = format.clone().unwrap_or_else(|| {
-                        output
-                            .extension()
-                            .and_then(|e| e.to_str())
-                            .unwrap_or("")
-                            .to_string()
-                    });
-                    let mesh_format = matches!(
-                        ext.to_ascii_lowercase().as_str(),
-                        "stl" | "stl-binary" | "vtp" | "obj"
-                    );
-                    match m.brep.as_ref().filter(|_| mesh_format) {
-                        Some(b) => println!(
-                            "wrote {} ({} B-rep faces triangulated inside their trims)",
-                            output.display(),
-                            b.faces.len()
-                        ),
-                        None => println!(
-                            "wrote {} ({} surfaces, {} curves)",
-                            output.display(),
-                            m.surfaces.len(),
-                            m.curves.len()
-                        ),
-                    }
-                    0
-                }
-                Err(e @ crate::io::WriteError::Io(..)) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-                Err(e) => bad(e),
-            }
-        }
+        } => convert::run(&input, &output, format.as_deref()),
         Command::Coons(args) => coons::run(args),
         Command::Approximate(args) => approximate::run(args),
         Command::Batch(args) => batch::run(args),

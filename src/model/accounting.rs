@@ -1,10 +1,12 @@
-//! The reader's account of every geometric entity it reads: per source entity kind
-//! (`B_SPLINE_SURFACE_WITH_KNOTS`, `PLANE`, IGES `128`, `144`, ...) how many instances the
-//! file holds (`read`) and what became of each one:
+//! The reader's account of the entities it reads (STEP: every surface and curve instance;
+//! IGES: every directory entry, attributes such as colours included): per source entity
+//! kind (`B_SPLINE_SURFACE_WITH_KNOTS`, `LINE`, IGES `128`, `314`, ...) how many instances
+//! the file holds (`read`) and what became of each one:
 //!
 //! - `converted`: became a model surface or curve;
 //! - `used`: consumed as part of something else (the basis surface of a trimmed surface,
-//!   the surface of a face, a boundary or generatrix curve), counted without ids;
+//!   the surface of a face, the curve of an edge, a boundary or generatrix curve, the
+//!   transformation matrix an entry points to), counted without ids;
 //! - `unsupported`: not turned into model geometry because the reader does not handle it
 //!   (ids and a note);
 //! - `invalid`: refused for a fault in its data (ids and the reason).
@@ -147,7 +149,7 @@ impl Accounting {
         if !self.kinds.is_empty() {
             let t = self.total();
             out.push(format!(
-                "total: {} geometric entities of {} kind(s) read, {} converted, {} used, {} unsupported, {} invalid",
+                "total: {} entities of {} kind(s) read, {} converted, {} used, {} unsupported, {} invalid",
                 t.read,
                 self.kinds.len(),
                 t.converted,

@@ -3,7 +3,9 @@
 //! single pair of large faces can run for minutes, so a report per finished pair is not
 //! enough. The pipeline checks the flag (and the time limit) between stages and every few
 //! thousand items inside the long loops; a stopped pair is returned with what it has,
-//! marked incomplete, and the result is marked partial.
+//! marked incomplete, and the result is marked partial. With a memory budget
+//! ([`crate::budget::MemoryBudget`]) the same checks consult the heap in use: past the
+//! limit the run stops as if cancelled, and the budget records the step it was in.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -32,6 +34,8 @@ pub struct Control {
     pub cancel: Option<Arc<AtomicBool>>,
     /// Receives progress from inside face pairs.
     pub progress: Option<Arc<ProgressFn>>,
+    /// Memory budget consulted at every check (the run stops when it is exhausted).
+    pub memory: Option<Arc<crate::budget::MemoryBudget>>,
 }
 
 impl std::fmt::Debug for Control {
@@ -39,6 +43,7 @@ impl std::fmt::Debug for Control {
         f.debug_struct("Control")
             .field("cancel", &self.cancel)
             .field("progress", &self.progress.as_ref().map(|_| "fn"))
+            .field("memory", &self.memory)
             .finish()
     }
 }
@@ -50,16 +55,18 @@ impl Control {
         (
             Control {
                 cancel: Some(flag.clone()),
-                progress: None,
+                ..Control::default()
             },
             flag,
         )
     }
 
+    /// Cancelled by the flag, or stopped by the memory budget (checked here).
     pub fn cancelled(&self) -> bool {
         self.cancel
             .as_ref()
             .is_some_and(|c| c.load(Ordering::Relaxed))
+            || self.memory.as_ref().is_some_and(|m| m.check())
     }
 
     /// Cancelled, or past `deadline`.
@@ -68,6 +75,9 @@ impl Control {
     }
 
     pub fn report(&self, pair: (usize, usize), step: &'static str, done: usize, total: usize) {
+        if let Some(m) = &self.memory {
+            m.enter(format!("faces ({}, {}): {step}", pair.0, pair.1));
+        }
         if let Some(p) = &self.progress {
             p(&Stage {
                 pair,

@@ -4,6 +4,7 @@
 
 pub mod coons;
 pub mod reparam;
+pub mod scan;
 pub mod shapes;
 
 use num_rational::BigRational;

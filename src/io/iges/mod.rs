@@ -6,7 +6,7 @@
 //! surface of revolution (120, full turn) and tabulated cylinder (122) converted exactly to
 //! NURBS; generatrices and directrices from 126, 110 (line) and 100 (arc). Unsupported
 //! entities are counted by type in the model's warnings, never dropped silently; every
-//! surface, face and curve entry has its outcome in the model's accounts (`account`).
+//! directory entry has its outcome in the model's accounts (`account`).
 
 mod account;
 mod analytic;
@@ -354,7 +354,7 @@ const SURFACES: [i64; 9] = [128, 120, 122, 108, 190, 192, 194, 196, 198];
 
 /// Read IGES text.
 pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
-    let (e, unit, resolution, mut warnings) = parse(text, file)?;
+    let (e, unit, resolution, mut warnings, no_params) = parse(text, file)?;
     let r = Reader {
         e: &e,
         file,
@@ -433,7 +433,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     }
     for (de, x) in &e {
         if x.etype == 126
-            && x.status.get(2..4) == Some("00")
+            && !x.dependent()
             && let Some(c) = r.curve(*de)?
         {
             model.curves.push(Curve {
@@ -504,7 +504,8 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     if let Some(b) = &model.brep {
         warnings.extend(b.report.warning_lines());
     }
-    model.accounts = account::account(&e, &outcomes);
+    let from_topology = model.brep.is_some() && e.values().any(|x| x.etype == 510);
+    model.accounts = account::account(&e, &outcomes, from_topology, &no_params);
     warnings.extend(model.degeneracy_warnings());
     model.warnings = warnings;
     for x in e.values() {

@@ -28,8 +28,29 @@ pub struct Entry {
     pub etype: i64,
     pub form: i64,
     pub transform: usize,
+    /// The status number (directory field 9), right-aligned and zero-padded to its eight
+    /// digits (IGES 5.3 §2.2.4.4.9): 1–2 blank status, 3–4 subordinate entity switch, 5–6
+    /// entity use flag, 7–8 hierarchy. Files write it with leading blanks or zeros alike.
     pub status: String,
     pub params: Vec<Param>,
+}
+
+impl Entry {
+    /// The subordinate entity switch (status digits 3–4): `"00"` independent, `"01"`
+    /// physically dependent, `"02"` logically dependent, `"03"` both.
+    pub fn subordinate(&self) -> &str {
+        self.status.get(2..4).unwrap_or("00")
+    }
+    /// Whether the entry is physically or logically dependent: part of another entity.
+    pub fn dependent(&self) -> bool {
+        self.subordinate() != "00"
+    }
+}
+
+/// The status field's text right-aligned and zero-padded to eight digits (blanks inside the
+/// field are zeros: each pair is a two-digit number).
+fn status_digits(field: &str) -> String {
+    format!("{:0>8}", field.trim()).replace(' ', "0")
 }
 
 /// Parse the free-format parameter text with the file's delimiters.
@@ -161,12 +182,15 @@ fn field(l: &str, k: usize) -> &str {
 }
 
 /// Directory entries by DE number, the unit, the minimum user-intended resolution (Global
-/// parameter 19, in the model's unit, when positive and finite), and header warnings.
+/// parameter 19, in the model's unit, when positive and finite), header warnings, and the
+/// `(DE, type)` of the directory entries no parameter line points to (left out of the
+/// entries, each with a warning).
 pub type Parsed = (
     BTreeMap<usize, Entry>,
     Option<String>,
     Option<f64>,
     Vec<String>,
+    Vec<(usize, i64)>,
 );
 
 /// Parse an IGES file into directory entries (by DE number), the unit and header warnings.
@@ -253,6 +277,7 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
         ptext.entry(*de).or_default().push_str(t);
     }
     let mut out = BTreeMap::new();
+    let mut no_params = Vec::new();
     for k in 0..s.dir.len() / 2 {
         let (l1, l2) = (&s.dir[2 * k], &s.dir[2 * k + 1]);
         let de = 2 * k + 1;
@@ -260,6 +285,7 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
         let etype = int(field(l1, 0));
         let Some(t) = ptext.get(&de) else {
             warnings.push(format!("DE {de} (type {etype}) has no parameter data"));
+            no_params.push((de, etype));
             continue;
         };
         let params = split_params(t, pd, rd).map_err(|r| IgesError {
@@ -274,10 +300,10 @@ pub fn parse(text: &str, file: &str) -> Result<Parsed, IgesError> {
                 etype,
                 form: int(field(l2, 4)),
                 transform: int(field(l1, 6)).max(0) as usize,
-                status: field(l1, 8).to_string(),
+                status: status_digits(field(l1, 8)),
                 params,
             },
         );
     }
-    Ok((out, unit, resolution, warnings))
+    Ok((out, unit, resolution, warnings, no_params))
 }

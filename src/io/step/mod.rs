@@ -9,7 +9,7 @@
 //! surfaces take their extent from the face's boundary points (planes: the bounding
 //! rectangle in the plane; cylinders and cones: the axial range, full turn); spheres and tori
 //! are full. Anything skipped is counted in the model's warnings, and every surface and
-//! B-spline curve instance has its outcome in the model's accounts (`account`).
+//! curve instance has its outcome in the model's accounts (`account`).
 
 mod account;
 mod edge_curve;
@@ -232,7 +232,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             .warnings
             .push(format!("invalid B-spline curve skipped: {b}"));
     }
-    model.accounts = account::account(&p, &outcomes);
+    model.accounts = account::account(&p, &outcomes, model.brep.as_ref().map(|b| &b.report));
     let degenerate = model.degeneracy_warnings();
     model.warnings.extend(degenerate);
     for e in p.entities.values() {
