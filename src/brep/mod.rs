@@ -13,6 +13,7 @@
 
 pub mod check;
 pub mod counts;
+pub mod place;
 pub mod report;
 pub mod sew;
 
@@ -172,6 +173,31 @@ pub struct Brep {
     pub tolerance: f64,
     /// What was read, converted, unsupported or invalid, and the topology faults.
     pub report: BrepReport,
+    /// The assembly tree, depth-first, when the source has one (STEP product structure):
+    /// every solid and shell above is the shape of one occurrence, placed.
+    pub occurrences: Vec<Occurrence>,
+}
+
+/// An occurrence of a product in an assembly (STEP `next_assembly_usage_occurrence`, or a
+/// root product), with the motion placing it and the solids and shells of its own shape.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Occurrence {
+    /// Depth in the tree (0: a root product).
+    pub depth: usize,
+    /// Source id of the usage occurrence (`"#376"`), or of the product definition for a root.
+    pub source: String,
+    /// The occurrence ids from the root down (`"#54/#403"`; a root's own id for a root).
+    pub path: String,
+    /// The product's name.
+    pub product: String,
+    /// Source id of the product definition.
+    pub definition: String,
+    /// From the product's coordinates to the model's (composed along the tree).
+    pub motion: place::Motion,
+    /// Indices into [`Brep::solids`] and [`Brep::shells`] of the product's own shape (its
+    /// mapped items included); sub-assemblies' shapes belong to their own occurrences.
+    pub solids: Vec<usize>,
+    pub shells: Vec<usize>,
 }
 
 impl Edge {

@@ -60,6 +60,9 @@ pub struct ModelInfo {
     /// What the reader did with each topology and edge-geometry entity (converted,
     /// unsupported, invalid, not read; with ids) and the topology issues.
     pub topology_report: Option<crate::brep::BrepReport>,
+    /// The assembly tree (depth-first), when the source has one: each occurrence with its
+    /// product, motion and placed solids and shells.
+    pub assembly: Vec<crate::brep::Occurrence>,
     /// Trimmed area of each B-rep face (filled by callers that triangulate the faces).
     pub face_areas: Vec<FaceArea>,
     /// What the reader did with each geometric entity, by source kind (empty for models not
@@ -176,6 +179,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
             .collect(),
         topology: m.brep.as_ref().map(|b| b.counts()),
         topology_report: m.brep.as_ref().map(|b| b.report.clone()),
+        assembly: m.brep.as_ref().map_or(vec![], |b| b.occurrences.clone()),
         face_areas: vec![],
         accounts: m.accounts.clone(),
     }
@@ -230,6 +234,33 @@ impl std::fmt::Display for ModelInfo {
                 .map(|(k, t)| format!("{k} {}", t.converted))
                 .collect();
             writeln!(f, "  topology entities converted: {}", converted.join(", "))?;
+        }
+        if !self.assembly.is_empty() {
+            writeln!(
+                f,
+                "  assembly: {} occurrence(s) (roots included), {} placed solid(s), {} placed shell(s)",
+                self.assembly.len(),
+                self.assembly.iter().map(|o| o.solids.len()).sum::<usize>(),
+                self.assembly.iter().map(|o| o.shells.len()).sum::<usize>()
+            )?;
+            for o in &self.assembly {
+                let r = &o.motion.rotation;
+                writeln!(
+                    f,
+                    "    {:indent$}{} '{}' ({}): {} solid(s), {} shell(s); rotation rows {:?} {:?} {:?}, translation {:?}",
+                    "",
+                    o.source,
+                    o.product,
+                    o.definition,
+                    o.solids.len(),
+                    o.shells.len(),
+                    r[0],
+                    r[1],
+                    r[2],
+                    o.motion.translation,
+                    indent = 2 * o.depth
+                )?;
+            }
         }
         if !self.face_areas.is_empty() {
             let total: f64 = self.face_areas.iter().filter_map(|a| a.area).sum();

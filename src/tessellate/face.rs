@@ -218,7 +218,15 @@ fn triangulate(
         resolution(fs, lo, hi, 1, h, max_turn),
     ];
     let cell = [(hi[0] - lo[0]) / n[0] as f64, (hi[1] - lo[1]) / n[1] as f64];
-    let norm_of = |uv: &[f64; 2]| Point2::new((uv[0] - lo[0]) / cell[0], (uv[1] - lo[1]) / cell[1]);
+    // In grid-cell units; magnitudes below 1e-30 (rounding residue at the box's corner, e.g.
+    // of a rotated placement) are 0: the triangulation refuses nonzero values below ~1e-43.
+    let flush = |x: f64| if x.abs() < 1e-30 { 0.0 } else { x };
+    let norm_of = |uv: &[f64; 2]| {
+        Point2::new(
+            flush((uv[0] - lo[0]) / cell[0]),
+            flush((uv[1] - lo[1]) / cell[1]),
+        )
+    };
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::new();
     // Mesh vertex and parameter point of each CDT vertex (by handle index).

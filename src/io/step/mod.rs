@@ -12,8 +12,10 @@
 //! curve instance has its outcome in the model's accounts (`account`).
 
 mod account;
+mod assembly;
 mod edge_curve;
 mod entities;
+mod occurrences;
 pub mod part21;
 mod shells;
 mod topology;
@@ -199,6 +201,9 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             .read(&surface_of, &unsupported_surface);
         model.warnings.extend(brep.report.warning_lines());
         model.brep = Some(brep);
+        if let Some(tree) = assembly::read(&r) {
+            occurrences::apply(&mut model, tree);
+        }
     }
     // Free B-spline curves (not referenced by edges or surfaces are still listed); one
     // that cannot be read is reported with its id and reason.

@@ -1,0 +1,399 @@
+//! STEP product structure (ISO 10303-44 and -43, AP203/AP214/AP242 assemblies): the tree of
+//! `product_definition`s joined by `next_assembly_usage_occurrence`s (NAUO), each product's
+//! shape through `shape_definition_representation` (and the representations joined to it by
+//! `shape_representation_relationship`s without transformation), each occurrence's
+//! placement from the `context_dependent_shape_representation` whose
+//! `product_definition_shape` is the NAUO: a `representation_relationship_with_transformation`
+//! whose `item_defined_transformation` is a pair of `axis2_placement_3d`s. The motion maps
+//! the first placement onto the second (ISO 10303-43, `item_defined_transformation`):
+//! `T = B ∘ A⁻¹` for frames `A` (`transform_item_1`) and `B` (`transform_item_2`), taking the
+//! child representation's coordinates to the parent's. When the relationship names the
+//! parent as `rep_1` (reversed against the NAUO), the inverse is used. `mapped_item`s
+//! (`representation_map` with `mapping_origin` `A`, `mapping_target` `B`) place their
+//! representation by `B ∘ A⁻¹` likewise. Nested occurrences compose their motions.
+//!
+//! The result is a list of placed occurrences (depth-first), each with the solids and shells
+//! (STEP ids) its product's shape holds, and the warnings for what could not be placed.
+
+use super::entities::Reader;
+use super::part21::{Entity, Value};
+use crate::brep::place::Motion;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Deepest assembly tree followed (deeper ones, and cycles, are reported).
+const MAX_DEPTH: usize = 32;
+
+/// One node of the tree as read: an occurrence of a product, placed.
+#[derive(Clone, Debug)]
+pub(super) struct Node {
+    pub depth: usize,
+    /// `#n` of the NAUO, or of the product definition for a root.
+    pub source: String,
+    /// The occurrence path from the root (`#54/#403`; the root's own id for a root).
+    pub path: String,
+    pub product: String,
+    pub definition: String,
+    pub motion: Motion,
+    /// `(motion, solid ids, shell ids)`: the product's own shape items (mapped items each
+    /// with their own motion).
+    pub items: Vec<(Motion, Vec<u64>, Vec<u64>)>,
+}
+
+/// The product structure of a file with at least one NAUO or mapped item.
+pub(super) struct Tree {
+    pub nodes: Vec<Node>,
+    pub warnings: Vec<String>,
+}
+
+struct Walker<'a> {
+    r: &'a Reader<'a>,
+    /// Representations of each product definition.
+    reps: BTreeMap<u64, Vec<u64>>,
+    /// Plain representation links (both directions).
+    links: BTreeMap<u64, Vec<u64>>,
+    /// NAUOs by parent definition: `(nauo, child definition)`.
+    children: BTreeMap<u64, Vec<(u64, u64)>>,
+    /// The shape representation relationship placing each NAUO.
+    placing: BTreeMap<u64, u64>,
+    nodes: Vec<Node>,
+    warnings: Vec<String>,
+}
+
+fn str_at(a: &[Value], i: usize) -> Option<&str> {
+    match a.get(i) {
+        Some(Value::Str(s)) => Some(s),
+        _ => None,
+    }
+}
+
+/// The `items` of a representation instance (any `*REPRESENTATION` partial entity with a list
+/// as its second attribute).
+fn rep_items(e: &Entity) -> Option<&[Value]> {
+    let parts: Vec<(&str, &[Value])> = match e {
+        Entity::Simple(n, a) => vec![(n.as_str(), a.as_slice())],
+        Entity::Complex(p) => p.iter().map(|(n, a)| (n.as_str(), a.as_slice())).collect(),
+    };
+    parts
+        .into_iter()
+        .find(|(n, a)| n.ends_with("REPRESENTATION") && a.get(1).and_then(Value::list).is_some())
+        .and_then(|(_, a)| a.get(1)?.list())
+}
+
+/// Read the product structure, or `None` when the file has no NAUO and no mapped item.
+pub(super) fn read(r: &Reader) -> Option<Tree> {
+    let p = r.p;
+    let mut w = Walker {
+        r,
+        reps: BTreeMap::new(),
+        links: BTreeMap::new(),
+        children: BTreeMap::new(),
+        placing: BTreeMap::new(),
+        nodes: Vec::new(),
+        warnings: Vec::new(),
+    };
+    let mut any = false;
+    let mut definitions = Vec::new();
+    let mut is_child = BTreeSet::new();
+    let mut in_cdsr = BTreeSet::new();
+    let def_of_pds = |id: u64| {
+        p.entities
+            .get(&id)?
+            .part("PRODUCT_DEFINITION_SHAPE")?
+            .get(2)?
+            .reference()
+    };
+    for (&id, e) in &p.entities {
+        if e.is("PRODUCT_DEFINITION") {
+            definitions.push(id);
+        } else if let Some(a) = e.part("NEXT_ASSEMBLY_USAGE_OCCURRENCE") {
+            any = true;
+            match (a.get(3).and_then(Value::reference), a.get(4).and_then(Value::reference)) {
+                (Some(parent), Some(child)) => {
+                    w.children.entry(parent).or_default().push((id, child));
+                    is_child.insert(child);
+                }
+                _ => w.warnings.push(format!(
+                    "assembly: NEXT_ASSEMBLY_USAGE_OCCURRENCE #{id}: relating or related product definition is not a reference; occurrence not placed"
+                )),
+            }
+        } else if e.is("MAPPED_ITEM") {
+            any = true;
+        } else if let Some(a) = e.part("SHAPE_DEFINITION_REPRESENTATION") {
+            if let (Some(d), Some(rep)) = (
+                a.first().and_then(Value::reference).and_then(def_of_pds),
+                a.get(1).and_then(Value::reference),
+            ) {
+                w.reps.entry(d).or_default().push(rep);
+            }
+        } else if let Some(a) = e.part("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION")
+            && let (Some(srr), Some(nauo)) = (
+                a.first().and_then(Value::reference),
+                a.get(1).and_then(Value::reference).and_then(def_of_pds),
+            )
+        {
+            w.placing.insert(nauo, srr);
+            in_cdsr.insert(srr);
+        }
+    }
+    if !any {
+        return None;
+    }
+    for (&id, e) in &p.entities {
+        if let Some(a) = e.part("REPRESENTATION_RELATIONSHIP")
+            && !e.is("REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION")
+            && !in_cdsr.contains(&id)
+            && let (Some(r1), Some(r2)) = (
+                a.get(2).and_then(Value::reference),
+                a.get(3).and_then(Value::reference),
+            )
+        {
+            w.links.entry(r1).or_default().push(r2);
+            w.links.entry(r2).or_default().push(r1);
+        }
+    }
+    for d in definitions {
+        if !is_child.contains(&d) {
+            w.visit(
+                d,
+                format!("#{d}"),
+                String::new(),
+                Motion::IDENTITY,
+                &mut Vec::new(),
+            );
+        }
+    }
+    Some(Tree {
+        nodes: w.nodes,
+        warnings: w.warnings,
+    })
+}
+
+impl Walker<'_> {
+    fn name_of(&self, def: u64) -> String {
+        let e = &self.r.p.entities;
+        let formation = e
+            .get(&def)
+            .and_then(|x| x.part("PRODUCT_DEFINITION"))
+            .and_then(|a| a.get(2)?.reference());
+        let product = formation.and_then(|f| {
+            let x = e.get(&f)?;
+            let a = x
+                .part("PRODUCT_DEFINITION_FORMATION")
+                .or_else(|| x.part("PRODUCT_DEFINITION_FORMATION_WITH_SPECIFIED_SOURCE"))?;
+            a.get(2)?.reference()
+        });
+        product
+            .and_then(|pr| str_at(e.get(&pr)?.part("PRODUCT")?, 1).map(str::to_string))
+            .unwrap_or_default()
+    }
+
+    /// A frame's motion (world frame to the `axis2_placement_3d`).
+    fn frame(&self, id: u64) -> Result<Motion, String> {
+        let f = self
+            .r
+            .placement(id)
+            .map_err(|e| format!("{}: {}", e.location, e.reason))?;
+        Ok(Motion::from_frame(f.o, f.x, f.y, f.z))
+    }
+
+    /// `B ∘ A⁻¹` for the frames `a`, `b`.
+    fn map_frames(&self, a: u64, b: u64) -> Result<Motion, String> {
+        Ok(self.frame(b)?.then_after(&self.frame(a)?.inverse_rigid()))
+    }
+
+    /// The representations making up `rep` (itself and those joined by plain relationships).
+    fn closure(&self, rep: u64) -> Vec<u64> {
+        let mut seen = vec![rep];
+        let mut i = 0;
+        while i < seen.len() {
+            for &n in self.links.get(&seen[i]).map_or(&[][..], |v| v) {
+                if !seen.contains(&n) {
+                    seen.push(n);
+                }
+            }
+            i += 1;
+        }
+        seen
+    }
+
+    /// Solids, shells and mapped items of a definition's shape, placed by `m`.
+    fn items(
+        &mut self,
+        reps: &[u64],
+        m: Motion,
+        depth: usize,
+        out: &mut Vec<(Motion, Vec<u64>, Vec<u64>)>,
+    ) {
+        let p = self.r.p;
+        let (mut solids, mut shells) = (Vec::new(), Vec::new());
+        for &rep in reps {
+            for rid in self.closure(rep) {
+                let Some(items) = p.entities.get(&rid).and_then(rep_items) else {
+                    continue;
+                };
+                for id in items.iter().filter_map(Value::reference) {
+                    let Some(e) = p.entities.get(&id) else {
+                        continue;
+                    };
+                    if e.is("MANIFOLD_SOLID_BREP") || e.is("BREP_WITH_VOIDS") {
+                        solids.push(id);
+                    } else if let Some(a) = e.part("SHELL_BASED_SURFACE_MODEL") {
+                        let list = a.get(1).and_then(Value::list).unwrap_or(&[]);
+                        shells.extend(list.iter().filter_map(Value::reference));
+                    } else if let Some(a) = e.part("MAPPED_ITEM") {
+                        self.mapped(id, a, m, depth, out);
+                    }
+                }
+            }
+        }
+        if !solids.is_empty() || !shells.is_empty() {
+            out.push((m, solids, shells));
+        }
+    }
+
+    fn mapped(
+        &mut self,
+        id: u64,
+        a: &[Value],
+        m: Motion,
+        depth: usize,
+        out: &mut Vec<(Motion, Vec<u64>, Vec<u64>)>,
+    ) {
+        let map = a
+            .get(1)
+            .and_then(Value::reference)
+            .and_then(|r| self.r.p.entities.get(&r)?.part("REPRESENTATION_MAP"));
+        let (Some(map), Some(target)) = (map, a.get(2).and_then(Value::reference)) else {
+            self.warnings.push(format!(
+                "assembly: MAPPED_ITEM #{id}: mapping_source is not a REPRESENTATION_MAP or mapping_target not a reference; not placed"
+            ));
+            return;
+        };
+        let (Some(origin), Some(rep)) = (
+            map.first().and_then(Value::reference),
+            map.get(1).and_then(Value::reference),
+        ) else {
+            self.warnings.push(format!(
+                "assembly: MAPPED_ITEM #{id}: its REPRESENTATION_MAP is malformed; not placed"
+            ));
+            return;
+        };
+        if depth >= MAX_DEPTH {
+            self.warnings.push(format!(
+                "assembly: MAPPED_ITEM #{id}: nested deeper than {MAX_DEPTH} (a cycle?); not placed"
+            ));
+            return;
+        }
+        match self.map_frames(origin, target) {
+            Ok(t) => self.items(&[rep], m.then_after(&t), depth + 1, out),
+            Err(e) => self
+                .warnings
+                .push(format!("assembly: MAPPED_ITEM #{id}: {e}; not placed")),
+        }
+    }
+
+    /// The motion of occurrence `nauo` placing `child` in its parent: from the child's
+    /// representation to the parent's.
+    fn occurrence_motion(&mut self, nauo: u64, child: u64) -> Motion {
+        let Some(&srr) = self.placing.get(&nauo) else {
+            self.warnings.push(format!(
+                "assembly: NEXT_ASSEMBLY_USAGE_OCCURRENCE #{nauo} has no CONTEXT_DEPENDENT_SHAPE_REPRESENTATION; placed without motion"
+            ));
+            return Motion::IDENTITY;
+        };
+        let p = self.r.p;
+        let e = p.entities.get(&srr);
+        let rr = e.and_then(|e| e.part("REPRESENTATION_RELATIONSHIP"));
+        let wt = e.and_then(|e| e.part("REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION"));
+        let (Some(rr), Some(wt)) = (rr, wt) else {
+            self.warnings.push(format!(
+                "assembly: #{srr} (placing #{nauo}) is not a REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION; placed without motion"
+            ));
+            return Motion::IDENTITY;
+        };
+        let idt = wt
+            .first()
+            .and_then(Value::reference)
+            .and_then(|t| Some((t, p.entities.get(&t)?.part("ITEM_DEFINED_TRANSFORMATION")?)));
+        let Some((tid, idt)) = idt else {
+            self.warnings.push(format!(
+                "assembly: #{srr} (placing #{nauo}): the transformation is not an ITEM_DEFINED_TRANSFORMATION (not supported); placed without motion"
+            ));
+            return Motion::IDENTITY;
+        };
+        let (Some(a), Some(b)) = (
+            idt.get(2).and_then(Value::reference),
+            idt.get(3).and_then(Value::reference),
+        ) else {
+            self.warnings.push(format!(
+                "assembly: ITEM_DEFINED_TRANSFORMATION #{tid}: items are not references; #{nauo} placed without motion"
+            ));
+            return Motion::IDENTITY;
+        };
+        let t = match self.map_frames(a, b) {
+            Ok(t) => t,
+            Err(e) => {
+                self.warnings.push(format!(
+                    "assembly: ITEM_DEFINED_TRANSFORMATION #{tid}: {e}; #{nauo} placed without motion"
+                ));
+                return Motion::IDENTITY;
+            }
+        };
+        let child_reps: Vec<u64> = self.reps.get(&child).map_or(vec![], |v| {
+            v.iter().flat_map(|&r| self.closure(r)).collect()
+        });
+        let rep1 = rr.get(2).and_then(Value::reference);
+        let rep2 = rr.get(3).and_then(Value::reference);
+        if rep1.is_some_and(|r| child_reps.contains(&r)) {
+            t
+        } else if rep2.is_some_and(|r| child_reps.contains(&r)) {
+            t.inverse_rigid()
+        } else {
+            self.warnings.push(format!(
+                "assembly: #{srr} (placing #{nauo}) relates no representation of the child product; rep_1 taken as the child's"
+            ));
+            t
+        }
+    }
+
+    /// Visit definition `def` reached by occurrence `source` along `along` (the parent's
+    /// occurrence path), placed by `m`; `path`: the definitions above (cycle guard).
+    fn visit(&mut self, def: u64, source: String, along: String, m: Motion, path: &mut Vec<u64>) {
+        let depth = path.len();
+        if path.contains(&def) || depth > MAX_DEPTH {
+            self.warnings.push(format!(
+                "assembly: {source}: product definition #{def} is its own ancestor or nested deeper than {MAX_DEPTH}; not placed"
+            ));
+            return;
+        }
+        let reps = self.reps.get(&def).cloned().unwrap_or_default();
+        let mut items = Vec::new();
+        self.items(&reps, m, 0, &mut items);
+        let here = if depth <= 1 {
+            source.clone()
+        } else {
+            format!("{along}/{source}")
+        };
+        self.nodes.push(Node {
+            depth,
+            source,
+            path: here.clone(),
+            product: self.name_of(def),
+            definition: format!("#{def}"),
+            motion: m,
+            items,
+        });
+        path.push(def);
+        for (nauo, child) in self.children.get(&def).cloned().unwrap_or_default() {
+            let t = self.occurrence_motion(nauo, child);
+            self.visit(
+                child,
+                format!("#{nauo}"),
+                here.clone(),
+                m.then_after(&t),
+                path,
+            );
+        }
+        path.pop();
+    }
+}
