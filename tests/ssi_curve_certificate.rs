@@ -336,8 +336,10 @@ fn near_tangent_sphere_and_plane() {
         assert_eq!(cert, total, "{h}");
         let b = &r.branches[0];
         let largest = b.dist_curve_max.unwrap();
-        // Tight: the largest radius is within 1% (+1e-12) of the largest true distance
-        // (f64 estimate, only for this quality check).
+        // Tight: the largest radius is within 5% (+1e-12) of the largest true distance
+        // (f64 estimate, only for this quality check). The points now sit ~1e-10 from the
+        // curve, where the enclosure's rounding floor, amplified by 1/sin of the angle (500
+        // at 2⁻¹⁸), is a few per cent of the distance (measured: 3.3% at 2⁻¹⁸, 0.3% at 2⁻¹⁴).
         let rho = (4.0 - h * h).sqrt();
         let true_max = b
             .points
@@ -352,7 +354,7 @@ fn near_tangent_sphere_and_plane() {
             b.dist_a_max.max(b.dist_b_max)
         );
         assert!(
-            largest <= 1.01 * true_max + 1e-12,
+            largest <= 1.05 * true_max + 1e-12,
             "{h}: {largest} vs {true_max}"
         );
         assert!(b.dist_a_max <= tol && b.dist_b_max <= tol, "{h}");

@@ -345,6 +345,15 @@ pub fn refine_branch(
             }
         }
     }
+    // Near tangency the refined points (within tol of both surfaces) can lie far from the
+    // curve; they move onto it before the insertion measures chords against the curve, as the
+    // inserted points do (otherwise a chord between two points off the curve on one side can
+    // pass the test and stray from the curve once its ends have moved).
+    refined.par_iter_mut().with_min_len(64).for_each(|r| {
+        if r.status == RefineStatus::Converged && small_angle(g, r) {
+            let _ = onto_curve(g, r, prm.tol);
+        }
+    });
     let mut ins = Inserter {
         g,
         prm,

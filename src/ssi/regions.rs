@@ -16,7 +16,8 @@
 //! whatever output it is given, so nothing here needs to be trusted.
 //!
 //! What is replaced: a cluster is run only when every reported branch lies either wholly in
-//! `R_A × R_B` (every point's `uv_a` in `R_A` and `uv_b` in `R_B`) or wholly outside it;
+//! `R_A × R_B` (every point's `uv_a` in `R_A` and `uv_b` in `R_B`) or wholly outside it (no
+//! point in it, and no chord between consecutive points whose parameter boxes meet it);
 //! the branches wholly inside are replaced by the region run's branches (so no curve is
 //! reported twice), the others kept. A round is kept only when the new coverage has fewer
 //! undecided box pairs than before; otherwise the output stays as it was and the refinement
@@ -111,9 +112,28 @@ fn inside(uv: &[f64; 2], b: &[f64; 4]) -> bool {
     b[0] <= uv[0] && uv[0] <= b[1] && b[2] <= uv[1] && uv[1] <= b[3]
 }
 
-/// Whether every point of `br` lies in `ra × rb` (`Some(true)`), none does (`Some(false)`),
-/// or some do (`None`).
-fn placement(br: &BranchOut, ra: &[f64; 4], rb: &[f64; 4]) -> Option<bool> {
+/// The parameter box of the chord `p`–`q`, or `None` when it spans half the domain `d` or more
+/// in a direction (a chord across a seam: its box says nothing).
+fn chord_box(p: &[f64; 2], q: &[f64; 2], d: &[f64; 4]) -> Option<[f64; 4]> {
+    let b = [
+        p[0].min(q[0]),
+        p[0].max(q[0]),
+        p[1].min(q[1]),
+        p[1].max(q[1]),
+    ];
+    (b[1] - b[0] < 0.5 * (d[1] - d[0]) && b[3] - b[2] < 0.5 * (d[3] - d[2])).then_some(b)
+}
+
+/// Whether every point of `br` lies in `ra × rb` (`Some(true)`), none does and no chord
+/// between consecutive points passes through it (`Some(false)`), or neither (`None`). A
+/// branch whose chord spans the region without a point in it would otherwise count as
+/// outside, and the region run would report that part of its curve a second time.
+fn placement(
+    br: &BranchOut,
+    ra: &[f64; 4],
+    rb: &[f64; 4],
+    d: (&[f64; 4], &[f64; 4]),
+) -> Option<bool> {
     let n = br.uv_a.len();
     let k = br
         .uv_a
@@ -121,9 +141,20 @@ fn placement(br: &BranchOut, ra: &[f64; 4], rb: &[f64; 4]) -> Option<bool> {
         .zip(&br.uv_b)
         .filter(|(x, y)| inside(x, ra) && inside(y, rb))
         .count();
+    let spans = if br.closed { n } else { n.saturating_sub(1) };
+    let crosses = (0..spans).any(|i| {
+        let j = (i + 1) % n;
+        match (
+            chord_box(&br.uv_a[i], &br.uv_a[j], d.0),
+            chord_box(&br.uv_b[i], &br.uv_b[j], d.1),
+        ) {
+            (Some(a), Some(b)) => touches(&a, ra) && touches(&b, rb),
+            _ => false,
+        }
+    });
     if k == n {
         Some(true)
-    } else if k == 0 {
+    } else if k == 0 && !crosses {
         Some(false)
     } else {
         None
@@ -260,8 +291,10 @@ pub fn refine_undecided(
             .take(MAX_RUNS)
         {
             let (ra, rb) = (widen(&ca, &da), widen(&cb, &db));
-            let placed: Option<Vec<bool>> =
-                branches.iter().map(|b| placement(b, &ra, &rb)).collect();
+            let placed: Option<Vec<bool>> = branches
+                .iter()
+                .map(|b| placement(b, &ra, &rb, (&da, &db)))
+                .collect();
             let ok = small(&ra, &da) && small(&rb, &db);
             let (Some(placed), true) = (placed, ok) else {
                 skipped += 1;
@@ -335,5 +368,34 @@ mod tests {
             widen(&[0.25, 0.5, 0.0, 0.5], &[0.0, 1.0, 0.0, 1.0]),
             [0.0, 0.75, 0.0, 1.0]
         );
+    }
+
+    /// A branch with no point in the region but a chord through it is not "outside": the
+    /// region run would report that part of its curve again. A chord across a seam (half the
+    /// domain or more) says nothing and is not counted.
+    #[test]
+    fn a_chord_through_the_region_is_not_outside() {
+        let d = [0.0, 1.0, 0.0, 1.0];
+        let br = |a: Vec<[f64; 2]>, closed| BranchOut {
+            closed,
+            uv_b: a.clone(),
+            uv_a: a,
+            ..Default::default()
+        };
+        let (ra, rb) = ([0.4, 0.6, 0.4, 0.6], [0.4, 0.6, 0.4, 0.6]);
+        let through = br(vec![[0.3, 0.5], [0.7, 0.5], [0.8, 0.5]], false);
+        assert_eq!(placement(&through, &ra, &rb, (&d, &d)), None);
+        let beside = br(vec![[0.3, 0.7], [0.7, 0.7], [0.8, 0.7]], false);
+        assert_eq!(placement(&beside, &ra, &rb, (&d, &d)), Some(false));
+        let inside_all = br(vec![[0.45, 0.5], [0.55, 0.5]], false);
+        assert_eq!(placement(&inside_all, &ra, &rb, (&d, &d)), Some(true));
+        // Closed: the closing chord counts too.
+        let closing = br(vec![[0.5, 0.3], [0.8, 0.3], [0.8, 0.7], [0.5, 0.7]], true);
+        assert_eq!(placement(&closing, &ra, &rb, (&d, &d)), None);
+        let open = br(vec![[0.5, 0.3], [0.8, 0.3], [0.8, 0.7], [0.5, 0.7]], false);
+        assert_eq!(placement(&open, &ra, &rb, (&d, &d)), Some(false));
+        // Across the seam: the chord from u = 0.95 to u = 0.05 is not a chord through 0.5.
+        let seam = br(vec![[0.95, 0.5], [0.05, 0.5]], false);
+        assert_eq!(placement(&seam, &ra, &rb, (&d, &d)), Some(false));
     }
 }

@@ -34,7 +34,7 @@ impl EndKind {
 }
 
 /// One intersection curve.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Default, Serialize)]
 pub struct BranchOut {
     pub closed: bool,
     pub points: Vec<[f64; 3]>,
