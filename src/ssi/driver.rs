@@ -69,6 +69,9 @@ fn swap_sides(mut p: PairOut) -> PairOut {
     if let Some(o) = p.coincident.as_mut().and_then(|c| c.overlap.as_mut()) {
         std::mem::swap(&mut o.uv_a, &mut o.uv_b);
     }
+    if let Some(c) = p.tangent_contact.as_mut() {
+        std::mem::swap(&mut c.uv_a, &mut c.uv_b);
+    }
     let s = &mut p.stats;
     std::mem::swap(&mut s.triangles_a, &mut s.triangles_b);
     std::mem::swap(&mut s.unresolved_cells_a, &mut s.unresolved_cells_b);
@@ -448,6 +451,14 @@ pub fn intersect_models(
             "OVERLAP: {overlap_pairs} face pairs were measured to overlap (a 2x2 block of a 17x17 grid of points of one surface within tol of the other with parallel normals; local search: evidence, not proven): their intersection is a region; the branches and touch points inside it are removed and counted per pair (coincident.overlap); their coverage stays refused"
         ));
     }
+    let contact_pairs = pairs.iter().filter(|p| p.tangent_contact.is_some()).count();
+    if contact_pairs > 0 {
+        certificate.push(format!(
+            "TANGENT CONTACT: {contact_pairs} face pairs were measured to touch along a curve (at least {} uncertified points within tol of both surfaces with normals parallel to sin <= {}, spread over more than 100 tol; evidence, not proven): the tangential points and uncertified branches along it are listed per pair as one contact polyline (tangent_contact), not as curves; their coverage stays refused",
+            super::tangent_contact::MIN_POINTS,
+            super::tangent_contact::MAX_SIN
+        ));
+    }
     if partial {
         certificate.push(format!(
             "PARTIAL: stopped by {}; {not_run} pairs not run, {} pairs stopped before their end",
@@ -478,6 +489,7 @@ pub fn intersect_models(
         no_missed_branches,
         uncertified_box_pairs: uncertified,
         coincident_pairs,
+        tangent_contact_pairs: contact_pairs,
         singular_points_proven,
         singular_points_uncertified,
         partial,

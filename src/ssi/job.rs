@@ -349,6 +349,29 @@ impl std::fmt::Display for SsiResult {
                 )?;
             }
         }
+        for p in &self.pairs {
+            let Some(c) = &p.tangent_contact else {
+                continue;
+            };
+            let n = c.points.len();
+            let at = |k: usize| {
+                let q = c.points[k];
+                format!("({:.6}, {:.6}, {:.6})", q[0], q[1], q[2])
+            };
+            writeln!(
+                f,
+                "  faces ({}, {}): TANGENT CONTACT along a curve (measured): {} points from {} to {}, normals' sine <= {:.1e}, gap <= {:.1e}; {} tangential points and {} uncertified branches moved into it",
+                p.a,
+                p.b,
+                n + c.points_not_listed,
+                at(0),
+                at(n - 1),
+                c.max_sin_angle,
+                c.max_gap,
+                c.touch_points_moved,
+                c.branches_moved
+            )?;
+        }
         let cov: Vec<_> = self
             .pairs
             .iter()

@@ -140,5 +140,6 @@ pub fn intersect_meshes(
         complete: true,
         coincident: None,
         faces: None,
+        tangent_contact: None,
     })
 }

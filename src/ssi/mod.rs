@@ -13,7 +13,8 @@
 //! | certificate of every point: distance to each surface | [`certify`] |
 //! | certificate of every point: distance to the intersection curve (Krawczyk) | [`krawczyk`], [`enclose`] |
 //! | coverage: no branch missed | [`coverage`] |
-//! | coincident faces | [`coincide`] |
+//! | coincident faces | [`coincide`]; overlapping faces (measured) | [`overlap`] |
+//! | faces touching along a curve (measured) | [`tangent_contact`] |
 //! | certifying a foreign result: global distance, proven curve points | [`foreign`], [`closest`] (curve points by [`krawczyk`]) |
 //! | tangential contacts | [`touch`] |
 //! | singular points (touching, branch) proven by Krawczyk's test on the tangency system | [`singular`] |
@@ -46,6 +47,7 @@ pub mod regions;
 pub mod report;
 pub mod sign_change;
 pub mod singular;
+pub mod tangent_contact;
 pub mod topology;
 pub mod touch;
 pub mod trace;

@@ -130,6 +130,7 @@ pub fn intersect_surfaces(
             complete: false,
             coincident: None,
             faces: None,
+            tangent_contact: None,
         })
     };
     if let Some(c) = coincidence(sa, sb) {
@@ -145,6 +146,7 @@ pub fn intersect_surfaces(
             complete: true,
             coincident: Some(c),
             faces: None,
+            tangent_contact: None,
         });
     }
     ctl.report(ids, "triangulate", 0, 2);
@@ -207,6 +209,7 @@ pub fn intersect_surfaces(
         complete: true,
         coincident: None,
         faces: None,
+        tangent_contact: None,
     };
     for (k, r) in singular.iter().enumerate() {
         out.touch_points.push(touch_out(
@@ -279,6 +282,7 @@ pub fn intersect_surfaces(
         if parallel {
             ctl.report(ids, "overlap", 0, 0);
             super::overlap::diagnose(&mut out, sa, sb, prm.tol);
+            super::tangent_contact::diagnose(&mut out, sa, sb, prm.tol);
         }
     }
     out.stats.seconds = t0.elapsed().as_secs_f64();

@@ -318,6 +318,10 @@ pub struct PairOut {
     /// intersection along the edges the faces share; absent when neither face is trimmed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub faces: Option<super::brep_faces::FaceClipOut>,
+    /// The faces were measured to touch along a curve ([`super::tangent_contact`], evidence):
+    /// the touch points and uncertified branches along it are listed there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangent_contact: Option<super::tangent_contact::TangentContactOut>,
 }
 
 /// What the whole run proves and what it does not.
@@ -352,6 +356,8 @@ pub struct Summary {
     pub uncertified_box_pairs: usize,
     /// Face pairs proven to coincide (see `PairOut::coincident`).
     pub coincident_pairs: usize,
+    /// Face pairs measured to touch along a curve (see `PairOut::tangent_contact`).
+    pub tangent_contact_pairs: usize,
     /// Tangential points whose kind is proven (touching point or branch point) and those
     /// left uncertified ([`super::singular`]); any uncertified one makes the run uncertified.
     pub singular_points_proven: usize,
