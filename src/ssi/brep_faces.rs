@@ -358,6 +358,34 @@ impl<'a> Faces<'a> {
             branches.extend(clip_mask(b, &keep));
         }
         p.branches = branches;
+        // A tangent contact along a shared edge (a G1 join of two faces) is that edge; its
+        // points outside either face are not the faces' contact.
+        if let Some(c) = &mut p.tangent_contact {
+            let keep: Vec<bool> = c
+                .points
+                .iter()
+                .zip(&c.params)
+                .map(|(x, (ua, ub))| match near_shared(x) {
+                    Some((e, d)) => {
+                        shared[e].points += 1;
+                        shared[e].max_distance = shared[e].max_distance.max(d);
+                        false
+                    }
+                    None if !inside(ua, ub) => {
+                        out.points_outside += 1;
+                        false
+                    }
+                    None => true,
+                })
+                .collect();
+            let mut k = keep.iter();
+            c.points.retain(|_| *k.next().unwrap_or(&true));
+            let mut k = keep.iter();
+            c.params.retain(|_| *k.next().unwrap_or(&true));
+            if c.points.is_empty() && c.points_not_listed == 0 {
+                p.tangent_contact = None;
+            }
+        }
         let touch: Vec<TouchOut> = std::mem::take(&mut p.touch_points);
         for t in touch {
             if near_shared(&t.point).is_some() {

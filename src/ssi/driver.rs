@@ -71,6 +71,9 @@ fn swap_sides(mut p: PairOut) -> PairOut {
     }
     if let Some(c) = p.tangent_contact.as_mut() {
         std::mem::swap(&mut c.uv_a, &mut c.uv_b);
+        for (a, b) in &mut c.params {
+            std::mem::swap(a, b);
+        }
     }
     let s = &mut p.stats;
     std::mem::swap(&mut s.triangles_a, &mut s.triangles_b);

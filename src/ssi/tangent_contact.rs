@@ -36,6 +36,9 @@ const MAX_LISTED: usize = 5000;
 pub struct TangentContactOut {
     /// The contact points, chained from an extreme one by nearest neighbours.
     pub points: Vec<[f64; 3]>,
+    /// Each listed point's parameters on A and on B (not in the JSON: the boxes below are).
+    #[serde(skip)]
+    pub params: Vec<([f64; 2], [f64; 2])>,
     /// Contact points beyond the listed ones.
     pub points_not_listed: usize,
     /// Boxes `[u0, u1, v0, v1]` of the contact points' parameters on each surface.
@@ -74,9 +77,9 @@ fn grow(b: &mut [f64; 4], p: &[f64; 2]) {
     b[3] = b[3].max(p[1]);
 }
 
-/// Nearest-neighbour chain through `pts`, from the point smallest along the direction in which
-/// they spread most.
-fn chain(pts: &[[f64; 3]]) -> Vec<[f64; 3]> {
+/// Nearest-neighbour chain through `pts` (their indices in chain order), from the point
+/// smallest along the direction in which they spread most.
+fn chain(pts: &[[f64; 3]]) -> Vec<usize> {
     let ext = |k: usize| {
         let (lo, hi) = pts
             .iter()
@@ -88,18 +91,18 @@ fn chain(pts: &[[f64; 3]]) -> Vec<[f64; 3]> {
     let axis = (0..3)
         .max_by(|&a, &b| ext(a).total_cmp(&ext(b)))
         .unwrap_or(0);
-    let mut left: Vec<[f64; 3]> = pts.to_vec();
-    let Some(start) = (0..left.len()).min_by(|&a, &b| left[a][axis].total_cmp(&left[b][axis]))
+    let mut left: Vec<usize> = (0..pts.len()).collect();
+    let Some(start) =
+        (0..left.len()).min_by(|&a, &b| pts[left[a]][axis].total_cmp(&pts[left[b]][axis]))
     else {
         return Vec::new();
     };
     let mut out = vec![left.swap_remove(start)];
     while !left.is_empty() {
-        let last = out[out.len() - 1];
+        let last = pts[out[out.len() - 1]];
+        let d = |i: usize| crate::geom::dist(&pts[left[i]], &last);
         let k = (0..left.len())
-            .min_by(|&a, &b| {
-                crate::geom::dist(&left[a], &last).total_cmp(&crate::geom::dist(&left[b], &last))
-            })
+            .min_by(|&a, &b| d(a).total_cmp(&d(b)))
             .unwrap_or(0);
         out.push(left.swap_remove(k));
     }
@@ -144,6 +147,7 @@ pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f6
         })
         .collect();
     let mut pts: Vec<[f64; 3]> = Vec::new();
+    let mut uvs: Vec<([f64; 2], [f64; 2])> = Vec::new();
     let mut bx_a = [
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -154,6 +158,7 @@ pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f6
     let (mut max_sin, mut max_gap) = (0.0f64, 0.0f64);
     let mut add = |x: [f64; 3], a: &[f64; 2], b: &[f64; 2], m: (f64, f64)| {
         pts.push(x);
+        uvs.push((*a, *b));
         grow(&mut bx_a, a);
         grow(&mut bx_b, b);
         max_sin = max_sin.max(m.0);
@@ -178,15 +183,15 @@ pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f6
         return;
     }
     let total = pts.len();
-    let mut chained = chain(&pts[..total.min(MAX_LISTED)]);
-    chained.truncate(MAX_LISTED);
+    let chained = chain(&pts[..total.min(MAX_LISTED)]);
     let mut keep_t = touch.iter().map(|m| m.is_none());
     p.touch_points.retain(|_| keep_t.next().unwrap_or(true));
     let mut keep_b = branch.iter().map(|m| m.is_none());
     p.branches.retain(|_| keep_b.next().unwrap_or(true));
     p.tangent_contact = Some(TangentContactOut {
         points_not_listed: total - chained.len(),
-        points: chained,
+        points: chained.iter().map(|&k| pts[k]).collect(),
+        params: chained.iter().map(|&k| uvs[k]).collect(),
         uv_a: bx_a,
         uv_b: bx_b,
         max_sin_angle: max_sin,
@@ -210,14 +215,6 @@ mod tests {
             [0.0, 0.0, 1.0],
             [0.0, 0.0, 0.0],
         ];
-        assert_eq!(
-            chain(&pts),
-            vec![
-                [0.0, 0.0, -0.25],
-                [0.0, 0.0, 0.0],
-                [0.0, 0.0, 0.5],
-                [0.0, 0.0, 1.0]
-            ]
-        );
+        assert_eq!(chain(&pts), vec![1, 3, 0, 2]);
     }
 }
