@@ -21,7 +21,7 @@
 
 use super::coincide::{CoincidenceKind, CoincidenceOut};
 use super::report::PairOut;
-use crate::geom::{cross, dist, dot, norm};
+use crate::geom::{cross, dist, norm};
 use crate::spline::NurbsSurface;
 use crate::spline::project::{point_d1, project};
 
@@ -32,6 +32,24 @@ type Sample = ([f64; 2], [f64; 2], f64);
 const GRID: usize = 17;
 /// Largest angle between the normals at an overlap sample (radians).
 const PARALLEL: f64 = 1e-6;
+
+/// The sine of the angle between the normals of `sa` at `ua` and of `sb` at `ub`, and the gap
+/// `|S_A(ua) − S_B(ub)|` (f64: measured); `None` where a normal vanishes or a value is not
+/// finite.
+pub(super) fn sine_and_gap(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    ua: &[f64; 2],
+    ub: &[f64; 2],
+) -> Option<(f64, f64)> {
+    let (p, su, sv) = point_d1(sa, ua[0], ua[1]);
+    let (q, tu, tv) = point_d1(sb, ub[0], ub[1]);
+    let (na, nb) = (cross(&su, &sv), cross(&tu, &tv));
+    let (la, lb) = (norm(&na), norm(&nb));
+    let sin = norm(&cross(&na, &nb)) / (la * lb);
+    let gap = dist(&p, &q);
+    (la > 0.0 && lb > 0.0 && sin.is_finite() && gap.is_finite()).then_some((sin, gap))
+}
 
 /// The overlap samples of `s` against `t`: for each grid point of `s`, `Some(uv on t,
 /// distance)` when it is one.
@@ -47,18 +65,9 @@ fn samples(
                 .map(|j| {
                     let u = u0 + (u1 - u0) * i as f64 / (GRID - 1) as f64;
                     let v = v0 + (v1 - v0) * j as f64 / (GRID - 1) as f64;
-                    let (p, su, sv) = point_d1(s, u, v);
-                    let uv = project(t, &p);
-                    let (q, tu, tv) = point_d1(t, uv[0], uv[1]);
-                    let d = dist(&p, &q);
-                    let (na, nb) = (cross(&su, &sv), cross(&tu, &tv));
-                    let (la, lb) = (norm(&na), norm(&nb));
-                    if !(d <= tol && la > 0.0 && lb > 0.0) {
-                        return None;
-                    }
-                    let sin = norm(&cross(&na, &nb)) / (la * lb);
-                    let parallel = sin <= PARALLEL && dot(&na, &nb).abs() > 0.0;
-                    parallel.then_some(([u, v], uv, d))
+                    let uv = project(t, &point_d1(s, u, v).0);
+                    let (sin, d) = sine_and_gap(s, t, &[u, v], &uv)?;
+                    (d <= tol && sin <= PARALLEL).then_some(([u, v], uv, d))
                 })
                 .collect()
         })
@@ -103,7 +112,8 @@ fn blocks(g: &[Vec<Option<Sample>>]) -> Option<([f64; 4], [f64; 4], usize, f64)>
     (n > 0).then_some((bs, bt, n, dmax))
 }
 
-fn grow(b: &mut [f64; 4], p: &[f64; 2]) {
+/// `b` grown to hold the parameter point `p`.
+pub(super) fn grow(b: &mut [f64; 4], p: &[f64; 2]) {
     b[0] = b[0].min(p[0]);
     b[1] = b[1].max(p[0]);
     b[2] = b[2].min(p[1]);

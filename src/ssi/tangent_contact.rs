@@ -18,10 +18,9 @@
 //! moved into it and counted. Nothing is certified by this: the coverage stays refused, the
 //! run is not certified, and no point is dropped (each moved point is in the polyline).
 
+use super::overlap::{grow, sine_and_gap};
 use super::report::{PairOut, SingularKind};
-use crate::geom::{cross, norm};
 use crate::spline::NurbsSurface;
-use crate::spline::project::point_d1;
 use serde::Serialize;
 
 /// Largest sine of the angle between the normals at a contact point.
@@ -51,30 +50,6 @@ pub struct TangentContactOut {
     /// Touch points and branches moved into the contact.
     pub touch_points_moved: usize,
     pub branches_moved: usize,
-}
-
-/// Sine of the normals' angle at `(ua, ub)` and the gap `|S_A − S_B|` there; `None` where a
-/// normal vanishes or is not finite.
-fn measure(
-    sa: &NurbsSurface<f64, 3>,
-    sb: &NurbsSurface<f64, 3>,
-    ua: &[f64; 2],
-    ub: &[f64; 2],
-) -> Option<(f64, f64)> {
-    let (p, su, sv) = point_d1(sa, ua[0], ua[1]);
-    let (q, tu, tv) = point_d1(sb, ub[0], ub[1]);
-    let (na, nb) = (cross(&su, &sv), cross(&tu, &tv));
-    let (la, lb) = (norm(&na), norm(&nb));
-    let sin = norm(&cross(&na, &nb)) / (la * lb);
-    let gap = crate::geom::dist(&p, &q);
-    (la > 0.0 && lb > 0.0 && sin.is_finite() && gap.is_finite()).then_some((sin, gap))
-}
-
-fn grow(b: &mut [f64; 4], p: &[f64; 2]) {
-    b[0] = b[0].min(p[0]);
-    b[1] = b[1].max(p[0]);
-    b[2] = b[2].min(p[1]);
-    b[3] = b[3].max(p[1]);
 }
 
 /// Nearest-neighbour chain through `pts` (their indices in chain order), from the point
@@ -116,7 +91,7 @@ pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f6
         return;
     }
     let contact = |ua: &[f64; 2], ub: &[f64; 2]| {
-        measure(sa, sb, ua, ub).filter(|(sin, gap)| *sin <= MAX_SIN && *gap <= tol)
+        sine_and_gap(sa, sb, ua, ub).filter(|(sin, gap)| *sin <= MAX_SIN && *gap <= tol)
     };
     let touch: Vec<Option<(f64, f64)>> = p
         .touch_points

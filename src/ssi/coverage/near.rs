@@ -47,12 +47,9 @@ fn seg_box(s: &([f64; 3], [f64; 3])) -> Box3 {
     )
 }
 
-/// Upper bound on the distance from `c` to the segment `[p, q]`.
-/// The distance from `c` to the point of the segment `p q` that [`dist_upper`] measures to,
-/// in plain `f64`, less a margin above its rounding error (`1e-14` of the largest coordinate
-/// involved: a few roundings per coordinate, each within `2⁻⁵³` of it): at most the value
-/// [`dist_upper`] bounds from above. A screen, not a proof.
-fn dist_estimate(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
+/// The parameter `t ∈ [0, 1]` of the point of the segment `p q` nearest to `c` (f64; 0 when
+/// the segment is a point or the division is not finite), and `q − p`.
+fn foot(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> (f64, [f64; 3]) {
     let d: [f64; 3] = std::array::from_fn(|k| q[k] - p[k]);
     let e: [f64; 3] = std::array::from_fn(|k| c[k] - p[k]);
     let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -61,7 +58,15 @@ fn dist_estimate(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
     } else {
         0.0
     };
-    let t = if t.is_finite() { t } else { 0.0 };
+    (if t.is_finite() { t } else { 0.0 }, d)
+}
+
+/// The distance from `c` to the point of the segment `p q` that [`dist_upper`] measures to,
+/// in plain `f64`, less a margin above its rounding error (`1e-14` of the largest coordinate
+/// involved: a few roundings per coordinate, each within `2⁻⁵³` of it): at most the value
+/// [`dist_upper`] bounds from above. A screen, not a proof.
+fn dist_estimate(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
+    let (t, d) = foot(c, p, q);
     let mut s = 0.0;
     let mut m = 0.0f64;
     for k in 0..3 {
@@ -72,17 +77,9 @@ fn dist_estimate(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
     s.sqrt() - 1e-14 * m
 }
 
+/// Upper bound on the distance from `c` to the segment `[p, q]`.
 pub fn dist_upper(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
-    let d: [f64; 3] = std::array::from_fn(|k| q[k] - p[k]);
-    let e: [f64; 3] = std::array::from_fn(|k| c[k] - p[k]);
-    let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let t = if dd > 0.0 {
-        ((e[0] * d[0] + e[1] * d[1] + e[2] * d[2]) / dd).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let t = if t.is_finite() { t } else { 0.0 };
-    let ti = Interval::point(t);
+    let ti = Interval::point(foot(c, p, q).0);
     let mut s = Interval::point(0.0);
     for k in 0..3 {
         let (pk, qk) = (Interval::point(p[k]), Interval::point(q[k]));
