@@ -147,3 +147,79 @@ fn a_limit_that_is_not_a_positive_number_is_bad_input() {
         assert!(String::from_utf8_lossy(&o.stderr).contains("--max-memory"));
     }
 }
+
+/// The commands without checkpoints that read a model first (watched from a second thread):
+/// the 24.2 MB model ends each of them with the typed error naming the command, exit 1, and
+/// no output file is left behind.
+#[test]
+fn reading_commands_over_their_memory_budget_stop_with_the_typed_error() {
+    let p = large_model("readers");
+    let f = p.to_str().unwrap();
+    let out = p.parent().unwrap().join("out.json");
+    let o_str = out.to_str().unwrap();
+    for (cmd, args) in [
+        ("info", vec!["info", f]),
+        ("convert", vec!["convert", f, o_str]),
+        ("reparam", vec!["reparam", f, "--out", o_str]),
+    ] {
+        let mut a = args.clone();
+        a.extend(["--max-memory", "20"]);
+        let o = vericad(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{cmd}: {err}");
+        let (limit, in_use, step) = budget_error(&err);
+        assert_eq!((limit, step.as_str()), (20.0, cmd));
+        assert!(in_use > 20.0, "{cmd}: {in_use}");
+        assert!(!out.exists(), "{cmd} left an output");
+    }
+    let _ = std::fs::remove_dir_all(p.parent().unwrap());
+}
+
+#[test]
+fn reparam_under_its_memory_budget_gives_the_same_result() {
+    let f = format!("{}:1", public("gmsh-t20_data.step"));
+    let free = vericad(&["reparam", &f, "--json", "--no-bound"]);
+    let bounded = vericad(&[
+        "reparam",
+        &f,
+        "--json",
+        "--no-bound",
+        "--max-memory",
+        "1000",
+    ]);
+    assert_eq!(free.status.code(), Some(0));
+    assert_eq!(bounded.status.code(), free.status.code());
+    let strip = |o: &Output| {
+        let mut v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        strip_seconds(&mut v);
+        v
+    };
+    assert_eq!(strip(&bounded), strip(&free));
+}
+
+#[test]
+fn every_command_refuses_a_limit_that_is_not_a_positive_number() {
+    let t20 = public("gmsh-t20_data.step");
+    let dir = std::env::temp_dir();
+    let out = dir.join(format!("vericad-memory-bad-{}.json", std::process::id()));
+    let o_str = out.to_str().unwrap();
+    let commands: [Vec<&str>; 6] = [
+        vec!["info", &t20],
+        vec!["convert", &t20, o_str],
+        vec!["reparam", &t20],
+        vec!["coons", &t20, "--boundary", o_str],
+        vec!["approximate", &t20, "--layout", o_str],
+        vec!["curve-on-surface", "--surface", &t20, "--curve", &t20],
+    ];
+    for args in commands {
+        for m in ["0", "-5", "nan"] {
+            let mut a = args.clone();
+            a.extend(["--max-memory", m]);
+            let o = vericad(&a);
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{args:?} {m}: {err}");
+            assert!(err.contains("--max-memory"), "{args:?} {m}: {err}");
+        }
+    }
+    assert!(!out.exists());
+}

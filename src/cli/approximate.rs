@@ -24,6 +24,8 @@ pub struct ApproximateArgs {
     /// VTK PolyData (.vtp) of all approximants.
     #[arg(long)]
     pub vtk: Option<PathBuf>,
+    #[command(flatten)]
+    pub memory: super::memory::MemoryArg,
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -36,6 +38,9 @@ pub fn run(a: ApproximateArgs) -> i32 {
         Ok(p) => p,
         Err(e) => return super::bad(e),
     };
+    if let Err(e) = a.memory.watch("approximate") {
+        return super::bad(e);
+    }
     let outputs = crate::approx::coons::layout_job::Outputs {
         model: a.out.as_deref(),
         report: a.report.as_deref(),

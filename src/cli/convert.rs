@@ -6,7 +6,15 @@ use super::output::bad;
 use std::path::Path;
 
 /// Run the command; returns the exit code.
-pub(super) fn run(input: &Path, output: &Path, format: Option<&str>) -> i32 {
+pub(super) fn run(
+    input: &Path,
+    output: &Path,
+    format: Option<&str>,
+    memory: &super::memory::MemoryArg,
+) -> i32 {
+    if let Err(e) = memory.watch("convert") {
+        return bad(e);
+    }
     let m = match crate::io::read_model(input) {
         Ok(m) => m,
         Err(e) => return bad(e),

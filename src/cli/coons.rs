@@ -64,6 +64,8 @@ pub struct CoonsArgs {
     /// VTK PolyData (.vtp): approximant, projected points (hit / artificial), error samples.
     #[arg(long)]
     pub vtk: Option<PathBuf>,
+    #[command(flatten)]
+    pub memory: super::memory::MemoryArg,
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
@@ -76,6 +78,9 @@ pub fn run(a: CoonsArgs) -> i32 {
         Ok(p) => p,
         Err(e) => return super::bad(e),
     };
+    if let Err(e) = a.memory.watch("coons") {
+        return super::bad(e);
+    }
     let outputs = crate::approx::coons::job::Outputs {
         model: a.out.as_deref(),
         report: a.report.as_deref(),

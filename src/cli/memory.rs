@@ -2,8 +2,8 @@
 //! The heap in use comes from a probe the program registers ([`set_memory_probe`]; the
 //! `vericad` binary counts its heap with a counting global allocator). `ssi` and
 //! `certify-ssi` consult the budget at the pipeline's cooperative checkpoints (the cancel
-//! and time-limit checks) and stop there; `repair` and `curve-on-surface`, which have no
-//! checkpoints, are watched from a second thread every few milliseconds and the command ends
+//! and time-limit checks) and stop there; `repair`, `curve-on-surface`, `reparam`, `coons`,
+//! `approximate`, `convert` and `info`, which have no checkpoints, are watched from a second thread every few milliseconds and the command ends
 //! with the same error (outputs are written atomically, so none is left half-written). The
 //! error is `budget exhausted: memory (limit X MB, in use Y MB) at <step>`, exit code 1 (a
 //! computation budget, like curve-on-surface's segment budget). 1 MB = 10⁶ bytes.
@@ -12,6 +12,25 @@ use crate::budget::{MemoryBudget, MemoryProbe};
 use std::sync::{Arc, OnceLock};
 
 static PROBE: OnceLock<fn() -> usize> = OnceLock::new();
+
+/// `--max-memory MB`, for the commands without checkpoints (flattened into their arguments).
+#[derive(clap::Args, Debug, Default)]
+pub struct MemoryArg {
+    /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
+    /// `budget exhausted: memory ...` and exit code 1.
+    #[arg(long, allow_hyphen_values = true)]
+    pub max_memory: Option<f64>,
+}
+
+impl MemoryArg {
+    /// Start watching the budget for the job `step` (nothing without the option); `Err` is
+    /// the message of a limit that cannot be had (bad input).
+    pub(super) fn watch(&self, step: &str) -> Result<(), String> {
+        let b = budget(self.max_memory)?;
+        watch(&b, step);
+        Ok(())
+    }
+}
 
 /// Register the function that returns the heap in use, in bytes (once, at start).
 pub fn set_memory_probe(probe: fn() -> usize) {

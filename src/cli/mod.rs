@@ -9,8 +9,9 @@ pub mod approximate;
 pub mod batch;
 mod convert;
 pub mod coons;
-mod memory;
+pub mod memory;
 mod output;
+pub mod reparam;
 pub use memory::set_memory_probe;
 
 use clap::{Parser, Subcommand};
@@ -57,6 +58,8 @@ pub enum Command {
         /// Model file: native JSON, STEP (.step/.stp), IGES (.igs/.iges), STL or Plot3D
         /// (.xyz/.p3d).
         file: PathBuf,
+        #[command(flatten)]
+        memory: memory::MemoryArg,
         /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
@@ -74,6 +77,8 @@ pub enum Command {
         /// Output format, overriding the extension: json, step, iges, stl, stl-binary, vtp, obj.
         #[arg(long)]
         format: Option<String>,
+        #[command(flatten)]
+        memory: memory::MemoryArg,
     },
     /// Approximate the image of a domain curve on a B-spline surface by Bézier curves of degree
     /// p+q lying exactly on it, with a proven Hausdorff bound (Yang et al. 2008).
@@ -246,34 +251,7 @@ pub enum Command {
     /// points, a C2 bicubic, and parameter lines inserted until the measured E_max ≤ tol; a
     /// proven Hausdorff bound decides where it is ≤ tol, the measured E_max (evidence) elsewhere.
     /// Exit 0 when every face is within tol, 3 when some face is not.
-    Reparam {
-        /// Model file, optionally `:FACE` (default: every face).
-        model: String,
-        /// ε: largest deviation E_max between the new and the given surface (model units).
-        #[arg(long, default_value_t = 1e-4, allow_hyphen_values = true)]
-        tol: f64,
-        /// The new surfaces (format from the extension: .igs, .step, .json).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// JSON report.
-        #[arg(long)]
-        report: Option<PathBuf>,
-        /// SVG: a uniform parameter grid on the given and the new surface, side by side.
-        #[arg(long)]
-        svg: Option<PathBuf>,
-        /// VTK PolyData (.vtp): both surfaces and grids, with spacing ratios.
-        #[arg(long)]
-        vtk: Option<PathBuf>,
-        /// Most parameter lines inserted per face.
-        #[arg(long, default_value_t = 500, allow_hyphen_values = true)]
-        max_lines: usize,
-        /// Skip the proven deviation bound (costly on curved faces): the measured E_max decides.
-        #[arg(long)]
-        no_bound: bool,
-        /// Print the result as JSON instead of the human summary.
-        #[arg(long)]
-        json: bool,
-    },
+    Reparam(reparam::ReparamArgs),
     /// Approximate faulty geometry by one bicubic C1 B-spline surface over four boundary
     /// curves (projected Coons patch, multiquadric gap filling; Hamann & Jean).
     Coons(coons::CoonsArgs),
@@ -501,60 +479,32 @@ pub fn run(cli: Cli) -> i32 {
                 |e| e.is_bad_input(),
             )
         }
-        Command::Reparam {
-            model,
-            tol,
-            out,
-            report,
-            svg,
-            vtk,
-            max_lines,
-            no_bound,
-            json,
-        } => {
-            let params = crate::reparam::Params {
-                tol,
-                max_lines,
-                prove_bound: !no_bound,
-                ..Default::default()
-            };
-            let outputs = crate::reparam::job::Outputs {
-                model: out.as_deref(),
-                report: report.as_deref(),
-                svg: svg.as_deref(),
-                vtk: vtk.as_deref(),
-            };
-            match crate::reparam::job::run(&model, &params, outputs) {
-                Ok(r) => {
-                    print(&r, json);
-                    if r.within_tol { 0 } else { EXIT_UNCERTIFIED }
-                }
-                Err(e) if e.is_bad_input() => bad(e),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-            }
-        }
+        Command::Reparam(args) => reparam::run(args),
         Command::Convert {
             input,
             output,
             format,
-        } => convert::run(&input, &output, format.as_deref()),
+            memory,
+        } => convert::run(&input, &output, format.as_deref(), &memory),
         Command::Coons(args) => coons::run(args),
         Command::Approximate(args) => approximate::run(args),
         Command::Batch(args) => batch::run(args),
-        Command::Info { file, json } => match crate::io::read_model(&file) {
-            Ok(m) => {
-                let mut info = crate::model::info::summarize(&m);
-                if let Some(b) = &m.brep {
-                    info.face_areas = crate::tessellate::face_areas(&m, b);
-                }
-                print(&info, json);
-                0
+        Command::Info { file, memory, json } => {
+            if let Err(e) = memory.watch("info") {
+                return bad(e);
             }
-            Err(e) => bad(e),
-        },
+            match crate::io::read_model(&file) {
+                Ok(m) => {
+                    let mut info = crate::model::info::summarize(&m);
+                    if let Some(b) = &m.brep {
+                        info.face_areas = crate::tessellate::face_areas(&m, b);
+                    }
+                    print(&info, json);
+                    0
+                }
+                Err(e) => bad(e),
+            }
+        }
         Command::Eval {
             file,
             surface,
