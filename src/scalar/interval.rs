@@ -145,8 +145,16 @@ impl Interval {
         let nonneg = (self.lo >= 0.0 && o.lo > 0.0) || (self.hi <= 0.0 && o.hi < 0.0);
         let nonpos = (self.hi <= 0.0 && o.lo > 0.0) || (self.lo >= 0.0 && o.hi < 0.0);
         Some(Interval {
-            lo: if nonneg && lo == 0.0 { 0.0 } else { lo.next_down() },
-            hi: if nonpos && hi == 0.0 { 0.0 } else { hi.next_up() },
+            lo: if nonneg && lo == 0.0 {
+                0.0
+            } else {
+                lo.next_down()
+            },
+            hi: if nonpos && hi == 0.0 {
+                0.0
+            } else {
+                hi.next_up()
+            },
         })
     }
 }

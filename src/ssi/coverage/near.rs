@@ -96,8 +96,7 @@ pub fn dist_upper(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
         }
         tiny |= e != 0.0 && e.abs() < 1e-150;
     }
-    let bound =
-        s.sqrt() * (1.0 + 8.0 * U) + 4.2 * U * err + if tiny { 1e-160 } else { 0.0 };
+    let bound = s.sqrt() * (1.0 + 8.0 * U) + 4.2 * U * err + if tiny { 1e-160 } else { 0.0 };
     if bound == 0.0 {
         0.0
     } else if bound.is_finite() {
@@ -355,10 +354,20 @@ mod tests {
                 })
                 .sum();
             let ur = r(u);
-            assert!(dist2 <= &ur * &ur, "{c:?} {p:?} {q:?}: bound {u} below the distance");
+            assert!(
+                dist2 <= &ur * &ur,
+                "{c:?} {p:?} {q:?}: bound {u} below the distance"
+            );
             let exact = dist2.to_f64().unwrap().sqrt();
-            let m = c.iter().chain(&p).chain(&q).fold(0.0f64, |m, v| m.max(v.abs()));
-            assert!(u <= exact * (1.0 + 1e-12) + 1e-14 * m + 1e-159, "{u} vs {exact}");
+            let m = c
+                .iter()
+                .chain(&p)
+                .chain(&q)
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            assert!(
+                u <= exact * (1.0 + 1e-12) + 1e-14 * m + 1e-159,
+                "{u} vs {exact}"
+            );
         }
     }
 }
