@@ -37,6 +37,7 @@ pub mod enclose2;
 pub mod fit;
 pub mod foreign;
 pub mod foreign_read;
+pub mod insert;
 pub mod job;
 pub mod krawczyk;
 pub mod mesh;
