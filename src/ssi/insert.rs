@@ -14,12 +14,19 @@ use crate::spline::NurbsSurface;
 use crate::spline::closure::Closure;
 use crate::spline::project::point_d1;
 
-/// The parameter midpoint of `a` and `b`, or `None` when they are more than a quarter of the
-/// domain apart in a direction. In a closed direction (`seam`: `S(d0, ·) = S(d1, ·)`) the
-/// midpoint is taken the short way round, across the seam, and brought back into the domain:
-/// a branch ending at a point on the seam (a tangent point at `u = d1`, its neighbours just past
-/// `u = d0`) is refined like any other. The midpoint only steers the refinement.
-fn average_uv(a: &[f64; 2], b: &[f64; 2], dom: &[f64; 4], seam: [bool; 2]) -> Option<[f64; 2]> {
+/// The parameter point at fraction `f` from `a` to `b` (the midpoint for `f = 1/2`), or `None`
+/// when they are more than a quarter of the domain apart in a direction. In a closed direction
+/// (`seam`: `S(d0, ·) = S(d1, ·)`) it is taken the short way round, across the seam, and
+/// brought back into the domain: a branch ending at a point on the seam (a tangent point at
+/// `u = d1`, its neighbours just past `u = d0`) is refined like any other. It only steers the
+/// refinement.
+fn lerp_uv(
+    a: &[f64; 2],
+    b: &[f64; 2],
+    f: f64,
+    dom: &[f64; 4],
+    seam: [bool; 2],
+) -> Option<[f64; 2]> {
     let mut m = [0.0; 2];
     for k in 0..2 {
         let (lo, hi) = (dom[2 * k], dom[2 * k + 1]);
@@ -31,7 +38,7 @@ fn average_uv(a: &[f64; 2], b: &[f64; 2], dom: &[f64; 4], seam: [bool; 2]) -> Op
         if (x - y).abs() > 0.25 * per {
             return None;
         }
-        let mut c = 0.5 * (x + y);
+        let mut c = lerp(x, y, f);
         if c < lo {
             c += per;
         } else if c > hi {
@@ -64,8 +71,47 @@ pub(super) struct Inserter<'a, 'g> {
 }
 
 impl Inserter<'_, '_> {
+    /// The true curve point found from the chord point at fraction `f` of `p → q` (its
+    /// parameters interpolated the short way round, or from the mesh segment `seg`), moved onto
+    /// the curve near tangency; `None` when the refinement broke down or went farther from the
+    /// chord point than the chord is long.
+    fn refine_at(&self, p: &Refined, q: &Refined, f: f64, seg: (u32, u32)) -> Option<Refined> {
+        let (da, db) = (domain(self.g.sa), domain(self.g.sb));
+        let at: [f64; 3] = std::array::from_fn(|k| lerp(p.xyz[k], q.xyz[k], f));
+        let (ga, gb) = match (
+            lerp_uv(&p.uv_a, &q.uv_a, f, &da, self.seam_a),
+            lerp_uv(&p.uv_b, &q.uv_b, f, &db, self.seam_b),
+        ) {
+            (Some(a), Some(b)) => (a, b),
+            _ => (
+                barycentric_uv(self.g.ma, seg.0, &at),
+                barycentric_uv(self.g.mb, seg.1, &at),
+            ),
+        };
+        let mut m = auxiliary_plane(self.g.sa, self.g.sb, ga, gb, self.prm);
+        if m.status == RefineStatus::Converged && small_angle(self.g, &m) {
+            // Near tangency a point within tol of both surfaces can be far from the curve:
+            // measure against the curve (elsewhere the refinement lands on it closely, and
+            // every output point is certified against the curve afterwards anyway).
+            let _ = onto_curve(self.g, &mut m, self.prm.tol);
+        }
+        let chord = dist(&p.xyz, &q.xyz);
+        (m.status == RefineStatus::Converged && dist(&m.xyz, &at) <= chord.max(self.prm.tol))
+            .then_some(m)
+    }
+
     /// Points strictly between `p` and `q` (in order) so that every chord's midpoint lies within
     /// `tol` of the true curve point found from it.
+    ///
+    /// A chord whose midpoint's curve point `m` lies `dev > tol` from it is split. On a smooth
+    /// arc the deviation falls with the square of the chord's length, so `k` equal pieces
+    /// deviate by about `dev / k²`: the chord is split into `k = ⌈1.1 √(dev / tol)⌉` pieces at
+    /// once (curve points found from the chord points at `j / k`; `m` itself when `k = 2`),
+    /// each piece checked again the same way. This gives about the fewest points that satisfy
+    /// the criterion, where halving alone leaves pieces deviating between `tol / 4` and `tol`
+    /// (up to 1.6× the points). Where a split point cannot be found, or the points do not run
+    /// in order along the chord, the chord is halved at `m`. Splitting into `k` counts as
+    /// `⌈log₂ k⌉` levels of the depth budget, as halving `k` times would.
     pub(super) fn between(
         &mut self,
         p: &Refined,
@@ -78,43 +124,90 @@ impl Inserter<'_, '_> {
             self.stopped = true;
             return;
         }
-        let (da, db) = (domain(self.g.sa), domain(self.g.sb));
-        let (ga, gb) = match (
-            average_uv(&p.uv_a, &q.uv_a, &da, self.seam_a),
-            average_uv(&p.uv_b, &q.uv_b, &db, self.seam_b),
-        ) {
-            (Some(a), Some(b)) => (a, b),
-            _ => {
-                let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (p.xyz[k] + q.xyz[k]));
-                (
-                    barycentric_uv(self.g.ma, seg.0, &mid),
-                    barycentric_uv(self.g.mb, seg.1, &mid),
-                )
-            }
-        };
-        let mut m = auxiliary_plane(self.g.sa, self.g.sb, ga, gb, self.prm);
-        if m.status == RefineStatus::Converged && small_angle(self.g, &m) {
-            // Near tangency a point within tol of both surfaces can be far from the curve:
-            // measure against the curve (elsewhere the refinement lands on it closely, and
-            // every output point is certified against the curve afterwards anyway).
-            let _ = onto_curve(self.g, &mut m, self.prm.tol);
-        }
-        let chord = dist(&p.xyz, &q.xyz);
-        let mid: [f64; 3] = std::array::from_fn(|k| 0.5 * (p.xyz[k] + q.xyz[k]));
-        if m.status != RefineStatus::Converged || dist(&m.xyz, &mid) > chord.max(self.prm.tol) {
+        let Some(m) = self.refine_at(p, q, 0.5, seg) else {
             // The iteration went elsewhere (or broke down): keep the chord, say so.
             self.refused += 1;
             return;
-        }
+        };
         let dev = dist_to_segment(&m.xyz, &p.xyz, &q.xyz);
-        if dev > self.prm.tol && depth < self.max_depth {
-            self.between(p, &m, seg, depth + 1, out);
-            out.push(m);
-            self.inserted += 1;
-            self.between(&m, q, seg, depth + 1, out);
-        } else {
+        if dev <= self.prm.tol || depth >= self.max_depth {
             self.max_dev = self.max_dev.max(dev);
+            return;
         }
+        let levels_left = self.max_depth - depth;
+        let k = pieces(dev, self.prm.tol, levels_left);
+        if k > 2
+            && let Some(xs) = self.split(p, q, &m, k, seg)
+        {
+            let next = depth + k.next_power_of_two().trailing_zeros();
+            let mut prev = *p;
+            for x in xs {
+                self.between(&prev, &x, seg, next, out);
+                out.push(x);
+                self.inserted += 1;
+                prev = x;
+            }
+            self.between(&prev, q, seg, next, out);
+            return;
+        }
+        self.between(p, &m, seg, depth + 1, out);
+        out.push(m);
+        self.inserted += 1;
+        self.between(&m, q, seg, depth + 1, out);
+    }
+
+    /// The `k − 1` curve points found from the chord points at `j / k` (`m` at `1/2`), when
+    /// every one is found and they run strictly in order along the chord.
+    fn split(
+        &self,
+        p: &Refined,
+        q: &Refined,
+        m: &Refined,
+        k: u32,
+        seg: (u32, u32),
+    ) -> Option<Vec<Refined>> {
+        let d: [f64; 3] = std::array::from_fn(|c| q.xyz[c] - p.xyz[c]);
+        let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if !(dd > 0.0) {
+            return None;
+        }
+        let along = |x: &Refined| (0..3).map(|c| (x.xyz[c] - p.xyz[c]) * d[c]).sum::<f64>() / dd;
+        let mut xs = Vec::with_capacity(k as usize - 1);
+        let mut last = 0.0;
+        for j in 1..k {
+            let x = if 2 * j == k {
+                *m
+            } else {
+                self.refine_at(p, q, j as f64 / k as f64, seg)?
+            };
+            let t = along(&x);
+            if !(t > last && t < 1.0) {
+                return None;
+            }
+            last = t;
+            xs.push(x);
+        }
+        Some(xs)
+    }
+}
+
+/// Number of pieces for a chord whose midpoint deviates by `dev > tol`: `⌈1.1 √(dev / tol)⌉`,
+/// at least 2, at most `2^levels_left` and 256.
+fn pieces(dev: f64, tol: f64, levels_left: u32) -> u32 {
+    let want = (1.1 * (dev / tol).sqrt()).ceil();
+    let cap = (1u64 << levels_left.min(8)) as f64;
+    if want.is_finite() {
+        want.clamp(2.0, cap.max(2.0)) as u32
+    } else {
+        2
+    }
+}
+
+fn lerp(a: f64, b: f64, f: f64) -> f64 {
+    if f == 0.5 {
+        0.5 * (a + b)
+    } else {
+        a + f * (b - a)
     }
 }
 
@@ -170,24 +263,56 @@ pub(super) fn onto_curve(
 
 #[cfg(test)]
 mod tests {
-    use super::average_uv;
+    use super::{lerp_uv, pieces};
 
     /// Midpoints across a closed direction go the short way round; in an open direction, or
     /// for points a quarter of the domain apart, there is none.
     #[test]
     fn midpoint_across_the_seam() {
         let dom = [0.0, 1.0, 0.0, 2.0];
-        let m = average_uv(&[1.0, 0.5], &[0.0125, 0.5], &dom, [true, false]).unwrap();
+        let m = lerp_uv(&[1.0, 0.5], &[0.0125, 0.5], 0.5, &dom, [true, false]).unwrap();
         assert!((m[0] - 0.00625).abs() < 1e-15 && m[1] == 0.5, "{m:?}");
-        let m = average_uv(&[0.0, 1.0], &[0.9875, 1.0], &dom, [true, false]).unwrap();
+        let m = lerp_uv(&[0.0, 1.0], &[0.9875, 1.0], 0.5, &dom, [true, false]).unwrap();
         assert!((m[0] - 0.99375).abs() < 1e-15 && m[1] == 1.0, "{m:?}");
-        let m = average_uv(&[0.5, 1.99], &[0.5, 0.01], &dom, [false, true]).unwrap();
+        let m = lerp_uv(&[0.5, 1.99], &[0.5, 0.01], 0.5, &dom, [false, true]).unwrap();
         assert_eq!(m, [0.5, 2.0]);
-        assert!(average_uv(&[1.0, 0.5], &[0.0125, 0.5], &dom, [false, true]).is_none());
-        assert!(average_uv(&[0.7, 0.5], &[0.2, 0.5], &dom, [true, true]).is_none());
+        assert!(lerp_uv(&[1.0, 0.5], &[0.0125, 0.5], 0.5, &dom, [false, true]).is_none());
+        assert!(lerp_uv(&[0.7, 0.5], &[0.2, 0.5], 0.5, &dom, [true, true]).is_none());
         assert_eq!(
-            average_uv(&[0.2, 0.5], &[0.3, 0.7], &dom, [true, true]),
+            lerp_uv(&[0.2, 0.5], &[0.3, 0.7], 0.5, &dom, [true, true]),
             Some([0.25, 0.6])
         );
+    }
+
+    /// A quarter of the way across the seam, the short way round.
+    #[test]
+    fn fraction_across_the_seam() {
+        let dom = [0.0, 1.0, 0.0, 2.0];
+        let m = lerp_uv(&[0.95, 0.5], &[0.05, 0.7], 0.25, &dom, [true, false]).unwrap();
+        assert!(
+            (m[0] - 0.975).abs() < 1e-15 && (m[1] - 0.55).abs() < 1e-15,
+            "{m:?}"
+        );
+        let m = lerp_uv(&[0.95, 0.5], &[0.05, 0.5], 0.75, &dom, [true, false]).unwrap();
+        assert!((m[0] - 0.025).abs() < 1e-15, "{m:?}");
+    }
+
+    /// Pieces: enough for `dev / k² ≤ tol / 1.21`, at least 2, capped by the depth left.
+    #[test]
+    fn pieces_follow_the_square_law() {
+        assert_eq!(pieces(1.01e-7, 1e-7, 12), 2);
+        assert_eq!(pieces(4e-7, 1e-7, 12), 3);
+        assert_eq!(pieces(5.1e-4, 1e-7, 12), 79);
+        assert_eq!(pieces(5.1e-4, 1e-7, 3), 8);
+        assert_eq!(pieces(1.0, 1e-300, 12), 256);
+        assert_eq!(pieces(f64::INFINITY, 1e-7, 12), 2);
+        for (dev, tol) in [(2e-7, 1e-7), (3.3e-3, 1e-6), (0.77, 1e-4)] {
+            let k = pieces(dev, tol, 12) as f64;
+            assert!(dev / (k * k) <= tol / 1.21 * 1.0000001, "{dev} {tol} {k}");
+            assert!(
+                dev / ((k - 1.0) * (k - 1.0)) > tol / 1.21,
+                "{dev} {tol} {k}"
+            );
+        }
     }
 }
