@@ -4,39 +4,55 @@
 For every case (a model file and a layout file, scripts/data/coons/layout-*):
 
 1. `vericad approximate MODEL --layout L --tol T --out X.igs --report R.json`, and again with
-   `--out X.step` (same inputs; the report of each run is kept).
-2. Open CASCADE reads the file (IGESControl_Reader / STEPControl_Reader, OCCT converts lengths
-   to millimetres) and the faces are counted. Every edge of every face is matched to the layout
+   `--out X.step` (same inputs; the report of each run is kept). vericad writes the
+   approximants as one open shell (STEP `SHELL_BASED_SURFACE_MODEL` / `OPEN_SHELL` of
+   `ADVANCED_FACE`s; IGES 514 / 510 / 508 / 504 / 502); its report's `shell` counts faces,
+   shared, free and other edges.
+2. Open CASCADE reads the file (IGESControl_Reader / STEPControl_Reader, `OneShape()`; OCCT
+   converts lengths to millimetres). Every edge of every face is matched to the layout
    curve it runs along: 5 interior points of the edge (divided back to the model's unit), the
    layout curve whose polyline (or densely sampled model curve) is nearest to all 5 — the
    largest of those 5 distances is reported as the matching distance (`match`), a check of
    the units and of the geometry; each face is matched to the approximant whose four sides
    its four edges are.
-3. Per shared curve of the layout (vericad's report `shared`): the two faces' edges along it,
-   measured by OCCT — `BRepExtrema_DistShapeShape` from 201 points of each edge (uniform in
-   its parameter) to the other edge, the largest of both directions (`edge distance`); and
-   whether the two edges' 3D curves (OCCT's iso-curves of the read surfaces) have the same
-   poles, weights and knots bit for bit, one of them possibly reversed (`poles identical`).
-4. `BRepBuilderAPI_Sewing` of the faces read, at the layout's tol converted to millimetres
-   (`sewing tol`), and again at a tight tolerance, 1e-12 × the diagonal of the faces' bounding
-   box. Reported: faces and shells in the sewn shape, `NbFreeEdges`, `NbContigousEdges`,
+3. As read, no sewing: the shape type; shells and faces (TopExp_Explorer); distinct edges
+   and vertices; edge -> faces (TopExp::MapShapesAndAncestors): edges on one, two, more
+   faces; the edges on two faces matched to curves and compared with the report's shared
+   curves (each on the faces of the two approximants sharing it, used once FORWARD and once
+   REVERSED), those on one face with `open_curves`; `BRepCheck_Analyzer(shape).IsValid()`;
+   ShapeAnalysis_FreeBounds (closed / open free wires, their edges); ShapeAnalysis_Shell
+   (CheckOrientedShells with free edges, FreeEdges); the largest edge and vertex tolerance;
+   vericad's `shell` beside it.
+4. Per shared curve of the layout (vericad's report `shared`), on the shape as read: are the
+   two faces' edges along it one OCCT edge (`IsSame`); the largest distance, at 201 common
+   parameters, between its 3D curve and its curve on each face (pcurve on the surface), and
+   between the two curves on surface; is the edge's 3D curve a boundary iso-curve of each
+   face's surface with the same poles, weights and knots bit for bit (`poles identical`).
+   Should the edges be two (no shell read), the old comparison: `BRepExtrema_DistShapeShape`
+   from 201 points of each edge to the other, and the two edge curves bit for bit.
+5. Secondary: `BRepBuilderAPI_Sewing` of the faces as read (at tol: nothing should be left to
+   join), and of the faces taken apart (each copied alone with BRepBuilderAPI_Copy, so that
+   no edge is shared), at the layout's tol converted to millimetres (`sewing tol`), and
+   again at a tight tolerance, 1e-12 × the diagonal of the faces' bounding box. Reported:
+   faces and shells in the sewn shape, `NbFreeEdges`, `NbContigousEdges`,
    `NbMultipleEdges`, `NbDegeneratedShapes`; the free edges and the contiguous edges matched
    to layout curves as in 2 and compared with vericad's report (`open_curves`, the curves of
    `shared`); the edge -> face count of the sewn shape (edges on one face, on two); the largest
    edge tolerance (`BRep_Tool.Tolerance`) of the faces as read and of the sewn shape;
    `BRepCheck_Analyzer(sewn).IsValid()`.
-5. Control for the tight sewing: the last approximant's face, moved by 1e-9 … 1e-6 mm
-   perpendicular to one of its shared edges (`BRepBuilderAPI_Transform`), sewn at the tight
-   tolerance again — does the tight sewing still join what no longer coincides?
-6. Per shared curve also: the largest distance (41 points per edge, both edges) of the edges
+6. Control for the tight sewing: of the faces taken apart, the last approximant's face, moved
+   by 1e-9 … 1e-6 mm perpendicular to one of its shared edges (`BRepBuilderAPI_Transform`),
+   sewn at the tight tolerance again — does the tight sewing still join what no longer
+   coincides?
+7. Per shared curve also: the largest distance (41 points per edge, both edges) of the edges
    to the layout curve they replace and to the original surface — analytic for the sphere
    (`|‖p‖ − 1|`) and the bicubic graph (`|z − f(x, y)|`), OCCT's distance to the STEP file's
    faces for the fuselage.
 
 All distances in the tables are in the model's unit (OCCT's millimetres divided back); the
 sewing tolerances are given in both. Nothing here is a proof: the edge distances are
-measurements at finitely many points; the bit-for-bit pole comparison is exact but only of
-what OCCT read.
+measurements at finitely many points; the topology counts and the bit-for-bit pole
+comparison are exact but only of what OCCT read.
 
 Usage:
   cargo build --release
@@ -385,6 +401,7 @@ def _poly_dist(p, poly):
 
 FACE, EDGE, SHELL = (o.TopAbs.TopAbs_ShapeEnum.TopAbs_FACE, o.TopAbs.TopAbs_ShapeEnum.TopAbs_EDGE,
                      o.TopAbs.TopAbs_ShapeEnum.TopAbs_SHELL)
+WIRE, VERTEX = o.TopAbs.TopAbs_ShapeEnum.TopAbs_WIRE, o.TopAbs.TopAbs_ShapeEnum.TopAbs_VERTEX
 
 
 def subshapes(shape, kind):
@@ -394,12 +411,91 @@ def subshapes(shape, kind):
 
 
 def read(path):
+    """(the shape OCCT reads — `OneShape()` after `TransferRoots()` —, its faces)."""
     rd = o.IGESControl.IGESControl_Reader() if path.endswith(".igs") else o.STEPControl.STEPControl_Reader()
     if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
         raise RuntimeError(f"OCCT cannot read {path}")
     rd.TransferRoots()
     shape = rd.OneShape()
-    return [o.TopoDS.TopoDS.Face(f) for f in subshapes(shape, FACE)]
+    return shape, [o.TopoDS.TopoDS.Face(f) for f in subshapes(shape, FACE)]
+
+
+def explore(shape, kind):
+    """How many sub-shapes of `kind` TopExp_Explorer visits (occurrences, not distinct)."""
+    ex, n = o.TopExp.TopExp_Explorer(shape, kind), 0
+    while ex.More():
+        n += 1
+        ex.Next()
+    return n
+
+
+def shape_name(shape):
+    return str(shape.ShapeType()).split(".")[-1].replace("TopAbs_", "")
+
+
+def edge_faces(shape):
+    """[(edge, [faces it lies on])] over the distinct edges of `shape`
+    (TopExp::MapShapesAndAncestors edge -> face)."""
+    m = o.collections.IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
+    o.TopExp.TopExp.MapShapesAndAncestors_s(shape, EDGE, FACE, m)
+    return [(o.TopoDS.TopoDS.Edge(m.FindKey(i)), [o.TopoDS.TopoDS.Face(f) for f in m.FindFromIndex(i)])
+            for i in range(1, m.Extent() + 1)]
+
+
+def orientation_in(edge, face):
+    """The orientations (FORWARD / REVERSED ...) with which `face` uses `edge`."""
+    out, ex = [], o.TopExp.TopExp_Explorer(face, EDGE)
+    while ex.More():
+        if ex.Current().IsSame(edge):
+            out.append(ex.Current().Orientation())
+        ex.Next()
+    return out
+
+
+def as_read(shape, faces, curves, scale, report, face_of):
+    """What OCCT reads, before any sewing: shells and faces, edges on one / two / more faces,
+    those edges matched to layout curves, validity, free bounds, shell orientation."""
+    ef = edge_faces(shape)
+    on1 = [e for e, fs in ef if len(fs) == 1]
+    on2 = [(e, fs) for e, fs in ef if len(fs) == 2]
+    on3 = [e for e, fs in ef if len(fs) > 2]
+    free_ids = sorted(match_edge(e, curves, scale)[0] for e in on1)
+    shared_ids = sorted(match_edge(e, curves, scale)[0] for e, _ in on2)
+    want_shared = sorted(s["curve"] for s in report["shared"])
+    # each edge on two faces lies on the faces of the two approximants that share its curve
+
+    def face_index(f):
+        return next(k for k, g in enumerate(faces) if g.IsSame(f))
+    pairs_ok = True
+    for e, fs in on2:
+        cid = match_edge(e, curves, scale)[0]
+        s = next((s for s in report["shared"] if s["curve"] == cid), None)
+        want = None if s is None else {face_of.get(a) for a in s["approximants"]}
+        if want is None or {face_index(f) for f in fs} != want:
+            pairs_ok = False
+    # a shared edge used once FORWARD and once REVERSED (as the faces lie in the shell)
+    opposite = sum(1 for e, fs in on2
+                   if sorted(str(x) for f in fs for x in orientation_in(e, f)) ==
+                   sorted([str(o.TopAbs.TopAbs_Orientation.TopAbs_FORWARD), str(o.TopAbs.TopAbs_Orientation.TopAbs_REVERSED)]))
+    fb = o.ShapeAnalysis.ShapeAnalysis_FreeBounds(shape)
+    closed, opened = fb.GetClosedWires(), fb.GetOpenWires()
+    sa = o.ShapeAnalysis.ShapeAnalysis_Shell()
+    sa.LoadShells(shape)
+    bad_orient = sa.CheckOrientedShells(shape, True)
+    edges = [e for e, _ in ef]
+    return dict(
+        type=shape_name(shape), shells=explore(shape, SHELL), faces=explore(shape, FACE),
+        distinct_faces=len(faces), edges=len(ef), vertices=len(subshapes(shape, VERTEX)),
+        on1=len(on1), on2=len(on2), on3=len(on3),
+        free_ok=free_ids == sorted(report["open_curves"]), n_open=len(report["open_curves"]),
+        shared_ok=shared_ids == want_shared, n_shared=len(want_shared), pairs_ok=pairs_ok, opposite=opposite,
+        valid=o.BRepCheck.BRepCheck_Analyzer(shape).IsValid(),
+        fb_closed=(explore(closed, WIRE), explore(closed, EDGE)), fb_open=(explore(opened, WIRE), explore(opened, EDGE)),
+        sa_loaded=sa.NbLoaded(), sa_bad=bad_orient, sa_free=explore(sa.FreeEdges(), EDGE) if sa.HasFreeEdges() else 0,
+        max_edge_tol=max(o.BRep.BRep_Tool.Tolerance_s(e) for e in edges) if edges else float("nan"),
+        max_vertex_tol=max(o.BRep.BRep_Tool.Tolerance_s(o.TopoDS.TopoDS.Vertex(v)) for v in subshapes(shape, VERTEX))
+        if subshapes(shape, VERTEX) else float("nan"),
+        vericad=report.get("shell"))
 
 
 def edge_points(edge, n):
@@ -456,6 +552,52 @@ def same_bits(e1, e2):
     return (d1 == d2 and (p1 == p2 or p1 == p2[::-1])), k1 == k2
 
 
+def on_surface_deviation(edge, faces):
+    """Largest distance (OCCT's unit), at EDGE_SAMPLES common parameters, between the edge's
+    3D curve and its curve on each face (pcurve on the face's surface), and between the
+    curves on the two faces: how far the shared edge's three representations are apart."""
+    c3 = o.BRepAdaptor.BRepAdaptor_Curve(edge)
+    cs = [o.BRepAdaptor.BRepAdaptor_Curve(edge, f) for f in faces]
+    a, b = c3.FirstParameter(), c3.LastParameter()
+    to3d, between = 0.0, 0.0
+    for i in range(EDGE_SAMPLES):
+        t = a + (b - a) * i / (EDGE_SAMPLES - 1)
+        p = c3.Value(t)
+        q = [c.Value(t) for c in cs]
+        to3d = max([to3d] + [p.Distance(x) for x in q])
+        between = max([between] + [q[0].Distance(x) for x in q[1:]])
+    return to3d, between
+
+
+def _curve_data(c):
+    poles = [(c.Pole(i).X(), c.Pole(i).Y(), c.Pole(i).Z(), c.Weight(i)) for i in range(1, c.NbPoles() + 1)]
+    knots = [(c.Knot(i), c.Multiplicity(i)) for i in range(1, c.NbKnots() + 1)]
+    return poles, knots, c.Degree()
+
+
+def boundary_bits(edge, face):
+    """(poles, knots): is the edge's 3D B-spline curve one of the four boundary iso-curves of
+    the face's B-spline surface (UIso/VIso at the surface's bounds), poles and weights bit for
+    bit (same or reverse order); and, for that iso-curve, are the knots the same bit for bit?
+    None when the edge curve or the surface is no B-spline."""
+    c = bspline_of(edge)
+    ad = o.BRepAdaptor.BRepAdaptor_Surface(face)
+    if c is None or ad.GetType() != o.GeomAbs.GeomAbs_SurfaceType.GeomAbs_BSplineSurface:
+        return None
+    srf = ad.BSpline()
+    u0, u1, v0, v1 = srf.Bounds()
+    isos = [srf.UIso(u0), srf.UIso(u1), srf.VIso(v0), srf.VIso(v1)]
+    pe, ke, de = _curve_data(c)
+    best = (False, False)
+    for iso in isos:
+        pi, ki, di = _curve_data(iso)   # a Geom_BSplineCurve (pybind11 gives the dynamic type)
+        if di == de and (pi == pe or pi == pe[::-1]):
+            best = (True, ki == ke)
+            if ki == ke:
+                break
+    return best
+
+
 def sew(faces, tol):
     sw = o.BRepBuilderAPI.BRepBuilderAPI_Sewing(tol)
     for f in faces:
@@ -496,6 +638,15 @@ def moved_copy(face, edge, delta):
     return o.TopoDS.TopoDS.Face(mk.Shape()), o.TopoDS.TopoDS.Edge(mk.ModifiedShape(edge))
 
 
+def compound(shapes):
+    c = o.TopoDS.TopoDS_Compound()
+    b = o.BRep.BRep_Builder()
+    b.MakeCompound(c)
+    for s in shapes:
+        b.Add(c, s)
+    return c
+
+
 def bbox_diagonal(faces):
     box = o.Bnd.Bnd_Box()
     for f in faces:
@@ -505,7 +656,7 @@ def bbox_diagonal(faces):
 
 # ---------------------------------------------------------------- one case
 
-def run_case(label, model, layout_path, tol, truth, rows, shared_rows, control_rows):
+def run_case(label, model, layout_path, tol, truth, read_rows, rows, shared_rows, control_rows):
     model, layout_path = os.path.join(ROOT, model), os.path.join(ROOT, layout_path)
     layout = json.load(open(layout_path))
     truth_name, truth_fn = truth[0], truth[1]()
@@ -523,7 +674,7 @@ def run_case(label, model, layout_path, tol, truth, rows, shared_rows, control_r
         unit = report.get("unit") or "mm"
         scale = MM_PER_UNIT[out_unit]
         curves = layout_curves(model, layout)
-        faces = read(out)
+        shape, faces = read(out)
 
         # edges of the read faces -> layout curves; faces -> approximants
         match_max = 0.0
@@ -542,6 +693,9 @@ def run_case(label, model, layout_path, tol, truth, rows, shared_rows, control_r
             hits = [i for i, em in enumerate(face_edges) if set(em) == want]
             face_of[k] = hits[0] if len(hits) == 1 else None
         faces_ok = sum(1 for v in face_of.values() if v is not None)
+        read_rows.append(dict(label=label, unit=unit, tol=tol, ext=ext, exit=r.returncode, scale=scale,
+                              faces_ok=faces_ok, n_aps=len(aps), match=match_max,
+                              **as_read(shape, faces, curves, scale, report, face_of)))
 
         # per shared curve: the two faces' edges, measured by OCCT
         for s in report["shared"]:
@@ -549,17 +703,34 @@ def run_case(label, model, layout_path, tol, truth, rows, shared_rows, control_r
             fa, fb = face_of.get(a), face_of.get(b)
             if fa is None or fb is None or s["curve"] not in face_edges[fa] or s["curve"] not in face_edges[fb]:
                 dist, bits, to_curve, to_truth = float("nan"), None, float("nan"), float("nan")
+                one, dev, iso = None, (float("nan"), float("nan")), (None, None)
             else:
                 ea, eb = face_edges[fa][s["curve"]], face_edges[fb][s["curve"]]
-                dist, bits = edge_distance(ea, eb) / scale, same_bits(ea, eb)
+                # one edge of both faces (as the shell read should have it), or two edges
+                one = ea.IsSame(eb)
+                dist, bits = (0.0, None) if one else (edge_distance(ea, eb) / scale, same_bits(ea, eb))
+                d3, dab = on_surface_deviation(ea, [faces[fa], faces[fb]]) if one else (float("nan"), float("nan"))
+                dev = (d3 / scale, dab / scale)
+                iso = (boundary_bits(ea, faces[fa]), boundary_bits(eb, faces[fb]))
                 to_curve = max(_poly_dist([p.X() / scale, p.Y() / scale, p.Z() / scale], curves[s["curve"]])
                                for e in (ea, eb) for p in edge_points(e, 41))
                 to_truth = max(truth_fn([p.X() / scale, p.Y() / scale, p.Z() / scale], scale)
                                for e in (ea, eb) for p in edge_points(e, 41))
             shared_rows.append((label, ext, s["curve"], f"{aps[a]['name']}–{aps[b]['name']}", s["count"],
-                                s["gap"], s["moved"], s["status"], s["identical"], dist, bits, to_curve, to_truth, truth_name))
+                                s["gap"], s["moved"], s["status"], s["identical"], one, dist, bits, dev, iso,
+                                to_curve, to_truth, truth_name))
 
         diag = bbox_diagonal(faces)
+        # the sewing below works on the faces taken apart: each face copied alone
+        # (BRepBuilderAPI_Copy), so that no edge is shared any more and sewing has to find the
+        # shared edges from the geometry again (sewing the faces as read finds nothing to join:
+        # their shared edges are already one edge; that is reported as `as read` below)
+        sep, sep_edges = [], []
+        for f, em in zip(faces, face_edges):
+            cp = o.BRepBuilderAPI.BRepBuilderAPI_Copy(f)
+            sep.append(o.TopoDS.TopoDS.Face(cp.Shape()))
+            sep_edges.append({cid: o.TopoDS.TopoDS.Edge(cp.ModifiedShape(e)) for cid, e in em.items()})
+        as_is = sew(faces, tol * scale)
         tol_read = max(o.BRep.BRep_Tool.Tolerance_s(o.TopoDS.TopoDS.Edge(e)) for f in faces for e in subshapes(f, EDGE))
         # control for the tight sewing: the last approximant's face moved off its neighbour by
         # CONTROL_SHIFTS (mm) perpendicular to a shared edge, sewn at the tight tolerance
@@ -569,16 +740,16 @@ def run_case(label, model, layout_path, tol, truth, rows, shared_rows, control_r
             fl, fo = face_of[last], face_of[[a for a in s0["approximants"] if a != last][0]]
             ctl = []
             for delta in CONTROL_SHIFTS:
-                mf, me = moved_copy(faces[fl], face_edges[fl][s0["curve"]], delta)
-                fs = faces[:fl] + [mf] + faces[fl + 1:]
-                d = edge_distance(me, face_edges[fo][s0["curve"]])
+                mf, me = moved_copy(sep[fl], sep_edges[fl][s0["curve"]], delta)
+                fs = sep[:fl] + [mf] + sep[fl + 1:]
+                d = edge_distance(me, sep_edges[fo][s0["curve"]])
                 sw = sew(fs, TIGHT * diag)
                 ctl.append((delta, d, len(sw["contig"]), len(sw["free"])))
             control_rows.append((label, ext, aps[last]["name"], s0["curve"], TIGHT * diag, len(report["shared"]), ctl))
         open_set = set(report["open_curves"])
         shared_set = {s["curve"] for s in report["shared"]}
         for which, stol in (("tol", tol * scale), ("tight", TIGHT * diag)):
-            sw = sew(faces, stol)
+            sw = sew(sep, stol)
             free_ids = sorted(match_edge(e, curves, scale)[0] for e in sw["free"])
             contig_ids = sorted(match_edge(e, curves, scale)[0] for e in sw["contig"])
             mn = sorted({f"{ap['m']}×{ap['n']}" for ap in report["approximants"]})
@@ -587,7 +758,9 @@ def run_case(label, model, layout_path, tol, truth, rows, shared_rows, control_r
                 rebuilds=report["rebuilds"], read=len(faces), faces_ok=faces_ok, n_aps=len(aps),
                 match=match_max, scale=scale, tol_read=tol_read, which=which, stol_mm=stol, stol_unit=stol / scale, sw=sw,
                 free_ok=sorted(free_ids) == sorted(open_set), n_open=len(open_set),
-                contig_ok=sorted(contig_ids) == sorted(shared_set), n_shared=len(shared_set)))
+                contig_ok=sorted(contig_ids) == sorted(shared_set), n_shared=len(shared_set),
+                separated_on1=sum(1 for _, fs in edge_faces(compound(sep)) if len(fs) == 1),
+                as_is=as_is))
 
 
 def g(x):
@@ -600,10 +773,47 @@ def main():
         print(f"OCP (Open CASCADE) {version('cadquery-ocp-novtk')}; vericad {VERICAD}\n")
     except Exception:
         pass
-    rows, shared_rows, control_rows = [], [], []
+    read_rows, rows, shared_rows, control_rows = [], [], [], []
     for label, model, layout, tol, truth in CASES:
-        run_case(label, model, layout, tol, truth, rows, shared_rows, control_rows)
+        run_case(label, model, layout, tol, truth, read_rows, rows, shared_rows, control_rows)
 
+    # 1. what OCCT reads, no sewing
+    same = lambda ok, n, what: (f"the {n} {what}" if ok else f"NOT the {n} {what}")
+    print("As read (no sewing):\n")
+    print("| case (unit, tol) | file | vericad exit | OneShape type; shells, faces (TopExp_Explorer) | faces matched to approximants "
+          "| distinct edges, vertices | edges on 1 / 2 / more faces | edges on 2 faces: along which curves; on the sharing approximants' faces; "
+          "used FORWARD + REVERSED | edges on 1 face: along which curves | BRepCheck valid | ShapeAnalysis_FreeBounds: closed wires (edges), open wires (edges) "
+          "| ShapeAnalysis_Shell: shells, bad orientation, free edges | max edge / vertex tol (model unit) "
+          "| vericad `shell`: faces, shared, free, other; tolerance | OCCT = vericad |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for x in read_rows:
+        v = x["vericad"] or {}
+        agree = (v.get("faces") == x["faces"] == x["distinct_faces"] and v.get("shared_edges") == x["on2"]
+                 and v.get("free_edges") == x["on1"] and v.get("other_edges") == x["on3"])
+        print(f"| {x['label']} ({x['unit']}, {x['tol']:g}) | {x['ext']} | {x['exit']} "
+              f"| {x['type']}; {x['shells']}, {x['faces']} | {x['faces_ok']} of {x['n_aps']} (edges ≤ {x['match']:.1e} from their curves) "
+              f"| {x['edges']}, {x['vertices']} | {x['on1']} / {x['on2']} / {x['on3']} "
+              f"| {same(x['shared_ok'], x['n_shared'], 'shared curves' if x['n_shared'] != 1 else 'shared curve')}; "
+              f"{'yes' if x['pairs_ok'] else 'NO'}; {x['opposite']} of {x['on2']} "
+              f"| {same(x['free_ok'], x['n_open'], 'open curves')} | {'yes' if x['valid'] else 'no'} "
+              f"| {x['fb_closed'][0]} ({x['fb_closed'][1]}), {x['fb_open'][0]} ({x['fb_open'][1]}) "
+              f"| {x['sa_loaded']}, {'yes' if x['sa_bad'] else 'no'}, {x['sa_free']} "
+              f"| {x['max_edge_tol'] / x['scale']:.1e} / {x['max_vertex_tol'] / x['scale']:.1e} "
+              f"| {v.get('faces')}, {v.get('shared_edges')}, {v.get('free_edges')}, {v.get('other_edges')}; "
+              f"{g(v.get('tolerance'))} | {'yes' if agree else 'NO'} |")
+    print()
+    print("Sewn (secondary): BRepBuilderAPI_Sewing of the faces read, as they are (at tol)\n")
+    print("| case | file | sewn shape: faces, shells | contiguous, free, multiple edges | edges on 1 / 2 faces | BRepCheck valid |")
+    print("|---|---|---|---|---|---|")
+    for x in rows:
+        if x["which"] != "tol":
+            continue
+        a = x["as_is"]
+        print(f"| {x['label']} | {x['ext']} | {a['shape_type']}: {a['faces']}, {a['shells']} "
+              f"| {len(a['contig'])}, {len(a['free'])}, {a['multiple']} | {a['on1']} / {a['on2']} | {'yes' if a['valid'] else 'no'} |")
+    print()
+    print("and of the faces taken apart (each copied alone: edges on 1 face before sewing in every row: "
+          + ", ".join(str(x["separated_on1"]) for x in rows if x["which"] == "tol") + "):\n")
     print("| case (unit, tol) | file | vericad exit, M × N | faces read (matched to approximants) | sewing tol (model unit; mm) "
           "| sewn shape: faces, shells | free edges: along which curves | contiguous edges: along which curves "
           "| multiple, degenerated | edges on 1 / 2 faces | max edge tol, read → sewn | BRepCheck valid |")
@@ -622,13 +832,22 @@ def main():
               f"| {x['tol_read'] / x['scale']:.1e} → {sw['max_tol'] / x['scale']:.1e} | {'yes' if sw['valid'] else 'no'} |")
     print()
     print("| case | file | shared curve | approximants | count | vericad gap before join | vericad moved | status "
-          "| vericad identical | OCCT edge distance | OCCT edge curves identical (bits) | edges to the layout curve "
+          "| vericad identical | OCCT: one edge of both faces | OCCT: 3D curve to each face's curve on surface; between the two "
+          "| OCCT: edge curve = boundary iso of face a, of face b (bits) | edges to the layout curve "
           "| edges to the original surface |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for label, ext, curve, aps, count, gap, moved, status, ident, dist, bits, to_curve, to_truth, tn in shared_rows:
-        b = "—" if bits is None else f"poles {'yes' if bits[0] else 'no'}, knots {'yes' if bits[1] else 'no'}"
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    bitstr = lambda b: "—" if b is None else f"poles {'yes' if b[0] else 'no'}, knots {'yes' if b[1] else 'no'}"
+    for (label, ext, curve, aps, count, gap, moved, status, ident, one, dist, bits, dev, iso,
+         to_curve, to_truth, tn) in shared_rows:
+        if one:
+            onecell = "yes"
+        elif one is None:
+            onecell = "—"
+        else:   # two edges: the old comparison of the two faces' edges
+            onecell = f"NO: two edges, {'0' if dist == 0.0 else g(dist)} apart, {bitstr(bits)}"
         print(f"| {label} | {ext} | {curve} | {aps} | {count} | {g(gap)} | {g(moved)} | {status} | {ident} | "
-              f"{'0' if dist == 0.0 else g(dist)} | {b} | {g(to_curve)} | {g(to_truth)} ({tn.replace('|', chr(92) + '|')}) |")
+              f"{onecell} | {g(dev[0])}; {g(dev[1])} | {bitstr(iso[0])}; {bitstr(iso[1])} "
+              f"| {g(to_curve)} | {g(to_truth)} ({tn.replace('|', chr(92) + '|')}) |")
     print()
     print("| case | file | face moved (along shared curve) | tight sewing tol (mm) | "
           + " | ".join(f"moved {d:g} mm: edge distance, contiguous / free" for d in CONTROL_SHIFTS) + " |")

@@ -352,6 +352,35 @@ fn the_approximate_command() {
     );
     let back = vericad::io::read_model(&out).unwrap();
     assert_eq!(back.surfaces.len(), 4);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(r["shell"]["shared_edges"], 4);
+    assert_eq!(r["shell"]["free_edges"], 8);
+    // The files hold the shell: read back (IGES 514/510 and STEP open shell), every shared
+    // curve is one edge used by two faces, every open curve an edge of one face, the nine
+    // grid corners its vertices.
+    let step = dir.join("surfaces.step");
+    let o = run(&["--tol", "1e-3", "--out", step.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0));
+    for file in [&out, &step] {
+        let m = vericad::io::read_model(file).unwrap();
+        let b = m.brep.as_ref().expect("a B-rep");
+        assert_eq!((b.shells.len(), b.faces.len()), (1, 4), "{file:?}");
+        assert!(!b.shells[0].closed);
+        assert_eq!((b.edges.len(), b.vertices.len()), (12, 9), "{file:?}");
+        let mut uses = vec![0usize; b.edges.len()];
+        for f in &b.faces {
+            for l in &f.loops {
+                if let vericad::brep::LoopKind::Edges(es) = &l.kind {
+                    for e in es {
+                        uses[e.edge] += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(uses.iter().filter(|&&u| u == 2).count(), 4, "{file:?}");
+        assert_eq!(uses.iter().filter(|&&u| u == 1).count(), 8, "{file:?}");
+    }
     assert!(std::fs::read_to_string(&vtk).unwrap().contains("VTKFile"));
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();

@@ -36,6 +36,7 @@ pub mod knots;
 pub mod linalg;
 pub mod nurbs;
 pub mod project;
+pub mod sides;
 
 pub use bezier_curve::BezierCurve;
 pub use bezier_surface::BezierSurface;

@@ -101,6 +101,7 @@ impl Outputs<'_> {
         &self,
         unit: Option<String>,
         surfaces: Vec<Surface>,
+        brep: Option<crate::brep::Brep>,
     ) -> Result<Vec<String>, OutputFault> {
         let Some(p) = self.model else {
             return Ok(vec![]);
@@ -108,6 +109,7 @@ impl Outputs<'_> {
         let m = Model {
             unit,
             surfaces,
+            brep,
             ..Default::default()
         };
         crate::io::write_model(p, &m).map_err(|e| match e {
@@ -193,6 +195,7 @@ pub fn run_surface(
     warnings.extend(out.write_surfaces(
         model.unit.clone(),
         vec![Surface::new("coons approximant", ap.surface.clone())],
+        None,
     )?);
     out.write_vtk(|| view(&ap))?;
     let report = JobReport {

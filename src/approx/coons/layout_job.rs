@@ -5,6 +5,8 @@
 use super::join::{SharedCurve, join};
 use super::layout::{Layout, LayoutError, Topology, build_all, topology};
 use super::{Approximant, Params, Report};
+use crate::brep::Brep;
+use crate::brep::sew::{BoundaryLoop, FaceBoundary, sew};
 use crate::io::vtk::{Array, PolyData};
 use crate::model::{Model, Surface};
 use serde::Serialize;
@@ -79,10 +81,82 @@ pub struct LayoutReport {
     pub unused_curves: Vec<String>,
     /// Approximants rebuilt to make counts along shared curves equal.
     pub rebuilds: usize,
+    /// The approximants as one open shell (written with the surfaces to STEP and IGES).
+    pub shell: Option<ShellReport>,
     /// Every approximant within tol (evidence) and every shared row identical (checked).
     pub within_tol: bool,
     pub warnings: Vec<String>,
     pub seconds: f64,
+}
+
+/// The shell the approximants form: one face per approximant, bounded by its four border
+/// curves; edges used by two faces (the shared curves) and by one (the open boundary).
+#[derive(Clone, Debug, Serialize)]
+pub struct ShellReport {
+    pub faces: usize,
+    pub shared_edges: usize,
+    pub free_edges: usize,
+    /// Edges used by more than two faces (none for a valid layout).
+    pub other_edges: usize,
+    /// The distance within which border curves were matched (1e-9 of the approximants'
+    /// size: shared rows are identical, so they match exactly).
+    pub tolerance: f64,
+}
+
+/// The approximants as one open shell: each a face bounded by its borders
+/// ([`crate::spline::sides::sides`], counterclockwise in its parameter plane, so the face
+/// normal is the surface's), sewn where two borders coincide ([`crate::brep::sew`]). The
+/// join makes the shared rows identical bit for bit and settles shared corners on one
+/// point, so every shared curve becomes one edge of two faces. `None` when a surface is not
+/// clamped (never for an approximant: triple interior, quadruple end knots).
+pub fn shell(aps: &[Approximant], name: impl Fn(usize) -> String) -> Option<(Brep, ShellReport)> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for ap in aps {
+        for h in &ap.surface.hom.net {
+            for k in 0..3 {
+                let x = h.wp[k] / h.w;
+                lo[k] = lo[k].min(x);
+                hi[k] = hi[k].max(x);
+            }
+        }
+    }
+    let size = crate::geom::dist(&lo, &hi);
+    let tol = 1e-9
+        * if size.is_finite() && size > 0.0 {
+            size
+        } else {
+            1.0
+        };
+    let mut faces = Vec::with_capacity(aps.len());
+    for (a, ap) in aps.iter().enumerate() {
+        let sides = crate::spline::sides::sides(&ap.surface)?;
+        let n = name(a);
+        faces.push(FaceBoundary {
+            source: format!("approximant {n}"),
+            surface: a,
+            surface_source: format!("approximant {n}"),
+            loops: vec![BoundaryLoop {
+                outer: true,
+                source: format!("approximant {n} boundary"),
+                curves: sides
+                    .into_iter()
+                    .enumerate()
+                    .map(|(k, c)| (format!("approximant {n} side {k}"), c))
+                    .collect(),
+            }],
+        });
+    }
+    let (mut brep, stats) = sew(&faces, tol);
+    brep.tolerance = tol;
+    let report = ShellReport {
+        faces: brep.faces.len(),
+        shared_edges: stats.shared,
+        free_edges: stats.free,
+        other_edges: stats.more,
+        tolerance: tol,
+    };
+    Some((brep, report))
 }
 
 /// The approximants and the report, as [`run`] returns them.
@@ -160,6 +234,27 @@ pub fn run(
     for ap in &aps {
         warnings.extend(ap.report.warnings.iter().cloned());
     }
+    let (brep, shell_report) = match shell(&aps, |a| layout.name(a)) {
+        Some((b, r)) => (Some(b), Some(r)),
+        None => {
+            warnings.push(
+                "the approximants are written without a shell (a surface is not clamped)".into(),
+            );
+            (None, None)
+        }
+    };
+    if let Some(r) = &shell_report
+        && (r.shared_edges != shared.len() || r.free_edges != topo.open.len() || r.other_edges > 0)
+    {
+        warnings.push(format!(
+            "the shell's edges do not match the layout: {} shared and {} free edges for {} shared and {} open curves ({} used by more than two faces)",
+            r.shared_edges,
+            r.free_edges,
+            shared.len(),
+            topo.open.len(),
+            r.other_edges
+        ));
+    }
     warnings.extend(
         out.write_surfaces(
             model.unit.clone(),
@@ -167,6 +262,7 @@ pub fn run(
                 .enumerate()
                 .map(|(a, ap)| Surface::new(layout.name(a), ap.surface.clone()))
                 .collect(),
+            brep,
         )?,
     );
     out.write_vtk(|| view(&aps))?;
@@ -193,6 +289,7 @@ pub fn run(
         open_curves: topo.open,
         unused_curves: topo.unused,
         rebuilds,
+        shell: shell_report,
         warnings,
         seconds: t0.elapsed().as_secs_f64(),
     };
