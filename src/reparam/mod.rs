@@ -251,6 +251,10 @@ pub struct FaceReport {
     /// Parameter lines `ξ_i`, `η_j` after step 2 and after refinement.
     pub lines_initial: [usize; 2],
     pub lines_final: [usize; 2],
+    /// The final grid lines' parameters on the new surface: `R(ξ_i, η_j)` interpolates the
+    /// grid point `Q_ij` (chord-length fractions in `[0, 1]`).
+    pub xi: Vec<f64>,
+    pub eta: Vec<f64>,
     /// Lines inserted by the `E_max` refinement and its rounds.
     pub lines_inserted: usize,
     pub rounds: usize,
@@ -394,6 +398,8 @@ pub fn reparametrize_with_progress(
         closed_v: closure.seam_v,
         lines_initial,
         lines_final: [grid.xi.len(), grid.eta.len()],
+        xi: grid.xi.clone(),
+        eta: grid.eta.clone(),
         lines_inserted: inserted,
         rounds,
         relaxation,
