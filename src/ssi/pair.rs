@@ -175,7 +175,13 @@ pub fn intersect_surfaces(
     };
     let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
     ctl.report(ids, "tangential points", 0, 0);
-    let singular = tangential_points(&g, flat, prm.tangent_angle_deg, &rp);
+    // Where no normal of A is ever parallel to one of B (proven), there is no tangential
+    // point to look for.
+    let singular = if super::coverage::normals_never_parallel(sa, sb) {
+        Vec::new()
+    } else {
+        tangential_points(&g, flat, prm.tangent_angle_deg, &rp)
+    };
     if stop() {
         return stopped(stats);
     }

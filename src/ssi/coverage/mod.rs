@@ -277,6 +277,39 @@ pub(crate) fn roots(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
     }
 }
 
+/// Most Bézier pieces per surface for [`normals_never_parallel`] (larger nets are not
+/// tested: their normal cones are wide anyway).
+const MAX_CONE_PIECES: usize = 64;
+
+/// Whether no normal of `sa` is parallel (or antiparallel) to any normal of `sb`, and neither
+/// vanishes, anywhere on the two surfaces: the separation lemma ([`cones`]) applied to the
+/// union of the normal-cone generators of all Bézier pieces of each surface (every normal of
+/// a piece is a non-negative combination of its own generators, so of the union's). Then the
+/// surfaces have no tangential points at all — no touching point, no singular point of the
+/// intersection. `false` (no claim) when the test fails, a piece's cone cannot be enclosed,
+/// or a surface has more than [`MAX_CONE_PIECES`] pieces.
+pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> bool {
+    let cone = |s: &NurbsSurface<f64, 3>| -> Option<Vec<V>> {
+        let pieces = roots(s);
+        if pieces.len() > MAX_CONE_PIECES {
+            return None;
+        }
+        let mut all = Vec::new();
+        for c in &pieces {
+            let g = c.normals();
+            if g.is_empty() {
+                return None;
+            }
+            all.extend_from_slice(g);
+        }
+        Some(all)
+    };
+    match (cone(sa), cone(sb)) {
+        (Some(a), Some(b)) => cones_separated(&a, &b),
+        _ => false,
+    }
+}
+
 /// The Bézier pieces of a surface, extracted exactly (rational knot insertion) and enclosed.
 pub(crate) fn roots_exact(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
     let exact = s.hom.map(
