@@ -6,6 +6,10 @@
 use super::certify::ExactSurface;
 use super::fit::fit_branch;
 use super::insert::{Inserter, onto_curve, seams, small_angle};
+use super::jet_cache::JetCache;
+
+/// Consecutive points sharing one Jacobian enclosure in the per-point certificates.
+const JET_RUN: usize = 16;
 use super::krawczyk::Uncertified;
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
@@ -195,7 +199,7 @@ pub fn refine_branch(
     // pass the test and stray from the curve once its ends have moved).
     refined.par_iter_mut().with_min_len(64).for_each(|r| {
         if r.status == RefineStatus::Converged && small_angle(g, r) {
-            let _ = onto_curve(g, r, prm.tol);
+            let _ = onto_curve(g, r, prm.tol, None);
         }
     });
     let mut ins = Inserter {
@@ -249,11 +253,20 @@ pub fn refine_branch(
         if check(c * 1024, total) {
             return None;
         }
-        per_point.par_extend(chunk.par_iter_mut().with_min_len(64).map(|r| {
-            let c = onto_curve(g, r, prm.tol).map(|c| c.radius);
-            let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
-            let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
-            (c, da.unwrap_or(f64::INFINITY), db.unwrap_or(f64::INFINITY))
+        // Runs of consecutive points share one Jacobian enclosure ([`JetCache`]); not near
+        // tangency, where the wider enclosure widens the boxes and the test is run twice.
+        per_point.par_extend(chunk.par_chunks_mut(JET_RUN).flat_map_iter(|run| {
+            let cache = (!small_angle(g, &run[0]))
+                .then(|| JetCache::over(g.sa, g.sb, run.iter().map(|r| (r.uv_a, r.uv_b))))
+                .flatten();
+            run.iter_mut()
+                .map(|r| {
+                    let c = onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| c.radius);
+                    let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
+                    let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
+                    (c, da.unwrap_or(f64::INFINITY), db.unwrap_or(f64::INFINITY))
+                })
+                .collect::<Vec<_>>()
         }));
     }
     let da_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.1));

@@ -5,7 +5,8 @@
 //! ([`onto_curve`]) before chords are measured against it.
 
 use super::branch::PairGeometry;
-use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve};
+use super::jet_cache::JetCache;
+use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve_cached};
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, sin_between,
 };
@@ -93,7 +94,7 @@ impl Inserter<'_, '_> {
             // Near tangency a point within tol of both surfaces can be far from the curve:
             // measure against the curve (elsewhere the refinement lands on it closely, and
             // every output point is certified against the curve afterwards anyway).
-            let _ = onto_curve(self.g, &mut m, self.prm.tol);
+            let _ = onto_curve(self.g, &mut m, self.prm.tol, None);
         }
         let chord = dist(&p.xyz, &q.xyz);
         (m.status == RefineStatus::Converged && dist(&m.xyz, &at) <= chord.max(self.prm.tol))
@@ -232,8 +233,9 @@ pub(super) fn onto_curve(
     g: &PairGeometry,
     r: &mut Refined,
     tol: f64,
+    cache: Option<&JetCache>,
 ) -> Result<CurveCertificate, Uncertified> {
-    let c = certify_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b)?;
+    let c = certify_on_curve_cached(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b, cache, tol / 8.0)?;
     if c.radius <= tol / 8.0 {
         return Ok(c);
     }
@@ -248,7 +250,7 @@ pub(super) fn onto_curve(
     ];
     let (pa, pb) = (g.sa.eval(&uv_a[0], &uv_a[1]), g.sb.eval(&uv_b[0], &uv_b[1]));
     let xyz: [f64; 3] = std::array::from_fn(|k| 0.5 * (pa[k] + pb[k]));
-    match certify_on_curve(g.sa, g.sb, &xyz, &uv_a, &uv_b) {
+    match certify_on_curve_cached(g.sa, g.sb, &xyz, &uv_a, &uv_b, cache, tol / 8.0) {
         Ok(c2) if c2.radius < c.radius => {
             r.xyz = xyz;
             r.uv_a = uv_a;

@@ -25,7 +25,8 @@
 //! zeros give `M (x − x') = 0`.) Here `y` is the `f64` Newton solution of `F = 0` started at
 //! `p`'s parameters, `Y ≈ J(y)⁻¹` in `f64`, `F(y)` is enclosed by interval evaluation, and `J`
 //! encloses the Jacobian over the whole box ([`super::enclose`], one-sided across knot lines,
-//! which is what the mean-value form needs). The box is chosen by ε-inflation: radius from
+//! which is what the mean-value form needs) — or over a larger box shared with nearby points
+//! ([`super::jet_cache`]: an enclosure over a superset is one over `X`). The box is chosen by ε-inflation: radius from
 //! the Newton correction `|Y F(y)|`, doubled (or grown to hold `K`) for a few tries.
 //!
 //! **The radius.** The zero `z*` lies in `K(X) ∩ X`; the point `q = S_A(z*_uv) = S_B(z*_st)` in
@@ -51,6 +52,7 @@
 
 use super::certify::distance_upper;
 use super::enclose::{Jet, enclose_jet, enclose_point};
+use super::jet_cache::JetCache;
 use super::refine::{domain, point_d1};
 use crate::geom::{cross, dot, norm};
 use crate::scalar::Interval;
@@ -91,6 +93,9 @@ pub struct CurveCertificate {
     pub params: [Interval; 4],
     /// The parameter held on a border line instead of the plane across the curve.
     pub held: Option<usize>,
+    /// Some try of the test took `J` from a shared enclosure ([`JetCache`]): the box and the
+    /// radius can be wider than with `J` over `X` alone.
+    pub shared_jacobian: bool,
 }
 
 pub(crate) type M4 = [[f64; 4]; 4];
@@ -106,6 +111,8 @@ enum Fourth {
 struct System<'a> {
     sa: &'a NurbsSurface<f64, 3>,
     sb: &'a NurbsSurface<f64, 3>,
+    /// Enclosures over a box shared with nearby points, used for every box it holds.
+    cache: Option<&'a JetCache>,
     e: Fourth,
     /// The point certified.
     p: [f64; 3],
@@ -158,8 +165,13 @@ impl System<'_> {
 
     /// Interval Jacobian over the box `x` (mean-value form, see the module comment).
     fn jacobian(&self, x: &[Interval; 4]) -> Option<([[Interval; 4]; 4], [Jet; 2])> {
-        let ja = enclose_jet(self.sa, x[0], x[1])?;
-        let jb = enclose_jet(self.sb, x[2], x[3])?;
+        let (ja, jb) = match self.cache {
+            Some(c) if c.covers(x) => (c.jets[0], c.jets[1]),
+            _ => (
+                enclose_jet(self.sa, x[0], x[1])?,
+                enclose_jet(self.sb, x[2], x[3])?,
+            ),
+        };
         let mut j = [[pt(0.0); 4]; 4];
         for k in 0..3 {
             j[k] = [ja.su[k], ja.sv[k], -jb.su[k], -jb.sv[k]];
@@ -299,10 +311,12 @@ fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
         rad[i] = 2.0 * corr.mag() + 64.0 * f64::EPSILON * scale;
     }
     let mut found = None;
+    let mut shared_jacobian = false;
     for try_no in 0..TRIES {
         let x: [Interval; 4] = std::array::from_fn(|i| {
             Interval::new((pt(y[i]) - pt(rad[i])).lo, (pt(y[i]) + pt(rad[i])).hi)
         });
+        shared_jacobian |= sys.cache.is_some_and(|c| c.covers(&x));
         let Some((k, jets)) = sys.krawczyk(&y, &x, &yinv, &fy) else {
             // A grown box may reach where a weight enclosure holds 0.
             return Attempt::Fail(if try_no == 0 {
@@ -367,6 +381,7 @@ fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
     match distance_upper(&sys.p, &q) {
         Some(radius) => Attempt::Done(CurveCertificate {
             radius,
+            shared_jacobian,
             params: z,
             held,
         }),
@@ -383,6 +398,44 @@ pub fn certify_on_curve(
     uv_a: &[f64; 2],
     uv_b: &[f64; 2],
 ) -> Result<CurveCertificate, Uncertified> {
+    certify_with(sa, sb, p, uv_a, uv_b, None)
+}
+
+/// [`certify_on_curve`] taking the Jacobian enclosure from `cache` for every box it holds
+/// ([`JetCache`]). Where that fails, or gives a radius above `goal` after a try with the
+/// shared enclosure (the wider enclosure widens `K(X)`, most near tangency, where `Y` is
+/// large, and a failed try grows the box), the point is certified again without it and the
+/// smaller radius kept.
+pub fn certify_on_curve_cached(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    p: &[f64; 3],
+    uv_a: &[f64; 2],
+    uv_b: &[f64; 2],
+    cache: Option<&JetCache>,
+    goal: f64,
+) -> Result<CurveCertificate, Uncertified> {
+    if cache.is_none() {
+        return certify_with(sa, sb, p, uv_a, uv_b, None);
+    }
+    match certify_with(sa, sb, p, uv_a, uv_b, cache) {
+        Ok(c) if c.radius <= goal || !c.shared_jacobian => Ok(c),
+        Ok(c) => match certify_with(sa, sb, p, uv_a, uv_b, None) {
+            Ok(d) if d.radius < c.radius => Ok(d),
+            _ => Ok(c),
+        },
+        Err(_) => certify_with(sa, sb, p, uv_a, uv_b, None),
+    }
+}
+
+fn certify_with(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    p: &[f64; 3],
+    uv_a: &[f64; 2],
+    uv_b: &[f64; 2],
+    cache: Option<&JetCache>,
+) -> Result<CurveCertificate, Uncertified> {
     if !p.iter().chain(uv_a).chain(uv_b).all(|x| x.is_finite()) {
         return Err(Uncertified::NotFinite);
     }
@@ -393,6 +446,7 @@ pub fn certify_on_curve(
     let mut sys = System {
         sa,
         sb,
+        cache,
         e: Fourth::Hold { k: 0, c: 0.0 },
         p: *p,
         lo,

@@ -38,6 +38,7 @@ pub mod fit;
 pub mod foreign;
 pub mod foreign_read;
 pub mod insert;
+pub mod jet_cache;
 pub mod job;
 pub mod krawczyk;
 pub mod mesh;
