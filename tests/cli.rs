@@ -510,3 +510,28 @@ fn human_output_has_no_debug_text() {
         }
     }
 }
+
+/// Completion scripts and man pages come from the command line's own definition: every
+/// subcommand (as `vericad --help` lists it) appears in the bash and fish scripts and has its
+/// own page, and an unknown shell is bad input.
+#[test]
+fn completions_and_man_pages_cover_every_command() {
+    let commands = subcommands();
+    assert!(commands.len() >= 14, "{commands:?}");
+    for shell in ["bash", "fish"] {
+        let (code, text, _) = vericad(&["completions", shell]);
+        assert_eq!(code, 0);
+        for c in &commands {
+            assert!(text.contains(c.as_str()), "{shell}: {c} missing");
+        }
+    }
+    assert_eq!(vericad(&["completions", "tcsh"]).0, 2);
+    let dir = std::env::temp_dir().join(format!("vericad-man-{}", std::process::id()));
+    assert_eq!(vericad(&["man", "--out", dir.to_str().unwrap()]).0, 0);
+    for c in &commands {
+        let page = std::fs::read_to_string(dir.join(format!("vericad-{c}.1"))).unwrap();
+        assert!(page.starts_with(".ie") && page.contains(".TH"), "{c}");
+    }
+    assert!(vericad(&["man"]).1.contains(".TH vericad 1"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

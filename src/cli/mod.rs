@@ -12,6 +12,7 @@ pub mod coons;
 pub mod memory;
 mod output;
 pub mod reparam;
+pub mod shell;
 pub use memory::set_memory_probe;
 
 use clap::{Parser, Subcommand};
@@ -259,6 +260,10 @@ pub enum Command {
     Approximate(approximate::ApproximateArgs),
     /// One job (info, ssi, repair) over many models: a JSONL record each, resumable, sharded.
     Batch(batch::BatchArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell) for vericad.
+    Completions(shell::CompletionsArgs),
+    /// Print the man page, or write one page per command with `--out DIR`.
+    Man(shell::ManArgs),
     /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
     Eval {
         /// Model file: native JSON, STEP or IGES.
@@ -489,6 +494,8 @@ pub fn run(cli: Cli) -> i32 {
         Command::Coons(args) => coons::run(args),
         Command::Approximate(args) => approximate::run(args),
         Command::Batch(args) => batch::run(args),
+        Command::Completions(args) => shell::completions(args),
+        Command::Man(args) => shell::man(args),
         Command::Info { file, memory, json } => {
             if let Err(e) = memory.watch("info") {
                 return bad(e);
