@@ -169,7 +169,7 @@ impl Inserter<'_, '_> {
     ) -> Option<Vec<Refined>> {
         let d: [f64; 3] = std::array::from_fn(|c| q.xyz[c] - p.xyz[c]);
         let dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        if !(dd > 0.0) {
+        if dd.is_nan() || dd <= 0.0 {
             return None;
         }
         let along = |x: &Refined| (0..3).map(|c| (x.xyz[c] - p.xyz[c]) * d[c]).sum::<f64>() / dd;
