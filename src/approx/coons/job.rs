@@ -96,7 +96,9 @@ impl Outputs<'_> {
         Ok(())
     }
 
-    /// Write `surfaces` (in `unit`) to the model output, if any; the writer's notes.
+    /// Write `surfaces` (in `unit`) to the model output, if any; the writer's notes. The
+    /// shell `brep` goes to the formats that hold topology (STEP, IGES); the native JSON holds
+    /// the surfaces only (docs/coons.md).
     pub(super) fn write_surfaces(
         &self,
         unit: Option<String>,
@@ -106,6 +108,12 @@ impl Outputs<'_> {
         let Some(p) = self.model else {
             return Ok(vec![]);
         };
+        let brep = brep.filter(|_| {
+            matches!(
+                crate::io::format_of(p),
+                Some(crate::io::Format::Step | crate::io::Format::Iges)
+            )
+        });
         let m = Model {
             unit,
             surfaces,
