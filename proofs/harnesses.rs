@@ -17,3 +17,4 @@ mod curve_on_surface;
 mod hull;
 mod interval;
 mod trace;
+mod trims;
