@@ -64,6 +64,8 @@ import json, math, os, subprocess, sys, tempfile
 
 import OCP.OCP as o
 
+from occt_io import from_json
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..")
 DATA = os.path.join(HERE, "data", "coons")
@@ -276,26 +278,7 @@ def _fuselage_layout(tmp):
     def surface(k):
         s = model["surfaces"][k]
         assert "weights" not in s
-        cp = s["control_points"]
-        poles = o.collections.Array2_gp_Pnt(1, len(cp), 1, len(cp[0]))
-        for i, row in enumerate(cp):
-            for j, p in enumerate(row):
-                poles.SetValue(i + 1, j + 1, o.gp.gp_Pnt(*p))
-
-        def km(knots):
-            d, m = [], []
-            for t in knots:
-                if d and t == d[-1]:
-                    m[-1] += 1
-                else:
-                    d.append(t); m.append(1)
-            a, b = o.collections.Array1_double(1, len(d)), o.collections.Array1_int(1, len(d))
-            for i, (t, n) in enumerate(zip(d, m)):
-                a.SetValue(i + 1, t); b.SetValue(i + 1, n)
-            return a, b
-        ku, mu = km(s["knots_u"])
-        kv, mv = km(s["knots_v"])
-        return o.Geom.Geom_BSplineSurface(poles, ku, kv, mu, mv, s["degree_u"], s["degree_v"])
+        return from_json(s)
 
     def iso(srf, a, b):
         pts = []

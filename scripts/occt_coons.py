@@ -13,33 +13,10 @@ import json, os, subprocess, sys, tempfile, time
 
 import OCP.OCP as o
 
+from occt_io import read_iges_surface, read_step_faces
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 VERICAD = os.environ.get("VERICAD", os.path.join(HERE, "..", "target", "release", "vericad"))
-
-
-def read_step_faces(path):
-    """The file's faces as one compound (a solid would measure 0 inside its volume)."""
-    rd = o.STEPControl.STEPControl_Reader()
-    if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise RuntimeError(f"OCCT cannot read {path}")
-    rd.TransferRoots()
-    comp = o.TopoDS.TopoDS_Compound()
-    b = o.BRep.BRep_Builder()
-    b.MakeCompound(comp)
-    ex = o.TopExp.TopExp_Explorer(rd.OneShape(), o.TopAbs.TopAbs_ShapeEnum.TopAbs_FACE)
-    while ex.More():
-        b.Add(comp, ex.Current())
-        ex.Next()
-    return comp
-
-
-def read_iges_surface(path):
-    rd = o.IGESControl.IGESControl_Reader()
-    if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise RuntimeError(f"OCCT cannot read {path}")
-    rd.TransferRoots()
-    ex = o.TopExp.TopExp_Explorer(rd.OneShape(), o.TopAbs.TopAbs_ShapeEnum.TopAbs_FACE)
-    return o.BRep.BRep_Tool.Surface_s(o.TopoDS.TopoDS.Face(ex.Current()))
 
 
 def main(model, boundary, tol, max_resolution):

@@ -47,6 +47,8 @@ import json, math, os, subprocess, sys, tempfile, time
 
 import OCP.OCP as o
 
+from occt_io import from_json, read_iges_surface, read_step_faces
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..")
 DATA = os.path.join(HERE, "data", "coons")
@@ -87,27 +89,8 @@ def write_data():
 
     def surface(k):
         s = model["surfaces"][k]
-        cp = s["control_points"]
-        poles = o.collections.Array2_gp_Pnt(1, len(cp), 1, len(cp[0]))
-        for i, row in enumerate(cp):
-            for j, p in enumerate(row):
-                poles.SetValue(i + 1, j + 1, o.gp.gp_Pnt(*p))
-
-        def km(knots):
-            d, m = [], []
-            for t in knots:
-                if d and t == d[-1]:
-                    m[-1] += 1
-                else:
-                    d.append(t); m.append(1)
-            a, b = o.collections.Array1_double(1, len(d)), o.collections.Array1_int(1, len(d))
-            for i, (t, n) in enumerate(zip(d, m)):
-                a.SetValue(i + 1, t); b.SetValue(i + 1, n)
-            return a, b
-        ku, mu = km(s["knots_u"])
-        kv, mv = km(s["knots_v"])
         assert "weights" not in s
-        return o.Geom.Geom_BSplineSurface(poles, ku, kv, mu, mv, s["degree_u"], s["degree_v"])
+        return from_json(s)
 
     surf = {k: surface(k) for k in (0, 1, 4, 5)}
 
@@ -156,32 +139,6 @@ def write_data():
 
 
 # ---------------------------------------------------------------- OCCT helpers
-
-def read_step_faces(path):
-    """The file's faces as one compound (a solid would measure 0 inside its volume)."""
-    rd = o.STEPControl.STEPControl_Reader()
-    if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise RuntimeError(f"OCCT cannot read {path}")
-    rd.TransferRoots()
-    comp = o.TopoDS.TopoDS_Compound()
-    b = o.BRep.BRep_Builder()
-    b.MakeCompound(comp)
-    ex = o.TopExp.TopExp_Explorer(rd.OneShape(), o.TopAbs.TopAbs_ShapeEnum.TopAbs_FACE)
-    while ex.More():
-        b.Add(comp, ex.Current())
-        ex.Next()
-    return comp
-
-
-def read_iges_surface(path):
-    rd = o.IGESControl.IGESControl_Reader()
-    if rd.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
-        raise RuntimeError(f"OCCT cannot read {path}")
-    rd.TransferRoots()
-    ex = o.TopExp.TopExp_Explorer(rd.OneShape(), o.TopAbs.TopAbs_ShapeEnum.TopAbs_FACE)
-    s = o.BRep.BRep_Tool.Surface_s(o.TopoDS.TopoDS.Face(ex.Current()))
-    return o.GeomConvert.GeomConvert.SurfaceToBSplineSurface_s(s)
-
 
 def pnt(p, scale):
     return o.gp.gp_Pnt(p[0] * scale, p[1] * scale, p[2] * scale)
@@ -328,7 +285,7 @@ def run_case(label, model, boundary, tol, truth, rows):
     scale = MM_PER_UNIT[unit]
     tol_mm = tol * scale
     faces = Originals(model)
-    sv = read_iges_surface(out)
+    sv = read_iges_surface(out, bspline=True)
     mx, rms, n, gap, _, bridge = measure(sv, faces, scale, tol, truth=truth)
     ap = report["approximant"]
     rows.append((label, f"vericad coons, {ap['m']} × {ap['n']} (exit {r.returncode})",

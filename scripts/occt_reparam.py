@@ -45,6 +45,8 @@ import json, math, os, subprocess, sys, tempfile, time
 
 import OCP.OCP as o
 
+from occt_io import from_json
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, ".."))
 TARGET = os.environ.get("CARGO_TARGET_DIR", os.path.join(REPO, "target"))
@@ -123,40 +125,6 @@ def read_step(path):
         out.append(o.BRep.BRep_Tool.Surface_s(o.TopoDS.TopoDS.Face(ex.Current())))
         ex.Next()
     return out
-
-
-def distinct(knots):
-    ks, ms = [], []
-    for k in knots:
-        if ks and k == ks[-1]:
-            ms[-1] += 1
-        else:
-            ks.append(k)
-            ms.append(1)
-    a, b = o.collections.Array1_double(1, len(ks)), o.collections.Array1_int(1, len(ks))
-    for i, (k, m) in enumerate(zip(ks, ms)):
-        a.SetValue(i + 1, k)
-        b.SetValue(i + 1, m)
-    return a, b
-
-
-def from_json(s, scale):
-    """A vericad-model JSON surface as an OCCT B-spline surface, lengths times `scale`."""
-    c = s["control_points"]
-    nu, nv = len(c), len(c[0])
-    poles = o.collections.Array2_gp_Pnt(1, nu, 1, nv)
-    for i in range(nu):
-        for j in range(nv):
-            poles.SetValue(i + 1, j + 1, o.gp.gp_Pnt(*(scale * x for x in c[i][j][:3])))
-    ku, mu = distinct(s["knots_u"])
-    kv, mv = distinct(s["knots_v"])
-    if s.get("weights"):
-        w = o.collections.Array2_double(1, nu, 1, nv)
-        for i in range(nu):
-            for j in range(nv):
-                w.SetValue(i + 1, j + 1, s["weights"][i][j])
-        return o.Geom.Geom_BSplineSurface(poles, w, ku, kv, mu, mv, s["degree_u"], s["degree_v"])
-    return o.Geom.Geom_BSplineSurface(poles, ku, kv, mu, mv, s["degree_u"], s["degree_v"])
 
 
 def spacing(s, n=20):

@@ -45,6 +45,8 @@ import argparse, json, math, os, subprocess, sys, tempfile, time
 
 import OCP.OCP as o
 
+from occt_io import from_json
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = os.environ.get("VERICAD") or os.path.join(
     os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target")), "release", "vericad")
@@ -122,32 +124,6 @@ def dome(c):
     g, xs = [0.25, -0.25, 0.25], [0.0, 0.5, 1.0]
     pts = [[[xs[i], xs[j], c - (g[i] + g[j])] for j in range(3)] for i in range(3)]
     return surface(2, 2, [0, 0, 0, 1, 1, 1], [0, 0, 0, 1, 1, 1], pts)
-
-
-def to_occt(s):
-    def distinct(kn):
-        ks, ms = [], []
-        for k in kn:
-            if ks and k == ks[-1]:
-                ms[-1] += 1
-            else:
-                ks.append(k)
-                ms.append(1)
-        a, m = o.collections.Array1_double(1, len(ks)), o.collections.Array1_int(1, len(ks))
-        for i, (k, mm) in enumerate(zip(ks, ms)):
-            a.SetValue(i + 1, k)
-            m.SetValue(i + 1, mm)
-        return a, m
-    P, W = s["control_points"], s["weights"]
-    nu, nv = len(P), len(P[0])
-    poles, ws = o.collections.Array2_gp_Pnt(1, nu, 1, nv), o.collections.Array2_double(1, nu, 1, nv)
-    for i in range(nu):
-        for j in range(nv):
-            poles.SetValue(i + 1, j + 1, o.gp.gp_Pnt(*P[i][j]))
-            ws.SetValue(i + 1, j + 1, W[i][j])
-    ku, mu = distinct(s["knots_u"])
-    kv, mv = distinct(s["knots_v"])
-    return o.Geom.Geom_BSplineSurface(poles, ws, ku, kv, mu, mv, s["degree_u"], s["degree_v"])
 
 
 # ---------------------------------------------------------------- true curves
@@ -353,7 +329,7 @@ def run_vericad(a, b, tmp, repeat):
 
 
 def run_occt(a, b, repeat):
-    sa, sb = to_occt(a), to_occt(b)
+    sa, sb = from_json(a), from_json(b)
     best, x = math.inf, None
     for _ in range(repeat):
         t = time.perf_counter()
