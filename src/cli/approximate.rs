@@ -46,19 +46,11 @@ pub fn run(a: ApproximateArgs) -> i32 {
         report: a.report.as_deref(),
         vtk: a.vtk.as_deref(),
     };
-    match crate::approx::coons::layout_job::run(&a.model, &a.layout, &params, outputs) {
-        Ok(r) => {
-            super::print(&r.report, a.json);
-            if r.report.within_tol {
-                0
-            } else {
-                super::EXIT_UNCERTIFIED
-            }
-        }
-        Err(e) if e.is_bad_input() => super::bad(e),
-        Err(e) => {
-            eprintln!("error: {e}");
-            super::EXIT_FAILURE
-        }
-    }
+    super::output::finish_checked(
+        crate::approx::coons::layout_job::run(&a.model, &a.layout, &params, outputs)
+            .map(|r| r.report),
+        a.json,
+        |r| r.within_tol,
+        |e| e.is_bad_input(),
+    )
 }

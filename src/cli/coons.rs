@@ -86,19 +86,10 @@ pub fn run(a: CoonsArgs) -> i32 {
         report: a.report.as_deref(),
         vtk: a.vtk.as_deref(),
     };
-    match crate::approx::coons::job::run(&a.model, &a.boundary, &params, outputs) {
-        Ok(r) => {
-            super::print(&r, a.json);
-            if r.approximant.within_tol {
-                0
-            } else {
-                super::EXIT_UNCERTIFIED
-            }
-        }
-        Err(e) if e.is_bad_input() => super::bad(e),
-        Err(e) => {
-            eprintln!("error: {e}");
-            super::EXIT_FAILURE
-        }
-    }
+    super::output::finish_checked(
+        crate::approx::coons::job::run(&a.model, &a.boundary, &params, outputs),
+        a.json,
+        |r| r.approximant.within_tol,
+        |e| e.is_bad_input(),
+    )
 }

@@ -16,7 +16,7 @@ pub mod shell;
 pub use memory::set_memory_probe;
 
 use clap::{Parser, Subcommand};
-use output::{bad, finish, print};
+use output::{bad, finish, finish_checked, print};
 use std::path::PathBuf;
 
 /// Exit code for bad input.
@@ -389,21 +389,7 @@ pub fn run(cli: Cli) -> i32 {
             if let Some(code) = memory::exhausted(&memory) {
                 return code;
             }
-            match r {
-                Ok(r) => {
-                    print(&r, json);
-                    if r.summary.certified {
-                        0
-                    } else {
-                        EXIT_UNCERTIFIED
-                    }
-                }
-                Err(e) if e.is_bad_input() => bad(e),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-            }
+            finish_checked(r, json, |r| r.summary.certified, |e| e.is_bad_input())
         }
         Command::CertifySsi {
             a,
@@ -438,17 +424,7 @@ pub fn run(cli: Cli) -> i32 {
             if let Some(code) = memory::exhausted(&memory) {
                 return code;
             }
-            match r {
-                Ok(r) => {
-                    print(&r, json);
-                    if r.certified { 0 } else { EXIT_UNCERTIFIED }
-                }
-                Err(e) if e.is_bad_input() => bad(e),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    EXIT_FAILURE
-                }
-            }
+            finish_checked(r, json, |r| r.certified, |e| e.is_bad_input())
         }
         Command::Repair {
             input,

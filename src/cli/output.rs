@@ -1,6 +1,6 @@
 //! Printing a job's report and mapping its error to an exit code.
 
-use super::{EXIT_BAD_INPUT, EXIT_FAILURE};
+use super::{EXIT_BAD_INPUT, EXIT_FAILURE, EXIT_UNCERTIFIED};
 
 /// Print a report; a closed pipe (e.g. `| head`) is not an error.
 pub(super) fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
@@ -30,10 +30,21 @@ pub(super) fn finish<T: serde::Serialize + std::fmt::Display, E: std::fmt::Displ
     json: bool,
     is_bad: impl Fn(&E) -> bool,
 ) -> i32 {
+    finish_checked(r, json, |_| true, is_bad)
+}
+
+/// [`finish`] for a job whose report carries a verdict: exit 0 when `passed` says so,
+/// [`EXIT_UNCERTIFIED`] when it does not (not certified, not within tol).
+pub(super) fn finish_checked<T: serde::Serialize + std::fmt::Display, E: std::fmt::Display>(
+    r: Result<T, E>,
+    json: bool,
+    passed: impl Fn(&T) -> bool,
+    is_bad: impl Fn(&E) -> bool,
+) -> i32 {
     match r {
         Ok(r) => {
             print(&r, json);
-            0
+            if passed(&r) { 0 } else { EXIT_UNCERTIFIED }
         }
         Err(e) if is_bad(&e) => bad(e),
         Err(e) => {

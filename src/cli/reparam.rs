@@ -53,19 +53,10 @@ pub fn run(a: ReparamArgs) -> i32 {
         svg: a.svg.as_deref(),
         vtk: a.vtk.as_deref(),
     };
-    match crate::reparam::job::run(&a.model, &params, outputs) {
-        Ok(r) => {
-            super::print(&r, a.json);
-            if r.within_tol {
-                0
-            } else {
-                super::EXIT_UNCERTIFIED
-            }
-        }
-        Err(e) if e.is_bad_input() => super::bad(e),
-        Err(e) => {
-            eprintln!("error: {e}");
-            super::EXIT_FAILURE
-        }
-    }
+    super::output::finish_checked(
+        crate::reparam::job::run(&a.model, &params, outputs),
+        a.json,
+        |r| r.within_tol,
+        |e| e.is_bad_input(),
+    )
 }
