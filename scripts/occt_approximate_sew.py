@@ -64,13 +64,12 @@ import json, math, os, subprocess, sys, tempfile
 
 import OCP.OCP as o
 
-from occt_io import from_json
+from occt_io import MM_PER_UNIT, from_json
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..")
 DATA = os.path.join(HERE, "data", "coons")
 VERICAD = os.environ.get("VERICAD", os.path.join(ROOT, "target", "release", "vericad"))
-MM_PER_UNIT = {"mm": 1.0, "m": 1000.0, "cm": 10.0, "inch": 25.4, "foot": 304.8, "um": 1e-3, "km": 1e6}
 FUSELAGE = "tests/data/public/occt-bug28366_fuselage.stp"
 EDGE_SAMPLES = 201   # points per edge for the edge-to-edge distance
 TIGHT = 1e-12        # tight sewing tolerance, relative to the bounding-box diagonal

@@ -47,13 +47,12 @@ import json, math, os, subprocess, sys, tempfile, time
 
 import OCP.OCP as o
 
-from occt_io import from_json, read_iges_surface, read_step_faces
+from occt_io import MM_PER_UNIT, from_json, read_iges_surface, read_step_faces
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..")
 DATA = os.path.join(HERE, "data", "coons")
 VERICAD = os.environ.get("VERICAD", os.path.join(ROOT, "target", "release", "vericad"))
-MM_PER_UNIT = {"mm": 1.0, "m": 1000.0, "cm": 10.0, "inch": 25.4, "foot": 304.8, "um": 1e-3, "km": 1e6}
 LATTICE = 33      # measuring lattice (cell centres) per direction
 GAP_ANGLE = 5.0   # degrees: a closest point on an edge farther from the normal than this is a gap
 

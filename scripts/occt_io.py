@@ -3,6 +3,9 @@ OCCT, and a vericad-model JSON surface as an OCCT B-spline surface (the same dat
 knots as distinct values with multiplicities, weights when the surface has them)."""
 import OCP.OCP as o
 
+# OCCT reads lengths in millimetres; vericad keeps the file's unit (its `unit` names it).
+MM_PER_UNIT = {"mm": 1.0, "m": 1000.0, "cm": 10.0, "inch": 25.4, "foot": 304.8, "um": 1e-3, "km": 1e6}
+
 
 def read_step_faces(path):
     """The file's faces as one compound (a solid would measure 0 inside its volume)."""
