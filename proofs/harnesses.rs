@@ -16,5 +16,6 @@ mod coverage;
 mod curve_on_surface;
 mod hull;
 mod interval;
+mod sign_change;
 mod trace;
 mod trims;
