@@ -411,6 +411,203 @@ fn ssi_checks_outputs_before_the_work() {
     assert!(!out.exists());
 }
 
+/// `--no-certify` gives the same branches without the certificates, and says so: exit 3,
+/// `certified` and `no_missed_branches` false, every point `not_requested`.
+#[test]
+fn ssi_without_certificates_says_so() {
+    let d = tmp("no-certify");
+    let plane = |z0: f64, z1: f64| {
+        format!(
+            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
+            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
+        )
+    };
+    let (a, b) = (d.join("a.json"), d.join("b.json"));
+    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
+    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    let run = |extra: &[&str]| -> (i32, String, serde_json::Value) {
+        let out = d.join("r.json");
+        let mut args = vec![
+            "ssi",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let (code, stdout, _) = vericad(&args);
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        (code, stdout, v)
+    };
+    let (code, _, on) = run(&[]);
+    assert_eq!(code, 0);
+    assert_eq!(on["summary"]["certified"], true);
+    let (code, stdout, off) = run(&["--no-certify"]);
+    assert_eq!(code, 3, "{stdout}");
+    assert!(stdout.contains("--no-certify"), "{stdout}");
+    let s = &off["summary"];
+    assert_eq!(s["certified"], false);
+    assert_eq!(s["no_missed_branches"], false);
+    assert!(s["dist_curve_max"].is_null());
+    assert_eq!(s["branches"], on["summary"]["branches"]);
+    assert_eq!(s["points_curve_uncertified"], s["points"]);
+    let br = &off["pairs"][0]["branches"][0];
+    let reasons = br["curve_uncertified"].as_array().unwrap();
+    assert_eq!(reasons.len(), br["points"].as_array().unwrap().len());
+    assert!(
+        reasons.iter().all(|r| r["reason"] == "not_requested"),
+        "{reasons:?}"
+    );
+}
+
+/// `--svg` draws the run: the branch over the faces in the colour of its certificate, a legend
+/// that counts the points, and a scale bar that measures the drawing — the planes meet along
+/// the x axis from −1 to 1, so the branch is 2 model units long on the page, whatever the view.
+#[test]
+fn ssi_picture_shows_the_branch_to_scale() {
+    let d = tmp("picture");
+    let plane = |z0: f64, z1: f64| {
+        format!(
+            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
+            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
+        )
+    };
+    let (a, b) = (d.join("a.json"), d.join("b.json"));
+    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
+    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    let svg = d.join("r.svg");
+    let run = |extra: &[&str]| -> (i32, String, String) {
+        let mut args = vec![
+            "ssi",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--svg",
+            svg.to_str().unwrap(),
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let (code, stdout, stderr) = vericad(&args);
+        (
+            code,
+            stdout,
+            stderr + &std::fs::read_to_string(&svg).unwrap_or_default(),
+        )
+    };
+    // The numbers of a `points="x,y x,y ..."` attribute.
+    let points = |line: &str| -> Vec<[f64; 2]> {
+        let at = line.find("points=\"").unwrap() + 8;
+        let end = at + line[at..].find('"').unwrap();
+        line[at..end]
+            .split_whitespace()
+            .map(|p| {
+                let (x, y) = p.split_once(',').unwrap();
+                [x.parse().unwrap(), y.parse().unwrap()]
+            })
+            .collect()
+    };
+    let attr = |line: &str, name: &str| -> f64 {
+        let at = line.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        let end = at + line[at..].find('"').unwrap();
+        line[at..end].parse().unwrap()
+    };
+    for view in ["-60,25", "0,90", "35,-10"] {
+        let (code, stdout, text) = run(&["--view", view]);
+        assert_eq!(code, 0, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let n = v["summary"]["points"].as_u64().unwrap();
+        assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
+        let curves: Vec<&str> = text
+            .lines()
+            .skip_while(|l| !l.starts_with("<g id=\"curves\""))
+            .skip(1)
+            .take_while(|l| !l.starts_with("</g>"))
+            .collect();
+        assert_eq!(curves.len(), 1, "one branch, all one status: {curves:?}");
+        assert!(
+            curves[0].contains("stroke=\"#009646\""),
+            "green: {}",
+            curves[0]
+        );
+        assert!(
+            text.contains(&format!("points proven within tol of the curve ({n})")),
+            "legend counts the points"
+        );
+        let pts = points(curves[0]);
+        assert_eq!(pts.len() as u64, n);
+        let (p, q) = (pts[0], pts[pts.len() - 1]);
+        let page_len = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt();
+        let bar = text
+            .lines()
+            .find(|l| l.contains("<g id=\"scale\""))
+            .unwrap();
+        let bar_px = attr(bar, "x2") - attr(bar, "x1");
+        let label = &bar[bar.find("<text").unwrap()..];
+        let at = label.find('>').unwrap() + 1;
+        let bar_len: f64 = label[at..]
+            .split_whitespace()
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        let measured = page_len / bar_px * bar_len;
+        // From straight above the x axis is seen at full length; at an angle, shorter.
+        let (az, el) = view.split_once(',').unwrap();
+        let (az, el): (f64, f64) = (az.parse().unwrap(), el.parse().unwrap());
+        let (az, el) = (az.to_radians(), el.to_radians());
+        // |x projected| = √(sin² az + (sin el cos az)²).
+        let seen = 2.0 * (az.sin().powi(2) + (el.sin() * az.cos()).powi(2)).sqrt();
+        assert!(
+            (measured - seen).abs() <= 0.01 * seen,
+            "{view}: {measured} vs {seen}"
+        );
+    }
+    let (code, _, text) = run(&["--no-certify"]);
+    assert_eq!(code, 3);
+    assert!(text.contains("points not proven against the curve ("));
+    assert!(text.contains("stroke=\"#d71e1e\""), "red where not proven");
+    let (code, _, stderr) = run(&["--view", "0,95"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("--view"), "{stderr}");
+}
+
+/// `repair --svg` writes the picture; an unwritable output fails before the work (exit 1,
+/// "cannot write"), leaving no other output behind.
+#[test]
+fn repair_picture_and_outputs_checked_first() {
+    let d = tmp("repair-svg");
+    let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/gmsh-t20_data.step");
+    let svg = d.join("r.svg");
+    let (code, stdout, stderr) = vericad(&[
+        "repair",
+        src.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "--view",
+        "30,40",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.contains("output patches ("));
+    assert!(stdout.contains("patches:"), "{stdout}");
+    let report = d.join("report.json");
+    let bad = d.join("no-such-dir").join("r.svg");
+    let (code, _, stderr) = vericad(&[
+        "repair",
+        src.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--svg",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("cannot write"), "{stderr}");
+    assert!(!report.exists(), "no output written before the failure");
+}
+
 /// The JSON result writes a point per line (arrays of numbers inline) and leaves the fitted
 /// cubics out unless `--fits` asks for them; both forms parse as the same points.
 #[test]

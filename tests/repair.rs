@@ -78,6 +78,40 @@ fn flip_u(s: &mut NurbsSurface<f64, 3>) {
     }
 }
 
+/// The picture of the repaired cube: six patches (one border each), the 36 feature edges
+/// drawn over them, the legend counting both; no gaps left, so no red.
+#[test]
+fn cube_picture_shows_patches_and_feature_edges() {
+    let prm = RepairParams {
+        u1: 1e-2,
+        u2: 1e-2,
+        feature_angle_deg: 30.0,
+        ..Default::default()
+    };
+    let r = repair(cube(1e-4, 7), &prm, &FeatureOverrides::default(), &none).unwrap();
+    let svg = vericad::repair::picture::picture(&r, Some("mm"), &Default::default());
+    let group = |id: &str| -> Vec<&str> {
+        svg.lines()
+            .skip_while(|l| !l.starts_with(&format!("<g id=\"{id}\"")))
+            .skip(1)
+            .take_while(|l| !l.starts_with("</g>"))
+            .collect()
+    };
+    assert_eq!(group("outlines").len(), 6);
+    let curves = group("curves");
+    assert_eq!(curves.len(), r.report.feature_edges);
+    assert!(curves.iter().all(|l| l.contains("stroke=\"#141414\"")));
+    // 6 patches × 12² quads × 2 triangles.
+    assert_eq!(group("faces").len(), 6 * 144 * 2);
+    assert!(svg.contains("output patches (6), one colour each"));
+    assert!(svg.contains("feature edges (36)"));
+    assert!(!svg.contains("gaps left above u2 ("));
+    assert!(
+        svg.contains(" mm</text>"),
+        "the scale bar in the file's unit"
+    );
+}
+
 #[test]
 fn cube_plate2_connectivity_features_and_averaging() {
     let prm = RepairParams {

@@ -308,7 +308,8 @@ fn threads_arg(threads: Option<i64>) -> Result<Option<usize>, Fault> {
 /// Intersect surfaces: `vericad ssi`.
 #[pyfunction]
 #[pyo3(signature = (file, file2=None, *, tol=1e-6, flatness=None, time_limit=None,
-    untrimmed=false, threads=None, out=None, vtk=None, iges=None, fits=false))]
+    untrimmed=false, threads=None, out=None, vtk=None, iges=None, fits=false, certify=true,
+    svg=None, view=String::from("-60,25")))]
 #[allow(clippy::too_many_arguments)]
 fn ssi(
     py: Python<'_>,
@@ -323,15 +324,20 @@ fn ssi(
     vtk: Option<PathBuf>,
     iges: Option<PathBuf>,
     fits: bool,
+    certify: bool,
+    svg: Option<PathBuf>,
+    view: String,
 ) -> PyResult<Py<PyAny>> {
     use vericad::ssi::job::{self, JobError};
     let v = detached(py, || {
         let threads = threads_arg(threads)?;
+        let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
         let prm = vericad::ssi::SsiParams {
             tol,
             flatness,
             time_limit,
             respect_trims: !untrimmed,
+            certify,
             ..Default::default()
         };
         let outputs = job::Outputs {
@@ -339,6 +345,8 @@ fn ssi(
             vtk: vtk.as_deref(),
             iges: iges.as_deref(),
             fits,
+            svg: svg.as_deref(),
+            view,
         };
         let r = job::run(&file, file2.as_deref(), &prm, threads, outputs)
             .map_err(|e| fault(&e, e.is_bad_input(), matches!(e, JobError::Write(..))))?;
@@ -429,7 +437,7 @@ fn curve_on_surface(
 /// Repair a patch set: `vericad repair`. Returns `{"report": ..., "patches": [...]}`.
 #[pyfunction]
 #[pyo3(signature = (input, *, u1=1e-3, u2=1e-3, feature_angle=30.0, features=None, out=None,
-    report=None, vtk=None))]
+    report=None, vtk=None, svg=None, view=String::from("-60,25")))]
 #[allow(clippy::too_many_arguments)]
 fn repair(
     py: Python<'_>,
@@ -441,9 +449,12 @@ fn repair(
     out: Option<PathBuf>,
     report: Option<PathBuf>,
     vtk: Option<PathBuf>,
+    svg: Option<PathBuf>,
+    view: String,
 ) -> PyResult<Py<PyAny>> {
     use vericad::repair::job;
     let r = detached(py, || {
+        let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
         let prm = vericad::repair::RepairParams {
             u1,
             u2,
@@ -454,6 +465,8 @@ fn repair(
             model: out.as_deref(),
             report: report.as_deref(),
             vtk: vtk.as_deref(),
+            svg: svg.as_deref(),
+            view,
         };
         let r = job::run_result(&input, &prm, features.as_deref(), outputs)
             .map_err(|e| fault(&e, e.is_bad_input(), matches!(e, job::JobError::Write(..))))?;

@@ -40,6 +40,15 @@ def test_ssi_equals_the_cli(cli, tmp_path):
     assert without(json.loads((tmp_path / "r.json").read_text()), strip) == without(c, strip)
 
 
+def test_ssi_without_certificates_equals_the_cli(cli):
+    r = vericad.ssi(SPHERE, PLANE, certify=False, threads=1)
+    c = cli_json(cli, "ssi", SPHERE, PLANE, "--no-certify")
+    strip = {"seconds"}
+    assert without(plain(r), strip) == without(c, strip)
+    assert not r.certified and not r.summary.no_missed_branches
+    assert r.summary.dist_curve_max is None and r.summary.branches == 1
+
+
 def test_ssi_outputs_and_fits(tmp_path):
     r = vericad.ssi(SPHERE, PLANE, vtk=tmp_path / "r.vtp", iges=tmp_path / "r.igs", fits=True)
     assert (tmp_path / "r.vtp").stat().st_size > 0
@@ -47,6 +56,18 @@ def test_ssi_outputs_and_fits(tmp_path):
     assert len(m.curves) == 1
     fit = r.branches[0].fit
     assert fit.control_points.shape[1] == 3 and fit.knots.ndim == 1
+
+
+def test_ssi_picture(cli, tmp_path):
+    r = vericad.ssi(SPHERE, PLANE, svg=tmp_path / "r.svg", view="0,90")
+    text = (tmp_path / "r.svg").read_text()
+    assert text.startswith("<svg") and text.rstrip().endswith("</svg>")
+    assert f"points proven within tol of the curve ({r.summary.points})" in text
+    # The same picture as the command line's.
+    cli("ssi", SPHERE, PLANE, "--svg", tmp_path / "c.svg", "--view", "0,90")
+    assert (tmp_path / "c.svg").read_text() == text
+    with pytest.raises(vericad.BadInputError, match="view"):
+        vericad.ssi(SPHERE, PLANE, svg=tmp_path / "x.svg", view="0,95")
 
 
 @pytest.mark.parametrize("tol", [NAN, -1e-6, 0.0, float("inf")])
@@ -197,6 +218,16 @@ def test_repair_options_reach_the_library(cli):
     r = vericad.repair(TWO, u1=1e-2, u2=1e-2, feature_angle=60.0)
     ref = cli_json(cli, "repair", TWO, "--u1", "1e-2", "--u2", "1e-2", "--feature-angle", "60")
     assert without(plain(r.report), {"seconds"}) == without(ref, {"seconds"})
+
+
+def test_repair_picture_equals_the_cli(cli, tmp_path):
+    r = vericad.repair(TWO, svg=tmp_path / "r.svg", view="20,30")
+    text = (tmp_path / "r.svg").read_text()
+    assert f"output patches ({r.report.patches_out})" in text
+    cli("repair", TWO, "--svg", tmp_path / "c.svg", "--view", "20,30")
+    assert (tmp_path / "c.svg").read_text() == text
+    with pytest.raises(vericad.BadInputError, match="view"):
+        vericad.repair(TWO, svg=tmp_path / "x.svg", view="north")
 
 
 @pytest.mark.parametrize("kw", [{"u1": NAN}, {"u1": -1.0}, {"u2": 0.0}])

@@ -178,9 +178,14 @@ def ssi(
     vtk: Optional[PathLike] = None,
     iges: Optional[PathLike] = None,
     fits: bool = False,
+    certify: bool = True,
+    svg: Optional[PathLike] = None,
+    view: str = "-60,25",
 ) -> SsiResult:
     """Intersect surfaces (``vericad ssi``): all face pairs of ``file``, or the faces of
-    ``file`` against those of ``file2``."""
+    ``file`` against those of ``file2``. ``certify=False`` skips the curve radii and the
+    coverage (``--no-certify``: faster, reported as not certified). ``svg`` writes a picture
+    seen from ``view`` (``"AZIMUTH,ELEVATION"`` in degrees)."""
     return SsiResult(
         _vericad.ssi(
             os.fspath(file),
@@ -194,6 +199,9 @@ def ssi(
             vtk=_p(vtk),
             iges=_p(iges),
             fits=fits,
+            certify=certify,
+            svg=_p(svg),
+            view=view,
         )
     )
 
@@ -262,8 +270,11 @@ def repair(
     out: Optional[PathLike] = None,
     report: Optional[PathLike] = None,
     vtk: Optional[PathLike] = None,
+    svg: Optional[PathLike] = None,
+    view: str = "-60,25",
 ) -> RepairResult:
-    """Repair a patch set (``vericad repair``)."""
+    """Repair a patch set (``vericad repair``); ``svg`` writes a picture seen from ``view``
+    (``"AZIMUTH,ELEVATION"`` in degrees)."""
     return RepairResult(
         _vericad.repair(
             os.fspath(input),
@@ -274,6 +285,8 @@ def repair(
             out=_p(out),
             report=_p(report),
             vtk=_p(vtk),
+            svg=_p(svg),
+            view=view,
         )
     )
 

@@ -24,6 +24,9 @@ def ssi(
     vtk: Optional[str] = None,
     iges: Optional[str] = None,
     fits: bool = False,
+    certify: bool = True,
+    svg: Optional[str] = None,
+    view: str = "-60,25",
 ) -> Dict[str, Any]: ...
 def certify_ssi(
     a: str,
@@ -57,6 +60,8 @@ def repair(
     out: Optional[str] = None,
     report: Optional[str] = None,
     vtk: Optional[str] = None,
+    svg: Optional[str] = None,
+    view: str = "-60,25",
 ) -> Dict[str, Any]: ...
 def reparam(
     model: str,

@@ -165,6 +165,15 @@ pub enum Command {
         /// Write the fitted cubic of every branch as IGES 126 curves here.
         #[arg(long)]
         iges: Option<PathBuf>,
+        /// Write a picture here (SVG): the faces shaded, the branches over them coloured by
+        /// what is proven (green within tol of the curve, amber above tol, red not proven),
+        /// singular points and uncertified coverage regions marked, with a legend and a scale.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// The picture's view direction: azimuth and elevation in degrees, as `AZ,EL`
+        /// (orthographic; default -60,25).
+        #[arg(long, allow_hyphen_values = true, default_value = "-60,25")]
+        view: String,
         /// Keep every branch's fitted cubic (knots, control points in 3D and in both domains)
         /// in the JSON result; off by default (about four times the size of the points).
         #[arg(long)]
@@ -173,6 +182,11 @@ pub enum Command {
         /// `budget exhausted: memory ...` and exit code 1.
         #[arg(long, allow_hyphen_values = true)]
         max_memory: Option<f64>,
+        /// Skip the certificates: no curve radius per point and no coverage (a faster preview;
+        /// the run is reported as not certified, exit 3). Distances to each surface are still
+        /// bounded.
+        #[arg(long)]
+        no_certify: bool,
         /// Print the result as JSON instead of the human summary.
         #[arg(long)]
         json: bool,
@@ -239,6 +253,14 @@ pub enum Command {
         /// VTK view: patches, feature edges, gaps left.
         #[arg(long)]
         vtk: Option<PathBuf>,
+        /// Write a picture here (SVG): the output patches shaded, one colour each, with the
+        /// feature edges and the gaps left above u2 drawn over them, a legend and a scale.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// The picture's view direction: azimuth and elevation in degrees, as `AZ,EL`
+        /// (orthographic; default -60,25).
+        #[arg(long, allow_hyphen_values = true, default_value = "-60,25")]
+        view: String,
         /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
         /// `budget exhausted: memory ...` and exit code 1.
         #[arg(long, allow_hyphen_values = true)]
@@ -354,11 +376,18 @@ pub fn run(cli: Cli) -> i32 {
             out,
             vtk,
             iges,
+            svg,
+            view,
             fits,
             max_memory,
+            no_certify,
             json,
         } => {
             use crate::ssi::job;
+            let view = match crate::io::picture::View::parse(&view) {
+                Ok(v) => v,
+                Err(e) => return bad(format!("--view: {e}")),
+            };
             if let Some(n) = threads
                 && !(1..=MAX_THREADS).contains(&n)
             {
@@ -373,6 +402,7 @@ pub fn run(cli: Cli) -> i32 {
                 flatness,
                 time_limit,
                 respect_trims: !untrimmed,
+                certify: !no_certify,
                 control: crate::ssi::control::Control {
                     memory: memory.clone(),
                     ..Default::default()
@@ -384,6 +414,8 @@ pub fn run(cli: Cli) -> i32 {
                 vtk: vtk.as_deref(),
                 iges: iges.as_deref(),
                 fits,
+                svg: svg.as_deref(),
+                view,
             };
             let r = job::run(&file, file2.as_deref(), &prm, threads, outputs);
             if let Some(code) = memory::exhausted(&memory) {
@@ -435,9 +467,15 @@ pub fn run(cli: Cli) -> i32 {
             out,
             report,
             vtk,
+            svg,
+            view,
             max_memory,
             json,
         } => {
+            let view = match crate::io::picture::View::parse(&view) {
+                Ok(v) => v,
+                Err(e) => return bad(format!("--view: {e}")),
+            };
             let prm = crate::repair::RepairParams {
                 u1,
                 u2,
@@ -453,6 +491,8 @@ pub fn run(cli: Cli) -> i32 {
                 model: out.as_deref(),
                 report: report.as_deref(),
                 vtk: vtk.as_deref(),
+                svg: svg.as_deref(),
+                view,
             };
             finish(
                 crate::repair::job::run(&input, &prm, features.as_deref(), outputs),

@@ -4,6 +4,7 @@
 pub mod iges;
 pub mod json_text;
 pub mod obj;
+pub mod picture;
 pub mod plot3d;
 pub mod step;
 pub mod stl;

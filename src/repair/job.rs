@@ -30,6 +30,10 @@ pub struct Outputs<'a> {
     pub report: Option<&'a Path>,
     /// Patches (cell array `patch`), feature edges and gaps left as lines (`feature`, `gap`).
     pub vtk: Option<&'a Path>,
+    /// A picture: the output patches shaded, feature edges and gaps left drawn over them
+    /// ([`super::picture`]), seen along `view`.
+    pub svg: Option<&'a Path>,
+    pub view: crate::io::picture::View,
 }
 
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
@@ -55,6 +59,14 @@ pub fn run_result(
     out: Outputs,
 ) -> Result<RepairResult, JobError> {
     let m = crate::io::read_model(input)?;
+    // Outputs are checked before the work: an unwritable path fails at once.
+    for p in [out.model, out.report, out.vtk, out.svg]
+        .into_iter()
+        .flatten()
+    {
+        crate::io::check_writable(p)
+            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
+    }
     let overrides: FeatureOverrides = match features {
         Some(p) => {
             let t = std::fs::read_to_string(p)
@@ -96,6 +108,12 @@ pub fn run_result(
         let text = crate::io::json_text::to_text(&r.report)
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
         write(p, &text)?;
+    }
+    if let Some(p) = out.svg {
+        write(
+            p,
+            &super::picture::picture(&r, m.unit.as_deref(), &out.view),
+        )?;
     }
     if let Some(p) = out.vtk {
         let mut pd = PolyData::default();

@@ -22,6 +22,7 @@ pub mod job;
 pub mod kdtree;
 pub mod merge;
 pub mod orient;
+pub mod picture;
 pub mod verify;
 
 use connectivity::{Connection, TJunction, connect, split, t_junctions};

@@ -3,7 +3,7 @@
 //! every point (distance to each surface, [`super::certify`]; distance to the intersection
 //! curve, [`super::krawczyk`]), classify the ends, fit splines.
 
-use super::certify::ExactSurface;
+use super::certify::{ExactSurface, distance_upper};
 use super::fit::fit_branch;
 use super::insert::{Inserter, onto_curve, seams, small_angle};
 use super::jet_cache::JetCache;
@@ -92,6 +92,39 @@ impl BranchNear {
 pub enum BranchResult {
     Curve(BranchOut),
     Touch(TouchOut),
+}
+
+/// The certified point moved to the centre of its root box: `p' = (S_A(y_uv) + S_B(y_st)) / 2`
+/// at the Newton solution `y`, which lies on the curve to `f64` accuracy. Kept when `y` lies in
+/// both closed domains and the radius measured from `p'` to the enclosed true point is not
+/// larger than from `p`; then `r` takes `p'` and `y` as its parameters, and its distances to
+/// each surface are bounded from the certificate's enclosures at `y` (no second evaluation).
+/// Returns the radius, and the two distances when moved.
+fn adopt_centre(
+    g: &PairGeometry,
+    r: &mut Refined,
+    c: super::krawczyk::CurveCertificate,
+) -> (f64, Option<(f64, f64)>) {
+    let y = c.centre;
+    let (da, db) = (domain(g.sa), domain(g.sb));
+    let inside = (0..2).all(|k| y[k] >= da[2 * k] && y[k] <= da[2 * k + 1])
+        && (0..2).all(|k| y[k + 2] >= db[2 * k] && y[k + 2] <= db[2 * k + 1]);
+    if !inside {
+        return (c.radius, None);
+    }
+    let [a, b] = c.at_centre;
+    let p: [f64; 3] = std::array::from_fn(|k| 0.5 * (a[k].mid() + b[k].mid()));
+    let up = |box3: &[crate::scalar::Interval; 3]| distance_upper(&p, box3);
+    match (up(&c.point), up(&a), up(&b)) {
+        (Some(radius), Some(dist_a), Some(dist_b)) if radius <= c.radius => {
+            r.gap = dist(&a.map(|x| x.mid()), &b.map(|x| x.mid()));
+            r.xyz = p;
+            r.uv_a = [y[0], y[1]];
+            r.uv_b = [y[2], y[3]];
+            (radius, Some((dist_a, dist_b)))
+        }
+        _ => (c.radius, None),
+    }
 }
 
 fn on_border(uv: &[f64; 2], d: &[f64; 4]) -> bool {
@@ -256,15 +289,33 @@ pub fn refine_branch(
         // Runs of consecutive points share one Jacobian enclosure ([`JetCache`]); not near
         // tangency, where the wider enclosure widens the boxes and the test is run twice.
         per_point.par_extend(chunk.par_chunks_mut(JET_RUN).flat_map_iter(|run| {
-            let cache = (!small_angle(g, &run[0]))
+            let cache = (prm.curve_certificates && !small_angle(g, &run[0]))
                 .then(|| JetCache::over(g.sa, g.sb, run.iter().map(|r| (r.uv_a, r.uv_b))))
                 .flatten();
             run.iter_mut()
                 .map(|r| {
-                    let c = onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| c.radius);
-                    let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
-                    let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
-                    (c, da.unwrap_or(f64::INFINITY), db.unwrap_or(f64::INFINITY))
+                    if !prm.curve_certificates {
+                        let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
+                        let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
+                        return (
+                            Err(Uncertified::NotRequested),
+                            da.unwrap_or(f64::INFINITY),
+                            db.unwrap_or(f64::INFINITY),
+                        );
+                    }
+                    let c =
+                        onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| adopt_centre(g, r, c));
+                    let radius = c.as_ref().map(|c| c.0).map_err(|u| *u);
+                    let (da, db) = match c {
+                        Ok((_, Some(d))) => d,
+                        _ => (
+                            g.ea.distance_bound(&r.xyz, &r.uv_a)
+                                .unwrap_or(f64::INFINITY),
+                            g.eb.distance_bound(&r.xyz, &r.uv_b)
+                                .unwrap_or(f64::INFINITY),
+                        ),
+                    };
+                    (radius, da, db)
                 })
                 .collect::<Vec<_>>()
         }));
@@ -277,6 +328,7 @@ pub fn refine_branch(
         .zip(&all)
         .map(|(p, r)| match p.0 {
             Ok(x) => Ok((x, CurveCertKind::Krawczyk)),
+            Err(Uncertified::NotRequested) => Err(Uncertified::NotRequested),
             Err(u) => near.certify(g, r, u),
         })
         .collect();

@@ -391,6 +391,8 @@ pub fn intersect_models(
         },
         if meshes {
             "distance to the curve (mesh mode): the same bound, to the exact crossing of the triangulations".to_string()
+        } else if !prm.certify {
+            "distance to the intersection curve: NOT computed (certificates switched off: --no-certify); every point is listed as not_requested and dist_curve_max is null".to_string()
         } else if points_curve_uncertified == 0 {
             format!("every point's distance to the intersection curve is bounded rigorously: a true common point of both faces (parameters in both domains) lies within curve_radius, the unique zero in its parameter box (Krawczyk's test on S_A(u,v) = S_B(s,t) plus a plane across the curve, interval enclosures over the box; hypotheses: continuous surfaces, weights not vanishing, both proven or refused){sign_change_note}")
         } else {
@@ -399,6 +401,8 @@ pub fn intersect_models(
         "branch topology comes from exact signs with symbolic perturbation; every segment is used once (checked)".to_string(),
         if meshes {
             "mesh mode: the curves are the exact intersection of the triangulations; no coverage certificate".to_string()
+        } else if !prm.certify {
+            "coverage: NOT computed (certificates switched off: --no-certify): a branch could be missing".to_string()
         } else if no_missed_branches {
             format!("coverage: every branch of the true intersection (closed loop, open arc, touching point) comes within {matched:.3e} of the output, proven: every parameter-box pair is free (disjoint control-point boxes), within that distance of the output, or transversal (separated normal cones) with every border crossing within that distance of the output")
         } else if uncertified == 0 && coincident_pairs > 0 {

@@ -208,6 +208,7 @@ fn fail_name(e: Uncertified) -> &'static str {
         Uncertified::OutsideDomain => "face_border",
         Uncertified::Enclosure => "no_enclosure",
         Uncertified::SignChangeAboveTol => "sign_change_above_tol",
+        Uncertified::NotRequested => "not_requested",
     }
 }
 

@@ -66,6 +66,10 @@ pub struct Outputs<'a> {
     /// JSON. Off by default: the fits repeat the points' information at four times its size
     /// (they are always in the IGES output).
     pub fits: bool,
+    /// A picture of the result: faces shaded, branches coloured by certificate
+    /// ([`super::picture`]), seen along `view`.
+    pub svg: Option<&'a Path>,
+    pub view: crate::io::picture::View,
 }
 
 /// Fail before the work when an output cannot be written.
@@ -186,7 +190,7 @@ pub fn run(
         Some(f) => Some(read_in_range(f)?),
         None => None,
     };
-    for p in [outputs.json, outputs.vtk, outputs.iges]
+    for p in [outputs.json, outputs.vtk, outputs.iges, outputs.svg]
         .into_iter()
         .flatten()
     {
@@ -233,6 +237,12 @@ pub fn run(
     let mut r = pool.install(|| intersect_models(&a, b.as_ref(), prm, &progress))?;
     if let Some(p) = outputs.vtk {
         write(p, &to_vtp(&r, &a, b.as_ref()))?;
+    }
+    if let Some(p) = outputs.svg {
+        write(
+            p,
+            &super::picture::picture(&r, &a, b.as_ref(), &outputs.view),
+        )?;
     }
     if let Some(p) = outputs.iges {
         write(

@@ -78,6 +78,8 @@ pub enum Uncertified {
     OutsideDomain,
     /// An interval enclosure failed (a weight enclosure holds 0, or overflow).
     Enclosure,
+    /// Not attempted: the certificates were switched off ([`super::SsiParams::certify`]).
+    NotRequested,
     /// Near a proven branch point, where this test fails: a true intersection point was
     /// proven by a sign change ([`super::sign_change`]), but farther from the point than tol
     /// (the radius is not reported as a certificate).
@@ -96,9 +98,19 @@ pub struct CurveCertificate {
     /// Some try of the test took `J` from a shared enclosure ([`JetCache`]): the box and the
     /// radius can be wider than with `J` over `X` alone.
     pub shared_jacobian: bool,
+    /// The box's centre `y` (the `f64` Newton solution), and enclosures of `S_A(y_0, y_1)` and
+    /// `S_B(y_2, y_3)` (outward-rounded interval evaluation at the point): they bound the
+    /// distance of a point to each surface at these parameters without evaluating again.
+    pub centre: [f64; 4],
+    pub at_centre: [[Interval; 3]; 2],
+    /// Enclosure of the true common point `q` the radius is measured to.
+    pub point: [Interval; 3],
 }
 
 pub(crate) type M4 = [[f64; 4]; 4];
+
+/// A surface point and its first partial derivatives, in `f64`.
+type Eval = ([f64; 3], [f64; 3], [f64; 3]);
 
 #[derive(Clone, Copy, Debug)]
 enum Fourth {
@@ -128,8 +140,16 @@ fn pt(x: f64) -> Interval {
 impl System<'_> {
     /// `F` and its Jacobian in `f64` (approximations: they only steer).
     fn eval_f64(&self, z: &[f64; 4]) -> ([f64; 4], M4) {
-        let (a, au, av) = point_d1(self.sa, z[0], z[1]);
-        let (b, bs, bt) = point_d1(self.sb, z[2], z[3]);
+        self.assemble(
+            z,
+            point_d1(self.sa, z[0], z[1]),
+            point_d1(self.sb, z[2], z[3]),
+        )
+    }
+
+    /// `F` and its Jacobian from the surfaces' points and first derivatives at `z`.
+    fn assemble(&self, z: &[f64; 4], ea: Eval, eb: Eval) -> ([f64; 4], M4) {
+        let ((a, au, av), (b, bs, bt)) = (ea, eb);
         let mut f = [0.0; 4];
         let mut j = [[0.0; 4]; 4];
         for k in 0..3 {
@@ -250,6 +270,8 @@ pub(crate) fn mul4(m: &M4, v: &[f64; 4]) -> [f64; 4] {
 
 /// Result of one attempt; `Outside(k, c)`: the zero may leave the domain across the border
 /// `z_k = c`.
+// Returned once per attempt and consumed at once: the size difference costs nothing.
+#[allow(clippy::large_enum_variant)]
 enum Attempt {
     Done(CurveCertificate),
     Outside(usize, f64),
@@ -262,10 +284,13 @@ const TANGENT_SIN: f64 = 1e-12;
 const NEWTON_STEPS: usize = 12;
 const TRIES: usize = 8;
 
-fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
+fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
     // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
     let mut y = z0;
-    let (mut f, mut j) = sys.eval_f64(&y);
+    let (mut f, mut j) = match at_z0 {
+        Some((ea, eb)) => sys.assemble(&y, ea, eb),
+        None => sys.eval_f64(&y),
+    };
     for _ in 0..NEWTON_STEPS {
         let Some(ji) = inverse4(j) else {
             return Attempt::Fail(Uncertified::Singular);
@@ -384,6 +409,9 @@ fn attempt(sys: &System, z0: [f64; 4]) -> Attempt {
             shared_jacobian,
             params: z,
             held,
+            centre: y,
+            at_centre: at_y,
+            point: q,
         }),
         None => Attempt::Fail(Uncertified::Enclosure),
     }
@@ -454,8 +482,9 @@ fn certify_with(
     };
     // The plane across the curve through p; if the zero may lie beyond a border, that
     // parameter held on the border instead.
-    let (_, au, av) = point_d1(sa, z0[0], z0[1]);
-    let (_, bs, bt) = point_d1(sb, z0[2], z0[3]);
+    let ea = point_d1(sa, z0[0], z0[1]);
+    let eb = point_d1(sb, z0[2], z0[3]);
+    let ((_, au, av), (_, bs, bt)) = (ea, eb);
     let (na, nb) = (cross(&au, &av), cross(&bs, &bt));
     let t = cross(&na, &nb);
     let (la, lb, lt) = (norm(&na), norm(&nb), norm(&t));
@@ -464,14 +493,14 @@ fn certify_with(
     }
     let n = t.map(|c| c / lt);
     sys.e = Fourth::Plane { n, p: *p };
-    match attempt(&sys, z0) {
+    match attempt(&sys, z0, Some((ea, eb))) {
         Attempt::Done(c) => Ok(c),
         Attempt::Fail(u) => Err(u),
         Attempt::Outside(k, c) => {
             sys.e = Fourth::Hold { k, c };
             let mut z = z0;
             z[k] = c;
-            match attempt(&sys, z) {
+            match attempt(&sys, z, None) {
                 Attempt::Done(c) => Ok(c),
                 // The zero lies on or near a border where holding the parameter does not
                 // isolate it (a curve along the border, a corner of both domains): look for
@@ -502,7 +531,7 @@ fn inside_near(
                 n,
                 p: std::array::from_fn(|k| p[k] + d * n[k]),
             };
-            if let Attempt::Done(c) = attempt(sys, z0) {
+            if let Attempt::Done(c) = attempt(sys, z0, None) {
                 return Ok(c);
             }
         }

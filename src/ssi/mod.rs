@@ -44,6 +44,7 @@ pub mod krawczyk;
 pub mod mesh;
 pub mod overlap;
 pub mod pair;
+pub mod picture;
 pub mod refine;
 pub mod regions;
 pub mod report;
@@ -114,6 +115,11 @@ pub struct SsiParams {
     /// The coverage certificate skips box pairs outside the faces (set per pair by the
     /// driver when faces are trimmed).
     pub coverage_outside: Option<coverage::OutsideFaces>,
+    /// Compute the certificates: the curve radius of every point ([`krawczyk`]) and, with
+    /// [`SsiParams::coverage`], the coverage. Off gives a faster run that is reported as not
+    /// certified (every point `not_requested`, no coverage); the distances to each surface
+    /// are bounded either way.
+    pub certify: bool,
     /// Cancel flag and progress from inside face pairs ([`control`]).
     pub control: control::Control,
 }
@@ -136,6 +142,7 @@ impl Default for SsiParams {
             coverage_max_boxes: 200_000,
             respect_trims: true,
             coverage_outside: None,
+            certify: true,
             control: control::Control::default(),
         }
     }

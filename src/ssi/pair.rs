@@ -172,6 +172,7 @@ pub fn intersect_surfaces(
         tol: prm.tol,
         max_iter: 60,
         tangent_sin: prm.refine_tangent_sin,
+        curve_certificates: prm.certify,
     };
     let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
     ctl.report(ids, "tangential points", 0, 0);
@@ -264,10 +265,11 @@ pub fn intersect_surfaces(
             }
         }
     }
-    if out.complete && prm.coverage && stop() {
+    let coverage_on = prm.coverage && prm.certify;
+    if out.complete && coverage_on && stop() {
         out.complete = false;
     }
-    if out.complete && prm.coverage {
+    if out.complete && coverage_on {
         ctl.report(ids, "coverage", 0, 0);
         let cp = CoverageParams {
             match_distance: prm.coverage_match.unwrap_or(10.0 * prm.tol),

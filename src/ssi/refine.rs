@@ -44,6 +44,9 @@ pub struct RefineParams {
     pub max_iter: u32,
     /// `sin` of the angle between the normals below which the contact counts as tangential.
     pub tangent_sin: f64,
+    /// Certify every output point against the curve ([`super::krawczyk`]); off: each is
+    /// reported `not_requested` ([`super::SsiParams::certify`]).
+    pub curve_certificates: bool,
 }
 
 type V3 = [f64; 3];

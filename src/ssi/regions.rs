@@ -223,6 +223,7 @@ fn region_run(
         tol: prm.tol,
         max_iter: 60,
         tangent_sin: prm.refine_tangent_sin,
+        curve_certificates: prm.certify,
     };
     let near = BranchNear::new(Vec::new(), prm.tol);
     let (mut branches, mut points) = (Vec::new(), Vec::new());
