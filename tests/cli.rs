@@ -226,6 +226,33 @@ fn curve_on_surface_writes_result_and_svg() {
     }
     assert!(r["certificate"]["hausdorff_bound"].as_f64().unwrap() <= 1e-2);
     assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // The 3D picture: one polyline per segment, green (all within ε_d), the legend counting.
+    let pic = d.join("p.svg");
+    let (code, _, stderr) = vericad(&[
+        "curve-on-surface",
+        "--surface",
+        m.to_str().unwrap(),
+        "--curve",
+        m.to_str().unwrap(),
+        "--tol",
+        "1e-2",
+        "--svg-3d",
+        pic.to_str().unwrap(),
+        "--view",
+        "20,35",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = std::fs::read_to_string(&pic).unwrap();
+    let n = r["num_segments"].as_u64().unwrap() as usize;
+    let curves: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("<g id=\"curves\""))
+        .skip(1)
+        .take_while(|l| !l.starts_with("</g>"))
+        .collect();
+    assert_eq!(curves.len(), n);
+    assert!(curves.iter().all(|l| l.contains("stroke=\"#009646\"")));
+    assert!(text.contains(&format!("segments with proven bound within ε_d ({n})")));
     // IGES and VTK outputs: the curve reads back as one 126 of the reported degree; the VTK
     // has one polyline and one proven bound per segment.
     let (igs, vtp) = (d.join("c.igs"), d.join("c.vtp"));

@@ -390,7 +390,7 @@ fn certify_ssi(
 /// A curve of a surface's domain as a curve on it: `vericad curve-on-surface`.
 #[pyfunction]
 #[pyo3(signature = (surface, curve, *, tol=1e-3, angle=10.0, bound="local", exact=false,
-    out=None, svg=None, iges=None, vtk=None))]
+    out=None, svg=None, iges=None, vtk=None, svg_3d=None, view=String::from("-60,25")))]
 #[allow(clippy::too_many_arguments)]
 fn curve_on_surface(
     py: Python<'_>,
@@ -404,11 +404,14 @@ fn curve_on_surface(
     svg: Option<PathBuf>,
     iges: Option<PathBuf>,
     vtk: Option<PathBuf>,
+    svg_3d: Option<PathBuf>,
+    view: String,
 ) -> PyResult<Py<PyAny>> {
     use vericad::curve_on_surface::{Arithmetic, Bound, Params, job};
     let Some(bound) = Bound::from_name(bound) else {
         return Err(bad(format!("bound must be `local` or `paper`, not `{bound}`")).into());
     };
+    let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
     let v = detached(py, || {
         let params = Params {
             eps_d: tol,
@@ -426,6 +429,8 @@ fn curve_on_surface(
             svg: svg.as_deref(),
             iges: iges.as_deref(),
             vtk: vtk.as_deref(),
+            svg_3d: svg_3d.as_deref(),
+            view,
         };
         let r = job::run(&surface, &curve, &params, outputs)
             .map_err(|e| fault(&e, e.is_bad_input(), matches!(e, job::JobError::Write(..))))?;

@@ -170,6 +170,15 @@ def test_curve_on_surface_equals_the_cli(cli, tmp_path):
     assert without(written, strip) == without(ref, strip)
 
 
+def test_curve_on_surface_picture_equals_the_cli(cli, tmp_path):
+    r = vericad.curve_on_surface(YANG, YANG, svg_3d=tmp_path / "p.svg", view="10,40")
+    text = (tmp_path / "p.svg").read_text()
+    assert f"segments with proven bound within ε_d ({r.num_segments})" in text
+    cli("curve-on-surface", "--surface", YANG, "--curve", YANG,
+        "--svg-3d", tmp_path / "c.svg", "--view", "10,40")
+    assert (tmp_path / "c.svg").read_text() == text
+
+
 def test_curve_on_surface_options(cli):
     r = vericad.curve_on_surface(f"{YANG}:0", f"{YANG}:0", tol=1e-4, angle=5.0, bound="paper")
     ref = cli_json(

@@ -240,10 +240,13 @@ def curve_on_surface(
     svg: Optional[PathLike] = None,
     iges: Optional[PathLike] = None,
     vtk: Optional[PathLike] = None,
+    svg_3d: Optional[PathLike] = None,
+    view: str = "-60,25",
 ) -> CurveOnSurfaceResult:
     """A domain curve's image on a surface as Bézier curves lying on it, with a proven
     Hausdorff bound (``vericad curve-on-surface``). ``surface`` and ``curve`` are model files,
-    optionally followed by ``:INDEX``."""
+    optionally followed by ``:INDEX``. ``svg_3d`` writes a 3D picture seen from ``view``
+    (``"AZIMUTH,ELEVATION"`` in degrees)."""
     return CurveOnSurfaceResult(
         _vericad.curve_on_surface(
             os.fspath(surface),
@@ -256,6 +259,8 @@ def curve_on_surface(
             svg=_p(svg),
             iges=_p(iges),
             vtk=_p(vtk),
+            svg_3d=_p(svg_3d),
+            view=view,
         )
     )
 

@@ -49,6 +49,8 @@ def curve_on_surface(
     svg: Optional[str] = None,
     iges: Optional[str] = None,
     vtk: Optional[str] = None,
+    svg_3d: Optional[str] = None,
+    view: str = "-60,25",
 ) -> Dict[str, Any]: ...
 def repair(
     input: str,

@@ -116,6 +116,15 @@ pub enum Command {
         /// VTK PolyData (.vtp) here.
         #[arg(long)]
         vtk: Option<PathBuf>,
+        /// Write a 3D picture here (SVG): the surface shaded, the segments over it (green
+        /// within ε_d by their proven bound, red above), their joints marked, with a legend
+        /// and a scale.
+        #[arg(long = "svg-3d")]
+        svg_3d: Option<PathBuf>,
+        /// The 3D picture's view direction: azimuth and elevation in degrees, as `AZ,EL`
+        /// (orthographic; default -60,25).
+        #[arg(long, allow_hyphen_values = true, default_value = "-60,25")]
+        view: String,
         /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
         /// `budget exhausted: memory ...` and exit code 1.
         #[arg(long, allow_hyphen_values = true)]
@@ -332,10 +341,16 @@ pub fn run(cli: Cli) -> i32 {
             svg,
             iges,
             vtk,
+            svg_3d,
+            view,
             max_memory,
             json,
         } => {
             use crate::curve_on_surface::{Arithmetic, Bound, Params, job};
+            let view = match crate::io::picture::View::parse(&view) {
+                Ok(v) => v,
+                Err(e) => return bad(format!("--view: {e}")),
+            };
             let Some(bound) = Bound::from_name(&bound) else {
                 return bad(format!("--bound must be `local` or `paper`, not `{bound}`"));
             };
@@ -355,6 +370,8 @@ pub fn run(cli: Cli) -> i32 {
                 svg: svg.as_deref(),
                 iges: iges.as_deref(),
                 vtk: vtk.as_deref(),
+                svg_3d: svg_3d.as_deref(),
+                view,
             };
             let memory = match memory::budget(max_memory) {
                 Ok(m) => m,

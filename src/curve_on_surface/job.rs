@@ -53,6 +53,10 @@ pub struct Outputs<'a> {
     /// The segments as polylines with per-cell `segment`, `bound` and `certified` arrays,
     /// and the surface, in a `.vtp`.
     pub vtk: Option<&'a std::path::Path>,
+    /// A 3D picture: the surface shaded, the segments over it coloured by their bound
+    /// ([`super::picture`]), seen along `view`.
+    pub svg_3d: Option<&'a std::path::Path>,
+    pub view: crate::io::picture::View,
 }
 
 /// Run the job.
@@ -63,6 +67,13 @@ pub fn run(
     outputs: Outputs,
 ) -> Result<CurveOnSurface, JobError> {
     let (out, svg) = (outputs.json, outputs.svg);
+    // Outputs are checked before the work: an unwritable path fails at once.
+    for p in [out, svg, outputs.iges, outputs.vtk, outputs.svg_3d]
+        .into_iter()
+        .flatten()
+    {
+        crate::io::check_writable(p).map_err(|e| JobError::Write(p.display().to_string(), e))?;
+    }
     let (sf, si) = file_and_index(surface_spec);
     let sm = crate::io::read_model(std::path::Path::new(&sf))?;
     let surf = sm.surfaces.get(si).ok_or_else(|| {
@@ -148,6 +159,10 @@ pub fn run(
         };
         crate::io::write_atomic(p, crate::io::iges::write::to_string(&m, "curve-on-surface"))
             .map_err(|e| JobError::Write(p.display().to_string(), e))?;
+    }
+    if let Some(p) = outputs.svg_3d {
+        let doc = super::picture::picture(&r, &surf.nurbs, sm.unit.as_deref(), &outputs.view);
+        crate::io::write_atomic(p, doc).map_err(|e| JobError::Write(p.display().to_string(), e))?;
     }
     if let Some(p) = outputs.vtk {
         let mut pd = crate::io::vtk::PolyData::default();

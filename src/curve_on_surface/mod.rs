@@ -30,6 +30,7 @@ pub mod g1;
 pub mod hausdorff;
 pub mod job;
 pub mod map;
+pub mod picture;
 pub mod renner;
 pub mod segments;
 pub mod sidedness;

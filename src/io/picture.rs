@@ -76,6 +76,8 @@ pub struct Scene {
     /// Curves, drawn over everything else.
     pub polylines: Vec<(Vec<[f64; 3]>, Rgb)>,
     pub markers: Vec<([f64; 3], Rgb)>,
+    /// Small dots (joints along a curve), drawn with the curves.
+    pub dots: Vec<([f64; 3], Rgb)>,
     /// Legend rows: swatch colour and text.
     pub legend: Vec<(Rgb, String)>,
     /// The length unit for the scale bar (`None`: "model units").
@@ -228,6 +230,7 @@ pub fn render(scene: &Scene, view: &View, width: f64, height: f64) -> String {
         .chain(scene.outlines.iter().flat_map(|l| l.0.iter().copied()))
         .chain(scene.polylines.iter().flat_map(|l| l.0.iter().copied()))
         .chain(scene.markers.iter().map(|m| m.0))
+        .chain(scene.dots.iter().map(|m| m.0))
         .collect();
     let (margin, legend_w) = (40.0, 340.0);
     let pr = Projection::fit(view, &all, width, height, margin, legend_w);
@@ -294,20 +297,22 @@ pub fn render(scene: &Scene, view: &View, width: f64, height: f64) -> String {
         );
     }
     let _ = writeln!(s, "</g>");
-    let _ = writeln!(s, r#"<g id="markers" stroke="black" stroke-width="0.8">"#);
-    for (p, c) in &scene.markers {
-        let q = pr.page(p);
-        if q.iter().all(|x| x.is_finite()) {
-            let _ = writeln!(
-                s,
-                r#"<circle cx="{:.2}" cy="{:.2}" r="4.5" fill="{}"/>"#,
-                q[0],
-                q[1],
-                hex(*c)
-            );
+    for (id, list, r) in [("dots", &scene.dots, 2.0), ("markers", &scene.markers, 4.5)] {
+        let _ = writeln!(s, r#"<g id="{id}" stroke="black" stroke-width="0.6">"#);
+        for (p, c) in list {
+            let q = pr.page(p);
+            if q.iter().all(|x| x.is_finite()) {
+                let _ = writeln!(
+                    s,
+                    r#"<circle cx="{:.2}" cy="{:.2}" r="{r}" fill="{}"/>"#,
+                    q[0],
+                    q[1],
+                    hex(*c)
+                );
+            }
         }
+        let _ = writeln!(s, "</g>");
     }
-    let _ = writeln!(s, "</g>");
     // Title, legend, scale bar, view.
     let _ = writeln!(
         s,
@@ -337,7 +342,7 @@ pub fn render(scene: &Scene, view: &View, width: f64, height: f64) -> String {
         let len = nice_length(room / pr.scale);
         let px = len * pr.scale;
         let y = height - 18.0;
-        let unit = scene.unit.as_deref().unwrap_or("model units");
+        let unit = scene.unit.as_deref().unwrap_or("(model units)");
         let _ = writeln!(
             s,
             r#"<g id="scale" font-family="sans-serif" font-size="12"><line x1="{margin}" y1="{y}" x2="{:.2}" y2="{y}" stroke="black" stroke-width="2"/><text x="{margin}" y="{:.1}">{} {}</text></g>"#,
