@@ -635,6 +635,30 @@ fn repair_picture_and_outputs_checked_first() {
     assert!(!report.exists(), "no output written before the failure");
 }
 
+/// `--pretty` (any command) indents every value; the text parses to the same result.
+#[test]
+fn pretty_json_is_the_same_result_indented() {
+    let d = tmp("pretty");
+    let m = d.join("m.json");
+    std::fs::write(&m, vericad::demo::DEFAULT_MODEL).unwrap();
+    let ms = m.to_str().unwrap();
+    let args = ["curve-on-surface", "--surface", ms, "--curve", ms, "--json"];
+    let (code, plain, _) = vericad(&args);
+    assert_eq!(code, 0);
+    let mut with = args.to_vec();
+    with.push("--pretty");
+    let (code, pretty, _) = vericad(&with);
+    assert_eq!(code, 0);
+    assert!(pretty.lines().count() > 2 * plain.lines().count());
+    let strip = |t: &str| {
+        let mut v: serde_json::Value = serde_json::from_str(t).unwrap();
+        v["elapsed_ms"] = serde_json::Value::Null;
+        v["evidence"]["elapsed_ms"] = serde_json::Value::Null;
+        v
+    };
+    assert_eq!(strip(&plain), strip(&pretty));
+}
+
 /// The JSON result writes a point per line (arrays of numbers inline) and leaves the fitted
 /// cubics out unless `--fits` asks for them; both forms parse as the same points.
 #[test]

@@ -40,6 +40,10 @@ pub const MAX_THREADS: usize = 1024;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    /// Indent every JSON value in written files and `--json` output (by default arrays of
+    /// numbers, such as points, stay on one line).
+    #[arg(long, global = true)]
+    pub pretty: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -319,6 +323,7 @@ pub enum Command {
 
 /// Run a parsed command; returns the process exit code.
 pub fn run(cli: Cli) -> i32 {
+    crate::io::json_text::set_pretty(cli.pretty);
     match cli.command {
         Command::Demo { out, json } => match crate::demo::run(crate::demo::DEFAULT_MODEL, &out) {
             Ok(r) => {

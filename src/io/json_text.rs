@@ -137,8 +137,20 @@ impl Formatter for Readable {
     }
 }
 
-/// `v` as readable JSON text (see the module comment).
+/// Whether [`to_text`] indents every value (`serde_json`'s pretty printer) instead.
+static PRETTY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Indent every value in [`to_text`] from now on (the command line's `--pretty`).
+pub fn set_pretty(on: bool) {
+    PRETTY.store(on, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// `v` as readable JSON text (see the module comment), or fully indented after
+/// [`set_pretty`].
 pub fn to_text<T: Serialize + ?Sized>(v: &T) -> Result<String, serde_json::Error> {
+    if PRETTY.load(std::sync::atomic::Ordering::Relaxed) {
+        return serde_json::to_string_pretty(v);
+    }
     let mut buf = Vec::with_capacity(4096);
     let mut ser = serde_json::Serializer::with_formatter(
         &mut buf,

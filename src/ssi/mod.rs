@@ -41,6 +41,7 @@ pub mod insert;
 pub mod jet_cache;
 pub mod job;
 pub mod krawczyk;
+mod linalg4;
 pub mod mesh;
 pub mod overlap;
 pub mod pair;
