@@ -14,6 +14,32 @@ fn vericad(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// Two bilinear planes over [−1, 1]² as model files in `d`: z = 0, and the plane tilted about
+/// the x axis (z from −0.5 to 0.5); they meet along the x axis.
+fn two_planes(d: &std::path::Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let plane = |z0: f64, z1: f64| {
+        format!(
+            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
+            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
+        )
+    };
+    let (a, b) = (d.join("a.json"), d.join("b.json"));
+    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
+    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    (a, b)
+}
+
+/// The children of the SVG group `<g id="ID" ...>`, one per line as the pictures write them.
+fn svg_group<'a>(text: &'a str, id: &str) -> Vec<&'a str> {
+    let head = format!("<g id=\"{id}\"");
+    text.lines()
+        .skip_while(|l| !l.starts_with(&head))
+        .skip(1)
+        .take_while(|l| !l.starts_with("</g>"))
+        .collect()
+}
+
 fn tmp(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("vericad-cli-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
@@ -244,12 +270,7 @@ fn curve_on_surface_writes_result_and_svg() {
     assert_eq!(code, 0, "{stderr}");
     let text = std::fs::read_to_string(&pic).unwrap();
     let n = r["num_segments"].as_u64().unwrap() as usize;
-    let curves: Vec<&str> = text
-        .lines()
-        .skip_while(|l| !l.starts_with("<g id=\"curves\""))
-        .skip(1)
-        .take_while(|l| !l.starts_with("</g>"))
-        .collect();
+    let curves = svg_group(&text, "curves");
     assert_eq!(curves.len(), n);
     assert!(curves.iter().all(|l| l.contains("stroke=\"#009646\"")));
     assert!(text.contains(&format!("segments with proven bound within ε_d ({n})")));
@@ -443,16 +464,7 @@ fn ssi_checks_outputs_before_the_work() {
 #[test]
 fn ssi_without_certificates_says_so() {
     let d = tmp("no-certify");
-    let plane = |z0: f64, z1: f64| {
-        format!(
-            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
-            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
-            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
-        )
-    };
-    let (a, b) = (d.join("a.json"), d.join("b.json"));
-    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
-    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    let (a, b) = two_planes(&d);
     let run = |extra: &[&str]| -> (i32, String, serde_json::Value) {
         let out = d.join("r.json");
         let mut args = vec![
@@ -495,16 +507,7 @@ fn ssi_without_certificates_says_so() {
 #[test]
 fn ssi_picture_shows_the_branch_to_scale() {
     let d = tmp("picture");
-    let plane = |z0: f64, z1: f64| {
-        format!(
-            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
-            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
-            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
-        )
-    };
-    let (a, b) = (d.join("a.json"), d.join("b.json"));
-    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
-    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    let (a, b) = two_planes(&d);
     let svg = d.join("r.svg");
     let run = |extra: &[&str]| -> (i32, String, String) {
         let mut args = vec![
@@ -546,12 +549,7 @@ fn ssi_picture_shows_the_branch_to_scale() {
         let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
         let n = v["summary"]["points"].as_u64().unwrap();
         assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
-        let curves: Vec<&str> = text
-            .lines()
-            .skip_while(|l| !l.starts_with("<g id=\"curves\""))
-            .skip(1)
-            .take_while(|l| !l.starts_with("</g>"))
-            .collect();
+        let curves = svg_group(&text, "curves");
         assert_eq!(curves.len(), 1, "one branch, all one status: {curves:?}");
         assert!(
             curves[0].contains("stroke=\"#009646\""),
@@ -664,17 +662,7 @@ fn pretty_json_is_the_same_result_indented() {
 #[test]
 fn ssi_json_is_compact_and_fits_are_on_request() {
     let d = tmp("fits");
-    // The plane z = 0 and a plane tilted about the x axis: they meet along the x axis.
-    let plane = |z0: f64, z1: f64| {
-        format!(
-            r#"{{"format": "vericad-model", "version": 1, "surfaces": [{{"degree_u": 1, "degree_v": 1,
-            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
-            "control_points": [[[-1, -1, {z0}], [-1, 1, {z1}]], [[1, -1, {z0}], [1, 1, {z1}]]]}}]}}"#
-        )
-    };
-    let (a, b) = (d.join("a.json"), d.join("b.json"));
-    std::fs::write(&a, plane(0.0, 0.0)).unwrap();
-    std::fs::write(&b, plane(-0.5, 0.5)).unwrap();
+    let (a, b) = two_planes(&d);
     let run = |name: &str, extra: &[&str]| -> (String, serde_json::Value) {
         let out = d.join(name);
         let mut args = vec![

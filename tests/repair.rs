@@ -78,17 +78,22 @@ fn flip_u(s: &mut NurbsSurface<f64, 3>) {
     }
 }
 
-/// The picture of the repaired cube: six patches (one border each), the 36 feature edges
-/// drawn over them, the legend counting both; no gaps left, so no red.
-#[test]
-fn cube_picture_shows_patches_and_feature_edges() {
+/// The cube of Plate 2 with 1e-4 noise, repaired at u1 = u2 = 1e-2, feature angle 30°.
+fn repaired_cube() -> vericad::repair::RepairResult {
     let prm = RepairParams {
         u1: 1e-2,
         u2: 1e-2,
         feature_angle_deg: 30.0,
         ..Default::default()
     };
-    let r = repair(cube(1e-4, 7), &prm, &FeatureOverrides::default(), &none).unwrap();
+    repair(cube(1e-4, 7), &prm, &FeatureOverrides::default(), &none).unwrap()
+}
+
+/// The picture of the repaired cube: six patches (one border each), the 36 feature edges
+/// drawn over them, the legend counting both; no gaps left, so no red.
+#[test]
+fn cube_picture_shows_patches_and_feature_edges() {
+    let r = repaired_cube();
     let svg = vericad::repair::picture::picture(&r, Some("mm"), &Default::default());
     let group = |id: &str| -> Vec<&str> {
         svg.lines()
@@ -114,13 +119,7 @@ fn cube_picture_shows_patches_and_feature_edges() {
 
 #[test]
 fn cube_plate2_connectivity_features_and_averaging() {
-    let prm = RepairParams {
-        u1: 1e-2,
-        u2: 1e-2,
-        feature_angle_deg: 30.0,
-        ..Default::default()
-    };
-    let r = repair(cube(1e-4, 7), &prm, &FeatureOverrides::default(), &none).unwrap();
+    let r = repaired_cube();
     let rep = &r.report;
     assert_eq!(rep.patches_in, 54);
     // Algorithm 2 stops at the feature lines: one 3 × 3 group per face, six merged patches.
