@@ -40,6 +40,8 @@ pub(crate) fn search(
         Rc::new((s, pts))
     };
     let mut stack: Vec<(ICurve, Rc<Piece>, u32)> = vec![(curve.clone(), piece(patch.clone()), 0)];
+    // Consecutive parts of the curve are usually near the same output chord.
+    let hint = super::near::Hint::default();
     while let Some((c, sp, depth)) = stack.pop() {
         out.boxes += 1;
         let s = &sp.0;
@@ -61,7 +63,7 @@ pub(crate) fn search(
             continue;
         }
         let m = meet(&hc, &hs);
-        if near.box_within(&m, d) || near.net_within(&pc, d) {
+        if near.net_within_hinted(&pc, d, &hint) || near.box_within(&m, d) {
             out.near_output += 1;
             continue;
         }

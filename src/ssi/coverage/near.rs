@@ -23,6 +23,17 @@ use super::patch::{Box3, V};
 use crate::scalar::Interval;
 
 /// Segments of the output with a bounding-volume tree over their boxes.
+/// The entry that decided the last query of a run of queries ([`Near::net_within_hinted`]).
+#[derive(Debug, Default)]
+pub struct Hint(std::cell::Cell<Option<u32>>);
+
+impl Hint {
+    /// A hint naming entry `s` (any index: one out of range is ignored).
+    pub fn at(s: u32) -> Hint {
+        Hint(std::cell::Cell::new(Some(s)))
+    }
+}
+
 pub struct Near {
     segs: Vec<([f64; 3], [f64; 3])>,
     /// Per entry of `segs`: `δ` (0 for an output segment, the chord bound for a chord).
@@ -213,7 +224,7 @@ impl Near {
         let corners: Vec<[f64; 3]> = (0..8)
             .map(|m| std::array::from_fn(|k| if m >> k & 1 == 0 { b.0[k] } else { b.1[k] }))
             .collect();
-        self.hull_within(&corners, b, d)
+        self.hull_within(&corners, b, d, &Hint::default())
     }
     /// Whether the convex hull of enclosed control points (each an interval box, given as
     /// Cartesian enclosures) is proven within `d` of the output (one segment, or one chord with
@@ -221,6 +232,12 @@ impl Near {
     /// positive weights lies in that hull, and the distance to a segment is convex, so its
     /// largest value over the hull is taken at a corner of one of the boxes.
     pub fn net_within(&self, pts: &[V], d: f64) -> bool {
+        self.net_within_hinted(pts, d, &Hint::default())
+    }
+    /// [`Near::net_within`], trying first the entry that decided the last call given the
+    /// same `hint` (a query along a curve is usually decided by the chord that decided its
+    /// neighbour). The hint only orders the search: the same test decides.
+    pub fn net_within_hinted(&self, pts: &[V], d: f64, hint: &Hint) -> bool {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         let mut corners = Vec::with_capacity(pts.len());
@@ -239,14 +256,29 @@ impl Near {
                 }
             }
         }
-        self.hull_within(&corners, &(lo, hi), d)
+        self.hull_within(&corners, &(lo, hi), d, hint)
     }
-    fn hull_within(&self, corners: &[[f64; 3]], b: &Box3, d: f64) -> bool {
+    /// Whether every corner is proven within `d` of entry `s` (a segment, or a chord with its
+    /// slack).
+    fn entry_holds(&self, s: u32, corners: &[[f64; 3]], d: f64) -> bool {
+        let (p, q) = &self.segs[s as usize];
+        let slack = Interval::point(self.slack[s as usize]);
+        corners
+            .iter()
+            .all(|c| (Interval::point(dist_upper(c, p, q)) + slack).hi <= d)
+    }
+    fn hull_within(&self, corners: &[[f64; 3]], b: &Box3, d: f64, hint: &Hint) -> bool {
         if self.nodes.is_empty()
             || corners.is_empty()
             || !corners.iter().flatten().all(|x| x.is_finite())
         {
             return false;
+        }
+        if let Some(s) = hint.0.get()
+            && (s as usize) < self.segs.len()
+            && self.entry_holds(s, corners, d)
+        {
+            return true;
         }
         let mut stack = vec![0u32];
         while let Some(i) = stack.pop() {
@@ -269,12 +301,8 @@ impl Near {
                 }
                 None => {
                     for &s in &self.order[n.range.0 as usize..n.range.1 as usize] {
-                        let (p, q) = &self.segs[s as usize];
-                        let slack = Interval::point(self.slack[s as usize]);
-                        if corners
-                            .iter()
-                            .all(|c| (Interval::point(dist_upper(c, p, q)) + slack).hi <= d)
-                        {
+                        if self.entry_holds(s, corners, d) {
+                            hint.0.set(Some(s));
                             return true;
                         }
                     }
