@@ -127,8 +127,8 @@ pub enum Command {
         svg_3d: Option<PathBuf>,
         /// The 3D picture's view direction: azimuth and elevation in degrees, as `AZ,EL`
         /// (orthographic; default -60,25).
-        #[arg(long, allow_hyphen_values = true, default_value = "-60,25")]
-        view: String,
+        #[arg(long, allow_hyphen_values = true, default_value = "-60,25", value_parser = crate::io::picture::View::parse)]
+        view: crate::io::picture::View,
         /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
         /// `budget exhausted: memory ...` and exit code 1.
         #[arg(long, allow_hyphen_values = true)]
@@ -185,8 +185,8 @@ pub enum Command {
         svg: Option<PathBuf>,
         /// The picture's view direction: azimuth and elevation in degrees, as `AZ,EL`
         /// (orthographic; default -60,25).
-        #[arg(long, allow_hyphen_values = true, default_value = "-60,25")]
-        view: String,
+        #[arg(long, allow_hyphen_values = true, default_value = "-60,25", value_parser = crate::io::picture::View::parse)]
+        view: crate::io::picture::View,
         /// Keep every branch's fitted cubic (knots, control points in 3D and in both domains)
         /// in the JSON result; off by default (about four times the size of the points).
         #[arg(long)]
@@ -272,8 +272,8 @@ pub enum Command {
         svg: Option<PathBuf>,
         /// The picture's view direction: azimuth and elevation in degrees, as `AZ,EL`
         /// (orthographic; default -60,25).
-        #[arg(long, allow_hyphen_values = true, default_value = "-60,25")]
-        view: String,
+        #[arg(long, allow_hyphen_values = true, default_value = "-60,25", value_parser = crate::io::picture::View::parse)]
+        view: crate::io::picture::View,
         /// Memory budget in megabytes (10⁶ bytes) of heap: past it the job stops with
         /// `budget exhausted: memory ...` and exit code 1.
         #[arg(long, allow_hyphen_values = true)]
@@ -352,10 +352,6 @@ pub fn run(cli: Cli) -> i32 {
             json,
         } => {
             use crate::curve_on_surface::{Arithmetic, Bound, Params, job};
-            let view = match crate::io::picture::View::parse(&view) {
-                Ok(v) => v,
-                Err(e) => return bad(format!("--view: {e}")),
-            };
             let Some(bound) = Bound::from_name(&bound) else {
                 return bad(format!("--bound must be `local` or `paper`, not `{bound}`"));
             };
@@ -406,10 +402,6 @@ pub fn run(cli: Cli) -> i32 {
             json,
         } => {
             use crate::ssi::job;
-            let view = match crate::io::picture::View::parse(&view) {
-                Ok(v) => v,
-                Err(e) => return bad(format!("--view: {e}")),
-            };
             if let Some(n) = threads
                 && !(1..=MAX_THREADS).contains(&n)
             {
@@ -494,10 +486,6 @@ pub fn run(cli: Cli) -> i32 {
             max_memory,
             json,
         } => {
-            let view = match crate::io::picture::View::parse(&view) {
-                Ok(v) => v,
-                Err(e) => return bad(format!("--view: {e}")),
-            };
             let prm = crate::repair::RepairParams {
                 u1,
                 u2,

@@ -68,12 +68,8 @@ pub fn run(
 ) -> Result<CurveOnSurface, JobError> {
     let (out, svg) = (outputs.json, outputs.svg);
     // Outputs are checked before the work: an unwritable path fails at once.
-    for p in [out, svg, outputs.iges, outputs.vtk, outputs.svg_3d]
-        .into_iter()
-        .flatten()
-    {
-        crate::io::check_writable(p).map_err(|e| JobError::Write(p.display().to_string(), e))?;
-    }
+    crate::io::check_all_writable([out, svg, outputs.iges, outputs.vtk, outputs.svg_3d])
+        .map_err(|(p, e)| JobError::Write(p.display().to_string(), e))?;
     let (sf, si) = file_and_index(surface_spec);
     let sm = crate::io::read_model(std::path::Path::new(&sf))?;
     let surf = sm.surfaces.get(si).ok_or_else(|| {

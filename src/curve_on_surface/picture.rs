@@ -4,13 +4,12 @@
 //! ([`crate::io::picture`]).
 
 use super::CurveOnSurface;
-use crate::io::picture::{Rgb, Scene, View, render};
+use crate::io::picture::{BORDER, NOT_PROVEN, PAGE, PROVEN, Rgb, Scene, View, render};
 use crate::spline::{BezierCurve, NurbsSurface};
 
 const SURFACE: Rgb = [172, 190, 214];
-const BORDER: Rgb = [90, 90, 90];
-const WITHIN: Rgb = [0, 150, 70];
-const ABOVE: Rgb = [215, 30, 30];
+const WITHIN: Rgb = PROVEN;
+const ABOVE: Rgb = NOT_PROVEN;
 const JOINT: Rgb = [40, 40, 40];
 /// Grid steps per direction of the surface, and samples per segment.
 const GRID: usize = 32;
@@ -71,5 +70,5 @@ pub fn picture(
     scene
         .legend
         .push((JOINT, format!("segment joints ({})", r.segments.len() + 1)));
-    render(&scene, view, 1100.0, 800.0)
+    render(&scene, view, PAGE[0], PAGE[1])
 }

@@ -124,6 +124,33 @@ pub fn check_writable(path: &std::path::Path) -> std::io::Result<()> {
     std::fs::remove_file(&tmp)
 }
 
+/// `s` at the `(n + 1)²` points of an `n × n` grid of its domain, `u` major: the point
+/// `(i, j)` is at index `i (n + 1) + j` (the views' surface sampling).
+pub fn surface_grid(s: &crate::spline::NurbsSurface<f64, 3>, n: usize) -> Vec<[f64; 3]> {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    let mut pts = Vec::with_capacity((n + 1) * (n + 1));
+    for i in 0..=n {
+        for j in 0..=n {
+            let (u, v) = (
+                u0 + (u1 - u0) * i as f64 / n as f64,
+                v0 + (v1 - v0) * j as f64 / n as f64,
+            );
+            pts.push(s.eval(&u, &v));
+        }
+    }
+    pts
+}
+
+/// [`check_writable`] for every given path; the first that cannot be written, with why.
+pub fn check_all_writable<'a>(
+    paths: impl IntoIterator<Item = Option<&'a std::path::Path>>,
+) -> Result<(), (&'a std::path::Path, std::io::Error)> {
+    for p in paths.into_iter().flatten() {
+        check_writable(p).map_err(|e| (p, e))?;
+    }
+    Ok(())
+}
+
 /// Write a model in the format named by the path's extension.
 pub fn write_model(
     path: &std::path::Path,

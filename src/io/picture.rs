@@ -65,6 +65,13 @@ impl View {
 /// An RGB colour.
 pub type Rgb = [u8; 3];
 
+/// The colours every picture uses for what is proven (within its tolerance), what is not
+/// proven (or left open), and face borders; and the page size.
+pub const PROVEN: Rgb = [0, 150, 70];
+pub const NOT_PROVEN: Rgb = [215, 30, 30];
+pub const BORDER: Rgb = [90, 90, 90];
+pub const PAGE: [f64; 2] = [1100.0, 800.0];
+
 /// What to draw.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
@@ -95,17 +102,9 @@ impl Scene {
         border: Rgb,
     ) {
         let n = grid.max(1);
-        let (u0, u1, v0, v1) = s.hom.domain();
-        let g: Vec<Vec<[f64; 3]>> = (0..=n)
-            .map(|i| {
-                (0..=n)
-                    .map(|j| {
-                        let u = u0 + (u1 - u0) * i as f64 / n as f64;
-                        let v = v0 + (v1 - v0) * j as f64 / n as f64;
-                        s.eval(&u, &v)
-                    })
-                    .collect()
-            })
+        let g: Vec<Vec<[f64; 3]>> = super::surface_grid(s, n)
+            .chunks(n + 1)
+            .map(<[_]>::to_vec)
             .collect();
         for i in 0..n {
             for j in 0..n {

@@ -27,16 +27,7 @@ impl PolyData {
     /// of cells added.
     pub fn add_surface(&mut self, s: &crate::spline::NurbsSurface<f64, 3>, n: usize) -> usize {
         let base = self.points.len() as u32;
-        let (u0, u1, v0, v1) = s.hom.domain();
-        for i in 0..=n {
-            for j in 0..=n {
-                let (u, v) = (
-                    u0 + (u1 - u0) * i as f64 / n as f64,
-                    v0 + (v1 - v0) * j as f64 / n as f64,
-                );
-                self.points.push(s.eval(&u, &v));
-            }
-        }
+        self.points.extend(super::surface_grid(s, n));
         let id = |i: usize, j: usize| base + (i * (n + 1) + j) as u32;
         for i in 0..n {
             for j in 0..n {

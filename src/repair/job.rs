@@ -60,13 +60,8 @@ pub fn run_result(
 ) -> Result<RepairResult, JobError> {
     let m = crate::io::read_model(input)?;
     // Outputs are checked before the work: an unwritable path fails at once.
-    for p in [out.model, out.report, out.vtk, out.svg]
-        .into_iter()
-        .flatten()
-    {
-        crate::io::check_writable(p)
-            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
-    }
+    crate::io::check_all_writable([out.model, out.report, out.vtk, out.svg])
+        .map_err(|(p, e)| JobError::Write(p.display().to_string(), e.to_string()))?;
     let overrides: FeatureOverrides = match features {
         Some(p) => {
             let t = std::fs::read_to_string(p)

@@ -4,7 +4,7 @@
 
 use super::RepairResult;
 use super::edges::{arc_length_samples, edge_curve};
-use crate::io::picture::{Rgb, Scene, View, render};
+use crate::io::picture::{BORDER, NOT_PROVEN, PAGE, Rgb, Scene, View, render};
 
 /// Patch colours, in turn.
 const PALETTE: [Rgb; 8] = [
@@ -17,9 +17,8 @@ const PALETTE: [Rgb; 8] = [
     [214, 178, 150],
     [190, 176, 222],
 ];
-const BORDER: Rgb = [80, 80, 80];
 const FEATURE: Rgb = [20, 20, 20];
-const GAP: Rgb = [215, 30, 30];
+const GAP: Rgb = NOT_PROVEN;
 /// Grid steps per direction of a patch.
 const GRID: usize = 12;
 /// Samples along an edge curve.
@@ -77,5 +76,5 @@ pub fn picture(r: &RepairResult, unit: Option<&str>, view: &View) -> String {
             .legend
             .push((GAP, format!("gaps left above u2 ({})", rep.gaps_left.len())));
     }
-    render(&scene, view, 1100.0, 800.0)
+    render(&scene, view, PAGE[0], PAGE[1])
 }

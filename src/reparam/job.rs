@@ -84,13 +84,8 @@ fn write(path: &Path, text: impl AsRef<[u8]>) -> Result<(), JobError> {
 /// Run the job on `spec` (`FILE` or `FILE:FACE`).
 pub fn run(spec: &str, params: &Params, out: Outputs) -> Result<JobReport, JobError> {
     params.validate().map_err(JobError::Params)?;
-    for p in [out.model, out.report, out.svg, out.vtk]
-        .into_iter()
-        .flatten()
-    {
-        crate::io::check_writable(p)
-            .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
-    }
+    crate::io::check_all_writable([out.model, out.report, out.svg, out.vtk])
+        .map_err(|(p, e)| JobError::Write(p.display().to_string(), e.to_string()))?;
     use crate::io::Format;
     if let Some(p) = out.model
         && !matches!(

@@ -294,17 +294,11 @@ pub fn refine_branch(
                 .flatten();
             run.iter_mut()
                 .map(|r| {
-                    if !prm.curve_certificates {
-                        let da = g.ea.distance_bound(&r.xyz, &r.uv_a);
-                        let db = g.eb.distance_bound(&r.xyz, &r.uv_b);
-                        return (
-                            Err(Uncertified::NotRequested),
-                            da.unwrap_or(f64::INFINITY),
-                            db.unwrap_or(f64::INFINITY),
-                        );
-                    }
-                    let c =
-                        onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| adopt_centre(g, r, c));
+                    let c = if prm.curve_certificates {
+                        onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| adopt_centre(g, r, c))
+                    } else {
+                        Err(Uncertified::NotRequested)
+                    };
                     let radius = c.as_ref().map(|c| c.0).map_err(|u| *u);
                     let (da, db) = match c {
                         Ok((_, Some(d))) => d,

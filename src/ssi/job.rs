@@ -73,9 +73,9 @@ pub struct Outputs<'a> {
 }
 
 /// Fail before the work when an output cannot be written.
-fn check_writable(p: &Path) -> Result<(), JobError> {
-    crate::io::check_writable(p)
-        .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))
+fn check_writable<'a>(paths: impl IntoIterator<Item = Option<&'a Path>>) -> Result<(), JobError> {
+    crate::io::check_all_writable(paths)
+        .map_err(|(p, e)| JobError::Write(p.display().to_string(), e.to_string()))
 }
 
 /// Write through a temporary file and a rename: a failed write keeps the previous file.
@@ -190,12 +190,7 @@ pub fn run(
         Some(f) => Some(read_in_range(f)?),
         None => None,
     };
-    for p in [outputs.json, outputs.vtk, outputs.iges, outputs.svg]
-        .into_iter()
-        .flatten()
-    {
-        check_writable(p)?;
-    }
+    check_writable([outputs.json, outputs.vtk, outputs.iges, outputs.svg])?;
     let t0 = Instant::now();
     let last = std::sync::Mutex::new(0.0f64);
     let progress = |done: usize, total: usize| {
@@ -454,9 +449,7 @@ pub fn run_certify(
         None => None,
     };
     let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
-    if let Some(p) = json_out {
-        check_writable(p)?;
-    }
+    check_writable([json_out])?;
     let t0 = Instant::now();
     let r = intersect_models(
         &a,

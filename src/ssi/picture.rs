@@ -10,16 +10,13 @@
 //! whole surfaces sampled on a grid, with their border curves.
 
 use super::report::{SingularKind, SsiResult};
-use crate::io::picture::{Rgb, Scene, View, render};
+use crate::io::picture::{BORDER, NOT_PROVEN, PAGE, PROVEN, Rgb, Scene, View, render};
 use crate::model::Model;
 use crate::tessellate::{MeshParams, mesh_brep};
 
 const FACE_A: Rgb = [170, 188, 214];
 const FACE_B: Rgb = [218, 200, 166];
-const BORDER: Rgb = [90, 90, 90];
-const PROVEN: Rgb = [0, 150, 70];
 const ABOVE_TOL: Rgb = [235, 150, 0];
-const UNPROVEN: Rgb = [215, 30, 30];
 const SINGULAR: Rgb = [40, 70, 210];
 const REGION: Rgb = [245, 110, 0];
 
@@ -73,7 +70,7 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
     };
     let na = add_faces(&mut scene, a, FACE_A);
     let nb = b.map(|b| add_faces(&mut scene, b, FACE_B));
-    let colour = [PROVEN, ABOVE_TOL, UNPROVEN];
+    let colour = [PROVEN, ABOVE_TOL, NOT_PROVEN];
     let mut count = [0usize; 3];
     for br in r.pairs.iter().flat_map(|p| &p.branches) {
         let n = br.points.len();
@@ -117,7 +114,7 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
             .is_some_and(|x| x.kind != SingularKind::Uncertified);
         scene
             .markers
-            .push((t.point, if proven { SINGULAR } else { UNPROVEN }));
+            .push((t.point, if proven { SINGULAR } else { NOT_PROVEN }));
         if proven {
             singular += 1;
         } else {
@@ -161,10 +158,13 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
         ));
     }
     if touch > 0 {
-        legend.push((UNPROVEN, format!("touch points, kind not proven ({touch})")));
+        legend.push((
+            NOT_PROVEN,
+            format!("touch points, kind not proven ({touch})"),
+        ));
     }
     if regions > 0 {
         legend.push((REGION, format!("uncertified coverage regions ({regions})")));
     }
-    render(&scene, view, 1100.0, 800.0)
+    render(&scene, view, PAGE[0], PAGE[1])
 }

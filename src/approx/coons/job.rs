@@ -77,9 +77,8 @@ impl From<OutputFault> for JobError {
 impl Outputs<'_> {
     /// Before the work: every output writable, the surfaces' file of a type that holds them.
     pub(super) fn check(&self) -> Result<(), OutputFault> {
-        for p in [self.model, self.report, self.vtk].into_iter().flatten() {
-            crate::io::check_writable(p).map_err(|e| OutputFault::write(p, e))?;
-        }
+        crate::io::check_all_writable([self.model, self.report, self.vtk])
+            .map_err(|(p, e)| OutputFault::write(p, e))?;
         use crate::io::Format;
         if let Some(p) = self.model
             && !matches!(
