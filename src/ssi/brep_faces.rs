@@ -361,28 +361,31 @@ impl<'a> Faces<'a> {
         // A tangent contact along a shared edge (a G1 join of two faces) is that edge; its
         // points outside either face are not the faces' contact.
         if let Some(c) = &mut p.tangent_contact {
+            let mut keep_point = |x: &[f64; 3], ua: &[f64; 2], ub: &[f64; 2]| match near_shared(x) {
+                Some((e, d)) => {
+                    shared[e].points += 1;
+                    shared[e].max_distance = shared[e].max_distance.max(d);
+                    false
+                }
+                None if !inside(ua, ub) => {
+                    out.points_outside += 1;
+                    false
+                }
+                None => true,
+            };
             let keep: Vec<bool> = c
                 .points
                 .iter()
                 .zip(&c.params)
-                .map(|(x, (ua, ub))| match near_shared(x) {
-                    Some((e, d)) => {
-                        shared[e].points += 1;
-                        shared[e].max_distance = shared[e].max_distance.max(d);
-                        false
-                    }
-                    None if !inside(ua, ub) => {
-                        out.points_outside += 1;
-                        false
-                    }
-                    None => true,
-                })
+                .map(|(x, (ua, ub))| keep_point(x, ua, ub))
                 .collect();
             let mut k = keep.iter();
             c.points.retain(|_| *k.next().unwrap_or(&true));
             let mut k = keep.iter();
             c.params.retain(|_| *k.next().unwrap_or(&true));
-            if c.points.is_empty() && c.points_not_listed == 0 {
+            c.unlisted.retain(|(x, ua, ub)| keep_point(x, ua, ub));
+            c.points_not_listed = c.unlisted.len();
+            if c.points.is_empty() && c.unlisted.is_empty() {
                 p.tangent_contact = None;
             }
         }

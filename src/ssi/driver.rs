@@ -74,6 +74,9 @@ fn swap_sides(mut p: PairOut) -> PairOut {
         for (a, b) in &mut c.params {
             std::mem::swap(a, b);
         }
+        for (_, a, b) in &mut c.unlisted {
+            std::mem::swap(a, b);
+        }
     }
     let s = &mut p.stats;
     std::mem::swap(&mut s.triangles_a, &mut s.triangles_b);

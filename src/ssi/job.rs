@@ -359,9 +359,9 @@ impl std::fmt::Display for SsiResult {
                 continue;
             };
             let n = c.points.len();
-            let at = |k: usize| {
-                let q = c.points[k];
-                format!("({:.6}, {:.6}, {:.6})", q[0], q[1], q[2])
+            let at = |k: usize| match c.points.get(k) {
+                Some(q) => format!("({:.6}, {:.6}, {:.6})", q[0], q[1], q[2]),
+                None => "(not listed)".to_string(),
             };
             writeln!(
                 f,
@@ -370,7 +370,7 @@ impl std::fmt::Display for SsiResult {
                 p.b,
                 n + c.points_not_listed,
                 at(0),
-                at(n - 1),
+                at(n.saturating_sub(1)),
                 c.max_sin_angle,
                 c.max_gap,
                 c.touch_points_moved,
@@ -470,4 +470,43 @@ pub fn run_certify(
         write(p, &json_text(&rep)?)?;
     }
     Ok(rep)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Surface;
+    use crate::spline::construct::bilinear;
+
+    /// A face restriction can leave a tangent contact whose listed points all went to a
+    /// shared edge while unlisted ones remain (occt-hammer.iges did: the report then
+    /// indexed an empty polyline). The report names the count and says none is listed.
+    #[test]
+    fn a_contact_without_listed_points_is_reported() {
+        let plane = |z0: f64, z1: f64| {
+            let s = bilinear(
+                [0.0, 0.0, z0],
+                [1.0, 0.0, z0],
+                [0.0, 1.0, z1],
+                [1.0, 1.0, z1],
+            );
+            Surface::new("plane", s.expect("a finite bilinear patch"))
+        };
+        let m = Model {
+            surfaces: vec![plane(0.0, 0.0), plane(-0.5, 0.5)],
+            ..Default::default()
+        };
+        let mut r = intersect_models(&m, None, &SsiParams::default(), &|_, _| {})
+            .expect("two crossing planes intersect");
+        assert_eq!(r.pairs.len(), 1);
+        r.pairs[0].tangent_contact = Some(super::super::tangent_contact::TangentContactOut {
+            points_not_listed: 7,
+            ..Default::default()
+        });
+        let text = r.to_string();
+        assert!(
+            text.contains("TANGENT CONTACT along a curve (measured): 7 points from (not listed)"),
+            "{text}"
+        );
+    }
 }

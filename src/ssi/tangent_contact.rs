@@ -40,6 +40,10 @@ pub struct TangentContactOut {
     pub params: Vec<([f64; 2], [f64; 2])>,
     /// Contact points beyond the listed ones.
     pub points_not_listed: usize,
+    /// Those points with their parameters on A and on B (not in the JSON), so that a face
+    /// restriction can classify every contact point, listed or not.
+    #[serde(skip)]
+    pub unlisted: Vec<([f64; 3], [f64; 2], [f64; 2])>,
     /// Boxes `[u0, u1, v0, v1]` of the contact points' parameters on each surface.
     pub uv_a: [f64; 4],
     pub uv_b: [f64; 4],
@@ -158,13 +162,17 @@ pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f6
         return;
     }
     let total = pts.len();
-    let chained = chain(&pts[..total.min(MAX_LISTED)]);
+    let listed = total.min(MAX_LISTED);
+    let chained = chain(&pts[..listed]);
     let mut keep_t = touch.iter().map(|m| m.is_none());
     p.touch_points.retain(|_| keep_t.next().unwrap_or(true));
     let mut keep_b = branch.iter().map(|m| m.is_none());
     p.branches.retain(|_| keep_b.next().unwrap_or(true));
     p.tangent_contact = Some(TangentContactOut {
         points_not_listed: total - chained.len(),
+        unlisted: (listed..total)
+            .map(|k| (pts[k], uvs[k].0, uvs[k].1))
+            .collect(),
         points: chained.iter().map(|&k| pts[k]).collect(),
         params: chained.iter().map(|&k| uvs[k]).collect(),
         uv_a: bx_a,
