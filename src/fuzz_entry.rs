@@ -279,7 +279,7 @@ pub fn repair_soup(data: &[u8]) -> usize {
 /// coincidences, touching, crossings at knot lines and degenerate nets all occur. Never a
 /// panic; the coverage classes add up; a certified run has no uncertified region and every
 /// point proven within tol of the curve; every proven radius is finite. Returns the number of
-/// branches.
+/// branches. The text report and the JSON of the whole result are built too.
 pub fn ssi_surfaces(data: &[u8]) -> usize {
     use crate::spline::NurbsSurface;
     let byte = |k: usize| data.get(k).copied().unwrap_or(0);
@@ -317,9 +317,23 @@ pub fn ssi_surfaces(data: &[u8]) -> usize {
         coverage_max_boxes: 20_000,
         ..Default::default()
     };
-    let r = match crate::ssi::intersect_pair_canonical(&a, &b, (0, 1), &prm, None) {
+    // Through the whole job (two one-face models), so the summary and the report that a
+    // user reads are built from every result too (a report once indexed an empty polyline).
+    let model = |s: NurbsSurface<f64, 3>| crate::model::Model {
+        surfaces: vec![crate::model::Surface::new("patch", s)],
+        ..Default::default()
+    };
+    let (ma, mb) = (model(a), model(b));
+    let all = match crate::ssi::intersect_models(&ma, Some(&mb), &prm, &|_, _| {}) {
         Ok(r) => r,
         Err(e) => panic!("ssi failed on valid patches: {e}"),
+    };
+    assert!(!all.to_string().is_empty());
+    if let Err(e) = serde_json::to_string(&all) {
+        panic!("the result does not serialize: {e}");
+    }
+    let Some(r) = all.pairs.into_iter().next() else {
+        return 0;
     };
     if let Some(c) = &r.coverage {
         assert_eq!(
