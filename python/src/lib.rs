@@ -280,6 +280,13 @@ fn read_model(py: Python<'_>, path: PathBuf) -> PyResult<Py<PyAny>> {
     Ok(model_py(py, &m)?.into_any().unbind())
 }
 
+/// From now on, read STEP and IGES files whose faces are partly invalid by skipping those
+/// faces (accounted `invalid`, named in the warnings), as the command line's `--skip-invalid`.
+#[pyfunction]
+fn set_skip_invalid(on: bool) {
+    vericad::io::set_skip_invalid_faces(on);
+}
+
 /// The model's summary, as `vericad info --json` prints it.
 #[pyfunction]
 fn info(py: Python<'_>, path: PathBuf) -> PyResult<Py<PyAny>> {
@@ -781,6 +788,7 @@ fn _vericad(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("OutputError", py.get_type::<OutputError>())?;
     m.add_function(wrap_pyfunction!(read_model, m)?)?;
     m.add_function(wrap_pyfunction!(info, m)?)?;
+    m.add_function(wrap_pyfunction!(set_skip_invalid, m)?)?;
     m.add_function(wrap_pyfunction!(ssi, m)?)?;
     m.add_function(wrap_pyfunction!(certify_ssi, m)?)?;
     m.add_function(wrap_pyfunction!(curve_on_surface, m)?)?;

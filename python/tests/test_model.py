@@ -47,6 +47,26 @@ def test_info_equals_the_cli(cli):
         assert plain(vericad.info(f)) == cli_json(cli, "info", f)
 
 
+def test_skip_invalid_reads_a_part_without_its_invalid_face(tmp_path):
+    text = (PUBLIC / "gmsh-t20_data.step").read_text()
+    knots = "(2.09439510241284,3.14159264302763)"
+    assert text.count(knots) == 1
+    bad = tmp_path / "t20-bad.step"
+    bad.write_text(text.replace(knots, "(3.14159264302763,2.09439510241284)"))
+    with pytest.raises(vericad.BadInputError, match="knot"):
+        vericad.read_model(bad)
+    vericad.set_skip_invalid(True)
+    try:
+        m = vericad.read_model(bad)
+        intact = vericad.read_model(PUBLIC / "gmsh-t20_data.step")
+    finally:
+        vericad.set_skip_invalid(False)
+    assert len(m.surfaces) + 1 == len(intact.surfaces) == 21
+    assert any(w.startswith("invalid face #") for w in m.warnings)
+    with pytest.raises(vericad.BadInputError):
+        vericad.read_model(bad)
+
+
 def test_missing_file_is_bad_input():
     with pytest.raises(vericad.BadInputError, match="No such file"):
         vericad.read_model("no/such/model.step")

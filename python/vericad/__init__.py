@@ -54,6 +54,7 @@ __all__ = [
     "batch_record_line",
     "discover",
     "read_records",
+    "set_skip_invalid",
     "__version__",
 ]
 
@@ -158,6 +159,14 @@ def _p(p: Optional[PathLike]) -> Optional[str]:
 def read_model(path: PathLike) -> Model:
     """Read a model file: native JSON, STEP, IGES, STL or Plot3D."""
     return Model(_vericad.read_model(os.fspath(path)))
+
+
+def set_skip_invalid(on: bool) -> None:
+    """From now on (in this process), read STEP and IGES files whose faces are partly invalid
+    by skipping those faces, as the command line's ``--skip-invalid``: each is accounted
+    ``invalid`` with its id and reason and named in the model's warnings. Off by default: such
+    a file raises :class:`BadInputError` naming the entity."""
+    _vericad.set_skip_invalid(bool(on))
 
 
 def info(path: PathLike) -> Result:

@@ -50,6 +50,8 @@ pub enum IssueKind {
     UnsupportedPCurve(String),
     #[error("surface of type {0} is not supported; the face has no surface")]
     UnsupportedSurface(String),
+    #[error("surface is invalid ({0}); the face was skipped (--skip-invalid) and has no surface")]
+    InvalidSurface(String),
     #[error("references nest deeper than {0} levels (a cycle?)")]
     TooDeep(usize),
     #[error("vertex lies {distance:e} from the curve end it bounds (tolerance {tolerance:e})")]

@@ -44,6 +44,11 @@ pub struct Cli {
     /// numbers, such as points, stay on one line).
     #[arg(long, global = true)]
     pub pretty: bool,
+    /// Read STEP and IGES files whose faces are partly invalid (non-finite or malformed
+    /// surface or trims) by skipping those faces, each counted `invalid` with its id and
+    /// reason in the accounts and named in a warning (by default such a file is refused).
+    #[arg(long, global = true)]
+    pub skip_invalid: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -324,6 +329,7 @@ pub enum Command {
 /// Run a parsed command; returns the process exit code.
 pub fn run(cli: Cli) -> i32 {
     crate::io::json_text::set_pretty(cli.pretty);
+    crate::io::set_skip_invalid_faces(cli.skip_invalid);
     match cli.command {
         Command::Demo { out, json } => match crate::demo::run(crate::demo::DEFAULT_MODEL, &out) {
             Ok(r) => {

@@ -52,6 +52,38 @@ pub fn format_of(path: &std::path::Path) -> Option<Format> {
     }
 }
 
+/// Whether the STEP and IGES readers skip a face whose own geometry is invalid (non-finite
+/// or malformed surface, or its trims) instead of refusing the file.
+static SKIP_INVALID_FACES: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
+/// From now on, read a STEP or IGES file whose faces are partly invalid by skipping those
+/// faces: each one is accounted `invalid` (with its id and the reason) in the model's
+/// accounts, named in a warning, and left out of the B-rep as a face without a surface.
+/// Faults of the file as a whole (syntax, units, an exhausted expansion budget) still refuse
+/// it. The command line's `--skip-invalid`; off by default (a fault refuses the file).
+pub fn set_skip_invalid_faces(on: bool) {
+    SKIP_INVALID_FACES.store(on, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// How the STEP and IGES readers treat faulty faces.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Skip (and account) a face whose own geometry is invalid instead of refusing the file
+    /// (see [`set_skip_invalid_faces`]).
+    pub skip_invalid_faces: bool,
+}
+
+impl ReadOptions {
+    /// The options [`read_model`] and the readers' `from_str` use: off unless
+    /// [`set_skip_invalid_faces`] turned skipping on.
+    pub fn current() -> ReadOptions {
+        ReadOptions {
+            skip_invalid_faces: SKIP_INVALID_FACES.load(std::sync::atomic::Ordering::Relaxed),
+        }
+    }
+}
+
 /// Read a model file of any supported format.
 pub fn read_model(path: &std::path::Path) -> Result<Model, ReadError> {
     match format_of(path) {

@@ -354,6 +354,15 @@ const SURFACES: [i64; 9] = [128, 120, 122, 108, 190, 192, 194, 196, 198];
 
 /// Read IGES text.
 pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
+    from_str_with(text, file, crate::io::ReadOptions::current())
+}
+
+/// [`from_str`] with explicit options (skip invalid faces or refuse the file).
+pub fn from_str_with(
+    text: &str,
+    file: &str,
+    opt: crate::io::ReadOptions,
+) -> Result<Model, IgesError> {
     let (e, unit, resolution, mut warnings, no_params) = parse(text, file)?;
     let r = Reader {
         e: &e,
@@ -391,21 +400,49 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
     let mut outcomes: BTreeMap<usize, Outcome> = BTreeMap::new();
     // Model surface index of each face DE (the B-rep's faces refer to them).
     let mut surface_of: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut invalid_faces = Vec::new();
     for (face, s) in faces {
-        match r.surface(s, face)? {
+        // With --skip-invalid a face whose surface or trims are invalid is skipped and
+        // accounted; an exhausted expansion budget still refuses the file.
+        let skip = |e: IgesError, outcomes: &mut BTreeMap<usize, Outcome>, surface_bad: bool| {
+            if !opt.skip_invalid_faces || r.budget.get() == 0 {
+                return Err(e);
+            }
+            outcomes.insert(face, Outcome::Invalid(e.reason.clone()));
+            if s != face && surface_bad {
+                outcomes.insert(s, Outcome::Invalid(e.reason.clone()));
+            } else if s != face {
+                outcomes.entry(s).or_insert(Outcome::Used);
+            }
+            Ok(format!("face DE {face} ({}: {})", e.location, e.reason))
+        };
+        let got = match r.surface(s, face) {
+            Ok(got) => got,
+            Err(e) => {
+                invalid_faces.push(skip(e, &mut outcomes, true)?);
+                continue;
+            }
+        };
+        match got {
             Some((nurbs, kind)) => {
+                // Parameter-space curves are in IGES's parametrization of the surface, which
+                // is the NURBS form's only for B-spline surfaces and those built from curves.
+                let trims = if kind.is_analytic() && analytic::ANALYTIC.contains(&e[&s].etype) {
+                    Ok((vec![], 0))
+                } else {
+                    r.trims(face)
+                };
+                let (trim_loops, missing) = match trims {
+                    Ok(t) => t,
+                    Err(e) => {
+                        invalid_faces.push(skip(e, &mut outcomes, false)?);
+                        continue;
+                    }
+                };
                 outcomes.insert(face, Outcome::Converted);
                 if s != face {
                     outcomes.entry(s).or_insert(Outcome::Used);
                 }
-                // Parameter-space curves are in IGES's parametrization of the surface, which
-                // is the NURBS form's only for B-spline surfaces and those built from curves.
-                let (trim_loops, missing) =
-                    if kind.is_analytic() && analytic::ANALYTIC.contains(&e[&s].etype) {
-                        (vec![], 0)
-                    } else {
-                        r.trims(face)?
-                    };
                 surface_of.insert(face, model.surfaces.len());
                 // A 510 face's loops are kept in the B-rep whatever their parameter-space curves.
                 if missing > 0 && e[&face].etype != 510 {
@@ -452,6 +489,9 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, IgesError> {
         if !known.contains(&x.etype) {
             *other.entry(x.etype).or_insert(0) += 1;
         }
+    }
+    for f in invalid_faces {
+        warnings.push(format!("invalid {f}: skipped (--skip-invalid)"));
     }
     for (t, n) in skipped {
         warnings.push(format!(

@@ -26,6 +26,7 @@ pub mod write;
 pub(crate) mod write_pcurve;
 mod write_topology;
 
+use crate::brep::IssueKind;
 use crate::model::{Curve, CurveGeometry, Model, Outcome, Surface};
 use part21::Entity;
 use std::collections::{BTreeMap, BTreeSet};
@@ -97,6 +98,15 @@ fn vertex_tolerance(p: &part21::Part21) -> f64 {
 
 /// Read STEP text. `file` names the source in errors and warnings.
 pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
+    from_str_with(text, file, crate::io::ReadOptions::current())
+}
+
+/// [`from_str`] with explicit options (skip invalid faces or refuse the file).
+pub fn from_str_with(
+    text: &str,
+    file: &str,
+    opt: crate::io::ReadOptions,
+) -> Result<Model, StepError> {
     let p = part21::parse(text).map_err(|e| StepError {
         file: file.into(),
         location: format!("line {}", e.line),
@@ -162,9 +172,23 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
     // Model surface index of each face (for the B-rep), and the type of each face surface
     // that could not be converted.
     let mut surface_of: BTreeMap<u64, usize> = BTreeMap::new();
-    let mut unsupported_surface: BTreeMap<u64, String> = BTreeMap::new();
+    let mut unsupported_surface: BTreeMap<u64, IssueKind> = BTreeMap::new();
+    let mut invalid_faces = Vec::new();
     for (face, sid) in targets {
-        match r.surface(sid, face)? {
+        let got = match r.surface(sid, face) {
+            Ok(got) => got,
+            Err(e) if opt.skip_invalid_faces => {
+                outcomes.insert(sid, Outcome::Invalid(e.reason.clone()));
+                if let Some(f) = face {
+                    unsupported_surface.insert(f, IssueKind::InvalidSurface(e.reason.clone()));
+                }
+                let what = face.map_or(format!("surface #{sid}"), |f| format!("face #{f}"));
+                invalid_faces.push(format!("{what} ({}: {})", e.location, e.reason));
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        match got {
             Some((nurbs, kind)) => {
                 if let Some(f) = face {
                     surface_of.insert(f, model.surfaces.len());
@@ -187,7 +211,7 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             None => {
                 let ty = r.get(sid)?.name().to_string();
                 if let Some(f) = face {
-                    unsupported_surface.insert(f, ty.clone());
+                    unsupported_surface.insert(f, IssueKind::UnsupportedSurface(ty.clone()));
                 }
                 skipped.entry(ty).or_default().push(face.unwrap_or(sid));
                 outcomes
@@ -231,6 +255,11 @@ pub fn from_str(text: &str, file: &str) -> Result<Model, StepError> {
             ids.len(),
             crate::model::list_ids(ids.iter().map(|i| format!("#{i}")))
         ));
+    }
+    for f in invalid_faces {
+        model
+            .warnings
+            .push(format!("invalid {f}: skipped (--skip-invalid)"));
     }
     for b in bad_curves {
         model

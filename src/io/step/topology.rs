@@ -138,12 +138,12 @@ impl<'a> TopologyReader<'a> {
     }
 
     /// Read every face, shell and solid of the file. `surface_of`: the model surface index
-    /// of each face whose surface was converted; `unsupported_surface`: the type of the
-    /// surface of each face whose surface was not.
+    /// of each face whose surface was converted; `unsupported_surface`: why each face whose
+    /// surface was not has none (an unsupported type, or invalid data skipped).
     pub(super) fn read(
         mut self,
         surface_of: &BTreeMap<u64, usize>,
-        unsupported_surface: &BTreeMap<u64, String>,
+        unsupported_surface: &BTreeMap<u64, IssueKind>,
     ) -> Brep {
         let p = self.r.p;
         for (id, e) in &p.entities {
@@ -203,7 +203,13 @@ impl<'a> TopologyReader<'a> {
         self.brep
     }
 
-    fn face(&mut self, id: u64, e: &Entity, surface: Option<usize>, unsupported: Option<&String>) {
+    fn face(
+        &mut self,
+        id: u64,
+        e: &Entity,
+        surface: Option<usize>,
+        unsupported: Option<&IssueKind>,
+    ) {
         let ty = type_of(e, &["ADVANCED_FACE", "FACE_SURFACE"]);
         let a = e.part(&ty).unwrap_or(&[]);
         let (Some(bounds), Some(sid)) = (
@@ -218,12 +224,10 @@ impl<'a> TopologyReader<'a> {
             );
             return;
         };
-        if let Some(st) = unsupported {
-            self.brep.report.issue(
-                &format!("#{sid}"),
-                Some(&format!("#{id}")),
-                IssueKind::UnsupportedSurface(st.clone()),
-            );
+        if let Some(why) = unsupported {
+            self.brep
+                .report
+                .issue(&format!("#{sid}"), Some(&format!("#{id}")), why.clone());
         }
         let mut loops = Vec::new();
         for b in bounds {
