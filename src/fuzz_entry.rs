@@ -127,7 +127,8 @@ pub fn curve_on_surface(data: &[u8]) {
 /// `w·p`, vertices) and its surfaces evaluate to points that are not NaN; its accounts
 /// balance (per kind, read = converted + used + unsupported + invalid) and the converted
 /// free curves are the model's curves (STEP `B_SPLINE_CURVE_WITH_KNOTS`, IGES 126), the
-/// converted IGES faces and surfaces its surfaces.
+/// converted IGES faces and surfaces its surfaces. STEP and IGES are read twice: refusing a
+/// file with an invalid face, and skipping such faces (`ReadOptions::skip_invalid_faces`).
 pub fn readers(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let accounted = |m: &crate::model::Model, curve_kind: &str| {
@@ -147,24 +148,28 @@ pub fn readers(data: &[u8]) {
             assert!(p.iter().all(|x| !x.is_nan()), "{}", s.name);
         }
     };
-    match crate::io::step::from_str(&text, "fuzz.step") {
-        Ok(m) => {
-            accounted(&m, "B_SPLINE_CURVE_WITH_KNOTS");
-            check(m)
+    // Both ways of treating an invalid face: refuse the file, or skip and account it.
+    for skip_invalid_faces in [false, true] {
+        let opt = crate::io::ReadOptions { skip_invalid_faces };
+        match crate::io::step::from_str_with(&text, "fuzz.step", opt) {
+            Ok(m) => {
+                accounted(&m, "B_SPLINE_CURVE_WITH_KNOTS");
+                check(m)
+            }
+            Err(e) => assert!(!e.reason.is_empty()),
         }
-        Err(e) => assert!(!e.reason.is_empty()),
-    }
-    match crate::io::iges::from_str(&text, "fuzz.igs") {
-        Ok(m) => {
-            accounted(&m, "126");
-            let faces: usize = (m.accounts.kinds.iter())
-                .filter(|(k, _)| *k != "126")
-                .map(|(_, a)| a.converted)
-                .sum();
-            assert_eq!(faces, m.surfaces.len(), "converted IGES faces and surfaces");
-            check(m)
+        match crate::io::iges::from_str_with(&text, "fuzz.igs", opt) {
+            Ok(m) => {
+                accounted(&m, "126");
+                let faces: usize = (m.accounts.kinds.iter())
+                    .filter(|(k, _)| *k != "126")
+                    .map(|(_, a)| a.converted)
+                    .sum();
+                assert_eq!(faces, m.surfaces.len(), "converted IGES faces and surfaces");
+                check(m)
+            }
+            Err(e) => assert!(!e.reason.is_empty()),
         }
-        Err(e) => assert!(!e.reason.is_empty()),
     }
     match crate::io::stl::from_bytes(data, "fuzz.stl") {
         Ok(m) => {
