@@ -282,7 +282,7 @@ pub fn average(
         mean_of.insert(*r, mean.map(|v| v / members.len() as f64));
     }
     let corner_pt = |x: usize| mean_of.get(&root[x]).copied().unwrap_or(cs[x / 4][x % 4]);
-    // One weight per cluster: the members' common corner weight, or 1 when they differ.
+    // One weight per cluster: the members' common corner weight, or their mean.
     let mut weight_of: HashMap<usize, f64> = HashMap::new();
     for (r, members) in groups.iter().filter(|(_, m)| m.len() > 1) {
         let ws: Vec<f64> = members
@@ -293,10 +293,13 @@ pub fn average(
                 s.hom.at(i, j).w
             })
             .collect();
+        // Equal weights stay; different ones meet at their mean (the least largest change of
+        // any member's weight: a corner weight forced to 1 moved rational patches of
+        // occt-hammer.iges by up to 3.8 mm to close gaps of 4e-5).
         let w = if ws.iter().all(|x| *x == ws[0]) {
             ws[0]
         } else {
-            1.0
+            ws.iter().sum::<f64>() / ws.len() as f64
         };
         weight_of.insert(*r, w);
     }
