@@ -1,4 +1,4 @@
-//! Step 3 — boundary averaging (paper §4, and matrix (2) of §6 as corrected in EQUATIONS.md
+//! Step 3 — boundary averaging (paper §4, and matrix (2) of §6 as corrected in docs/papers.md
 //! §C: rows/columns on shared borders are replaced by the average of the coincident rows, four
 //! at a shared corner).
 //!

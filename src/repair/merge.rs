@@ -1,9 +1,9 @@
 //! Step 6 — merging the control information of a group of patches (paper §6, matrix (2)
-//! as corrected in EQUATIONS.md §C).
+//! as corrected in docs/papers.md §C).
 //!
 //! Column `i` of a group maps its patches' normalized u-knots onto `[i, i+1]`; the merged knot
 //! vector is the union with the break knots `1, 2, …` of multiplicity equal to the degree —
-//! the choice EQUATIONS.md §C asks to state: multiplicity `p` already gives a C0 joint with one
+//! the choice docs/papers.md §C asks to state: multiplicity `p` already gives a C0 joint with one
 //! shared control row, which is exactly what averaging made identical (the paper's quadruple
 //! knot, `p + 1`, would double that row). Likewise in v. The net is the union of the patches'
 //! nets with shared rows/columns written once (the mean of the coincident rows, identical after

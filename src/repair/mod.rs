@@ -1,4 +1,4 @@
-//! Repair of faulty CAD patch sets (Uva, Monno & Hamann; EQUATIONS.md §C), one file per step:
+//! Repair of faulty CAD patch sets (Uva, Monno & Hamann; docs/papers.md §C), one file per step:
 //!
 //! | step | file |
 //! |---|---|

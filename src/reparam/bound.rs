@@ -1,4 +1,4 @@
-//! A **proven** bound on the deviation `E_max` of §2 (EQUATIONS.md §A: "the largest distance
+//! A **proven** bound on the deviation `E_max` of §2 (docs/papers.md §A: "the largest distance
 //! between the given surface and its chord-length-parametrized replacement"): an upper bound
 //! of the Hausdorff distance between the two surfaces as point sets, or the reason why the
 //! argument does not apply (then only the sampled evidence of [`super::error`] is left).

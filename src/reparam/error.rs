@@ -1,4 +1,4 @@
-//! `E_max` of §2 (EQUATIONS.md §A: "the largest distance between the given surface and its
+//! `E_max` of §2 (docs/papers.md §A: "the largest distance between the given surface and its
 //! chord-length-parametrized replacement, checked at dense samples and refined by inserting
 //! a knot in r at the parameter of the largest deviation, until E_max ≤ ε").
 //!

@@ -10,7 +10,7 @@
 //! **Relaxation** ([`relax`]). Each interior point `x_ij = S(u_ij, v_ij)` has the *penalty*
 //! `p_ij = (d_l/(d_l+d_r) − α_i)² + (d_d/(d_d+d_u) − β_j)²`, where `d_l, d_r, d_d, d_u` are
 //! the distances to its four neighbours and `α_i = (ξ_i − ξ_{i−1})/(ξ_{i+1} − ξ_{i−1})`,
-//! `β_j` likewise with η, are the ratios the chord-length parametrization asks (EQUATIONS.md
+//! `β_j` likewise with η, are the ratios the chord-length parametrization asks (docs/papers.md
 //! §A, property (1): parameter intervals proportional to chord lengths). `p_ij = 0` at every
 //! point exactly when every row and column of the grid is chord-length spaced at `(ξ, η)`.
 //! Points move in the domain only (so their images stay on S), by finite steps (first the

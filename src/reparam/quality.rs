@@ -4,7 +4,7 @@
 //! `N + 1` of constant v), the *spacing ratio* of the `k`-th step is
 //! `ρ_k = (|x_{k+1} − x_k| / Σ_l |x_{l+1} − x_l|) / (1 / N)`: the physical spacing over the
 //! parametric spacing, each normalised by the line's total. `ρ ≡ 1` on a line exactly when
-//! its uniform parameter steps have equal chords (EQUATIONS.md §A, property (1)). Lines of
+//! its uniform parameter steps have equal chords (docs/papers.md §A, property (1)). Lines of
 //! zero length (a pole: shorter than 1e-9 of the longest line, the rest being rounding noise)
 //! are skipped and counted.
 

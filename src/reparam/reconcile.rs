@@ -8,7 +8,7 @@
 //! The merged sequence is the parameter sequence of the new surface in that direction
 //! (`ξ_i` from `v = v0` and `v = v1`, `η_j` from `u = u0` and `u = u1`): each boundary point
 //! sits at the arc-length fraction equal to its parameter, so both curves are chord-length
-//! (arc-length) parametrized by construction (EQUATIONS.md §A, property (1)), with one knot
+//! (arc-length) parametrized by construction (docs/papers.md §A, property (1)), with one knot
 //! vector by averaging ([`knots`], The NURBS Book eq. 9.8).
 
 /// Union of the fraction sets `a` and `b` (each ascending from 0 to 1), fractions closer

@@ -1,5 +1,5 @@
 //! Surface–surface intersection (paper: "CAGD techniques for surface grid generation", §4;
-//! EQUATIONS.md §A), one file per step:
+//! docs/papers.md §A), one file per step:
 //!
 //! | step | file |
 //! |---|---|

@@ -1,7 +1,7 @@
 //! Step 8 — refinement of the sample points onto the true surfaces (paper §4, "Refinement",
 //! Figs. 18–19): barycentric parameters from the triangle that holds the point, then the
 //! Auxiliary Plane Method (Hosaka '92), eqs. (18)–(26) in the consistent form of
-//! EQUATIONS.md §A (each tangent plane through its own surface's point).
+//! docs/papers.md §A (each tangent plane through its own surface's point).
 
 use super::triangulate::SurfaceMesh;
 use crate::geom::{Point, cross, dot, norm};
@@ -14,7 +14,7 @@ pub enum RefineStatus {
     /// `||s(u,v) - r(w,t)|| <= tol`.
     Converged,
     /// The normals became (nearly) parallel: `||n_p × n_q|| < sin(angle)`; the method breaks
-    /// down there (EQUATIONS.md §A). The best iterate is kept.
+    /// down there (docs/papers.md §A). The best iterate is kept.
     Tangential,
     /// The iteration left the parameter domain of one surface and stayed on its border.
     AtBoundary,
