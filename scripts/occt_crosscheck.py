@@ -73,6 +73,31 @@ def in_file_order(path, mine, theirs):
     return [by_id[m["source"]] for m in mine]
 
 
+def match_by_centre(path, mine, theirs, scale):
+    """Open CASCADE builds an IGES B-rep's faces in an order of its own (neither the file's nor
+    its shell's). Reorder its faces to vericad's by geometry: vericad's face k goes with the
+    Open CASCADE face nearest to it at the centre of k's domain, evaluated at the same
+    parameters (both keep the file's parametrization; `scale` turns vericad's length unit into
+    Open CASCADE's millimetres). Kept as read unless the matching is one to one."""
+    order = []
+    for k, m in enumerate(mine):
+        u0, u1, v0, v1 = m["domain"]
+        u, v = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+        p = json.loads(vericad("eval", path, "--surface", str(k), "--uv", f"{u!r},{v!r}", "--json"))["point"]
+
+        def dist(g):
+            try:
+                q = g.Value(u, v)
+            except Exception:  # noqa: BLE001 - a parameter outside that face
+                return float("inf")
+            return sum((a * scale - b) ** 2 for a, b in zip(p, (q.X(), q.Y(), q.Z())))
+
+        order.append(min(range(len(theirs)), key=lambda i: dist(theirs[i])))
+    if len(set(order)) != len(theirs) or len(mine) != len(theirs):
+        return theirs
+    return [theirs[i] for i in order]
+
+
 def main(files):
     worst, checked, failures = 0.0, 0, []
     tmp = tempfile.mkdtemp()
@@ -97,6 +122,7 @@ def main(files):
                     failures.append(f"{out}: OCCT trimmed area {a1} differs from the original's {a0}")
             if ext == "step":
                 theirs = in_file_order(out, mine, theirs)
+            theirs = match_by_centre(out, mine, theirs, scale)
             if len(theirs) != len(mine):
                 failures.append(f"{out}: OCCT reads {len(theirs)} faces, vericad wrote {len(mine)}")
                 continue
@@ -104,7 +130,9 @@ def main(files):
                 u0, u1, v0, v1 = s["domain"]
                 for i in range(5):
                     for j in range(5):
-                        u, v = u0 + (u1 - u0) * i / 4, v0 + (v1 - v0) * j / 4
+                        # The last sample is the end itself (u0 + (u1 - u0) can round past u1).
+                        u = u1 if i == 4 else u0 + (u1 - u0) * i / 4
+                        v = v1 if j == 4 else v0 + (v1 - v0) * j / 4
                         p = json.loads(vericad("eval", out, "--surface", str(k), "--uv", f"{u!r},{v!r}", "--json"))["point"]
                         q = g.Value(u, v)
                         d = ((p[0] * scale - q.X()) ** 2 + (p[1] * scale - q.Y()) ** 2 + (p[2] * scale - q.Z()) ** 2) ** 0.5 / (size * scale)
