@@ -28,7 +28,7 @@ fn cart(s: &NurbsSurface<f64, 3>, i: usize, j: usize) -> [f64; 3] {
 }
 
 /// Greville abscissae of a knot vector, normalized to `[0, 1]`.
-fn greville(k: &[f64], p: usize) -> Vec<f64> {
+pub(super) fn greville(k: &[f64], p: usize) -> Vec<f64> {
     let n = k.len() - p - 1;
     let (a, b) = (k[p], k[n]);
     (0..n)

@@ -14,6 +14,7 @@
 //! space was too coarse). The largest residual at the data is the stated fit error: evidence
 //! (at the data points), not a bound between them.
 
+use super::blend::greville;
 use super::classes::{KnotClass, Member, expand, member_runs, side};
 use super::edges::{CurveFoot, arc_length_samples, edge_curve, edge_uv};
 use crate::geom::{Hom, dist};
@@ -164,31 +165,20 @@ fn space_weights(
     if a.control.iter().chain(&b.control).all(|h| h.w == 1.0) && ends.iter().all(|e| e.1 == 1.0) {
         return None;
     }
-    let (Some(ra), Some(rb)) = (refine_to(a, &k), refine_to(b, &k)) else {
-        // A row that the space does not hold (the fit space lost one of its knots): the
-        // weights are the two rows' weight functions (their denominators) at the space's
-        // Greville abscissae, averaged, so the shape those weights carry stays near both
-        // rows' (weights 1 there bent conic rows by 0.4 on occt-hammer.iges).
-        let d = a.degree().max(1);
-        let n = k.len().checked_sub(d + 1)?;
-        let mut w: Vec<f64> = (0..n)
-            .map(|i| {
-                let g = k[i + 1..=i + d].iter().sum::<f64>() / d as f64;
-                0.5 * (a.eval(&g).w + b.eval(&g).w)
-            })
-            .collect();
-        let last = w.len().checked_sub(1)?;
-        w[0] = ends[0].1;
-        w[last] = ends[1].1;
-        return Some(w);
+    let mut w: Vec<f64> = match (refine_to(a, &k), refine_to(b, &k)) {
+        (Some(ra), Some(rb)) => (ra.control.iter().zip(&rb.control))
+            .map(|(x, y)| 0.5 * (x.w + y.w))
+            .collect(),
+        // A row that the space does not hold (the fit space lost one of its knots): the two
+        // rows' weight functions (their denominators) at the space's Greville abscissae,
+        // averaged, so the shape those weights carry stays near both rows' (weights 1 there
+        // bent conic rows by 0.4 on occt-hammer.iges).
+        _ => greville(&k, a.degree().max(1))
+            .iter()
+            .map(|g| 0.5 * (a.eval(g).w + b.eval(g).w))
+            .collect(),
     };
-    let mut w: Vec<f64> = ra
-        .control
-        .iter()
-        .zip(&rb.control)
-        .map(|(x, y)| 0.5 * (x.w + y.w))
-        .collect();
-    let last = w.len() - 1;
+    let last = w.len().checked_sub(1)?;
     w[0] = ends[0].1;
     w[last] = ends[1].1;
     Some(w)
