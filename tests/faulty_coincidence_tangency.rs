@@ -66,7 +66,7 @@ fn external_and_internal_line_contacts_are_told_the_same_way() {
         assert!(p.touch_points.is_empty(), "{b}");
         let c = p.tangent_contact.as_ref().expect("a tangent contact");
         assert!(c.points.len() >= 10, "{b}: {}", c.points.len());
-        assert_eq!(c.points_not_listed, 0);
+        assert_eq!(c.points_not_listed(), 0);
         for q in &c.points {
             let da = ((q[0] * q[0] + q[1] * q[1]).sqrt() - 1.0).abs();
             let db = (((q[0] - cx).powi(2) + q[1] * q[1]).sqrt() - rb).abs();

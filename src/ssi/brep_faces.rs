@@ -384,7 +384,6 @@ impl<'a> Faces<'a> {
             let mut k = keep.iter();
             c.params.retain(|_| *k.next().unwrap_or(&true));
             c.unlisted.retain(|(x, ua, ub)| keep_point(x, ua, ub));
-            c.points_not_listed = c.unlisted.len();
             if c.points.is_empty() && c.unlisted.is_empty() {
                 p.tangent_contact = None;
             }

@@ -368,7 +368,7 @@ impl std::fmt::Display for SsiResult {
                 "  faces ({}, {}): TANGENT CONTACT along a curve (measured): {} points from {} to {}, normals' sine <= {:.1e}, gap <= {:.1e}; {} tangential points and {} uncertified branches moved into it",
                 p.a,
                 p.b,
-                n + c.points_not_listed,
+                n + c.points_not_listed(),
                 at(0),
                 at(n.saturating_sub(1)),
                 c.max_sin_angle,
@@ -500,7 +500,7 @@ mod tests {
             .expect("two crossing planes intersect");
         assert_eq!(r.pairs.len(), 1);
         r.pairs[0].tangent_contact = Some(super::super::tangent_contact::TangentContactOut {
-            points_not_listed: 7,
+            unlisted: vec![([0.0; 3], [0.0; 2], [0.0; 2]); 7],
             ..Default::default()
         });
         let text = r.to_string();

@@ -38,11 +38,10 @@ pub struct TangentContactOut {
     /// Each listed point's parameters on A and on B (not in the JSON: the boxes below are).
     #[serde(skip)]
     pub params: Vec<([f64; 2], [f64; 2])>,
-    /// Contact points beyond the listed ones.
-    pub points_not_listed: usize,
-    /// Those points with their parameters on A and on B (not in the JSON), so that a face
-    /// restriction can classify every contact point, listed or not.
-    #[serde(skip)]
+    /// Contact points beyond the listed ones, with their parameters on A and on B, so that a
+    /// face restriction can classify every contact point, listed or not (in the JSON: their
+    /// number, `points_not_listed`).
+    #[serde(rename = "points_not_listed", serialize_with = "count")]
     pub unlisted: Vec<([f64; 3], [f64; 2], [f64; 2])>,
     /// Boxes `[u0, u1, v0, v1]` of the contact points' parameters on each surface.
     pub uv_a: [f64; 4],
@@ -54,6 +53,18 @@ pub struct TangentContactOut {
     /// Touch points and branches moved into the contact.
     pub touch_points_moved: usize,
     pub branches_moved: usize,
+}
+
+impl TangentContactOut {
+    /// Contact points beyond the listed ones.
+    pub fn points_not_listed(&self) -> usize {
+        self.unlisted.len()
+    }
+}
+
+/// A list written as its length.
+fn count<T, S: serde::Serializer>(v: &[T], s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_u64(v.len() as u64)
 }
 
 /// Nearest-neighbour chain through `pts` (their indices in chain order), from the point
@@ -169,7 +180,6 @@ pub fn diagnose(p: &mut PairOut, sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f6
     let mut keep_b = branch.iter().map(|m| m.is_none());
     p.branches.retain(|_| keep_b.next().unwrap_or(true));
     p.tangent_contact = Some(TangentContactOut {
-        points_not_listed: total - chained.len(),
         unlisted: (listed..total)
             .map(|k| (pts[k], uvs[k].0, uvs[k].1))
             .collect(),
