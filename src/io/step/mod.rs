@@ -169,10 +169,10 @@ pub fn from_str_with(
             }
         }
     }
-    // Model surface index of each face (for the B-rep), and the type of each face surface
-    // that could not be converted.
+    // Model surface index of each face (for the B-rep), and why each face whose surface could
+    // not be converted has none (an unsupported type, or invalid data skipped).
     let mut surface_of: BTreeMap<u64, usize> = BTreeMap::new();
-    let mut unsupported_surface: BTreeMap<u64, IssueKind> = BTreeMap::new();
+    let mut no_surface: BTreeMap<u64, IssueKind> = BTreeMap::new();
     let mut invalid_faces = Vec::new();
     for (face, sid) in targets {
         let got = match r.surface(sid, face) {
@@ -180,7 +180,7 @@ pub fn from_str_with(
             Err(e) if opt.skip_invalid_faces => {
                 outcomes.insert(sid, Outcome::Invalid(e.reason.clone()));
                 if let Some(f) = face {
-                    unsupported_surface.insert(f, IssueKind::InvalidSurface(e.reason.clone()));
+                    no_surface.insert(f, IssueKind::InvalidSurface(e.reason.clone()));
                 }
                 let what = face.map_or(format!("surface #{sid}"), |f| format!("face #{f}"));
                 invalid_faces.push(format!("{what} ({}: {})", e.location, e.reason));
@@ -211,7 +211,7 @@ pub fn from_str_with(
             None => {
                 let ty = r.get(sid)?.name().to_string();
                 if let Some(f) = face {
-                    unsupported_surface.insert(f, IssueKind::UnsupportedSurface(ty.clone()));
+                    no_surface.insert(f, IssueKind::UnsupportedSurface(ty.clone()));
                 }
                 skipped.entry(ty).or_default().push(face.unwrap_or(sid));
                 outcomes
@@ -221,8 +221,8 @@ pub fn from_str_with(
         }
     }
     if !faces.is_empty() {
-        let brep = topology::TopologyReader::new(&r, vertex_tolerance(&p))
-            .read(&surface_of, &unsupported_surface);
+        let brep =
+            topology::TopologyReader::new(&r, vertex_tolerance(&p)).read(&surface_of, &no_surface);
         model.warnings.extend(brep.report.warning_lines());
         model.brep = Some(brep);
         if let Some(tree) = assembly::read(&r) {

@@ -138,22 +138,17 @@ impl<'a> TopologyReader<'a> {
     }
 
     /// Read every face, shell and solid of the file. `surface_of`: the model surface index
-    /// of each face whose surface was converted; `unsupported_surface`: why each face whose
+    /// of each face whose surface was converted; `no_surface`: why each face whose
     /// surface was not has none (an unsupported type, or invalid data skipped).
     pub(super) fn read(
         mut self,
         surface_of: &BTreeMap<u64, usize>,
-        unsupported_surface: &BTreeMap<u64, IssueKind>,
+        no_surface: &BTreeMap<u64, IssueKind>,
     ) -> Brep {
         let p = self.r.p;
         for (id, e) in &p.entities {
             if e.is("ADVANCED_FACE") || e.is("FACE_SURFACE") {
-                self.face(
-                    *id,
-                    e,
-                    surface_of.get(id).copied(),
-                    unsupported_surface.get(id),
-                );
+                self.face(*id, e, surface_of.get(id).copied(), no_surface.get(id));
             }
         }
         for (id, e) in &p.entities {
@@ -208,7 +203,7 @@ impl<'a> TopologyReader<'a> {
         id: u64,
         e: &Entity,
         surface: Option<usize>,
-        unsupported: Option<&IssueKind>,
+        no_surface: Option<&IssueKind>,
     ) {
         let ty = type_of(e, &["ADVANCED_FACE", "FACE_SURFACE"]);
         let a = e.part(&ty).unwrap_or(&[]);
@@ -224,7 +219,7 @@ impl<'a> TopologyReader<'a> {
             );
             return;
         };
-        if let Some(why) = unsupported {
+        if let Some(why) = no_surface {
             self.brep
                 .report
                 .issue(&format!("#{sid}"), Some(&format!("#{id}")), why.clone());
