@@ -10,7 +10,7 @@ Not part of the default test run (it needs the OCCT wheel). Usage:
     cargo build --release && python3 scripts/occt_crosscheck.py [FILES...]
 Exit code 0 when every point agrees within 1e-9 relative to the model size.
 """
-import glob, json, os, re, subprocess, sys, tempfile
+import glob, json, os, subprocess, sys, tempfile
 
 import OCP.OCP as o
 
@@ -57,25 +57,9 @@ def occt_area(path):
     return props.Mass()
 
 
-def in_file_order(path, mine, theirs):
-    """Open CASCADE builds a B-rep's faces in the order its shells list them; vericad numbers
-    them in file order. Reorder Open CASCADE's faces to vericad's (by each face's `#id`)
-    when the written file has shells listing every face."""
-    text = re.sub(r"\s+", " ", open(path, encoding="latin-1").read())
-    order = []
-    for faces in re.findall(r"(?:CLOSED|OPEN)_SHELL\s*\(\s*'[^']*'\s*,\s*\(([^)]*)\)", text):
-        order += ["#" + x for x in re.findall(r"#(\d+)", faces)]
-    if len(order) != len(theirs) or len(set(order)) != len(order):
-        return theirs
-    by_id = dict(zip(order, theirs))
-    if not all(m.get("source") in by_id for m in mine):
-        return theirs
-    return [by_id[m["source"]] for m in mine]
-
-
 def match_by_centre(path, mine, theirs, scale):
-    """Open CASCADE builds an IGES B-rep's faces in an order of its own (neither the file's nor
-    its shell's). Reorder its faces to vericad's by geometry: vericad's face k goes with the
+    """Open CASCADE builds a B-rep's faces in an order of its own (a STEP file's in its shells'
+    order, an IGES file's in neither the file's nor its shell's). Reorder its faces to vericad's by geometry: vericad's face k goes with the
     Open CASCADE face nearest to it at the centre of k's domain, evaluated at the same
     parameters (both keep the file's parametrization; `scale` turns vericad's length unit into
     Open CASCADE's millimetres). Kept as read unless the matching is one to one."""
@@ -120,8 +104,6 @@ def main(files):
                 a0, a1 = occt_area(src), occt_area(out)
                 if abs(a0 - a1) > 1e-9 * max(1.0, abs(a0)):
                     failures.append(f"{out}: OCCT trimmed area {a1} differs from the original's {a0}")
-            if ext == "step":
-                theirs = in_file_order(out, mine, theirs)
             theirs = match_by_centre(out, mine, theirs, scale)
             if len(theirs) != len(mine):
                 failures.append(f"{out}: OCCT reads {len(theirs)} faces, vericad wrote {len(mine)}")
