@@ -22,6 +22,7 @@ fn params() -> CoverageParams {
         deadline: None,
         cancel: None,
         outside: None,
+        tubes: Default::default(),
     }
 }
 

@@ -45,6 +45,7 @@ fn cparams(d: f64) -> CoverageParams {
         deadline: None,
         cancel: None,
         outside: None,
+        tubes: Default::default(),
     }
 }
 
@@ -71,6 +72,49 @@ fn a_loop_missing_from_the_output_is_never_certified() {
             near_point || box_holds
         });
         assert!(at_loop, "radius {radius}: {:?}", cov.uncertified_regions);
+    }
+}
+
+/// Tubes (one-file B-rep runs: the edges faces share) excuse what lies in them and nothing
+/// else: a loop missing from the output is accounted for by a tube around its own circle, and
+/// refused when the tube is shifted off it or is too thin to hold it.
+#[test]
+fn a_tube_excuses_only_the_loop_inside_it() {
+    let radius = 0.2;
+    let (a, b) = (dome(radius * radius, 1.0), big_plane());
+    let circle = |dx: f64| -> Vec<([f64; 3], [f64; 3])> {
+        let p = |k: usize| {
+            let t = std::f64::consts::TAU * k as f64 / 512.0;
+            [0.5 + dx + radius * t.cos(), 0.5 + radius * t.sin(), 0.0]
+        };
+        (0..512).map(|k| (p(k), p(k + 1))).collect()
+    };
+    let with_tubes = |tubes: Vec<vericad::ssi::coverage::TubeLine>| {
+        let mut prm = cparams(1e-6);
+        prm.tubes = std::sync::Arc::new(tubes);
+        coverage(&a, &b, &[], &[], &prm)
+    };
+    let on_loop = with_tubes(vec![(circle(0.0), 1e-3)]);
+    assert!(on_loop.no_missed_branches, "{on_loop:?}");
+    assert!(on_loop.near_shared_edges + on_loop.crossing_boxes_near_shared_edges > 0);
+    assert_eq!(
+        on_loop.free
+            + on_loop.near_output
+            + on_loop.near_shared_edges
+            + on_loop.transversal
+            + on_loop.uncertified,
+        on_loop.pairs
+    );
+    for (what, tubes) in [
+        ("shifted by 0.05", vec![(circle(0.05), 1e-3)]),
+        (
+            "a vertex at the centre, reach 0.1",
+            vec![(vec![([0.5, 0.5, 0.0], [0.5, 0.5, 0.0])], 0.1)],
+        ),
+    ] {
+        let cov = with_tubes(tubes);
+        assert!(!cov.no_missed_branches, "{what}: {cov:?}");
+        assert!(cov.uncertified > 0, "{what}");
     }
 }
 

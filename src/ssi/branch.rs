@@ -15,6 +15,7 @@ use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
 };
 use super::report::{BranchOut, CurveCertKind, CurveResult, EndKind, TouchOut};
+use super::shared_tubes::SharedTubes;
 use super::sign_change::{SignChangeCert, SignChangeFail, certify_by_sign_change};
 use super::topology::Topology;
 use super::touch::touch_out;
@@ -35,6 +36,8 @@ pub struct PairGeometry<'a> {
     pub mb: &'a SurfaceMesh,
     pub ea: &'a ExactSurface,
     pub eb: &'a ExactSurface,
+    /// One-file runs on a B-rep: the tubes around the edges and vertices the two faces share.
+    pub shared: Option<&'a SharedTubes>,
 }
 
 /// The proven branch points of a pair: points where Krawczyk's test fails within
@@ -92,6 +95,10 @@ impl BranchNear {
 pub enum BranchResult {
     Curve(BranchOut),
     Touch(TouchOut),
+    /// Every traced point, refined onto both surfaces, lies in a tube around an edge or vertex
+    /// the two faces share ([`PairGeometry::shared`]): the curve is where the faces meet by
+    /// construction. Its points (not refined further, nor certified) are counted to the edges.
+    OnSharedEdges(Vec<[f64; 3]>),
 }
 
 /// The certified point moved to the centre of its root box: `p' = (S_A(y_uv) + S_B(y_st)) / 2`
@@ -235,6 +242,13 @@ pub fn refine_branch(
             let _ = onto_curve(g, r, prm.tol, None);
         }
     });
+    if let Some(t) = g.shared
+        && refined.iter().all(|r| t.nearest(&r.xyz).is_some())
+    {
+        return Some(BranchResult::OnSharedEdges(
+            refined.iter().map(|r| r.xyz).collect(),
+        ));
+    }
     let mut ins = Inserter {
         g,
         prm,

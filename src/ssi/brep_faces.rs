@@ -17,32 +17,17 @@
 
 use super::coverage::OutsideFaces;
 use super::report::{PairOut, TouchOut};
+pub use super::shared_tubes::SharedEdgeOut;
+use super::shared_tubes::SharedTubes;
 use super::trims::{TrimRegion, clip_mask};
 use crate::brep::{Brep, LoopKind};
-use crate::geom::{cross, dist, norm};
 use crate::model::Model;
-use crate::spline::project::{point_d1, project};
-use crate::spline::{NurbsCurve, NurbsSurface};
 use serde::Serialize;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
-/// Samples per shared edge curve for the first guess of a point's distance.
-const EDGE_SAMPLES: usize = 512;
 /// Margin (fraction of the domain) by which coverage boxes are widened before the outside test.
 const REGION_MARGIN: f64 = 0.01;
-
-/// The intersection of two faces along an edge they share.
-#[derive(Clone, Debug, Serialize)]
-pub struct SharedEdgeOut {
-    /// Source id of the edge (or of the vertex, for a shared vertex).
-    pub edge: String,
-    /// Branch points of the surfaces' intersection lying within `within` of it.
-    pub points: usize,
-    /// Largest distance of those points from the edge curve (local search: evidence).
-    pub max_distance: f64,
-    pub within: f64,
-}
 
 /// What restricting a pair to its faces removed.
 #[derive(Clone, Debug, Default, Serialize)]
@@ -56,103 +41,6 @@ pub struct FaceClipOut {
     pub touch_points_on_shared_edges: usize,
     /// Uncertified coverage regions wholly outside either face.
     pub regions_outside: usize,
-}
-
-/// A curve of a shared edge with its samples, for distances.
-struct EdgeProbe<'a> {
-    source: &'a str,
-    curve: &'a NurbsCurve<f64, 3>,
-    t: Vec<f64>,
-    p: Vec<[f64; 3]>,
-    /// Points within this distance of the curve are attributed to the edge.
-    within: f64,
-}
-
-impl EdgeProbe<'_> {
-    /// `base`: the least attribution distance; `cap`: the largest.
-    fn new<'a>(
-        source: &'a str,
-        curve: &'a NurbsCurve<f64, 3>,
-        sa: &NurbsSurface<f64, 3>,
-        sb: &NurbsSurface<f64, 3>,
-        base: f64,
-        cap: f64,
-    ) -> EdgeProbe<'a> {
-        let (t0, t1) = curve.hom.domain();
-        let t: Vec<f64> = (0..=EDGE_SAMPLES)
-            .map(|i| t0 + (t1 - t0) * i as f64 / EDGE_SAMPLES as f64)
-            .collect();
-        let p: Vec<[f64; 3]> = t.iter().map(|x| curve.eval(x)).collect();
-        let within = edge_reach(&p, sa, sb).clamp(base, cap.max(base));
-        EdgeProbe {
-            source,
-            curve,
-            t,
-            p,
-            within,
-        }
-    }
-
-    /// Distance from `x` to the curve: nearest sample, then a golden-section search on the
-    /// two sample intervals around it.
-    fn distance(&self, x: &[f64; 3]) -> f64 {
-        let (k, d0) = self
-            .p
-            .iter()
-            .enumerate()
-            .map(|(k, p)| (k, dist(p, x)))
-            .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
-        let (mut lo, mut hi) = (
-            self.t[k.saturating_sub(1)],
-            self.t[(k + 1).min(EDGE_SAMPLES)],
-        );
-        let f = |t: f64| dist(&self.curve.eval(&t), x);
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut a, mut b) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        let (mut fa, mut fb) = (f(a), f(b));
-        for _ in 0..60 {
-            if fa < fb {
-                hi = b;
-                b = a;
-                fb = fa;
-                a = hi - g * (hi - lo);
-                fa = f(a);
-            } else {
-                lo = a;
-                a = b;
-                fa = fb;
-                b = lo + g * (hi - lo);
-                fb = f(b);
-            }
-        }
-        d0.min(fa).min(fb)
-    }
-}
-
-/// How far from the edge curve the two surfaces' intersection may run: where the curve lies
-/// `g_a`, `g_b` from the surfaces (closest points by local search) and the surfaces meet at
-/// angle θ, their intersection lies within about `2 (g_a + g_b) / sin θ` of it (first order);
-/// the largest over 129 samples along the edge. Evidence, as the search it rests on.
-fn edge_reach(p: &[[f64; 3]], sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> f64 {
-    let step = (p.len() / 128).max(1);
-    let mut reach: f64 = 0.0;
-    for x in p.iter().step_by(step) {
-        let foot = |s: &NurbsSurface<f64, 3>| {
-            let uv = project(s, x);
-            let (q, su, sv) = point_d1(s, uv[0], uv[1]);
-            (dist(&q, x), cross(&su, &sv))
-        };
-        let ((ga, na), (gb, nb)) = (foot(sa), foot(sb));
-        let (la, lb) = (norm(&na), norm(&nb));
-        let sin = if la > 0.0 && lb > 0.0 {
-            norm(&cross(&na, &nb)) / (la * lb)
-        } else {
-            0.0
-        };
-        let r = 2.0 * (ga + gb) / sin;
-        reach = reach.max(if r.is_finite() { r } else { f64::INFINITY });
-    }
-    reach
 }
 
 /// Edges and vertices of the faces on one surface.
@@ -278,67 +166,42 @@ impl<'a> Faces<'a> {
         })))
     }
 
-    /// Restrict pair `p` to its faces.
-    pub fn apply(&self, p: &mut PairOut) {
-        let ra = self.a.get(p.a).and_then(|r| r.as_ref());
-        let rb = self.second().get(p.b).and_then(|r| r.as_ref());
-        let mut probes: Vec<EdgeProbe> = Vec::new();
-        let mut vertices: Vec<(&str, [f64; 3], f64)> = Vec::new();
-        if let Some((m, brep, topo)) = &self.one_file {
-            let (ea, va) = &topo[p.a];
-            let (eb, vb) = &topo[p.b];
-            let (sa, sb) = (&m.surfaces[p.a].nurbs, &m.surfaces[p.b].nurbs);
-            for &e in ea.intersection(eb) {
-                if let Some(c) = &brep.edges[e].curve {
-                    probes.push(EdgeProbe::new(
-                        &brep.edges[e].source,
-                        &c.nurbs,
-                        sa,
-                        sb,
-                        self.delta,
-                        self.cap,
-                    ));
-                }
-            }
-            // A shared vertex reaches as far as the farthest shared edge.
-            let reach = probes.iter().map(|e| e.within).fold(self.delta, f64::max);
-            for &v in va.intersection(vb) {
-                vertices.push((&brep.vertices[v].source, brep.vertices[v].point, reach));
-            }
-        }
-        if ra.is_none() && rb.is_none() && probes.is_empty() && vertices.is_empty() {
-            return;
-        }
-        let mut out = FaceClipOut::default();
-        let mut shared: Vec<SharedEdgeOut> = probes
-            .iter()
-            .map(|e| e.source)
-            .chain(vertices.iter().map(|v| v.0))
-            .map(|s| SharedEdgeOut {
-                edge: s.to_string(),
-                points: 0,
-                max_distance: 0.0,
-                within: 0.0,
+    /// The tubes around the edges and vertices faces `i` and `j` share, in a one-file run on a
+    /// B-rep (`None` otherwise, or when they share nothing).
+    pub fn tubes_for(&self, i: usize, j: usize) -> Option<Arc<SharedTubes>> {
+        let (m, brep, topo) = self.one_file.as_ref()?;
+        let ((ea, va), (eb, vb)) = (topo.get(i)?, topo.get(j)?);
+        let edges: Vec<_> = ea
+            .intersection(eb)
+            .filter_map(|&e| {
+                let c = brep.edges[e].curve.as_ref()?;
+                Some((brep.edges[e].source.clone(), c.nurbs.clone()))
             })
             .collect();
-        let reach: Vec<f64> = probes
-            .iter()
-            .map(|e| e.within)
-            .chain(vertices.iter().map(|v| v.2))
+        let vertices: Vec<_> = va
+            .intersection(vb)
+            .map(|&v| (brep.vertices[v].source.clone(), brep.vertices[v].point))
             .collect();
-        for (s, r) in shared.iter_mut().zip(&reach) {
-            s.within = *r;
+        let (sa, sb) = (&m.surfaces[i].nurbs, &m.surfaces[j].nurbs);
+        let t = SharedTubes::new(edges, vertices, sa, sb, self.delta, self.cap);
+        (!t.is_empty()).then(|| Arc::new(t))
+    }
+
+    /// Restrict pair `p` to its faces; `tubes`: those of [`Faces::tubes_for`] for the pair,
+    /// which the pair's run may have counted points to already (curves lying wholly along a
+    /// shared edge, [`super::branch::refine_branch`]).
+    pub fn apply(&self, p: &mut PairOut, tubes: Option<&SharedTubes>) {
+        let ra = self.a.get(p.a).and_then(|r| r.as_ref());
+        let rb = self.second().get(p.b).and_then(|r| r.as_ref());
+        if ra.is_none() && rb.is_none() && tubes.is_none() {
+            return;
         }
-        // Index of the shared edge or vertex within its reach of `x`, the nearest.
-        let near_shared = |x: &[f64; 3]| -> Option<(usize, f64)> {
-            let d = probes
-                .iter()
-                .map(|e| e.distance(x))
-                .chain(vertices.iter().map(|v| dist(&v.1, x)));
-            d.enumerate()
-                .filter(|(i, d)| *d <= reach[*i])
-                .min_by(|a, b| a.1.total_cmp(&b.1))
+        let mut out = p.faces.take().unwrap_or_default();
+        let mut shared = match tubes {
+            Some(t) if out.shared_edges.is_empty() => t.tally(),
+            _ => std::mem::take(&mut out.shared_edges),
         };
+        let mut on_shared = |x: &[f64; 3]| tubes.is_some_and(|t| t.attribute(x, &mut shared));
         let inside = |uva: &[f64; 2], uvb: &[f64; 2]| {
             ra.is_none_or(|r| r.inside(uva)) && rb.is_none_or(|r| r.inside(uvb))
         };
@@ -346,9 +209,7 @@ impl<'a> Faces<'a> {
         for b in &p.branches {
             let mut keep = vec![true; b.points.len()];
             for (i, k) in keep.iter_mut().enumerate() {
-                if let Some((e, d)) = near_shared(&b.points[i]) {
-                    shared[e].points += 1;
-                    shared[e].max_distance = shared[e].max_distance.max(d);
+                if on_shared(&b.points[i]) {
                     *k = false;
                 } else if !inside(&b.uv_a[i], &b.uv_b[i]) {
                     out.points_outside += 1;
@@ -361,17 +222,15 @@ impl<'a> Faces<'a> {
         // A tangent contact along a shared edge (a G1 join of two faces) is that edge; its
         // points outside either face are not the faces' contact.
         if let Some(c) = &mut p.tangent_contact {
-            let mut keep_point = |x: &[f64; 3], ua: &[f64; 2], ub: &[f64; 2]| match near_shared(x) {
-                Some((e, d)) => {
-                    shared[e].points += 1;
-                    shared[e].max_distance = shared[e].max_distance.max(d);
+            let mut keep_point = |x: &[f64; 3], ua: &[f64; 2], ub: &[f64; 2]| {
+                if on_shared(x) {
                     false
-                }
-                None if !inside(ua, ub) => {
+                } else if !inside(ua, ub) {
                     out.points_outside += 1;
                     false
+                } else {
+                    true
                 }
-                None => true,
             };
             let keep: Vec<bool> = c
                 .points
@@ -390,7 +249,7 @@ impl<'a> Faces<'a> {
         }
         let touch: Vec<TouchOut> = std::mem::take(&mut p.touch_points);
         for t in touch {
-            if near_shared(&t.point).is_some() {
+            if tubes.is_some_and(|s| s.nearest(&t.point).is_some()) {
                 out.touch_points_on_shared_edges += 1;
             } else if t.uv_a.zip(t.uv_b).is_some_and(|(a, b)| !inside(&a, &b)) {
                 out.touch_points_outside += 1;

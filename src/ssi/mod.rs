@@ -49,6 +49,7 @@ pub mod picture;
 pub mod refine;
 pub mod regions;
 pub mod report;
+pub mod shared_tubes;
 pub mod sign_change;
 pub mod singular;
 pub mod tangent_contact;
@@ -116,6 +117,11 @@ pub struct SsiParams {
     /// The coverage certificate skips box pairs outside the faces (set per pair by the
     /// driver when faces are trimmed).
     pub coverage_outside: Option<coverage::OutsideFaces>,
+    /// In a one-file run on a B-rep, the tubes around the edges and vertices the pair's faces
+    /// share (set per pair by the driver): a traced curve lying wholly in them is counted to
+    /// the edge and not refined, and the coverage certificate accounts for them
+    /// ([`shared_tubes`]).
+    pub shared_tubes: Option<std::sync::Arc<shared_tubes::SharedTubes>>,
     /// Compute the certificates: the curve radius of every point ([`krawczyk`]) and, with
     /// [`SsiParams::coverage`], the coverage. Off gives a faster run that is reported as not
     /// certified (every point `not_requested`, no coverage); the distances to each surface
@@ -143,6 +149,7 @@ impl Default for SsiParams {
             coverage_max_boxes: 200_000,
             respect_trims: true,
             coverage_outside: None,
+            shared_tubes: None,
             certify: true,
             control: control::Control::default(),
         }

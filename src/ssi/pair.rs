@@ -167,6 +167,7 @@ pub fn intersect_surfaces(
         mb: &mb,
         ea: &ea,
         eb: &eb,
+        shared: prm.shared_tubes.as_deref(),
     };
     let rp = RefineParams {
         tol: prm.tol,
@@ -259,6 +260,7 @@ pub fn intersect_surfaces(
         ) {
             Some(BranchResult::Curve(c)) => out.branches.push(c),
             Some(BranchResult::Touch(t)) => out.touch_points.push(t),
+            Some(BranchResult::OnSharedEdges(pts)) => count_on_shared(&mut out, g.shared, &pts),
             None => {
                 out.complete = false;
                 break;
@@ -279,6 +281,12 @@ pub fn intersect_surfaces(
             deadline,
             cancel: ctl.cancel.clone(),
             outside: prm.coverage_outside.clone(),
+            tubes: std::sync::Arc::new(
+                prm.shared_tubes
+                    .as_ref()
+                    .map(|t| t.polylines())
+                    .unwrap_or_default(),
+            ),
         };
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
         super::regions::refine_undecided(&mut out, sa, sb, prm, &cp, deadline);
@@ -295,6 +303,25 @@ pub fn intersect_surfaces(
     }
     out.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// Count the points of a traced curve lying wholly along shared edges to those edges (the
+/// tally is completed by [`super::brep_faces::Faces::apply`]).
+pub(crate) fn count_on_shared(
+    out: &mut PairOut,
+    tubes: Option<&super::shared_tubes::SharedTubes>,
+    pts: &[[f64; 3]],
+) {
+    let Some(t) = tubes else {
+        return;
+    };
+    let faces = out.faces.get_or_insert_with(Default::default);
+    if faces.shared_edges.is_empty() {
+        faces.shared_edges = t.tally();
+    }
+    for x in pts {
+        t.attribute(x, &mut faces.shared_edges);
+    }
 }
 
 /// Triangles of each mesh in the singular region of a tangential point, and the merge of

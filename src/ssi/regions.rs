@@ -206,6 +206,7 @@ fn region_run(
         mb: &mb,
         ea,
         eb,
+        shared: prm.shared_tubes.as_deref(),
     };
     let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
     let mut stats = PairStats::default();
@@ -240,6 +241,9 @@ fn region_run(
         )? {
             BranchResult::Curve(c) => branches.push(c),
             BranchResult::Touch(t) => points.push(t),
+            // Along a shared edge: the coverage accounts for it through the edge's tube (the
+            // points are counted to the edge in the pair's own run only).
+            BranchResult::OnSharedEdges(_) => {}
         }
     }
     Some((branches, points))

@@ -15,6 +15,8 @@ pub(crate) struct CrossingSearch {
     pub boxes: usize,
     /// Boxes holding possible crossings, all proven within the match distance of the output.
     pub near_output: usize,
+    /// Boxes holding possible crossings, proven inside a tube ([`super::CoverageParams::tubes`]).
+    pub near_tubes: usize,
     /// A box that may hold a crossing and is not proven near the output (its model-space
     /// enclosure), if any was left at the depth or box limit.
     pub open: Option<Box3>,
@@ -23,13 +25,14 @@ pub(crate) struct CrossingSearch {
 /// A piece of the surface with its enclosed Cartesian control points.
 type Piece = (IPatch, Option<Vec<V>>);
 
-/// Search `curve` against `patch`: subdivide both until every part is empty or near the
-/// output; stop at `max_depth` levels or `max_boxes` boxes.
+/// Search `curve` against `patch`: subdivide both until every part is empty, within `d` of
+/// the output `near` or inside a tube (within its reach of its polyline); stop at `max_depth`
+/// levels or `max_boxes` boxes.
 pub(crate) fn search(
     curve: &ICurve,
     patch: &IPatch,
-    near: &Near,
-    d: f64,
+    (near, d): (&Near, f64),
+    tubes: &[(Near, f64)],
     max_depth: u32,
     max_boxes: usize,
 ) -> CrossingSearch {
@@ -65,6 +68,13 @@ pub(crate) fn search(
         let m = meet(&hc, &hs);
         if near.net_within_hinted(&pc, d, &hint) || near.box_within(&m, d) {
             out.near_output += 1;
+            continue;
+        }
+        if tubes
+            .iter()
+            .any(|(t, r)| t.net_within(&pc, *r) || t.box_within(&m, *r))
+        {
+            out.near_tubes += 1;
             continue;
         }
         // Parts far smaller than `d` that are not near the output will not become near by

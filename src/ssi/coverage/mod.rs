@@ -16,21 +16,32 @@
 //! 2. **near the output** — the common part of the two boxes, which holds every intersection
 //!    point of the pair, lies within the match distance `d` of one segment of `O`
 //!    ([`near`]).
+//!
+//! 2′. **in a tube** (one-file runs on a B-rep only) — that common part, or one piece's
+//!    control-point hull, lies within the reach `r_e` of one segment of a listed polyline
+//!    `E_e` (an edge or vertex two faces share, [`crate::ssi::shared_tubes`]): every
+//!    intersection point of the pair lies in the tube `T_e`.
 //! 3. **transversal** — the normal cones are separated ([`cones`]: no parallel normals, both
 //!    pieces regular), and every point where a border curve of `α` meets the piece `β`, or a
-//!    border curve of `β` meets `α`, is enclosed in boxes proven within `d` of `O`
-//!    ([`crossings`]). With separated cones, `I ∩ (α × β)` is a 1-manifold (implicit function
-//!    theorem: the Jacobian `[S_Au S_Av −S_Bs −S_Bt]` has rank 3), and a component that
-//!    does not meet the border of `α × β` would be a closed curve whose tangent is parallel
-//!    to `n_A × n_B`, along which `w·x` is strictly monotone — impossible. So every
-//!    component of `I ∩ (α × β)` contains a border crossing, which lies within `d` of `O`.
+//!    border curve of `β` meets `α`, is enclosed in boxes proven within `d` of `O` or inside a
+//!    tube ([`crossings`]). With separated cones, `I ∩ (α × β)` is a 1-manifold (implicit
+//!    function theorem: the Jacobian `[S_Au S_Av −S_Bs −S_Bt]` has rank 3), and a component
+//!    that does not meet the border of `α × β` would be a closed curve whose tangent is
+//!    parallel to `n_A × n_B`, along which `w·x` is strictly monotone — impossible. So every
+//!    component of `I ∩ (α × β)` contains a border crossing, which lies within `d` of `O` or
+//!    in a tube.
 //! 4. **uncertified** — none of the above within the budget; listed with the reason.
 //!
 //! **Claim.** Every connected component of `I` (every branch: closed loop, open arc, isolated
-//! touching point) contains a point within `d` of `O`, or meets a listed uncertified pair.
-//! Proof: a component contains a point of some leaf pair; that pair is not free; in a pair
-//! near the output every point is within `d` of `O`; in a transversal pair the component's
-//! piece contains a border crossing within `d` of `O`.
+//! touching point) contains a point within `d` of `O`, or a point in a tube `T_e`, or meets a
+//! listed uncertified pair. Proof: a component contains a point of some leaf pair; that pair
+//! is not free; in a pair near the output every point is within `d` of `O`, in a pair in a
+//! tube every point is in that tube; in a transversal pair the component's piece contains a
+//! border crossing within `d` of `O` or in a tube. Without tubes (every run but one-file runs
+//! on a B-rep) the second case is empty. With them the claim says nothing of what runs in a
+//! tube: there the faces meet by construction, and what the B-rep's edge curve and the reach
+//! `r_e` rest on is evidence (see [`crate::ssi::shared_tubes`]); the tubes' polylines and
+//! reaches are the numbers the decisions used, so the claim is a theorem about them.
 //!
 //! Hypotheses: positive weights (checked on the enclosures: a weight interval that is not
 //! strictly positive makes the piece uncertified), control points finite. Nothing depends on
@@ -91,7 +102,18 @@ pub struct CoverageParams {
     /// Pairs of parameter boxes lying outside the faces (trim or B-rep loops) are not
     /// examined: no point of the faces' intersection lies in them (counted `outside_faces`).
     pub outside: Option<OutsideFaces>,
+    /// Tubes `T_e`: a polyline `E_e` (segments; a point as a zero-length one) with a reach
+    /// `r_e`, the points within `r_e` of `E_e`. Pairs and crossing boxes proven inside one are
+    /// decided by it, and the claim excludes them (one-file runs on a B-rep: the edges and
+    /// vertices the faces share, [`crate::ssi::shared_tubes`]). Empty for other runs.
+    pub tubes: Tubes,
 }
+
+/// Polylines with their reach (see [`CoverageParams::tubes`]).
+pub type Tubes = std::sync::Arc<Vec<TubeLine>>;
+
+/// One tube: the segments of its polyline `E_e` and its reach `r_e`.
+pub type TubeLine = (Vec<([f64; 3], [f64; 3])>, f64);
 
 /// `outside(uv_a, uv_b)`: the box pair `[u0, u1, v0, v1]` of surface A and of surface B lies
 /// outside face A or face B (see [`crate::ssi::brep_faces`] for what that decision rests on).
@@ -148,7 +170,7 @@ pub struct CoverageOut {
     /// Bézier pieces (knot-span patches) of each surface.
     pub boxes_a: usize,
     pub boxes_b: usize,
-    /// Leaf pairs of the refinement, by class (`pairs` = the sum of the four classes).
+    /// Leaf pairs of the refinement, by class (`pairs` = the sum of the five classes).
     pub pairs: usize,
     /// Pairs examined, split ones included.
     pub pairs_examined: usize,
@@ -161,6 +183,10 @@ pub struct CoverageOut {
     /// Boxes examined in border-crossing searches, and those proven near the output.
     pub crossing_boxes: usize,
     pub crossing_boxes_near_output: usize,
+    /// Leaf pairs, and crossing boxes, proven inside a tube of [`CoverageParams::tubes`]
+    /// (within `r_e` of the polyline of an edge or vertex two faces of a B-rep share).
+    pub near_shared_edges: usize,
+    pub crossing_boxes_near_shared_edges: usize,
     /// The match distance `d` of the claim.
     pub match_distance: f64,
     /// Whether every leaf pair is free, near the output or transversal: then every branch of
@@ -408,6 +434,11 @@ pub fn coverage(
     let t0 = Instant::now();
     let near = output_set(branches, touches, prm.match_distance);
     let d = prm.match_distance;
+    let tubes: Vec<(Near, f64)> = prm
+        .tubes
+        .iter()
+        .map(|(segs, r)| (Near::new(segs.clone()), *r))
+        .collect();
     let (ra, rb) = (roots(sa), roots(sb));
     let mut out = CoverageOut {
         boxes_a: ra.len(),
@@ -484,6 +515,13 @@ pub fn coverage(
             out.near_output += 1;
             continue;
         }
+        if tubes
+            .iter()
+            .any(|(t, r)| t.box_within(&m, *r) || t.net_within(pa, *r) || t.net_within(pb, *r))
+        {
+            out.near_shared_edges += 1;
+            continue;
+        }
         if over {
             uncertified(&mut out, &a, &b, Reason::Budget, Some(centre(&m)));
             continue;
@@ -502,14 +540,15 @@ pub fn coverage(
                     let s = search(
                         &from.patch.edge(side),
                         &to.patch,
-                        &near,
-                        d,
+                        (&near, d),
+                        &tubes,
                         prm.max_crossing_depth,
                         left,
                     );
                     boxes += s.boxes;
                     out.crossing_boxes += s.boxes;
                     out.crossing_boxes_near_output += s.near_output;
+                    out.crossing_boxes_near_shared_edges += s.near_tubes;
                     if s.open.is_some() {
                         open = s.open;
                         break 'sides;
@@ -570,7 +609,8 @@ pub fn coverage(
         }
         out.free_pairs_with_branch_points = Some(bad);
     }
-    out.pairs = out.free + out.near_output + out.transversal + out.uncertified;
+    out.pairs =
+        out.free + out.near_output + out.near_shared_edges + out.transversal + out.uncertified;
     out.no_missed_branches = out.uncertified == 0;
     out.seconds = t0.elapsed().as_secs_f64();
     out
