@@ -5,7 +5,7 @@
 
 use super::certify::{ExactSurface, distance_upper};
 use super::fit::fit_branch;
-use super::insert::{Inserter, onto_curve, seams, small_angle};
+use super::insert::{Inserter, newton_onto_curve, onto_curve, seams, small_angle};
 use super::jet_cache::JetCache;
 
 /// Consecutive points sharing one Jacobian enclosure in the per-point certificates.
@@ -239,7 +239,7 @@ pub fn refine_branch(
     // pass the test and stray from the curve once its ends have moved).
     refined.par_iter_mut().with_min_len(64).for_each(|r| {
         if r.status == RefineStatus::Converged && small_angle(g, r) {
-            let _ = onto_curve(g, r, prm.tol, None);
+            newton_onto_curve(g, r, prm.tol);
         }
     });
     if let Some(t) = g.shared

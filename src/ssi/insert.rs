@@ -2,11 +2,11 @@
 //! refined points of a branch until every chord's midpoint lies within `tol` of the true
 //! curve point found from it (the Auxiliary Plane Method, [`super::refine`], started from the
 //! chord's parameter midpoint). Near tangency the new points are moved onto the curve
-//! ([`onto_curve`]) before chords are measured against it.
+//! ([`newton_onto_curve`]) before chords are measured against it.
 
 use super::branch::PairGeometry;
 use super::jet_cache::JetCache;
-use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve_cached};
+use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve_cached, newton_on_curve};
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, sin_between,
 };
@@ -94,7 +94,7 @@ impl Inserter<'_, '_> {
             // Near tangency a point within tol of both surfaces can be far from the curve:
             // measure against the curve (elsewhere the refinement lands on it closely, and
             // every output point is certified against the curve afterwards anyway).
-            let _ = onto_curve(self.g, &mut m, self.prm.tol, None);
+            newton_onto_curve(self.g, &mut m, self.prm.tol);
         }
         let chord = dist(&p.xyz, &q.xyz);
         (m.status == RefineStatus::Converged && dist(&m.xyz, &at) <= chord.max(self.prm.tol))
@@ -215,14 +215,51 @@ fn lerp(a: f64, b: f64, f: f64) -> f64 {
 /// Whether the surfaces meet at `r` at an angle whose sine is below 1/4 (or the normals are
 /// undefined there).
 pub(super) fn small_angle(g: &PairGeometry, r: &Refined) -> bool {
-    let s = if r.sin_angle.is_finite() {
+    let s = sin_at(g, r);
+    s.is_nan() || s < 0.25
+}
+
+/// The sine of the angle between the surface normals at `r`'s parameters (NaN where a normal
+/// is undefined).
+fn sin_at(g: &PairGeometry, r: &Refined) -> f64 {
+    if r.sin_angle.is_finite() {
         r.sin_angle
     } else {
         let (_, su, sv) = point_d1(g.sa, r.uv_a[0], r.uv_a[1]);
         let (_, rw, rt) = point_d1(g.sb, r.uv_b[0], r.uv_b[1]);
         sin_between(&su, &sv, &rw, &rt)
+    }
+}
+
+/// Moves `r` onto the curve near tangency without certifying it (the certificate follows
+/// for every output point, [`onto_curve`]): to the `f64` Newton solution `y` of the
+/// certificate's system ([`newton_on_curve`]), `r` becoming `(S_A(y_uv) + S_B(y_st)) / 2`.
+/// A point within `tol` of both surfaces meeting at an angle `θ` lies within about
+/// `2 tol / sin θ` of the curve; the move is kept only when it is at most twice that (plus
+/// `tol`) and the two surface points are no farther apart than before, so that the iteration
+/// cannot carry the point to another part of the curve.
+pub(super) fn newton_onto_curve(g: &PairGeometry, r: &mut Refined, tol: f64) {
+    let sin = sin_at(g, r);
+    if !(sin > 0.0) {
+        return;
+    }
+    let Some(y) = newton_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b) else {
+        return;
     };
-    s.is_nan() || s < 0.25
+    let (uv_a, uv_b) = ([y[0], y[1]], [y[2], y[3]]);
+    let (pa, pb) = (g.sa.eval(&uv_a[0], &uv_a[1]), g.sb.eval(&uv_b[0], &uv_b[1]));
+    let xyz: [f64; 3] = std::array::from_fn(|k| 0.5 * (pa[k] + pb[k]));
+    let gap = dist(&pa, &pb);
+    if dist(&xyz, &r.xyz) <= 4.0 * tol / sin + tol && gap <= r.gap {
+        *r = Refined {
+            xyz,
+            uv_a,
+            uv_b,
+            gap,
+            sin_angle: f64::NAN,
+            ..*r
+        };
+    }
 }
 
 /// The curve certificate of `r` ([`certify_on_curve`]); when its proven distance to the curve

@@ -252,17 +252,18 @@ const TANGENT_SIN: f64 = 1e-12;
 const NEWTON_STEPS: usize = 12;
 const TRIES: usize = 8;
 
-fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
-    // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
+/// Newton in `f64` towards the zero of `sys` from `z0`: the last iterate, the Jacobian there,
+/// and whether the last step was at the level of the domain's rounding; `None` where the
+/// Jacobian became singular.
+fn newton(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Option<([f64; 4], M4, bool)> {
     let mut y = z0;
     let (mut f, mut j) = match at_z0 {
         Some((ea, eb)) => sys.assemble(&y, ea, eb),
         None => sys.eval_f64(&y),
     };
+    let mut converged = false;
     for _ in 0..NEWTON_STEPS {
-        let Some(ji) = inverse4(j) else {
-            return Attempt::Fail(Uncertified::Singular);
-        };
+        let ji = inverse4(j)?;
         let d = mul4(&ji, &f);
         let next: [f64; 4] = std::array::from_fn(|i| y[i] - d[i]);
         if !next.iter().all(|x| x.is_finite()) {
@@ -276,9 +277,18 @@ fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
         // Converged when the step was at the level of the domain's rounding (1e-12 of its
         // size): the next one would be below the box radius anyway.
         if (0..4).all(|i| d[i].abs() <= 1e-12 * (sys.hi[i] - sys.lo[i] + y[i].abs())) {
+            converged = true;
             break;
         }
     }
+    Some((y, j, converged))
+}
+
+fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
+    // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
+    let Some((y, j, _)) = newton(sys, z0, at_z0) else {
+        return Attempt::Fail(Uncertified::Singular);
+    };
     // Newton ran far off the faces: no isolated zero near p (tangency, or no curve there).
     if !(0..4).all(|i| {
         let w = sys.hi[i] - sys.lo[i];
@@ -424,14 +434,33 @@ pub fn certify_on_curve_cached(
     }
 }
 
-fn certify_with(
+/// The `f64` Newton solution `y` of the certificate's system (the plane across the curve
+/// through `p`, started at `p`'s parameters), when the steps converged and `y` lies in both
+/// closed domains: the centre the certificate starts from, found without enclosures. It only
+/// moves points onto the curve (near tangency a point within tol of both surfaces can lie far
+/// from it); nothing is claimed from it.
+pub fn newton_on_curve(
     sa: &NurbsSurface<f64, 3>,
     sb: &NurbsSurface<f64, 3>,
     p: &[f64; 3],
     uv_a: &[f64; 2],
     uv_b: &[f64; 2],
-    cache: Option<&JetCache>,
-) -> Result<CurveCertificate, Uncertified> {
+) -> Option<[f64; 4]> {
+    let (sys, z0, at_z0, _) = plane_system(sa, sb, p, uv_a, uv_b, None).ok()?;
+    let (y, _, converged) = newton(&sys, z0, Some(at_z0))?;
+    (converged && (0..4).all(|i| y[i] >= sys.lo[i] && y[i] <= sys.hi[i])).then_some(y)
+}
+
+/// The system with the plane across the curve through `p` (its normal `N_A × N_B` at `p`'s
+/// parameters), the start `z0`, the surfaces' `f64` jets there, and the plane's normal.
+fn plane_system<'a>(
+    sa: &'a NurbsSurface<f64, 3>,
+    sb: &'a NurbsSurface<f64, 3>,
+    p: &[f64; 3],
+    uv_a: &[f64; 2],
+    uv_b: &[f64; 2],
+    cache: Option<&'a JetCache>,
+) -> Result<(System<'a>, [f64; 4], (Eval, Eval), [f64; 3]), Uncertified> {
     if !p.iter().chain(uv_a).chain(uv_b).all(|x| x.is_finite()) {
         return Err(Uncertified::NotFinite);
     }
@@ -439,17 +468,6 @@ fn certify_with(
     let lo = [da[0], da[2], db[0], db[2]];
     let hi = [da[1], da[3], db[1], db[3]];
     let z0 = [uv_a[0], uv_a[1], uv_b[0], uv_b[1]];
-    let mut sys = System {
-        sa,
-        sb,
-        cache,
-        e: Fourth::Hold { k: 0, c: 0.0 },
-        p: *p,
-        lo,
-        hi,
-    };
-    // The plane across the curve through p; if the zero may lie beyond a border, that
-    // parameter held on the border instead.
     let ea = point_d1(sa, z0[0], z0[1]);
     let eb = point_d1(sb, z0[2], z0[3]);
     let ((_, au, av), (_, bs, bt)) = (ea, eb);
@@ -460,8 +478,30 @@ fn certify_with(
         return Err(Uncertified::Tangency);
     }
     let n = t.map(|c| c / lt);
-    sys.e = Fourth::Plane { n, p: *p };
-    match attempt(&sys, z0, Some((ea, eb))) {
+    let sys = System {
+        sa,
+        sb,
+        cache,
+        e: Fourth::Plane { n, p: *p },
+        p: *p,
+        lo,
+        hi,
+    };
+    Ok((sys, z0, (ea, eb), n))
+}
+
+fn certify_with(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    p: &[f64; 3],
+    uv_a: &[f64; 2],
+    uv_b: &[f64; 2],
+    cache: Option<&JetCache>,
+) -> Result<CurveCertificate, Uncertified> {
+    // The plane across the curve through p; if the zero may lie beyond a border, that
+    // parameter held on the border instead.
+    let (mut sys, z0, at_z0, n) = plane_system(sa, sb, p, uv_a, uv_b, cache)?;
+    match attempt(&sys, z0, Some(at_z0)) {
         Attempt::Done(c) => Ok(c),
         Attempt::Fail(u) => Err(u),
         Attempt::Outside(k, c) => {
@@ -540,6 +580,32 @@ mod tests {
                 assert!(cert.radius <= e + 1e-13, "{th} {e}: {}", cert.radius);
             }
         }
+    }
+
+    /// Near tangency a point within `d` of both planes lies about `d / θ` from their common
+    /// line; the Newton solution is on it (closed form: the x axis), at the point's `x`, and
+    /// is `None` for planes that do not meet within the domains.
+    #[test]
+    fn newton_lands_on_the_line() {
+        for th in [0.1, 1e-3, 1e-5] {
+            let (c, s) = (2.0 * f64::cos(th), 2.0 * f64::sin(th));
+            let b = bilinear([-2.0, -c, -s], [2.0, -c, -s], [-2.0, c, s], [2.0, c, s]).unwrap();
+            let a = plane_z(0.0);
+            // 1e-7 from A and about 1e-7 from B: 1e-7 / θ off the line.
+            let e = 1e-7 / th;
+            let p = [0.3, e, 1e-7];
+            let uv_a = [(p[0] + 2.0) / 4.0, (p[1] + 2.0) / 4.0];
+            let uv_b = [(p[0] + 2.0) / 4.0, 0.5 + e / 4.0];
+            let y = newton_on_curve(&a, &b, &p, &uv_a, &uv_b).unwrap();
+            let q = a.eval(&y[0], &y[1]);
+            assert!(q[1].abs() < 1e-13 && q[2] == 0.0, "{th}: {q:?}");
+            assert!((q[0] - 0.3).abs() < 1e-12, "{th}: {q:?}");
+            let r = b.eval(&y[2], &y[3]);
+            assert!(crate::geom::dist(&q, &r) < 1e-13, "{th}: {q:?} {r:?}");
+        }
+        // Parallel planes 1e-3 apart: no zero.
+        let (a, b) = (plane_z(0.0), plane_z(1e-3));
+        assert!(newton_on_curve(&a, &b, &[0.0; 3], &[0.5, 0.5], &[0.5, 0.5]).is_none());
     }
 
     /// The sphere of radius 2 cut by z = h: radius bounds the distance to the circle.
