@@ -12,7 +12,7 @@ import json, os, subprocess, time
 import OCP.OCP as o
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-VERICAD = os.path.join(HERE, "..", "target", "release", "vericad")
+VERICAD = os.environ.get("VERICAD") or os.path.join(HERE, "..", "target", "release", "vericad")
 MODEL = os.path.join(HERE, "..", "src", "models", "yang-table2.json")
 
 P = [[(0, 2, -1), (2.5, 1, 0), (1, 0, 1.5)],
@@ -70,7 +70,7 @@ def occt(tol):
 
 
 def vericad(tol):
-    out = subprocess.run([VERICAD, "curve-on-surface", "--surface", MODEL, "--curve", MODEL, "--tol", str(tol), "--angle", "10", "--json"],
+    out = subprocess.run([VERICAD, "curve-on-surface", "--surface", MODEL, "--curve", MODEL, "--tol", str(tol), "--angle", "10", "--evidence", "--json"],
                          capture_output=True, text=True, check=True).stdout
     r = json.loads(out)
     return dict(degree=r["bspline"]["degree"], segments=r["num_segments"], control_points=r["num_control_points"],

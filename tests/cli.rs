@@ -250,8 +250,43 @@ fn curve_on_surface_writes_result_and_svg() {
             "missing certificate.{key}"
         );
     }
-    assert!(r["certificate"]["hausdorff_bound"].as_f64().unwrap() <= 1e-2);
+    let bound = r["certificate"]["hausdorff_bound"].as_f64().unwrap();
+    assert!(bound <= 1e-2);
     assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // The evidence is measured only when asked for, and then lies within the proven bound.
+    assert_eq!(r["evidence"]["measured"], false);
+    assert_eq!(r["evidence"]["samples"], 0);
+    assert!(stdout.contains("evidence: not measured"), "{stdout}");
+    let ev = d.join("ev.json");
+    let (code, stdout, stderr) = vericad(&[
+        "curve-on-surface",
+        "--surface",
+        m.to_str().unwrap(),
+        "--curve",
+        m.to_str().unwrap(),
+        "--tol",
+        "1e-2",
+        "--evidence",
+        "--out",
+        ev.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("evidence (measured, not proof)"),
+        "{stdout}"
+    );
+    let e: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&ev).unwrap()).unwrap();
+    assert_eq!(e["evidence"]["measured"], true);
+    let segs = e["num_segments"].as_u64().unwrap();
+    // 32 samples per segment (33 points) each way by default.
+    assert!(e["evidence"]["samples"].as_u64().unwrap() >= 33 * segs);
+    let measured = e["evidence"]["max_distance_sampled"].as_f64().unwrap();
+    assert!(measured > 0.0 && measured <= bound, "{measured} vs {bound}");
+    assert_eq!(
+        e["certificate"]["hausdorff_bound"],
+        r["certificate"]["hausdorff_bound"]
+    );
     // The 3D picture: one polyline per segment, green (all within ε_d), the legend counting.
     let pic = d.join("p.svg");
     let (code, _, stderr) = vericad(&[

@@ -23,6 +23,7 @@ fn table2_at_paper_tolerances(
     let p = Params {
         eps_d: 1e-3,
         eps_t_deg: 10.0,
+        evidence_samples: 32,
         ..Params::default()
     };
     approximate(s, c, &p).unwrap()
@@ -341,6 +342,7 @@ fn curves_along_and_tangent_to_knot_lines() {
             &c,
             &Params {
                 eps_d: 1e-3,
+                evidence_samples: 32,
                 ..Params::default()
             },
         )

@@ -397,7 +397,8 @@ fn certify_ssi(
 /// A curve of a surface's domain as a curve on it: `vericad curve-on-surface`.
 #[pyfunction]
 #[pyo3(signature = (surface, curve, *, tol=1e-3, angle=10.0, bound="local", exact=false,
-    out=None, svg=None, iges=None, vtk=None, svg_3d=None, view=String::from("-60,25")))]
+    evidence=0, out=None, svg=None, iges=None, vtk=None, svg_3d=None,
+    view=String::from("-60,25")))]
 #[allow(clippy::too_many_arguments)]
 fn curve_on_surface(
     py: Python<'_>,
@@ -407,6 +408,7 @@ fn curve_on_surface(
     angle: f64,
     bound: &str,
     exact: bool,
+    evidence: usize,
     out: Option<PathBuf>,
     svg: Option<PathBuf>,
     iges: Option<PathBuf>,
@@ -429,6 +431,7 @@ fn curve_on_surface(
             } else {
                 Arithmetic::Float
             },
+            evidence_samples: evidence,
             ..Params::default()
         };
         let outputs = job::Outputs {

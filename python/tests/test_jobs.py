@@ -170,6 +170,17 @@ def test_curve_on_surface_equals_the_cli(cli, tmp_path):
     assert without(written, strip) == without(ref, strip)
 
 
+def test_curve_on_surface_evidence_only_when_asked(cli):
+    plain_run = vericad.curve_on_surface(YANG, YANG)
+    assert plain_run.evidence.measured is False and plain_run.evidence.samples == 0
+    r = vericad.curve_on_surface(YANG, YANG, evidence=8)
+    ref = cli_json(cli, "curve-on-surface", "--surface", YANG, "--curve", YANG, "--evidence", "8")
+    assert without(plain(r), {"elapsed_ms"}) == without(ref, {"elapsed_ms"})
+    assert r.evidence.measured is True
+    assert r.evidence.samples >= 9 * r.num_segments
+    assert 0 < r.evidence.max_distance_sampled <= r.certificate.hausdorff_bound
+
+
 def test_curve_on_surface_picture_equals_the_cli(cli, tmp_path):
     r = vericad.curve_on_surface(YANG, YANG, svg_3d=tmp_path / "p.svg", view="10,40")
     text = (tmp_path / "p.svg").read_text()

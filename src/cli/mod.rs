@@ -112,6 +112,10 @@ pub enum Command {
         /// f64 with interval enclosures (which reruns exactly by itself when undecided).
         #[arg(long)]
         exact: bool,
+        /// Also measure the distance between the segments and the true image at N samples per
+        /// segment, both ways (evidence, not proof; timed apart). Default: not measured.
+        #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "32")]
+        evidence: Option<usize>,
         /// Write the JSON result here.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -348,6 +352,7 @@ pub fn run(cli: Cli) -> i32 {
             angle,
             bound,
             exact,
+            evidence,
             out,
             svg,
             iges,
@@ -370,6 +375,7 @@ pub fn run(cli: Cli) -> i32 {
                 } else {
                     Arithmetic::Float
                 },
+                evidence_samples: evidence.unwrap_or(0),
                 ..Params::default()
             };
             let outputs = job::Outputs {

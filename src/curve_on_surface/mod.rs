@@ -106,7 +106,9 @@ pub struct Params {
     pub eps_t_deg: f64,
     /// Safety cap on the number of segments.
     pub max_segments: usize,
-    /// Samples per segment for the measured evidence.
+    /// Samples per segment for the measured evidence ([`evidence`]); 0 (the default): not
+    /// measured. It proves nothing and can take most of a run's time, so it is asked for
+    /// (`--evidence` on the command line).
     pub evidence_samples: usize,
     pub bound: Bound,
 }
@@ -118,7 +120,7 @@ impl Default for Params {
             eps_d: 1e-3,
             eps_t_deg: 10.0,
             max_segments: 200_000,
-            evidence_samples: 32,
+            evidence_samples: 0,
             bound: Bound::Local,
         }
     }
@@ -158,9 +160,11 @@ pub struct Certificate {
     pub arithmetic: String,
 }
 
-/// Measured, not proven.
+/// Measured, not proven; only when asked for ([`Params::evidence_samples`]).
 #[derive(Clone, Debug, Serialize)]
 pub struct Evidence {
+    /// Whether the evidence was measured; when not, the other fields are 0.
+    pub measured: bool,
     pub max_distance_sampled: f64,
     pub samples: usize,
     /// Time spent measuring (not part of `elapsed_ms`).
@@ -362,6 +366,7 @@ pub fn approximate_with_progress(
             arithmetic: chain.arithmetic.clone(),
         },
         evidence: Evidence {
+            measured: params.evidence_samples > 0,
             max_distance_sampled: ev,
             samples,
             elapsed_ms: evidence_ms,
@@ -488,11 +493,18 @@ impl std::fmt::Display for CurveOnSurface {
             "  f64 output rounding of control points <= {:.1e}; joints shared exactly: {}",
             c.control_point_rounding, self.bspline.joints_exact
         )?;
-        writeln!(
-            f,
-            "  evidence (measured, not proof): max distance {:.3e} over {} samples ({:.1} ms)",
-            self.evidence.max_distance_sampled, self.evidence.samples, self.evidence.elapsed_ms
-        )?;
+        if self.evidence.measured {
+            writeln!(
+                f,
+                "  evidence (measured, not proof): max distance {:.3e} over {} samples ({:.1} ms)",
+                self.evidence.max_distance_sampled, self.evidence.samples, self.evidence.elapsed_ms
+            )?;
+        } else {
+            writeln!(
+                f,
+                "  evidence: not measured (--evidence samples the segments; the bound above is the proof)"
+            )?;
+        }
         let s = &self.steps;
         writeln!(
             f,
