@@ -5,11 +5,15 @@ use super::{EXIT_BAD_INPUT, EXIT_FAILURE, EXIT_UNCERTIFIED};
 /// Print a report; a closed pipe (e.g. `| head`) is not an error.
 pub(super) fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) {
     use std::io::Write;
-    let mut out = std::io::stdout().lock();
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, std::io::stdout().lock());
     let _ = if json {
-        match crate::io::json_text::to_text(r) {
-            Ok(t) => writeln!(out, "{t}"),
+        // Streamed as it is made: a large result is never held as text in memory. A closed
+        // pipe ends the output quietly.
+        match crate::io::json_text::to_writer(&mut out, r) {
+            Ok(()) => writeln!(out),
+            Err(e) if e.io_error_kind() == Some(std::io::ErrorKind::BrokenPipe) => Ok(()),
             Err(e) => {
+                let _ = out.flush();
                 eprintln!("error: the JSON report could not be written: {e}");
                 Ok(())
             }
@@ -17,6 +21,7 @@ pub(super) fn print<T: serde::Serialize + std::fmt::Display>(r: &T, json: bool) 
     } else {
         write!(out, "{r}")
     };
+    let _ = out.flush();
 }
 
 pub(super) fn bad(msg: impl std::fmt::Display) -> i32 {

@@ -110,9 +110,7 @@ pub fn run(
         approximate_with_progress(&surf.nurbs, curve, params, &mut report)?
     };
     if let Some(o) = out {
-        crate::io::json_text::to_text(&r)
-            .map_err(std::io::Error::other)
-            .and_then(|text| crate::io::write_atomic(o, text))
+        crate::io::json_text::write_file(o, &r)
             .map_err(|e| JobError::Write(o.display().to_string(), e))?;
     }
     if let Some(p) = svg {

@@ -148,21 +148,38 @@ pub fn set_pretty(on: bool) {
 /// `v` as readable JSON text (see the module comment), or fully indented after
 /// [`set_pretty`].
 pub fn to_text<T: Serialize + ?Sized>(v: &T) -> Result<String, serde_json::Error> {
-    if PRETTY.load(std::sync::atomic::Ordering::Relaxed) {
-        return serde_json::to_string_pretty(v);
-    }
     let mut buf = Vec::with_capacity(4096);
+    to_writer(&mut buf, v)?;
+    // The formatter writes only ASCII brackets, commas, spaces and newlines around
+    // serde_json's own UTF-8 output.
+    String::from_utf8(buf).map_err(|e| serde_json::Error::io(io::Error::other(e)))
+}
+
+/// [`to_text`] written to `w` as it is produced: a large result is never held as text in
+/// memory (give a buffered writer).
+pub fn to_writer<W: Write, T: Serialize + ?Sized>(w: W, v: &T) -> Result<(), serde_json::Error> {
+    if PRETTY.load(std::sync::atomic::Ordering::Relaxed) {
+        return serde_json::to_writer_pretty(w, v);
+    }
     let mut ser = serde_json::Serializer::with_formatter(
-        &mut buf,
+        w,
         Readable {
             levels: Vec::new(),
             pending: None,
         },
     );
-    v.serialize(&mut ser)?;
-    // The formatter writes only ASCII brackets, commas, spaces and newlines around
-    // serde_json's own UTF-8 output.
-    String::from_utf8(buf).map_err(|e| serde_json::Error::io(io::Error::other(e)))
+    v.serialize(&mut ser)
+}
+
+/// Write `v` as [`to_text`] would to `path`, streamed through a buffer into a temporary file
+/// renamed over `path` at the end ([`super::write_atomic_with`]): a failed write keeps the
+/// previous file.
+pub fn write_file<T: Serialize + ?Sized>(path: &std::path::Path, v: &T) -> io::Result<()> {
+    super::write_atomic_with(path, |f| {
+        let mut w = io::BufWriter::with_capacity(1 << 16, f);
+        to_writer(&mut w, v).map_err(io::Error::other)?;
+        w.flush()
+    })
 }
 
 #[cfg(test)]
@@ -181,6 +198,18 @@ mod tests {
         );
         let back: serde_json::Value = serde_json::from_str(&t).unwrap();
         assert_eq!(back, v);
+    }
+
+    /// The streamed file holds the same text as [`to_text`].
+    #[test]
+    fn written_file_equals_the_text() {
+        let v = json!({"points": (0..5000).map(|i| [i as f64 * 0.5, -1.0, 2.25]).collect::<Vec<_>>(), "n": 3});
+        let dir = std::env::temp_dir().join(format!("vericad-json-text-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("r.json");
+        write_file(&p, &v).unwrap();
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), to_text(&v).unwrap());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

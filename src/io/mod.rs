@@ -118,6 +118,14 @@ pub enum WriteError {
 /// file untouched and removes the temporary file.
 pub fn write_atomic(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> std::io::Result<()> {
     use std::io::Write;
+    write_atomic_with(path, |f| f.write_all(bytes.as_ref()))
+}
+
+/// [`write_atomic`] with the content written by `fill` (for output streamed as it is made).
+pub fn write_atomic_with(
+    path: &std::path::Path,
+    fill: impl FnOnce(&mut std::fs::File) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => std::path::PathBuf::from("."),
@@ -129,7 +137,7 @@ pub fn write_atomic(path: &std::path::Path, bytes: impl AsRef<[u8]>) -> std::io:
     let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes.as_ref())?;
+        fill(&mut f)?;
         f.sync_all()?;
         drop(f);
         std::fs::rename(&tmp, path)

@@ -100,9 +100,8 @@ pub fn run_result(
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
     }
     if let Some(p) = out.report {
-        let text = crate::io::json_text::to_text(&r.report)
+        crate::io::json_text::write_file(p, &r.report)
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
-        write(p, &text)?;
     }
     if let Some(p) = out.svg {
         write(

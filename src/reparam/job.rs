@@ -217,9 +217,8 @@ pub fn run(spec: &str, params: &Params, out: Outputs) -> Result<JobReport, JobEr
         seconds: t0.elapsed().as_secs_f64(),
     };
     if let Some(p) = out.report {
-        let text = crate::io::json_text::to_text(&report)
+        crate::io::json_text::write_file(p, &report)
             .map_err(|e| JobError::Write(p.display().to_string(), e.to_string()))?;
-        write(p, text)?;
     }
     Ok(report)
 }

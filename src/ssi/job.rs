@@ -79,10 +79,10 @@ fn check_writable<'a>(paths: impl IntoIterator<Item = Option<&'a Path>>) -> Resu
 }
 
 /// Write through a temporary file and a rename: a failed write keeps the previous file.
-/// A result as readable JSON ([`crate::io::json_text`]).
-fn json_text<T: serde::Serialize>(v: &T) -> Result<String, JobError> {
-    crate::io::json_text::to_text(v)
-        .map_err(|e| JobError::Write("the JSON result".into(), e.to_string()))
+/// A result as readable JSON ([`crate::io::json_text`]), streamed to the file.
+fn write_json<T: serde::Serialize>(path: &Path, v: &T) -> Result<(), JobError> {
+    crate::io::json_text::write_file(path, v)
+        .map_err(|e| JobError::Write(path.display().to_string(), e.to_string()))
 }
 
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
@@ -251,7 +251,7 @@ pub fn run(
         }
     }
     if let Some(p) = outputs.json {
-        write(p, &json_text(&r)?)?;
+        write_json(p, &r)?;
     }
     Ok(r)
 }
@@ -473,7 +473,7 @@ pub fn run_certify(
         &progress_printer("foreign points", t0),
     );
     if let Some(p) = json_out {
-        write(p, &json_text(&rep)?)?;
+        write_json(p, &rep)?;
     }
     Ok(rep)
 }

@@ -142,8 +142,7 @@ impl Outputs<'_> {
         let Some(p) = self.report else {
             return Ok(());
         };
-        let text = crate::io::json_text::to_text(r).map_err(|e| OutputFault::write(p, e))?;
-        crate::io::write_atomic(p, text).map_err(|e| OutputFault::write(p, e))
+        crate::io::json_text::write_file(p, r).map_err(|e| OutputFault::write(p, e))
     }
 }
 
