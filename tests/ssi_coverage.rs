@@ -367,3 +367,48 @@ proptest! {
         }
     }
 }
+
+/// Faces proven to have no common point before anything is traced: the pieces subdivided
+/// until every pair is free. A square inside a sphere (in a rotated frame, their boxes
+/// overlapping) and domes 0.1, 1e-3 and 1e-5 below a plane are; a dome touching the plane at
+/// its apex or crossing it is never called disjoint: the whole pipeline runs, and finds the
+/// loop (radius 0.1), or lists the apex contact as uncertified.
+#[test]
+fn disjoint_faces_are_proven_so_before_tracing() {
+    let f = rotated(3);
+    let s = sphere(&f, 2.0).unwrap();
+    let sq = bilinear(
+        f.at(-0.5, -0.5, 0.3),
+        f.at(0.5, -0.5, 0.3),
+        f.at(-0.5, 0.5, 0.3),
+        f.at(0.5, 0.5, 0.3),
+    )
+    .unwrap();
+    for (a, b, disjoint, branches, touches) in [
+        (&s, &sq, true, 0, 0),
+        (&dome(-0.1, 1.0), &big_plane(), true, 0, 0),
+        (&dome(-1e-3, 1.0), &big_plane(), true, 0, 0),
+        (&dome(-1e-5, 1.0), &big_plane(), true, 0, 0),
+        (&dome(0.0, 1.0), &big_plane(), false, 0, 1),
+        (&dome(0.01, 1.0), &big_plane(), false, 1, 0),
+    ] {
+        let r = run(a, b, 1e-7);
+        assert_eq!(r.stats.proven_disjoint, disjoint, "{:?}", r.stats);
+        assert_eq!(r.branches.len(), branches);
+        let cov = r.coverage.as_ref().unwrap();
+        // The apex contact: found as a touching point, or the run is not certified there.
+        assert!(
+            r.touch_points.len() == touches
+                || (r.touch_points.is_empty() && touches > 0 && !cov.no_missed_branches),
+            "{:?} {cov:?}",
+            r.touch_points
+        );
+        if disjoint {
+            assert!(cov.no_missed_branches, "{cov:?}");
+            assert_eq!(cov.pairs, cov.free);
+            assert_eq!(r.stats.triangles_a + r.stats.triangles_b, 0);
+        } else {
+            assert!(r.stats.triangles_a > 0);
+        }
+    }
+}

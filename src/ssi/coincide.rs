@@ -74,6 +74,47 @@ fn cartesian_exact(s: &NurbsSurface<f64, 3>) -> Option<Vec<[Q; 3]>> {
         .collect()
 }
 
+/// A fast exact refusal of the coplanar case: four control points of weight 1 (their
+/// Cartesian points are the `f64` values themselves, exactly) with a nonzero orientation
+/// (adaptive exact predicate) show the two nets are not coplanar. `false` says nothing (the
+/// exact test decides).
+fn proven_not_coplanar(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> bool {
+    let pts: Vec<[f64; 3]> = sa
+        .hom
+        .net
+        .iter()
+        .chain(&sb.hom.net)
+        .filter(|h| h.w == 1.0 && h.wp.iter().all(|x| x.is_finite()))
+        .map(|h| h.wp)
+        .collect();
+    let Some(&p0) = pts.first() else {
+        return false;
+    };
+    let d2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>();
+    // A well-spread triple (any triple is sound: a collinear one only makes every test zero).
+    let far = |key: &dyn Fn(&[f64; 3]) -> f64| {
+        pts.iter()
+            .copied()
+            .max_by(|a, b| key(a).total_cmp(&key(b)))
+            .unwrap_or(p0)
+    };
+    let p1 = far(&|p| d2(p, &p0));
+    let p2 = far(&|p| {
+        let (u, v) = (
+            [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]],
+            [p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]],
+        );
+        let c = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        c[0] * c[0] + c[1] * c[1] + c[2] * c[2]
+    });
+    pts.iter()
+        .any(|p| orient3d::<f64>(&p0, &p1, &p2, p) != Sign::Zero)
+}
+
 fn sub(a: &[Q; 3], b: &[Q; 3]) -> [Q; 3] {
     std::array::from_fn(|k| &a[k] - &b[k])
 }
@@ -107,6 +148,9 @@ pub fn coincidence(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> Opti
             plane_normal: None,
             overlap: None,
         });
+    }
+    if proven_not_coplanar(sa, sb) {
+        return None;
     }
     let pa = cartesian_exact(sa)?;
     let pb = cartesian_exact(sb)?;
@@ -172,5 +216,45 @@ mod tests {
         assert!(coincidence(&s, &a).is_none());
         let s2 = sphere(&f, 2.0 + 1e-15).unwrap();
         assert!(coincidence(&s, &s2).is_none());
+        // The fast refusal says nothing on the coplanar pair, and refuses the lifted one.
+        assert!(!proven_not_coplanar(&a, &b));
+        assert!(proven_not_coplanar(&a, &b2));
+    }
+
+    /// The fast refusal never contradicts the exact test: on small-integer nets, coplanar by
+    /// construction (z = αx + βy + γ) or with one point moved by 0 … 2 units, whenever it
+    /// refuses, the exact decision is "not coplanar" too; and it refuses every moved net.
+    #[test]
+    fn fast_refusal_agrees_with_the_exact_test() {
+        let mut seed = 12345u64;
+        let mut next = |m: u64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) % m) as f64
+        };
+        for case in 0..300 {
+            let (al, be, ga) = (next(7) - 3.0, next(7) - 3.0, next(9) - 4.0);
+            let mut corners: Vec<[f64; 3]> = (0..8)
+                .map(|_| {
+                    let (x, y) = (next(11) - 5.0, next(11) - 5.0);
+                    [x, y, al * x + be * y + ga]
+                })
+                .collect();
+            let moved = next(3);
+            corners[(case % 8) as usize][2] += moved;
+            let c = &corners;
+            let (a, b) = (
+                bilinear(c[0], c[1], c[2], c[3]).unwrap(),
+                bilinear(c[4], c[5], c[6], c[7]).unwrap(),
+            );
+            let exact_flat = coincidence(&a, &b).is_some();
+            if proven_not_coplanar(&a, &b) {
+                assert!(!exact_flat, "case {case}: refused a coplanar pair");
+            }
+            if moved > 0.0 && !exact_flat {
+                assert!(proven_not_coplanar(&a, &b), "case {case}: not refused");
+            }
+        }
     }
 }

@@ -133,6 +133,29 @@ pub fn intersect_surfaces(
             tangent_contact: None,
         })
     };
+    let coverage_on = prm.coverage && prm.certify;
+    // Faces proven to have no common point (pieces subdivided until all pairs are free):
+    // nothing to trace, and the coverage certificate holds as it stands.
+    if coverage_on
+        && let Some(c) =
+            super::coverage::disjoint::proven_disjoint(sa, sb, &coverage_params(prm, deadline))
+    {
+        stats.proven_disjoint = true;
+        stats.seconds = t0.elapsed().as_secs_f64();
+        return Ok(PairOut {
+            a: ids.0,
+            b: ids.1,
+            branches: Vec::new(),
+            touch_points: Vec::new(),
+            contacts: Vec::new(),
+            stats,
+            coverage: Some(c),
+            complete: true,
+            coincident: None,
+            faces: None,
+            tangent_contact: None,
+        });
+    }
     if let Some(c) = coincidence(sa, sb) {
         stats.seconds = t0.elapsed().as_secs_f64();
         return Ok(PairOut {
@@ -267,27 +290,12 @@ pub fn intersect_surfaces(
             }
         }
     }
-    let coverage_on = prm.coverage && prm.certify;
     if out.complete && coverage_on && stop() {
         out.complete = false;
     }
     if out.complete && coverage_on {
         ctl.report(ids, "coverage", 0, 0);
-        let cp = CoverageParams {
-            match_distance: prm.coverage_match.unwrap_or(10.0 * prm.tol),
-            max_pair_depth: prm.coverage_max_depth,
-            max_crossing_depth: 96,
-            max_boxes: prm.coverage_max_boxes,
-            deadline,
-            cancel: ctl.cancel.clone(),
-            outside: prm.coverage_outside.clone(),
-            tubes: std::sync::Arc::new(
-                prm.shared_tubes
-                    .as_ref()
-                    .map(|t| t.polylines())
-                    .unwrap_or_default(),
-            ),
-        };
+        let cp = coverage_params(prm, deadline);
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
         super::regions::refine_undecided(&mut out, sa, sb, prm, &cp, deadline);
         let parallel = out.coverage.as_ref().is_some_and(|c| {
@@ -303,6 +311,25 @@ pub fn intersect_surfaces(
     }
     out.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// The coverage certificate's parameters for a pair run with `prm`.
+fn coverage_params(prm: &SsiParams, deadline: Option<Instant>) -> CoverageParams {
+    CoverageParams {
+        match_distance: prm.coverage_match.unwrap_or(10.0 * prm.tol),
+        max_pair_depth: prm.coverage_max_depth,
+        max_crossing_depth: 96,
+        max_boxes: prm.coverage_max_boxes,
+        deadline,
+        cancel: prm.control.cancel.clone(),
+        outside: prm.coverage_outside.clone(),
+        tubes: std::sync::Arc::new(
+            prm.shared_tubes
+                .as_ref()
+                .map(|t| t.polylines())
+                .unwrap_or_default(),
+        ),
+    }
 }
 
 /// Count the points of a traced curve lying wholly along shared edges to those edges (the

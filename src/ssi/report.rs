@@ -294,6 +294,9 @@ pub struct PairStats {
     /// Triangle pairs in real (unperturbed) non-transversal contact.
     pub contacts: usize,
     pub tangency_refinement_rounds: usize,
+    /// The faces were proven to have no common point before anything was traced
+    /// ([`super::coverage::disjoint`]): not triangulated, the coverage is all free pairs.
+    pub proven_disjoint: bool,
     pub seconds: f64,
 }
 

@@ -59,6 +59,7 @@
 
 pub mod cones;
 pub mod crossings;
+pub mod disjoint;
 pub mod near;
 pub mod patch;
 
