@@ -135,10 +135,10 @@ pub fn intersect_surfaces(
     };
     let coverage_on = prm.coverage && prm.certify;
     // Faces proven to have no common point (pieces subdivided until all pairs are free):
-    // nothing to trace, and the coverage certificate holds as it stands.
-    if coverage_on
-        && let Some(c) =
-            super::coverage::disjoint::proven_disjoint(sa, sb, &coverage_params(prm, deadline))
+    // nothing to trace, and the coverage certificate holds as it stands (reported when
+    // asked for).
+    if let Some(c) =
+        super::coverage::disjoint::proven_disjoint(sa, sb, &coverage_params(prm, deadline))
     {
         stats.proven_disjoint = true;
         stats.seconds = t0.elapsed().as_secs_f64();
@@ -149,7 +149,7 @@ pub fn intersect_surfaces(
             touch_points: Vec::new(),
             contacts: Vec::new(),
             stats,
-            coverage: Some(c),
+            coverage: coverage_on.then_some(c),
             complete: true,
             coincident: None,
             faces: None,
