@@ -18,15 +18,51 @@ fn tri(m: &Triangulation, t: u32) -> [[f64; 3]; 3] {
     std::array::from_fn(|k| m.vertices[v[k] as usize])
 }
 
-fn edge_use(m: &Triangulation) -> HashMap<(u32, u32), u32> {
-    let mut c = HashMap::new();
+/// How many triangles of `m` use each of the edges `queries` (vertex pairs, smaller index
+/// first): one pass over the triangles, looking up only edges whose smaller vertex is a query
+/// vertex (the branch ends are few; the mesh's edges are millions).
+fn edge_use(m: &Triangulation, queries: &[(u32, u32)]) -> HashMap<(u32, u32), u32> {
+    let mut count: HashMap<(u32, u32), u32> = queries.iter().map(|&e| (e, 0)).collect();
+    if count.is_empty() {
+        return count;
+    }
+    let mut mark = vec![false; m.vertices.len()];
+    for &(a, _) in count.keys() {
+        if let Some(x) = mark.get_mut(a as usize) {
+            *x = true;
+        }
+    }
     for t in &m.triangles {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
-            *c.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            let e = (a.min(b), a.max(b));
+            if mark[e.0 as usize]
+                && let Some(c) = count.get_mut(&e)
+            {
+                *c += 1;
+            }
         }
     }
-    c
+    count
+}
+
+/// The edge features (vertex pairs, smaller first) of side `a` (or `b`) at the open branches'
+/// end points.
+fn end_edges(
+    topo: &super::topology::Topology,
+    branches: &[super::trace::Branch],
+    a: bool,
+) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for br in branches.iter().filter(|b| !b.closed) {
+        for &p in [br.points[0], br.points[br.points.len() - 1]].iter() {
+            let id = topo.points[p as usize].id;
+            if let Feature::Edge(x, y) = if a { id.a } else { id.b } {
+                out.push((x.min(y), x.max(y)));
+            }
+        }
+    }
+    out
 }
 
 fn valid(m: &Triangulation) -> bool {
@@ -54,7 +90,9 @@ pub fn intersect_meshes(
             .collect();
         TriTree::build(&boxes)
     };
-    let pairs = tree(a).overlapping_pairs(&tree(b));
+    // The two trees are independent: built side by side where a second worker is free.
+    let (ta, tb) = rayon::join(|| tree(a), || tree(b));
+    let pairs = ta.overlapping_pairs(&tb);
     let mut stats = PairStats {
         triangles_a: a.triangles.len(),
         triangles_b: b.triangles.len(),
@@ -73,8 +111,11 @@ pub fn intersect_meshes(
     };
     let branches = trace(&mut topo);
     check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
-    let (ea, eb) = (edge_use(a), edge_use(b));
-    let boundary = |f: Feature, e: &HashMap<(u32, u32), u32>| matches!(f, Feature::Edge(x, y) if e.get(&(x, y)) == Some(&1));
+    let (ea, eb) = (
+        edge_use(a, &end_edges(&topo, &branches, true)),
+        edge_use(b, &end_edges(&topo, &branches, false)),
+    );
+    let boundary = |f: Feature, e: &HashMap<(u32, u32), u32>| matches!(f, Feature::Edge(x, y) if e.get(&(x.min(y), x.max(y))) == Some(&1));
     let mut out = Vec::new();
     for br in &branches {
         let mut pts: Vec<u32> = br.points.clone();
@@ -142,4 +183,56 @@ pub fn intersect_meshes(
         faces: None,
         tangent_contact: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A grid of `n × n` squares over `[0, 1]²` at height `z(x, y)`, two triangles each.
+    fn grid(n: u32, z: impl Fn(f64, f64) -> f64) -> Triangulation {
+        let mut vertices = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n {
+                let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+                vertices.push([x, y, z(x, y)]);
+            }
+        }
+        let id = |i: u32, j: u32| i * (n + 1) + j;
+        let mut triangles = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        Triangulation {
+            name: String::new(),
+            vertices,
+            triangles,
+        }
+    }
+
+    /// A tilted grid crossing a flat one: one open branch whose two ends lie on the border
+    /// edges (used by one triangle), and the edge counts agree with a full count.
+    #[test]
+    fn branch_ends_on_the_border_are_boundary_ends() {
+        let a = grid(7, |_, _| 0.0);
+        let b = grid(9, |x, y| 0.3 * x + 0.1 * y - 0.17);
+        let r = intersect_meshes(&a, &b, (0, 1)).unwrap();
+        assert_eq!(r.branches.len(), 1);
+        let br = &r.branches[0];
+        assert!(!br.closed);
+        assert_eq!(br.ends, vec![EndKind::Boundary, EndKind::Boundary]);
+        // The counts of the queried edges equal those of a count over every edge.
+        let all: Vec<(u32, u32)> = a
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+            .collect();
+        let some = edge_use(&a, &all[..10]);
+        for e in &all[..10] {
+            assert_eq!(some[e], all.iter().filter(|f| *f == e).count() as u32);
+        }
+    }
 }
