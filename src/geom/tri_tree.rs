@@ -21,6 +21,21 @@ struct Node {
 
 const LEAF: u32 = 1 << 31;
 
+/// A triangle's box with its id, while the tree is built.
+#[derive(Clone, Copy)]
+struct Item {
+    lo: [f32; 3],
+    hi: [f32; 3],
+    id: u32,
+}
+
+impl Item {
+    /// The box centre along `k` (the split key).
+    fn centre(&self, k: usize) -> f32 {
+        0.5 * self.lo[k] + 0.5 * self.hi[k]
+    }
+}
+
 /// A bounding-volume tree over triangles.
 #[derive(Clone, Debug, Default)]
 pub struct TriTree {
@@ -48,46 +63,53 @@ impl TriTree {
         if boxes.is_empty() {
             return tree;
         }
-        let mut ids: Vec<u32> = (0..boxes.len() as u32).collect();
+        // The boxes travel with their ids: the median selections below then read contiguous
+        // memory instead of following each id into `boxes` (same comparisons, same tree).
+        let mut items: Vec<Item> = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, &(lo, hi))| Item {
+                lo,
+                hi,
+                id: i as u32,
+            })
+            .collect();
         tree.nodes.push(Node {
             lo: [0.0; 3],
             hi: [0.0; 3],
             link: 0,
             right: 0,
         });
-        tree.fill(0, &mut ids, boxes);
+        tree.fill(0, &mut items);
         tree
     }
 
-    fn fill(&mut self, at: usize, ids: &mut [u32], boxes: &[([f32; 3], [f32; 3])]) {
+    fn fill(&mut self, at: usize, items: &mut [Item]) {
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
-        for &i in ids.iter() {
-            let (l, h) = boxes[i as usize];
+        for it in items.iter() {
             for k in 0..3 {
-                lo[k] = lo[k].min(l[k]);
-                hi[k] = hi[k].max(h[k]);
+                lo[k] = lo[k].min(it.lo[k]);
+                hi[k] = hi[k].max(it.hi[k]);
             }
         }
-        if ids.len() == 1 {
+        if items.len() == 1 {
             self.nodes[at] = Node {
                 lo,
                 hi,
-                link: LEAF | ids[0],
+                link: LEAF | items[0].id,
                 right: 0,
             };
             return;
         }
-        let centre = |i: u32| -> [f32; 3] {
-            let (l, h) = boxes[i as usize];
-            std::array::from_fn(|k| 0.5 * l[k] + 0.5 * h[k])
-        };
         let axis = (0..3)
             .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
             .unwrap_or(0);
-        let m = ids.len() / 2;
-        ids.select_nth_unstable_by(m, |&a, &b| {
-            centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b))
+        let m = items.len() / 2;
+        items.select_nth_unstable_by(m, |a, b| {
+            a.centre(axis)
+                .total_cmp(&b.centre(axis))
+                .then(a.id.cmp(&b.id))
         });
         let left = self.nodes.len();
         for _ in 0..2 {
@@ -104,9 +126,9 @@ impl TriTree {
             link: left as u32,
             right: left as u32 + 1,
         };
-        let (l, r) = ids.split_at_mut(m);
-        self.fill(left, l, boxes);
-        self.fill(left + 1, r, boxes);
+        let (l, r) = items.split_at_mut(m);
+        self.fill(left, l);
+        self.fill(left + 1, r);
     }
 
     pub fn len(&self) -> usize {
