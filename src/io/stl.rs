@@ -13,26 +13,43 @@ pub struct StlError {
     pub reason: String,
 }
 
-fn weld(tris: Vec<[[f64; 3]; 3]>, name: String) -> Triangulation {
-    // A closed triangle mesh has about half as many vertices as triangles; sized up front,
-    // the table is never rebuilt while it grows (a million-triangle file: 0.8x the time).
-    let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(tris.len() / 2 + 16);
-    let mut vertices = Vec::with_capacity(tris.len() / 2 + 16);
-    let mut triangles = Vec::with_capacity(tris.len());
-    for t in tris {
+/// Triangles welded as they are read: vertices with bit-identical coordinates merged (`-0.0`
+/// as `0.0`), so the file's triangles are never held a second time as coordinates.
+struct Welder {
+    index: HashMap<[u64; 3], u32>,
+    vertices: Vec<[f64; 3]>,
+    triangles: Vec<[u32; 3]>,
+}
+
+impl Welder {
+    /// For about `n` triangles (a closed mesh has about half as many vertices: sized up
+    /// front, the table is never rebuilt while it grows).
+    fn with_capacity(n: usize) -> Welder {
+        Welder {
+            index: HashMap::with_capacity(n / 2 + 16),
+            vertices: Vec::with_capacity(n / 2 + 16),
+            triangles: Vec::with_capacity(n),
+        }
+    }
+    fn push(&mut self, t: [[f64; 3]; 3]) {
         let ids = t.map(|p| {
             let key = p.map(|x| (if x == 0.0 { 0.0 } else { x }).to_bits());
-            *index.entry(key).or_insert_with(|| {
-                vertices.push(p);
-                (vertices.len() - 1) as u32
+            *self.index.entry(key).or_insert_with(|| {
+                self.vertices.push(p);
+                (self.vertices.len() - 1) as u32
             })
         });
-        triangles.push(ids);
+        self.triangles.push(ids);
     }
-    Triangulation {
-        name,
-        vertices,
-        triangles,
+    fn len(&self) -> usize {
+        self.triangles.len()
+    }
+    fn finish(self, name: String) -> Triangulation {
+        Triangulation {
+            name,
+            vertices: self.vertices,
+            triangles: self.triangles,
+        }
     }
 }
 
@@ -106,7 +123,11 @@ pub fn from_bytes(b: &[u8], file: &str) -> Result<Model, StlError> {
             ));
         }
     };
-    let mut tris = Vec::new();
+    let mut tris = Welder::with_capacity(if binary {
+        claimed.unwrap_or(0) as usize
+    } else {
+        0
+    });
     let name;
     if binary {
         name = String::from_utf8_lossy(&b[..80])
@@ -229,7 +250,7 @@ pub fn from_bytes(b: &[u8], file: &str) -> Result<Model, StlError> {
         }
     }
     Ok(Model {
-        triangulations: vec![weld(tris, name)],
+        triangulations: vec![tris.finish(name)],
         warnings,
         ..Model::default()
     })

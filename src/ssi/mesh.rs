@@ -8,6 +8,7 @@ use super::pair::build_topology;
 use super::report::{BranchOut, EndKind, PairOut, PairStats};
 use super::trace::{check_invariants, trace};
 use super::tri_tri::Feature;
+use crate::geom::dist;
 use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::model::Triangulation;
 use std::collections::HashMap;
@@ -143,9 +144,25 @@ pub fn intersect_meshes(
                 })
                 .collect()
         };
+        // Where an edge of one mesh meets an edge of the other, the symbolic perturbation
+        // makes two crossing points (edge of A through a triangle of B, and the reverse) at
+        // one location, computed by two formulas: a point no farther from the one before than
+        // their two bounds allow is not listed again (each listed point keeps its own bound
+        // to its exact crossing, a point of the meshes' intersection).
+        let mut listed: Vec<([f64; 3], f64)> = Vec::with_capacity(pts.len());
+        let same = |a: &([f64; 3], f64), b: &([f64; 3], f64)| dist(&a.0, &b.0) <= a.1 + b.1;
+        for &p in &pts {
+            let x = (topo.points[p as usize].xyz, topo.points[p as usize].err);
+            if !listed.last().is_some_and(|l| same(l, &x)) {
+                listed.push(x);
+            }
+        }
+        if br.closed && listed.len() > 2 && same(&listed[0], &listed[listed.len() - 1]) {
+            listed.pop();
+        }
         out.push(BranchOut {
             closed: br.closed,
-            points: pts.iter().map(|&p| topo.points[p as usize].xyz).collect(),
+            points: listed.iter().map(|l| l.0).collect(),
             uv_a: Vec::new(),
             uv_b: Vec::new(),
             dist_a_max: err,
@@ -161,10 +178,7 @@ pub fn intersect_meshes(
             // a point of their intersection curve.
             dist_curve_max: Some(err),
             curve_uncertified_points: 0,
-            curve_radius: pts
-                .iter()
-                .map(|&p| Some(topo.points[p as usize].err))
-                .collect(),
+            curve_radius: listed.iter().map(|l| Some(l.1)).collect(),
             curve_uncertified: Vec::new(),
             curve_cert: Vec::new(),
         });
@@ -231,6 +245,15 @@ mod tests {
             .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
             .collect();
         let some = edge_use(&a, &all[..10]);
+        // The same lattice under both: every crossing of a grid line is an edge of A meeting
+        // an edge of B, two perturbed crossing points at one location, listed once.
+        let c = grid(7, |x, y| 0.3 * x + 0.1 * y - 0.17);
+        let r = intersect_meshes(&a, &c, (0, 1)).unwrap();
+        assert_eq!(r.branches.len(), 1);
+        let p = &r.branches[0].points;
+        assert!(p.windows(2).all(|w| dist(&w[0], &w[1]) > 1e-12), "{p:?}");
+        assert_eq!(r.branches[0].curve_radius.len(), p.len());
+        assert!(p.len() >= 8, "{}", p.len());
         for e in &all[..10] {
             assert_eq!(some[e], all.iter().filter(|f| *f == e).count() as u32);
         }
