@@ -240,7 +240,7 @@ fn sin_at(g: &PairGeometry, r: &Refined) -> f64 {
 /// cannot carry the point to another part of the curve.
 pub(super) fn newton_onto_curve(g: &PairGeometry, r: &mut Refined, tol: f64) {
     let sin = sin_at(g, r);
-    if !(sin > 0.0) {
+    if sin.is_nan() || sin <= 0.0 {
         return;
     }
     let Some(y) = newton_on_curve(g.sa, g.sb, &r.xyz, &r.uv_a, &r.uv_b) else {

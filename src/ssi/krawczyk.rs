@@ -451,6 +451,10 @@ pub fn newton_on_curve(
     (converged && (0..4).all(|i| y[i] >= sys.lo[i] && y[i] <= sys.hi[i])).then_some(y)
 }
 
+/// The system with the plane across the curve through `p`, the start `z0`, the surfaces'
+/// `f64` jets there, and the plane's normal.
+type PlaneSystem<'a> = (System<'a>, [f64; 4], (Eval, Eval), [f64; 3]);
+
 /// The system with the plane across the curve through `p` (its normal `N_A × N_B` at `p`'s
 /// parameters), the start `z0`, the surfaces' `f64` jets there, and the plane's normal.
 fn plane_system<'a>(
@@ -460,7 +464,7 @@ fn plane_system<'a>(
     uv_a: &[f64; 2],
     uv_b: &[f64; 2],
     cache: Option<&'a JetCache>,
-) -> Result<(System<'a>, [f64; 4], (Eval, Eval), [f64; 3]), Uncertified> {
+) -> Result<PlaneSystem<'a>, Uncertified> {
     if !p.iter().chain(uv_a).chain(uv_b).all(|x| x.is_finite()) {
         return Err(Uncertified::NotFinite);
     }
