@@ -258,18 +258,21 @@ fn curve_on_surface_writes_result_and_svg() {
     assert_eq!(r["evidence"]["samples"], 0);
     assert!(stdout.contains("evidence: not measured"), "{stdout}");
     let ev = d.join("ev.json");
-    let (code, stdout, stderr) = vericad(&[
-        "curve-on-surface",
-        "--surface",
-        m.to_str().unwrap(),
-        "--curve",
-        m.to_str().unwrap(),
-        "--tol",
-        "1e-2",
-        "--evidence",
-        "--out",
-        ev.to_str().unwrap(),
-    ]);
+    let ms = m.to_str().unwrap();
+    let cos = |extra: &[&str]| {
+        let mut args = vec![
+            "curve-on-surface",
+            "--surface",
+            ms,
+            "--curve",
+            ms,
+            "--tol",
+            "1e-2",
+        ];
+        args.extend_from_slice(extra);
+        vericad(&args)
+    };
+    let (code, stdout, stderr) = cos(&["--evidence", "--out", ev.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     assert!(
         stdout.contains("evidence (measured, not proof)"),
@@ -289,19 +292,7 @@ fn curve_on_surface_writes_result_and_svg() {
     );
     // The 3D picture: one polyline per segment, green (all within ε_d), the legend counting.
     let pic = d.join("p.svg");
-    let (code, _, stderr) = vericad(&[
-        "curve-on-surface",
-        "--surface",
-        m.to_str().unwrap(),
-        "--curve",
-        m.to_str().unwrap(),
-        "--tol",
-        "1e-2",
-        "--svg-3d",
-        pic.to_str().unwrap(),
-        "--view",
-        "20,35",
-    ]);
+    let (code, _, stderr) = cos(&["--svg-3d", pic.to_str().unwrap(), "--view", "20,35"]);
     assert_eq!(code, 0, "{stderr}");
     let text = std::fs::read_to_string(&pic).unwrap();
     let n = r["num_segments"].as_u64().unwrap() as usize;

@@ -116,8 +116,8 @@ pub fn intersect_surfaces(
     let ctl = &prm.control;
     let stop = || ctl.stop(deadline);
     let mut stats = PairStats::default();
-    // What a pair stopped (time limit, cancel) before its branches are traced returns.
-    let stopped = |mut stats: PairStats| {
+    // A pair that ends before anything is traced: nothing listed.
+    let early = |mut stats: PairStats, complete, coverage, coincident| {
         stats.seconds = t0.elapsed().as_secs_f64();
         Ok(PairOut {
             a: ids.0,
@@ -126,13 +126,15 @@ pub fn intersect_surfaces(
             touch_points: Vec::new(),
             contacts: Vec::new(),
             stats,
-            coverage: None,
-            complete: false,
-            coincident: None,
+            coverage,
+            complete,
+            coincident,
             faces: None,
             tangent_contact: None,
         })
     };
+    // What a pair stopped (time limit, cancel) before its branches are traced returns.
+    let stopped = |stats: PairStats| early(stats, false, None, None);
     let coverage_on = prm.coverage && prm.certify;
     // Faces proven to have no common point (pieces subdivided until all pairs are free):
     // nothing to trace, and the coverage certificate holds as it stands (reported when
@@ -141,36 +143,10 @@ pub fn intersect_surfaces(
         super::coverage::disjoint::proven_disjoint(sa, sb, &coverage_params(prm, deadline))
     {
         stats.proven_disjoint = true;
-        stats.seconds = t0.elapsed().as_secs_f64();
-        return Ok(PairOut {
-            a: ids.0,
-            b: ids.1,
-            branches: Vec::new(),
-            touch_points: Vec::new(),
-            contacts: Vec::new(),
-            stats,
-            coverage: coverage_on.then_some(c),
-            complete: true,
-            coincident: None,
-            faces: None,
-            tangent_contact: None,
-        });
+        return early(stats, true, coverage_on.then_some(c), None);
     }
     if let Some(c) = coincidence(sa, sb) {
-        stats.seconds = t0.elapsed().as_secs_f64();
-        return Ok(PairOut {
-            a: ids.0,
-            b: ids.1,
-            branches: Vec::new(),
-            touch_points: Vec::new(),
-            contacts: Vec::new(),
-            stats,
-            coverage: None,
-            complete: true,
-            coincident: Some(c),
-            faces: None,
-            tangent_contact: None,
-        });
+        return early(stats, true, None, Some(c));
     }
     ctl.report(ids, "triangulate", 0, 2);
     let (ma, mb) = meshes(sa, sb, prm, &mut stats);
