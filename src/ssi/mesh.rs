@@ -160,6 +160,7 @@ pub fn intersect_meshes(
         if br.closed && listed.len() > 2 && same(&listed[0], &listed[listed.len() - 1]) {
             listed.pop();
         }
+        stats.merged_points += pts.len() - listed.len();
         out.push(BranchOut {
             closed: br.closed,
             points: listed.iter().map(|l| l.0).collect(),
@@ -253,6 +254,8 @@ mod tests {
         let p = &r.branches[0].points;
         assert!(p.windows(2).all(|w| dist(&w[0], &w[1]) > 1e-12), "{p:?}");
         assert_eq!(r.branches[0].curve_radius.len(), p.len());
+        assert!(r.stats.merged_points > 0);
+        assert_eq!(p.len() - 1 + r.stats.merged_points, r.stats.segments);
         assert!(p.len() >= 8, "{}", p.len());
         for e in &all[..10] {
             assert_eq!(some[e], all.iter().filter(|f| *f == e).count() as u32);

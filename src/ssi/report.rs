@@ -294,6 +294,10 @@ pub struct PairStats {
     /// Triangle pairs in real (unperturbed) non-transversal contact.
     pub contacts: usize,
     pub tangency_refinement_rounds: usize,
+    /// Mesh mode: crossing points not listed because the one before lies within their two
+    /// bounds (an edge of one mesh meeting an edge of the other gives two perturbed crossing
+    /// points at one location); the branches' points plus these are the segments' ends.
+    pub merged_points: usize,
     /// The faces were proven to have no common point before anything was traced
     /// ([`super::coverage::disjoint`]): not triangulated, the coverage is all free pairs.
     pub proven_disjoint: bool,
