@@ -327,7 +327,11 @@ pub fn approximate_with_progress(
     let elapsed_ms = start.elapsed().as_secs_f64() * 1e3;
     let ev_start = std::time::Instant::now();
     let (ev, samples) = evidence::measure(&s, &chain.segments, params.evidence_samples);
-    let evidence_ms = ev_start.elapsed().as_secs_f64() * 1e3;
+    let evidence_ms = if params.evidence_samples > 0 {
+        ev_start.elapsed().as_secs_f64() * 1e3
+    } else {
+        0.0
+    };
     let mut polyline: Vec<[f64; 2]> = chain.segments.iter().map(|x| x.domain[0]).collect();
     if let Some(l) = chain.segments.last() {
         polyline.push(l.domain[1]);

@@ -267,7 +267,16 @@ impl<'a> Faces<'a> {
             c.uncertified -= out.regions_outside.min(c.uncertified);
             c.no_missed_branches = c.uncertified == 0;
         }
-        out.shared_edges = shared.into_iter().filter(|s| s.points > 0).collect();
+        // Every tube the coverage may have used is listed with its reach (the claim rests on
+        // it), also when no point went to it; otherwise only those with points.
+        let used_tubes = p
+            .coverage
+            .as_ref()
+            .is_some_and(|c| c.near_shared_edges + c.crossing_boxes_near_shared_edges > 0);
+        out.shared_edges = shared
+            .into_iter()
+            .filter(|s| s.points > 0 || used_tubes)
+            .collect();
         p.faces = Some(out);
     }
 }

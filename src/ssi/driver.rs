@@ -380,7 +380,7 @@ pub fn intersect_models(
             });
     let tube_note = if tube_pairs + tube_boxes > 0 {
         format!(
-            "; or, {tube_pairs} pairs and {tube_boxes} crossing boxes, proven inside the tube around an edge or vertex the two faces share (within its reach, listed per shared edge as `within`, of the edge's 513-sample polyline): the claim excludes those tubes, where the faces meet by construction"
+            "; or, {tube_pairs} pairs and {tube_boxes} crossing boxes, proven inside the tube around an edge or vertex the two faces share (within its reach, listed per shared edge as `within`, of the edge's 513-sample polyline): the claim excludes every branch with a point in such a tube — also where it runs on outside the tube, since a border crossing in a tube decides its pair — there the faces meet by construction"
         )
     } else {
         String::new()
@@ -463,7 +463,7 @@ pub fn intersect_models(
         ));
         if a.brep.is_some() && b.is_none() {
             certificate.push(format!(
-                "shared edges: the intersection along {shared} edges and vertices the faces share ({on_shared} points, {} touch points within max(100 tol, 1e-6 of the model size) of the edge curve, by local search: evidence) is listed per pair as shared_edges, not as branches; it is where the faces meet by construction",
+                "shared edges: the intersection along {shared} edges and vertices the faces share ({on_shared} points, {} touch points within the reach of the edge's tube, listed per edge as `within`, by local search: evidence) is listed per pair as shared_edges, not as branches; it is where the faces meet by construction",
                 clip(|c| c.touch_points_on_shared_edges)
             ));
         }

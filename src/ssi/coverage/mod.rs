@@ -38,8 +38,8 @@
 //! is not free; in a pair near the output every point is within `d` of `O`, in a pair in a
 //! tube every point is in that tube; in a transversal pair the component's piece contains a
 //! border crossing within `d` of `O` or in a tube. Without tubes (every run but one-file runs
-//! on a B-rep) the second case is empty. With them the claim says nothing of what runs in a
-//! tube: there the faces meet by construction, and what the B-rep's edge curve and the reach
+//! on a B-rep) the second case is empty. With them the claim says nothing of a component with a
+//! point in a tube, also where it runs on outside it: there the faces meet by construction, and what the B-rep's edge curve and the reach
 //! `r_e` rest on is evidence (see [`crate::ssi::shared_tubes`]); the tubes' polylines and
 //! reaches are the numbers the decisions used, so the claim is a theorem about them.
 //!
