@@ -136,12 +136,11 @@ pub fn intersect_surfaces(
     // What a pair stopped (time limit, cancel) before its branches are traced returns.
     let stopped = |stats: PairStats| early(stats, false, None, None);
     let coverage_on = prm.coverage && prm.certify;
+    let cp = coverage_params(prm, deadline);
     // Faces proven to have no common point (pieces subdivided until all pairs are free):
     // nothing to trace, and the coverage certificate holds as it stands (reported when
     // asked for).
-    if let Some(c) =
-        super::coverage::disjoint::proven_disjoint(sa, sb, &coverage_params(prm, deadline))
-    {
+    if let Some(c) = super::coverage::disjoint::proven_disjoint(sa, sb, &cp) {
         stats.proven_disjoint = true;
         return early(stats, true, coverage_on.then_some(c), None);
     }
@@ -271,7 +270,6 @@ pub fn intersect_surfaces(
     }
     if out.complete && coverage_on {
         ctl.report(ids, "coverage", 0, 0);
-        let cp = coverage_params(prm, deadline);
         out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
         super::regions::refine_undecided(&mut out, sa, sb, prm, &cp, deadline);
         let parallel = out.coverage.as_ref().is_some_and(|c| {
