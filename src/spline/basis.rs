@@ -40,15 +40,33 @@ pub fn basis_funs_d1<S: Scalar>(kv: &KnotVector<S>, span: usize, t: &S) -> (Buf<
     let p = kv.degree();
     let u = kv.knots();
     let mut n: Buf<S> = Buf::new();
+    let mut d: Buf<S> = Buf::new();
     let mut left: Buf<S> = Buf::new();
     let mut right: Buf<S> = Buf::new();
-    let mut lower: Buf<S> = Buf::new();
     n.push(S::one());
     left.push(S::zero());
     right.push(S::zero());
     for j in 1..=p {
         if j == p {
-            lower = n.clone();
+            // The degree-(p-1) row is in `n` now: the derivatives (eq. 2.7) from it.
+            let pp = S::from_i64(p as i64);
+            for r in 0..=p {
+                let i = span - p + r;
+                let mut v = S::zero();
+                if r >= 1 {
+                    let den = u[i + p].clone() - u[i].clone();
+                    if !den.is_zero() {
+                        v = v + n[r - 1].clone() / den;
+                    }
+                }
+                if r < p {
+                    let den = u[i + p + 1].clone() - u[i + 1].clone();
+                    if !den.is_zero() {
+                        v = v - n[r].clone() / den;
+                    }
+                }
+                d.push(v * pp.clone());
+            }
         }
         left.push(t.clone() - u[span + 1 - j].clone());
         right.push(u[span + j].clone() - t.clone());
@@ -61,24 +79,8 @@ pub fn basis_funs_d1<S: Scalar>(kv: &KnotVector<S>, span: usize, t: &S) -> (Buf<
         }
         n.push(saved);
     }
-    let pp = S::from_i64(p as i64);
-    let mut d: Buf<S> = Buf::new();
-    for r in 0..=p {
-        let i = span - p + r;
-        let mut v = S::zero();
-        if r >= 1 {
-            let den = u[i + p].clone() - u[i].clone();
-            if !den.is_zero() {
-                v = v + lower[r - 1].clone() / den;
-            }
-        }
-        if r < p {
-            let den = u[i + p + 1].clone() - u[i + 1].clone();
-            if !den.is_zero() {
-                v = v - lower[r].clone() / den;
-            }
-        }
-        d.push(v * pp.clone());
+    if p == 0 {
+        d.push(S::zero());
     }
     (n, d)
 }
