@@ -9,6 +9,7 @@ use common::shapes::{frame_of, rotated};
 use vericad::spline::NurbsSurface;
 use vericad::spline::construct::{bilinear, sphere};
 use vericad::ssi::coverage::{CoverageParams, coverage};
+use vericad::ssi::report::SingularKind::TouchingPoint;
 use vericad::ssi::{PairOut, SsiParams, intersect_pair_canonical};
 
 /// Biquadratic dome `z = c − k((x−½)² + (y−½)²)` over the unit square: it meets `z = 0` in
@@ -372,7 +373,7 @@ proptest! {
 /// until every pair is free. A square inside a sphere (in a rotated frame, their boxes
 /// overlapping) and domes 0.1, 1e-3 and 1e-5 below a plane are; a dome touching the plane at
 /// its apex or crossing it is never called disjoint: the whole pipeline runs, and finds the
-/// loop (radius 0.1), or lists the apex contact as uncertified.
+/// loop (radius 0.1), or the apex as a proven touching point.
 #[test]
 fn disjoint_faces_are_proven_so_before_tracing() {
     let f = rotated(3);
@@ -396,13 +397,23 @@ fn disjoint_faces_are_proven_so_before_tracing() {
         assert_eq!(r.stats.proven_disjoint, disjoint, "{:?}", r.stats);
         assert_eq!(r.branches.len(), branches);
         let cov = r.coverage.as_ref().unwrap();
-        // The apex contact: found as a touching point, or the run is not certified there.
-        assert!(
-            r.touch_points.len() == touches
-                || (r.touch_points.is_empty() && touches > 0 && !cov.no_missed_branches),
+        // The apex contact (a mesh vertex whose facets all lean by 35°, seeded by the vertex
+        // normals): found, proven a touching point, and the run certified.
+        assert_eq!(
+            r.touch_points.len(),
+            touches,
             "{:?} {cov:?}",
             r.touch_points
         );
+        for t in &r.touch_points {
+            let touching = t.singular.as_ref().is_some_and(|s| s.kind == TouchingPoint);
+            assert!(touching, "{t:?}");
+            assert!(
+                t.point[2].abs() < 1e-9 && (t.point[0] - 0.5).abs() < 1e-6,
+                "{t:?}"
+            );
+            assert!(cov.no_missed_branches, "{cov:?}");
+        }
         if disjoint {
             assert!(cov.no_missed_branches, "{cov:?}");
             assert_eq!(cov.pairs, cov.free);

@@ -81,13 +81,12 @@ pub fn tangential_points(
     for &(ta, tb) in seed_tris.iter().step_by(step) {
         try_seed(centroid_uv(g.ma, ta), centroid_uv(g.mb, tb), &mut out);
     }
-    // Where a tangential point is a mesh vertex (on knot lines, as at a circle's joints), the
-    // facets around it can all lean by more than the angle while the surface normal at the
-    // vertex is exactly parallel: pairs whose *vertex* normals (true surface normals) are
-    // within the angle seed the search too, from those vertices (a budget of their own).
-    // Only pairs whose facets are within three times the angle are looked at (vertex
-    // normals computed on demand, once each).
-    let cos_wide = (3.0 * tangent_angle_deg).min(90.0).to_radians().cos();
+    // Where a tangential point is a mesh vertex (on knot lines, as at a circle's joints, or the
+    // apex of a dome meshed by a few facets), the facets around it can all lean by far more
+    // than the angle while the surface normal at the vertex is exactly parallel: pairs whose
+    // *vertex* normals (true surface normals) are within the angle seed the search too, from
+    // those vertices (a budget of their own). Vertex normals are computed on demand, once
+    // each; no facet angle filters them (a coarse facet says nothing of its vertices).
     let (mut na, mut nb) = (vec![None; g.ma.uv.len()], vec![None; g.mb.uv.len()]);
     let mut vseeds: BTreeSet<(u32, u32)> = BTreeSet::new();
     let mut vertex_pairs = Vec::new();
@@ -96,14 +95,10 @@ pub fn tangential_points(
         if seeds.contains(&key) || vseeds.contains(&key) {
             continue;
         }
-        let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb))) else {
-            continue;
-        };
-        if (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() <= cos_wide {
-            continue;
-        }
         let (va, vb) = (g.ma.triangles[ta as usize], g.mb.triangles[tb as usize]);
-        let mut best: Option<(f64, u32, u32)> = None;
+        // The most nearly parallel vertex pair; of equally parallel ones (a plane's
+        // vertices), the closest.
+        let mut best: Option<(f64, f64, u32, u32)> = None;
         for &i in &va {
             let p = *na[i as usize].get_or_insert_with(|| vertex_normal(g.sa, g.ma.uv[i as usize]));
             for &j in &vb {
@@ -111,13 +106,14 @@ pub fn tangential_points(
                     *nb[j as usize].get_or_insert_with(|| vertex_normal(g.sb, g.mb.uv[j as usize]));
                 if let (Some(p), Some(q)) = (p, q) {
                     let c = (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).abs();
-                    if best.is_none_or(|b| c > b.0) {
-                        best = Some((c, i, j));
+                    let d = dist(&g.ma.vertices[i as usize], &g.mb.vertices[j as usize]);
+                    if best.is_none_or(|b| c > b.0 || (c == b.0 && d < b.1)) {
+                        best = Some((c, d, i, j));
                     }
                 }
             }
         }
-        if let Some((c, i, j)) = best
+        if let Some((c, _, i, j)) = best
             && c > cos_t
         {
             vseeds.insert(key);
