@@ -155,6 +155,26 @@ fn no_panic_paths_on_input_in_the_library() {
         if rel == "src/fuzz_entry.rs" {
             continue;
         }
+        // A module's tests in a file of their own: skipped only when the parent declares
+        // them test-only (`#[cfg(test)] mod tests;`).
+        if f.file_name().is_some_and(|n| n == "tests.rs") {
+            let dir = f.parent().unwrap();
+            let parent = [
+                dir.with_extension("rs"),
+                dir.join("mod.rs"),
+                dir.join("lib.rs"),
+            ]
+            .into_iter()
+            .find(|p| p.is_file())
+            .unwrap_or_else(|| panic!("{rel}: no parent module file"));
+            let ptext = std::fs::read_to_string(&parent).unwrap();
+            assert!(
+                ptext.contains("#[cfg(test)]\nmod tests;"),
+                "{rel}: not declared as `#[cfg(test)] mod tests;` in {}",
+                parent.display()
+            );
+            continue;
+        }
         let text = std::fs::read_to_string(f).unwrap();
         for (n, code) in non_test_lines(&text) {
             if !PATTERNS.iter().any(|p| code.contains(p)) {

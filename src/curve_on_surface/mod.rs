@@ -37,7 +37,10 @@ pub mod sidedness;
 pub mod split;
 pub mod tolerance;
 
+mod exact;
+
 use crate::spline::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface};
+use exact::exact_chain;
 use serde::Serialize;
 
 /// Why the computation was refused or failed.
@@ -391,80 +394,6 @@ pub fn approximate_with_progress(
             patches_built: chain.patches_built,
         },
         elapsed_ms,
-    })
-}
-
-/// The steps in exact arithmetic (BigRational throughout).
-fn exact_chain(
-    s: &BSplineSurface<[f64; 3]>,
-    d: &BSplineCurve<[f64; 2]>,
-    params: &Params,
-    progress: &mut dyn FnMut(&str, usize),
-) -> Result<Chain, CosError> {
-    let cells = cells::Cells::new(s, params.eps_d);
-    let (pieces, segs) = split::split(d, &cells)?;
-    progress("split at knots and knot lines", segs.len());
-    let n_pieces = pieces.len();
-    let after_split = segs.len();
-    let (segs, side) = sidedness::make_single_sided(segs, &pieces, &cells);
-    let distance = |segs| {
-        distance::enforce_distance(
-            segs,
-            &pieces,
-            &cells,
-            params.eps_d,
-            params.bound,
-            params.max_segments,
-        )
-    };
-    let segs = distance(segs)?;
-    let after_distance = segs.len();
-    progress("distance bound", segs.len());
-    let closed = segs.first().map(|f| f.a) == segs.last().map(|l| l.b)
-        && segs.len() > 1
-        && d.eval(&d.domain().0) == d.eval(&d.domain().1);
-    let (segs, g1s) = g1::enforce_g1(
-        segs,
-        &pieces,
-        &cells,
-        params.eps_t_deg,
-        closed,
-        params.max_segments,
-    );
-    let segs = distance(segs)?;
-    progress("eps_T pass", segs.len());
-    let (mapped, rounding) = map::map_segments(&segs, &cells)?;
-    progress("mapped exactly", mapped.len());
-    let joints_exact = mapped
-        .windows(2)
-        .all(|w| w[0].exact.control.last() == w[1].exact.control.first());
-    Ok(Chain {
-        segments: mapped
-            .into_iter()
-            .zip(&segs)
-            .map(|(m, x)| ChainSegment {
-                control_points: m.control_points,
-                domain: m.domain,
-                bound: (x.k * x.h).next_up(),
-                domain_curve: (params.evidence_samples > 0)
-                    .then(|| x.curve(&pieces).map(crate::geom::to_f64_point)),
-            })
-            .collect(),
-        rounding,
-        joints_exact,
-        side,
-        g1: g1s,
-        bezier_patches: cells.cells.len(),
-        patches_built: cells.cells.len(),
-        domain_bezier_pieces: n_pieces,
-        after_split,
-        after_distance,
-        min_2d_tolerance: cells
-            .cells
-            .iter()
-            .map(|c| c.d)
-            .fold(f64::INFINITY, f64::min),
-        arithmetic: "exact (BigRational)".into(),
     })
 }
 

@@ -28,60 +28,12 @@ use crate::spline::NurbsSurface;
 use crate::spline::elevate::refine_to;
 use std::collections::{BTreeMap, HashMap};
 
-/// Net indices `(i, j)` of the control points of edge `k`, in the edge's direction.
-pub fn edge_indices(s: &NurbsSurface<f64, 3>, k: usize) -> Vec<(usize, usize)> {
-    let (nu, nv) = (s.hom.nu(), s.hom.nv());
-    match k {
-        0 => (0..nu).map(|i| (i, 0)).collect(),
-        1 => (0..nv).map(|j| (nu - 1, j)).collect(),
-        2 => (0..nu).rev().map(|i| (i, nv - 1)).collect(),
-        _ => (0..nv).rev().map(|j| (0, j)).collect(),
-    }
-}
+mod edge_rows;
+mod records;
 
-/// Knots mapped affinely onto `[0, 1]`.
-pub(crate) fn normalized(k: &[f64]) -> Vec<f64> {
-    let (a, b) = (k[0], k[k.len() - 1]);
-    k.iter().map(|x| (x - a) / (b - a)).collect()
-}
-
-/// Whether the two edges' rows can be averaged control point by control point: same degree,
-/// number of control points, normalized knots (within 1e-12) and weights (within a relative
-/// 1e-12), mirrored when the edges run opposite ways.
-pub fn compatible(
-    p: &NurbsSurface<f64, 3>,
-    ep: usize,
-    q: &NurbsSurface<f64, 3>,
-    eq: usize,
-    same_direction: bool,
-) -> bool {
-    let (a, b) = (edge_curve(p, ep), edge_curve(q, eq));
-    if a.hom.knots.degree() != b.hom.knots.degree() || a.hom.control.len() != b.hom.control.len() {
-        return false;
-    }
-    let ka = normalized(a.hom.knots.knots());
-    let mut kb = normalized(b.hom.knots.knots());
-    if !same_direction {
-        kb = kb.iter().rev().map(|x| 1.0 - x).collect();
-    }
-    let wa: Vec<f64> = a.hom.control.iter().map(|h| h.w).collect();
-    let mut wb: Vec<f64> = b.hom.control.iter().map(|h| h.w).collect();
-    if !same_direction {
-        wb.reverse();
-    }
-    // Weights equal up to rounding (a relative 1e-12): the mean row, written to both
-    // patches, then has one weight per control point on both sides.
-    ka.iter().zip(&kb).all(|(x, y)| (x - y).abs() <= 1e-12)
-        && wa
-            .iter()
-            .zip(&wb)
-            .all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()))
-}
-
-fn get_point(s: &NurbsSurface<f64, 3>, (i, j): (usize, usize)) -> [f64; 3] {
-    let h = s.hom.at(i, j);
-    [h.wp[0] / h.w, h.wp[1] / h.w, h.wp[2] / h.w]
-}
+pub(crate) use edge_rows::normalized;
+pub use edge_rows::{compatible, edge_indices, identical};
+pub use records::{AveragingOutcome, EdgeRecord, LeftEdge, PatchRecord};
 
 fn put(s: &mut NurbsSurface<f64, 3>, (i, j): (usize, usize), h: &Hom<f64, 3>) {
     let nv = s.hom.nv();
@@ -114,81 +66,6 @@ fn mean_hom(a: &Hom<f64, 3>, b: &Hom<f64, 3>) -> Hom<f64, 3> {
         wp: std::array::from_fn(|k| 0.5 * (a.wp[k] + b.wp[k])),
         w: 0.5 * (a.w + b.w),
     }
-}
-
-/// How the shared row of a connected pair was made.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct EdgeRecord {
-    pub connection: Connection,
-    /// `control_points` (matrix (2): the mean of two compatible rows), `fitted_curve` (§4
-    /// (i)–(v): least squares on the closest-point midpoints), or, when no fit was solvable,
-    /// `control_points_after_refinement` (the mean of the two rows brought to the class's
-    /// degree and knots, at equal parameters).
-    pub method: &'static str,
-    /// Gap measured before averaging (step 2, evidence).
-    pub gap_before: f64,
-    /// Fitted curves: largest residual at the midpoints (evidence, not a bound between them).
-    pub fit_error_evidence: Option<f64>,
-    /// Fitted curves: number of midpoints (corners included) and knots added by splitting.
-    pub fit_data: Option<usize>,
-    pub knots_added: usize,
-    /// Degree and control points of the shared row.
-    pub degree: usize,
-    pub control_points: usize,
-}
-
-/// What averaging did to one patch (indices after T-junction splitting).
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct PatchRecord {
-    pub patch: usize,
-    pub degrees_before: (usize, usize),
-    pub degrees_after: (usize, usize),
-    pub control_points_before: (usize, usize),
-    pub control_points_after: (usize, usize),
-    /// Edges whose row was replaced (0 south, 1 east, 2 north, 3 west).
-    pub rows_replaced: Vec<usize>,
-    /// Largest move of a control point (boundary and interior) against the original refined
-    /// to the same knots.
-    pub max_control_point_move: f64,
-    /// Proven bound on `|S_new(u,v) − S_old(u,v)|` (partition of unity; hypotheses: weights
-    /// unchanged, refinement exact): present only when the weights are unchanged.
-    pub deviation_bound_proven: Option<f64>,
-    /// Largest distance of 9 × 9 samples of the repaired patch to their closest points on the
-    /// original (evidence).
-    pub deviation_measured_evidence: f64,
-}
-
-/// A connected pair left as it was, and why.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct LeftEdge {
-    pub connection: Connection,
-    pub reason: String,
-}
-
-/// What averaging did.
-#[derive(Clone, Debug, Default, serde::Serialize)]
-pub struct AveragingOutcome {
-    pub corner_clusters: usize,
-    pub corners_moved: usize,
-    pub max_corner_move: f64,
-    /// Pairs averaged control point by control point.
-    pub edges_averaged: usize,
-    /// Incompatible pairs repaired (a fitted curve, or the mean of the refined rows).
-    pub edges_fitted: usize,
-    /// Connected pairs whose rows were incompatible before averaging (fitted or left).
-    pub incompatible_before: usize,
-    /// Connected pairs left as they were (see `left` for the reasons).
-    pub edges_incompatible: Vec<Connection>,
-    pub left: Vec<LeftEdge>,
-    /// Knot classes raised and refined so that fitted curves fit in.
-    pub classes_refined: usize,
-    pub max_control_point_move: f64,
-    pub max_fit_error_evidence: f64,
-    pub max_deviation_measured_evidence: f64,
-    /// Largest proven bound over the patches that have one.
-    pub max_deviation_bound_proven: Option<f64>,
-    pub edges: Vec<EdgeRecord>,
-    pub patches: Vec<PatchRecord>,
 }
 
 /// Corner clusters (union-find over connections, each joining two pairs of corners, and, with
@@ -566,25 +443,4 @@ pub fn average(
         }
     }
     out
-}
-
-/// Whether the two edges are the same curve bit for bit: equal Cartesian control points in
-/// traversal order, equal weights, and normalized knots equal (mirrored for opposite edges).
-pub fn identical(
-    p: &NurbsSurface<f64, 3>,
-    ep: usize,
-    q: &NurbsSurface<f64, 3>,
-    eq: usize,
-    same_direction: bool,
-) -> bool {
-    let (ip, mut iq) = (edge_indices(p, ep), edge_indices(q, eq));
-    if ip.len() != iq.len() {
-        return false;
-    }
-    if !same_direction {
-        iq.reverse();
-    }
-    ip.iter().zip(&iq).all(|(a, b)| {
-        get_point(p, *a) == get_point(q, *b) && p.hom.at(a.0, a.1).w == q.hom.at(b.0, b.1).w
-    }) && compatible(p, ep, q, eq, same_direction)
 }

@@ -7,220 +7,25 @@
 //! computed in a canonical surface order, so the output is the same for every thread count
 //! and for `(A, B)` and `(B, A)`.
 
+mod canonical;
+mod cull;
+
+pub use canonical::intersect_pair_canonical;
+
 use super::brep_faces::Faces;
 use super::coincide::CoincidenceKind;
 use super::mesh::intersect_meshes;
-use super::pair::intersect_surfaces;
 use super::report::{PairOut, SingularKind, SsiResult, Summary};
 use super::trims::SAMPLES_PER_CURVE;
 use super::{SsiError, SsiParams};
 use crate::geom::Aabb;
-use crate::model::check::{MAX_COORDINATE, check_surface};
 use crate::model::{Model, Triangulation};
 use crate::spline::NurbsSurface;
+use canonical::pair_canonical;
+use cull::{net_box, overlapping_pairs};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
-
-/// A total order on surfaces by the bits of their knots, weights and control points.
-fn canonical_key(s: &NurbsSurface<f64, 3>) -> Vec<u64> {
-    let h = &s.hom;
-    let mut k: Vec<u64> = vec![
-        h.ku.degree() as u64,
-        h.kv.degree() as u64,
-        h.ku.n_ctrl() as u64,
-        h.kv.n_ctrl() as u64,
-    ];
-    k.extend(h.ku.knots().iter().chain(h.kv.knots()).map(|x| x.to_bits()));
-    for p in &h.net {
-        k.extend(p.wp.iter().map(|x| x.to_bits()));
-        k.push(p.w.to_bits());
-    }
-    k
-}
-
-fn swap_sides(mut p: PairOut) -> PairOut {
-    std::mem::swap(&mut p.a, &mut p.b);
-    for b in &mut p.branches {
-        std::mem::swap(&mut b.uv_a, &mut b.uv_b);
-        std::mem::swap(&mut b.dist_a_max, &mut b.dist_b_max);
-        if let Some(f) = &mut b.fit {
-            std::mem::swap(&mut f.control_points_uv_a, &mut f.control_points_uv_b);
-        }
-    }
-    for t in &mut p.touch_points {
-        std::mem::swap(&mut t.uv_a, &mut t.uv_b);
-        std::mem::swap(&mut t.dist_a, &mut t.dist_b);
-        if let Some(s) = &mut t.singular {
-            std::mem::swap(&mut s.box_a, &mut s.box_b);
-            std::mem::swap(&mut s.root_a, &mut s.root_b);
-            s.critical_on = s.critical_on.map(|c| if c == 'a' { 'b' } else { 'a' });
-        }
-    }
-    if let Some(c) = &mut p.coverage {
-        std::mem::swap(&mut c.boxes_a, &mut c.boxes_b);
-        for r in &mut c.uncertified_regions {
-            std::mem::swap(&mut r.uv_a, &mut r.uv_b);
-        }
-    }
-    for c in &mut p.contacts {
-        std::mem::swap(&mut c.triangle_a, &mut c.triangle_b);
-    }
-    if let Some(o) = p.coincident.as_mut().and_then(|c| c.overlap.as_mut()) {
-        std::mem::swap(&mut o.uv_a, &mut o.uv_b);
-    }
-    if let Some(c) = p.tangent_contact.as_mut() {
-        std::mem::swap(&mut c.uv_a, &mut c.uv_b);
-        for (a, b) in &mut c.params {
-            std::mem::swap(a, b);
-        }
-        for (_, a, b) in &mut c.unlisted {
-            std::mem::swap(a, b);
-        }
-    }
-    let s = &mut p.stats;
-    std::mem::swap(&mut s.triangles_a, &mut s.triangles_b);
-    std::mem::swap(&mut s.unresolved_cells_a, &mut s.unresolved_cells_b);
-    p
-}
-
-/// A surface the intersection can compute with: finite (the constructor rules, re-checked
-/// for nets changed in code) and within [`MAX_COORDINATE`], so that exact lifts and squared
-/// distances never meet an infinity.
-fn check_input(s: &NurbsSurface<f64, 3>, what: &dyn Fn() -> String) -> Result<(), SsiError> {
-    check_surface(s).map_err(|e| SsiError::Input(format!("{}: {e}", what())))?;
-    let big = s
-        .hom
-        .net
-        .iter()
-        .flat_map(|h| h.wp.map(|x| x / h.w))
-        .fold(0.0f64, |a, x| a.max(x.abs()));
-    if big > MAX_COORDINATE {
-        return Err(SsiError::Input(format!(
-            "{}: coordinate {big:e} is outside the supported range |x| <= 2^500 (about 3.3e150): squared distances would overflow f64",
-            what()
-        )));
-    }
-    Ok(())
-}
-
-/// Intersect two surfaces in their canonical order, reporting in the caller's order.
-pub fn intersect_pair_canonical(
-    sa: &NurbsSurface<f64, 3>,
-    sb: &NurbsSurface<f64, 3>,
-    ids: (usize, usize),
-    prm: &SsiParams,
-    deadline: Option<Instant>,
-) -> Result<PairOut, SsiError> {
-    check_input(sa, &|| format!("surface {}", ids.0))?;
-    check_input(sb, &|| format!("surface {}", ids.1))?;
-    pair_canonical(sa, sb, ids, prm, deadline)
-}
-
-/// [`intersect_pair_canonical`] on surfaces checked already.
-fn pair_canonical(
-    sa: &NurbsSurface<f64, 3>,
-    sb: &NurbsSurface<f64, 3>,
-    ids: (usize, usize),
-    prm: &SsiParams,
-    deadline: Option<Instant>,
-) -> Result<PairOut, SsiError> {
-    if canonical_key(sa) <= canonical_key(sb) {
-        intersect_surfaces(sa, sb, ids, prm, deadline)
-    } else if let Some(o) = &prm.coverage_outside {
-        let mut swapped = prm.clone();
-        swapped.coverage_outside = Some(o.swapped());
-        intersect_surfaces(sb, sa, (ids.1, ids.0), &swapped, deadline).map(swap_sides)
-    } else {
-        intersect_surfaces(sb, sa, (ids.1, ids.0), prm, deadline).map(swap_sides)
-    }
-}
-
-/// Pairs `(i, j)` of faces whose boxes overlap: `i < j` within `a` when `b` is `None`, else
-/// `i` in `a`, `j` in `b`. A face without a box (not finite) pairs with every face when
-/// is kept with every face for surfaces (nothing may be culled that could intersect) and
-/// dropped for meshes (an empty mesh meets nothing).
-fn overlapping_pairs(
-    a: &[Option<Aabb<f64, 3>>],
-    b: Option<&[Option<Aabb<f64, 3>>]>,
-    meshes: bool,
-) -> Vec<(usize, usize)> {
-    // Events sorted by the lower end of the boxes along the axis where their lower ends spread
-    // most; side 0 = a, 1 = b.
-    let sides: Vec<&[Option<Aabb<f64, 3>>]> = match b {
-        Some(bb) => vec![a, bb],
-        None => vec![a],
-    };
-    let spread = |k: usize| {
-        let (lo, hi) = sides
-            .iter()
-            .flat_map(|l| l.iter().flatten())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), bx| {
-                (l.min(bx.min[k]), h.max(bx.min[k]))
-            });
-        hi - lo
-    };
-    let axis = (0..3)
-        .max_by(|&x, &y| spread(x).total_cmp(&spread(y)))
-        .unwrap_or(0);
-    let mut items: Vec<(f64, usize, usize)> = Vec::new();
-    let mut unboxed: Vec<(usize, usize)> = Vec::new();
-    for (side, list) in sides.iter().enumerate() {
-        for (i, x) in list.iter().enumerate() {
-            match x {
-                Some(bx) => items.push((bx.min[axis], side, i)),
-                None => unboxed.push((side, i)),
-            }
-        }
-    }
-    items.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let get = |side: usize, i: usize| sides[side][i].as_ref();
-    let mut out = Vec::new();
-    let mut active: Vec<(usize, usize)> = Vec::new();
-    for &(lo, side, i) in &items {
-        active.retain(|&(s2, j)| get(s2, j).is_some_and(|bx| bx.max[axis] >= lo));
-        let me = get(side, i);
-        for &(s2, j) in &active {
-            let pair_ok = if b.is_some() { s2 != side } else { true };
-            if pair_ok
-                && let (Some(p), Some(q)) = (me, get(s2, j))
-                && p.overlaps(q)
-            {
-                let (x, y) = if b.is_some() {
-                    if side == 0 { (i, j) } else { (j, i) }
-                } else {
-                    (i.min(j), i.max(j))
-                };
-                out.push((x, y));
-            }
-        }
-        active.push((side, i));
-    }
-    if !meshes {
-        for &(side, i) in &unboxed {
-            match b {
-                None => (0..a.len())
-                    .filter(|&j| j != i)
-                    .for_each(|j| out.push((i.min(j), i.max(j)))),
-                Some(bb) => {
-                    if side == 0 {
-                        (0..bb.len()).for_each(|j| out.push((i, j)));
-                    } else {
-                        (0..a.len()).for_each(|j| out.push((j, i)));
-                    }
-                }
-            }
-        }
-        out.sort_unstable();
-        out.dedup();
-    }
-    out
-}
-
-fn net_box(s: &NurbsSurface<f64, 3>) -> Option<Aabb<f64, 3>> {
-    let pts = s.points_weights().0;
-    Aabb::of_points(pts.iter())
-}
 
 enum Work<'a> {
     Surfaces(&'a NurbsSurface<f64, 3>, &'a NurbsSurface<f64, 3>),
@@ -543,61 +348,6 @@ pub fn intersect_models(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn bx(lo: [f64; 3], hi: [f64; 3]) -> Option<Aabb<f64, 3>> {
-        Aabb::of_points([lo, hi].iter())
-    }
-
-    /// The sweep lists exactly the overlapping pairs that the brute-force test lists.
-    #[test]
-    fn sweep_equals_brute_force() {
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for _ in 0..20 {
-            let mut make = |n: usize| -> Vec<Option<Aabb<f64, 3>>> {
-                (0..n)
-                    .map(|_| {
-                        let lo = [rnd() * 10.0, rnd() * 10.0, rnd() * 10.0];
-                        let s = rnd() * 2.0;
-                        bx(lo, [lo[0] + s, lo[1] + s * rnd(), lo[2] + s])
-                    })
-                    .collect()
-            };
-            let (a, b) = (make(40), make(30));
-            let brute = |x: &Option<Aabb<f64, 3>>, y: &Option<Aabb<f64, 3>>| {
-                x.as_ref().unwrap().overlaps(y.as_ref().unwrap())
-            };
-            let mut one: Vec<(usize, usize)> = Vec::new();
-            for i in 0..a.len() {
-                for j in i + 1..a.len() {
-                    if brute(&a[i], &a[j]) {
-                        one.push((i, j));
-                    }
-                }
-            }
-            assert_eq!(overlapping_pairs(&a, None, false), one);
-            let mut two: Vec<(usize, usize)> = Vec::new();
-            for i in 0..a.len() {
-                for j in 0..b.len() {
-                    if brute(&a[i], &b[j]) {
-                        two.push((i, j));
-                    }
-                }
-            }
-            let mut got = overlapping_pairs(&a, Some(&b), false);
-            got.sort_unstable();
-            assert_eq!(got, two);
-        }
-        // A face without a box pairs with every face (surfaces), with none (meshes).
-        let a = vec![bx([0.0; 3], [1.0; 3]), None, bx([5.0; 3], [6.0; 3])];
-        assert_eq!(overlapping_pairs(&a, None, false), vec![(0, 1), (1, 2)]);
-        assert!(overlapping_pairs(&a, None, true).is_empty());
-    }
 
     /// 20,000 disjoint planes: 2·10⁸ pairs considered, none intersected, without listing them.
     #[test]

@@ -23,12 +23,15 @@
 //! Foreign spline curves are checked at sample points: the bounds hold at those points
 //! (between them it is evidence only — said in the report).
 
-use super::closest::{ClosestParams, IvSurface, closest};
+mod point;
+mod text_report;
+
+use super::closest::IvSurface;
 use super::coverage::near::Near;
-use super::krawczyk::{Uncertified, certify_on_curve};
 use super::report::SsiResult;
 use crate::model::Model;
 use crate::scalar::Interval;
+use point::{Check, check_point, curve_point_radius};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -181,130 +184,6 @@ fn seg_lower(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
         .sqrt()
         .next_down()
         .max(0.0)
-}
-
-/// Whether `uv` lies on (within a relative 1e-7 of) a border of the face's domain.
-fn on_border(f: &IvSurface, uv: &[f64; 2]) -> bool {
-    let d = f.dom;
-    let (wu, wv) = (1e-7 * (d[1] - d[0]), 1e-7 * (d[3] - d[2]));
-    uv[0] <= d[0] + wu || uv[0] >= d[1] - wu || uv[1] <= d[2] + wv || uv[1] >= d[3] - wv
-}
-
-struct Check {
-    status: PointStatus,
-    reason: &'static str,
-    upper_a: f64,
-    upper_b: f64,
-    lower: f64,
-    radius: Option<f64>,
-}
-
-fn fail_name(e: Uncertified) -> &'static str {
-    match e {
-        Uncertified::NotFinite => "not_finite",
-        Uncertified::Tangency => "tangency",
-        Uncertified::Singular => "singular",
-        Uncertified::NoContraction => "no_contraction",
-        Uncertified::OutsideDomain => "face_border",
-        Uncertified::Enclosure => "no_enclosure",
-        Uncertified::SignChangeAboveTol => "sign_change_above_tol",
-        Uncertified::NotRequested => "not_requested",
-    }
-}
-
-/// A proven radius within which a true intersection point of the two faces lies
-/// ([`super::krawczyk`]).
-fn curve_point_radius(
-    a: &IvSurface,
-    b: &IvSurface,
-    x: &[f64; 3],
-    uv_a: [f64; 2],
-    uv_b: [f64; 2],
-) -> Result<f64, Uncertified> {
-    certify_on_curve(&a.s, &b.s, x, &uv_a, &uv_b).map(|c| c.radius)
-}
-
-/// Check one foreign point against face sets `fa` and `fb` (`None`: one-file mode, the
-/// distinct faces of `fa`).
-fn check_point(fa: &[IvSurface], fb: Option<&[IvSurface]>, x: &[f64; 3], tol: f64) -> Check {
-    let prm = ClosestParams {
-        eps: 0.01 * tol,
-        max_pieces: 4000,
-    };
-    let mut out = Check {
-        status: PointStatus::Uncertified,
-        reason: "no_face",
-        upper_a: f64::INFINITY,
-        upper_b: f64::INFINITY,
-        lower: 0.0,
-        radius: None,
-    };
-    let Some(ca) = closest(fa, x, &prm, &|_| true) else {
-        return out;
-    };
-    let other = fb.unwrap_or(fa);
-    let same = fb.is_none();
-    let not_a = |i: usize| !same || i != ca.face;
-    let Some(cb) = closest(other, x, &prm, &not_a) else {
-        return out;
-    };
-    out.upper_a = ca.upper;
-    out.upper_b = cb.upper;
-    out.lower = ca.lower.max(cb.lower);
-    if out.lower > tol {
-        out.status = PointStatus::Off;
-        out.reason = "off_surface";
-        return out;
-    }
-    // Candidate faces: the nearest, then the next nearest within tol (a point near a face
-    // border may have its true curve point on the neighbouring face).
-    let second = |set: &[IvSurface], first: &super::closest::Closest, excl: Option<usize>| {
-        closest(set, x, &prm, &|i| i != first.face && Some(i) != excl).filter(|c| c.upper <= tol)
-    };
-    let mut cands_a = vec![ca];
-    let mut cands_b = vec![cb];
-    let mut err = Uncertified::NoContraction;
-    for round in 0..2 {
-        if round == 1 {
-            if let Some(c) = second(fa, &ca, same.then_some(cb.face)) {
-                cands_a.push(c);
-            }
-            if let Some(c) = second(other, &cb, same.then_some(ca.face)) {
-                cands_b.push(c);
-            }
-        }
-        for (i, a) in cands_a.iter().enumerate() {
-            for (j, b) in cands_b.iter().enumerate() {
-                if (round == 1 && i == 0 && j == 0) || (same && a.face == b.face) {
-                    continue;
-                }
-                match curve_point_radius(&fa[a.face], &other[b.face], x, a.uv, b.uv) {
-                    Ok(r) => {
-                        out.radius = Some(out.radius.map_or(r, |q: f64| q.min(r)));
-                        if r <= tol {
-                            out.status = PointStatus::OnCurve;
-                            out.reason = "";
-                            return out;
-                        }
-                    }
-                    Err(e) => err = e,
-                }
-            }
-        }
-    }
-    out.reason = if out.radius.is_some() {
-        "radius_above_tol"
-    } else {
-        fail_name(err)
-    };
-    if same
-        && ca.upper <= tol
-        && cb.upper <= tol
-        && (on_border(&fa[ca.face], &ca.uv) || on_border(&fa[cb.face], &cb.uv))
-    {
-        out.status = PointStatus::SharedEdge;
-    }
-    out
 }
 
 /// Check foreign curves against faces `a` and `b` (`None`: one-file mode, every pair of
@@ -502,95 +381,5 @@ pub fn certify(
         branches,
         seconds: t0.elapsed().as_secs_f64(),
         notes,
-    }
-}
-
-impl std::fmt::Display for CertifyReport {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(
-            f,
-            "certify foreign SSI result ({}), tol {:e}, match distance {:e}, {} points",
-            self.mode.replace('_', " "),
-            self.tol,
-            self.match_distance,
-            self.points_checked
-        )?;
-        for c in &self.curves {
-            writeln!(
-                f,
-                "  curve {} ({}, {} points): {} on the curve, {} off, {} on shared edges, {} uncertified; distance to A <= {:.3e}, to B <= {:.3e}, to the intersection >= {:.3e}{} -> {}",
-                c.index,
-                c.kind,
-                c.points_checked,
-                c.points_on_curve,
-                c.points_off,
-                c.points_shared_edge,
-                c.points_uncertified,
-                c.dist_a_max,
-                c.dist_b_max,
-                c.dist_lower_max,
-                c.curve_dist_max
-                    .map(|r| format!(", a true curve point within {r:.3e} of every point"))
-                    .unwrap_or_default(),
-                match c.status {
-                    "within_tol" => "within tol",
-                    "off" => "NOT within tol (proven off)",
-                    "shared_edge" => "on shared edges (not certified)",
-                    _ => "NOT certified",
-                }
-            )?;
-            for i in &c.issues {
-                writeln!(
-                    f,
-                    "    point {} {:?}: {:?} ({})",
-                    i.index, i.point, i.status, i.reason
-                )?;
-            }
-        }
-        writeln!(
-            f,
-            "  vericad branches: {} ({} missing from the foreign result, {} partly missing, {} not covered but unverified); vericad's coverage {}",
-            self.branches.len(),
-            self.missing_branches,
-            self.partial_branches,
-            self.unverified_branches,
-            if self.vericad_no_missed_branches {
-                "certified"
-            } else {
-                "NOT certified"
-            }
-        )?;
-        for b in self.branches.iter().filter(|b| b.status != "found") {
-            writeln!(
-                f,
-                "    faces ({}, {}) branch {} ({}, {} points): {} ({:.0}% covered){}",
-                b.face_a,
-                b.face_b,
-                b.branch,
-                if b.closed { "closed" } else { "open" },
-                b.points,
-                b.status,
-                100.0 * b.covered_fraction,
-                match (b.witness, b.witness_radius) {
-                    (Some(w), Some(r)) => format!(
-                        "; a true intersection point within {r:.2e} of {w:?} is proven farther than the match distance from every foreign curve"
-                    ),
-                    _ => String::new(),
-                }
-            )?;
-        }
-        for n in &self.notes {
-            writeln!(f, "  - {n}")?;
-        }
-        writeln!(
-            f,
-            "  {} ({:.3} s)",
-            if self.certified {
-                "CERTIFIED: every foreign curve lies within tol of the intersection and none is missing"
-            } else {
-                "NOT CERTIFIED"
-            },
-            self.seconds
-        )
     }
 }

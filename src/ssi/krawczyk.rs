@@ -50,14 +50,17 @@
 //! points of the intersection, where the zero leaves both a domain and the border retry, and
 //! where an enclosure fails. The reason is reported per point ([`Uncertified`]).
 
+mod system;
+
 use super::certify::distance_upper;
-use super::enclose::{Jet, enclose_jet, enclose_point};
+use super::enclose::Jet;
 use super::jet_cache::JetCache;
 use super::refine::{domain, point_d1};
-use crate::geom::{cross, dot, norm};
+use crate::geom::{cross, norm};
 use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
 use serde::Serialize;
+use system::{Eval, Fourth, System, pt};
 
 /// Why a point is not certified against the curve.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -108,133 +111,6 @@ pub struct CurveCertificate {
 }
 
 pub(crate) use super::linalg4::{M4, inverse4, mul4};
-
-/// A surface point and its first partial derivatives, in `f64`.
-type Eval = ([f64; 3], [f64; 3], [f64; 3]);
-
-#[derive(Clone, Copy, Debug)]
-enum Fourth {
-    /// `n · (S_A(u, v) − p) = 0`.
-    Plane { n: [f64; 3], p: [f64; 3] },
-    /// `z_k − c = 0`.
-    Hold { k: usize, c: f64 },
-}
-
-struct System<'a> {
-    sa: &'a NurbsSurface<f64, 3>,
-    sb: &'a NurbsSurface<f64, 3>,
-    /// Enclosures over a box shared with nearby points, used for every box it holds.
-    cache: Option<&'a JetCache>,
-    e: Fourth,
-    /// The point certified.
-    p: [f64; 3],
-    /// Domain bounds of `(u, v, s, t)`.
-    lo: [f64; 4],
-    hi: [f64; 4],
-}
-
-fn pt(x: f64) -> Interval {
-    Interval::point(x)
-}
-
-impl System<'_> {
-    /// `F` and its Jacobian in `f64` (approximations: they only steer).
-    fn eval_f64(&self, z: &[f64; 4]) -> ([f64; 4], M4) {
-        self.assemble(
-            z,
-            point_d1(self.sa, z[0], z[1]),
-            point_d1(self.sb, z[2], z[3]),
-        )
-    }
-
-    /// `F` and its Jacobian from the surfaces' points and first derivatives at `z`.
-    fn assemble(&self, z: &[f64; 4], ea: Eval, eb: Eval) -> ([f64; 4], M4) {
-        let ((a, au, av), (b, bs, bt)) = (ea, eb);
-        let mut f = [0.0; 4];
-        let mut j = [[0.0; 4]; 4];
-        for k in 0..3 {
-            f[k] = a[k] - b[k];
-            j[k] = [au[k], av[k], -bs[k], -bt[k]];
-        }
-        match self.e {
-            Fourth::Plane { n, p } => {
-                f[3] = dot(&n, &[a[0] - p[0], a[1] - p[1], a[2] - p[2]]);
-                j[3] = [dot(&n, &au), dot(&n, &av), 0.0, 0.0];
-            }
-            Fourth::Hold { k, c } => {
-                f[3] = z[k] - c;
-                j[3] = [0.0; 4];
-                j[3][k] = 1.0;
-            }
-        }
-        (f, j)
-    }
-
-    /// Enclosure of `F(y)` at the point `y`, with those of `S_A(y_uv)` and `S_B(y_st)`.
-    fn f_at(&self, y: &[f64; 4]) -> Option<([Interval; 4], [[Interval; 3]; 2])> {
-        let a = enclose_point(self.sa, pt(y[0]), pt(y[1]))?;
-        let b = enclose_point(self.sb, pt(y[2]), pt(y[3]))?;
-        let g = match self.e {
-            Fourth::Plane { n, p } => {
-                (0..3).fold(pt(0.0), |acc, k| acc + pt(n[k]) * (a[k] - pt(p[k])))
-            }
-            Fourth::Hold { k, c } => pt(y[k]) - pt(c),
-        };
-        Some(([a[0] - b[0], a[1] - b[1], a[2] - b[2], g], [a, b]))
-    }
-
-    /// Interval Jacobian over the box `x` (mean-value form, see the module comment).
-    fn jacobian(&self, x: &[Interval; 4]) -> Option<([[Interval; 4]; 4], [Jet; 2])> {
-        let (ja, jb) = match self.cache {
-            Some(c) if c.covers(x) => (c.jets[0], c.jets[1]),
-            _ => (
-                enclose_jet(self.sa, x[0], x[1])?,
-                enclose_jet(self.sb, x[2], x[3])?,
-            ),
-        };
-        let mut j = [[pt(0.0); 4]; 4];
-        for k in 0..3 {
-            j[k] = [ja.su[k], ja.sv[k], -jb.su[k], -jb.sv[k]];
-        }
-        match self.e {
-            Fourth::Plane { n, .. } => {
-                let d = |v: &[Interval; 3]| (0..3).fold(pt(0.0), |acc, k| acc + pt(n[k]) * v[k]);
-                j[3] = [d(&ja.su), d(&ja.sv), pt(0.0), pt(0.0)];
-            }
-            Fourth::Hold { k, .. } => j[3][k] = pt(1.0),
-        }
-        Some((j, [ja, jb]))
-    }
-
-    /// `K(X)` for centre `y`, preconditioner `yinv`, enclosure `fy` of `F(y)`; with the
-    /// surfaces' derivative enclosures over `X`.
-    fn krawczyk(
-        &self,
-        y: &[f64; 4],
-        x: &[Interval; 4],
-        yinv: &M4,
-        fy: &[Interval; 4],
-    ) -> Option<([Interval; 4], [Jet; 2])> {
-        let (j, jets) = self.jacobian(x)?;
-        let mut k = [pt(0.0); 4];
-        for i in 0..4 {
-            let mut acc = pt(y[i]);
-            for l in 0..4 {
-                acc = acc - pt(yinv[i][l]) * fy[l];
-            }
-            for c in 0..4 {
-                // (I − Y J)_{ic}
-                let mut cij = pt(if i == c { 1.0 } else { 0.0 });
-                for l in 0..4 {
-                    cij = cij - pt(yinv[i][l]) * j[l][c];
-                }
-                acc = acc + cij * (x[c] - pt(y[c]));
-            }
-            k[i] = acc;
-        }
-        Some((k, jets))
-    }
-}
 
 /// Result of one attempt; `Outside(k, c)`: the zero may leave the domain across the border
 /// `z_k = c`.
@@ -552,113 +428,4 @@ fn inside_near(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::spline::construct::{Frame, bilinear, sphere};
-
-    fn plane_z(h: f64) -> NurbsSurface<f64, 3> {
-        bilinear(
-            [-2.0, -2.0, h],
-            [2.0, -2.0, h],
-            [-2.0, 2.0, h],
-            [2.0, 2.0, h],
-        )
-        .unwrap()
-    }
-
-    /// Planes z = 0 and through the x axis at angle θ: the curve is the x axis. Points off it
-    /// by `e` get a radius at least their distance and not much more.
-    #[test]
-    fn tilted_planes() {
-        for th in [0.3, 1e-2, 1e-4, 1e-6] {
-            let (c, s) = (2.0 * f64::cos(th), 2.0 * f64::sin(th));
-            let b = bilinear([-2.0, -c, -s], [2.0, -c, -s], [-2.0, c, s], [2.0, c, s]).unwrap();
-            let a = plane_z(0.0);
-            for e in [0.0, 1e-9, 1e-7] {
-                // u = (x+2)/4, v = (y+2)/4 on A; on B v' = (y/cos θ + 2)/4 roughly.
-                let p = [0.3, e, 0.0];
-                let uv_a = [(p[0] + 2.0) / 4.0, (p[1] + 2.0) / 4.0];
-                let uv_b = [(p[0] + 2.0) / 4.0, 0.5];
-                let cert = certify_on_curve(&a, &b, &p, &uv_a, &uv_b).unwrap();
-                assert!(cert.radius >= e, "{th} {e}: {}", cert.radius);
-                assert!(cert.radius <= e + 1e-13, "{th} {e}: {}", cert.radius);
-            }
-        }
-    }
-
-    /// Near tangency a point within `d` of both planes lies about `d / θ` from their common
-    /// line; the Newton solution is on it (closed form: the x axis), at the point's `x`, and
-    /// is `None` for planes that do not meet within the domains.
-    #[test]
-    fn newton_lands_on_the_line() {
-        for th in [0.1, 1e-3, 1e-5] {
-            let (c, s) = (2.0 * f64::cos(th), 2.0 * f64::sin(th));
-            let b = bilinear([-2.0, -c, -s], [2.0, -c, -s], [-2.0, c, s], [2.0, c, s]).unwrap();
-            let a = plane_z(0.0);
-            // 1e-7 from A and about 1e-7 from B: 1e-7 / θ off the line.
-            let e = 1e-7 / th;
-            let p = [0.3, e, 1e-7];
-            let uv_a = [(p[0] + 2.0) / 4.0, (p[1] + 2.0) / 4.0];
-            let uv_b = [(p[0] + 2.0) / 4.0, 0.5 + e / 4.0];
-            let y = newton_on_curve(&a, &b, &p, &uv_a, &uv_b).unwrap();
-            let q = a.eval(&y[0], &y[1]);
-            assert!(q[1].abs() < 1e-13 && q[2] == 0.0, "{th}: {q:?}");
-            assert!((q[0] - 0.3).abs() < 1e-12, "{th}: {q:?}");
-            let r = b.eval(&y[2], &y[3]);
-            assert!(crate::geom::dist(&q, &r) < 1e-13, "{th}: {q:?} {r:?}");
-        }
-        // Parallel planes 1e-3 apart: no zero.
-        let (a, b) = (plane_z(0.0), plane_z(1e-3));
-        assert!(newton_on_curve(&a, &b, &[0.0; 3], &[0.5, 0.5], &[0.5, 0.5]).is_none());
-    }
-
-    /// The sphere of radius 2 cut by z = h: radius bounds the distance to the circle.
-    #[test]
-    fn sphere_and_plane() {
-        let f = Frame::WORLD;
-        let s = sphere(&f, 2.0).unwrap();
-        let h = 0.7;
-        let a = plane_z(h);
-        let rho = (4.0f64 - h * h).sqrt();
-        for k in 0..20 {
-            // A point near the circle, its parameters from a nearby sphere point.
-            let phi = 0.05 + 6.0 * k as f64 / 20.0;
-            let x = [rho * phi.cos() + 1e-8, rho * phi.sin(), h];
-            let u = phi / std::f64::consts::TAU;
-            let v = 0.5 + (h / 2.0).asin() / std::f64::consts::PI;
-            let uv_a = [(x[0] + 2.0) / 4.0, (x[1] + 2.0) / 4.0];
-            let cert = certify_on_curve(&a, &s, &x, &uv_a, &[u, v]).unwrap();
-            let d = ((x[0] * x[0] + x[1] * x[1]).sqrt() - rho).abs();
-            assert!(
-                cert.radius >= d - 1e-15 && cert.radius <= d + 1e-9,
-                "{k}: {} {d}",
-                cert.radius
-            );
-        }
-    }
-
-    /// Where the surfaces touch, or nearly touch without meeting, nothing is certified.
-    #[test]
-    fn tangency_is_uncertified() {
-        let f = Frame::WORLD;
-        let s = sphere(&f, 2.0).unwrap();
-        for h in [2.0, 2.0 + 1e-9, 2.0 - 1e-12] {
-            let a = plane_z(h);
-            // Near the north pole on the sphere (v slightly below 1).
-            for v in [1.0, 1.0 - 1e-7, 1.0 - 1e-4] {
-                let q = s.eval(&0.1, &v);
-                let r = certify_on_curve(
-                    &a,
-                    &s,
-                    &q,
-                    &[(q[0] + 2.0) / 4.0, (q[1] + 2.0) / 4.0],
-                    &[0.1, v],
-                );
-                if let Ok(c) = r {
-                    // Only a true root may be claimed: below the pole plane, z = h must be met.
-                    assert!(h < 2.0, "{h} {v}: {c:?}");
-                }
-            }
-        }
-    }
-}
+mod tests;

@@ -63,27 +63,20 @@ pub mod disjoint;
 pub mod near;
 pub mod patch;
 
+mod outcome;
+mod pieces;
+
+pub use outcome::{CoverageOut, Reason, RegionOut};
+pub(crate) use pieces::{Cell, roots};
+
 use super::report::{BranchOut, TouchOut};
-use crate::geom::{Hom, lift_point};
-use crate::scalar::{Interval, Scalar, lift};
 use crate::spline::NurbsSurface;
-use crate::spline::enclosed_bezier::enclosed_bezier_patches;
-use cones::{cones_separated, normal_generators};
+use cones::cones_separated;
 use crossings::search;
 use near::Near;
-use num_rational::BigRational;
-use patch::{Box3, IPatch, SIDES, Side, V, box_of, diagonal, disjoint, meet, separated_along};
-use serde::Serialize;
-use std::cell::OnceCell;
+use patch::{Box3, SIDES, Side, V, disjoint, meet, separated_along};
 use std::rc::Rc;
 use std::time::Instant;
-
-type Q = BigRational;
-
-/// Pieces whose quarters are kept for reuse, per face pair (about 5 KB each for bicubic
-/// pieces: about 50 MB per face pair; abc-0000.step peaked at 3.7 GB before this bound, 0.39 GB
-/// with it, the same certificate).
-const CACHED_CELLS: usize = 10_000;
 
 /// Budgets and the match distance.
 #[derive(Clone, Debug)]
@@ -138,172 +131,6 @@ impl OutsideFaces {
     }
 }
 
-/// Why a pair of parameter boxes is not certified.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Reason {
-    /// The normal cones could not be separated (tangency, a touching point, a small loop,
-    /// a singular point, or a degenerate piece such as a pole) down to the depth limit.
-    NormalsNotSeparated,
-    /// A border of one piece may cross the other piece at a place not within the match
-    /// distance of the output: a branch may be missing there.
-    CrossingAwayFromOutput,
-    /// No enclosure (a weight not proven positive, or overflow).
-    NoEnclosure,
-    /// The box or time budget ran out before the pair was decided.
-    Budget,
-}
-
-/// A pair of parameter boxes that could not be certified.
-#[derive(Clone, Debug, Serialize)]
-pub struct RegionOut {
-    pub uv_a: [f64; 4],
-    pub uv_b: [f64; 4],
-    pub reason: Reason,
-    /// Centre of a model-space box holding the undecided part (for crossings: the possible
-    /// crossing point).
-    pub point: Option<[f64; 3]>,
-}
-
-/// Counts of leaf pairs by class, and the uncertified ones (first 100).
-#[derive(Clone, Debug, Default, Serialize)]
-pub struct CoverageOut {
-    /// Bézier pieces (knot-span patches) of each surface.
-    pub boxes_a: usize,
-    pub boxes_b: usize,
-    /// Leaf pairs of the refinement, by class (`pairs` = the sum of the five classes).
-    pub pairs: usize,
-    /// Pairs examined, split ones included.
-    pub pairs_examined: usize,
-    pub free: usize,
-    pub near_output: usize,
-    pub transversal: usize,
-    pub uncertified: usize,
-    /// Pairs outside the faces (trim or B-rep loops), not examined further.
-    pub outside_faces: usize,
-    /// Boxes examined in border-crossing searches, and those proven near the output.
-    pub crossing_boxes: usize,
-    pub crossing_boxes_near_output: usize,
-    /// Leaf pairs, and crossing boxes, proven inside a tube of [`CoverageParams::tubes`]
-    /// (within `r_e` of the polyline of an edge or vertex two faces of a B-rep share).
-    pub near_shared_edges: usize,
-    pub crossing_boxes_near_shared_edges: usize,
-    /// The match distance `d` of the claim.
-    pub match_distance: f64,
-    /// Whether every leaf pair is free, near the output or transversal: then every branch of
-    /// the true intersection comes within `match_distance` of the output (the claim above).
-    pub no_missed_branches: bool,
-    pub uncertified_regions: Vec<RegionOut>,
-    /// Output points whose parameters lie in a leaf pair proven free with a gap between the
-    /// boxes larger than the point's proven distances to the two surfaces (a contradiction:
-    /// must be 0; a self-check of the certificate). `None` when not checked (more than
-    /// 2·10⁷ point–pair tests).
-    pub free_pairs_with_branch_points: Option<usize>,
-    pub seconds: f64,
-    /// The adaptive refinement of undecided regions ([`crate::ssi::regions`]), when it ran:
-    /// this certificate is then the one computed on the refined output.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub refinement: Option<crate::ssi::regions::RegionRefinement>,
-}
-
-/// One piece of a domain: its exact-enclosed patch, uv label, box and cached data.
-pub(crate) struct Cell {
-    pub(crate) uv: [f64; 4],
-    pub(crate) patch: IPatch,
-    /// Enclosed Cartesian control points, their box, and a rough normal.
-    pts: Option<Vec<V>>,
-    hull: Option<Box3>,
-    normal: [f64; 3],
-    polynomial: bool,
-    normals: OnceCell<Vec<V>>,
-    kids: OnceCell<[Rc<Cell>; 4]>,
-}
-
-impl Cell {
-    fn new(patch: IPatch, uv: [f64; 4], polynomial: bool) -> Rc<Cell> {
-        let pts = patch.cartesian();
-        Rc::new(Cell {
-            uv,
-            hull: pts.as_deref().map(box_of),
-            pts,
-            normal: patch.rough_normal(),
-            patch,
-            polynomial,
-            normals: OnceCell::new(),
-            kids: OnceCell::new(),
-        })
-    }
-    fn normals(&self) -> &[V] {
-        self.normals
-            .get_or_init(|| normal_generators(&self.patch, self.polynomial))
-    }
-    /// The four quarters, kept for the next pair that splits this piece while fewer than
-    /// [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past that, made
-    /// afresh each time, so memory stays bounded however deep the refinement goes.
-    fn kids(&self, kept: &std::cell::Cell<usize>) -> [Rc<Cell>; 4] {
-        if let Some(k) = self.kids.get() {
-            return k.clone();
-        }
-        let [u0, u1, v0, v1] = self.uv;
-        let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
-        let [a, b, c, d] = self.patch.quarters();
-        let k = [
-            Cell::new(a, [u0, um, v0, vm], self.polynomial),
-            Cell::new(b, [u0, um, vm, v1], self.polynomial),
-            Cell::new(c, [um, u1, v0, vm], self.polynomial),
-            Cell::new(d, [um, u1, vm, v1], self.polynomial),
-        ];
-        if kept.get() < CACHED_CELLS {
-            kept.set(kept.get() + 4);
-            let _ = self.kids.set(k.clone());
-        }
-        k
-    }
-    fn diag(&self) -> f64 {
-        self.hull.as_ref().map_or(f64::INFINITY, diagonal)
-    }
-}
-
-fn outward(lo: &Q, hi: &Q) -> (f64, f64) {
-    let (mut a, mut b) = (lo.to_f64(), hi.to_f64());
-    if lift::<Q>(a) > *lo {
-        a = a.next_down();
-    }
-    if lift::<Q>(b) < *hi {
-        b = b.next_up();
-    }
-    (a, b)
-}
-
-/// Interval enclosure of a rational, outward.
-fn enclose(x: &Q) -> Interval {
-    let (lo, hi) = outward(x, x);
-    Interval { lo, hi }
-}
-
-/// The Bézier pieces of a surface, enclosed: the interval de Boor–Ramshaw extraction
-/// ([`enclosed_bezier_patches`]: every enclosure contains the exact control point), or, where
-/// a knot difference cannot be certified positive in intervals, the exact rational extraction
-/// ([`roots_exact`]).
-pub(crate) fn roots(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
-    let polynomial = s.is_polynomial();
-    match enclosed_bezier_patches(s) {
-        Some(pieces) => pieces
-            .into_iter()
-            .map(|bp| {
-                let patch = IPatch {
-                    p: bp.p,
-                    q: bp.q,
-                    x: bp.net.iter().map(|h| [h[0], h[1], h[2]]).collect(),
-                    w: bp.net.iter().map(|h| h[3]).collect(),
-                };
-                Cell::new(patch, bp.uv, polynomial)
-            })
-            .collect(),
-        None => roots_exact(s),
-    }
-}
-
 /// Most Bézier pieces per surface for [`normals_never_parallel`] (larger nets are not
 /// tested: their normal cones are wide anyway).
 const MAX_CONE_PIECES: usize = 64;
@@ -335,42 +162,6 @@ pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 
         (Some(a), Some(b)) => cones_separated(&a, &b),
         _ => false,
     }
-}
-
-/// The Bézier pieces of a surface, extracted exactly (rational knot insertion) and enclosed.
-pub(crate) fn roots_exact(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
-    let exact = s.hom.map(
-        |k| lift::<Q>(*k),
-        |h| Hom {
-            wp: lift_point(&h.wp),
-            w: lift(h.w),
-        },
-    );
-    let polynomial = s.is_polynomial();
-    exact
-        .bezier_patches()
-        .into_iter()
-        .map(|bp| {
-            let patch = IPatch {
-                p: bp.patch.p,
-                q: bp.patch.q,
-                x: bp
-                    .patch
-                    .net
-                    .iter()
-                    .map(|h| std::array::from_fn(|c| enclose(&h.wp[c])))
-                    .collect(),
-                w: bp.patch.net.iter().map(|h| enclose(&h.w)).collect(),
-            };
-            let uv = [
-                bp.u0.to_f64(),
-                bp.u1.to_f64(),
-                bp.v0.to_f64(),
-                bp.v1.to_f64(),
-            ];
-            Cell::new(patch, uv, polynomial)
-        })
-        .collect()
 }
 
 /// The output set: branch polylines and touching points.
