@@ -218,6 +218,29 @@ pub fn bilinear(
     )
 }
 
+/// The rectangle of the frame's xy plane spanning the projections of `pts` (a plane face's
+/// points), as a bilinear patch; the square `[-1, 1]²` when they span no area.
+pub fn plane_spanning(f: &Frame, pts: &[[f64; 3]]) -> Result<NurbsSurface<f64, 3>, SplineError> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in pts {
+        let d = p.sub(&f.o);
+        let c = [crate::geom::dot(&d, &f.x), crate::geom::dot(&d, &f.y)];
+        for i in 0..2 {
+            lo[i] = lo[i].min(c[i]);
+            hi[i] = hi[i].max(c[i]);
+        }
+    }
+    if !(lo[0] < hi[0] && lo[1] < hi[1]) {
+        (lo, hi) = ([-1.0, -1.0], [1.0, 1.0]);
+    }
+    bilinear(
+        f.at(lo[0], lo[1], 0.0),
+        f.at(hi[0], lo[1], 0.0),
+        f.at(lo[0], hi[1], 0.0),
+        f.at(hi[0], hi[1], 0.0),
+    )
+}
+
 /// Cylinder of radius `r` about the frame's z axis for `h ∈ [h0, h1]`.
 pub fn cylinder(f: &Frame, r: f64, h0: f64, h1: f64) -> Result<NurbsSurface<f64, 3>, SplineError> {
     positive("cylinder radius", r)?;

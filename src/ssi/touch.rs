@@ -106,8 +106,11 @@ pub fn tangential_points(
                     *nb[j as usize].get_or_insert_with(|| vertex_normal(g.sb, g.mb.uv[j as usize]));
                 if let (Some(p), Some(q)) = (p, q) {
                     let c = (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).abs();
+                    if best.is_some_and(|b| c < b.0) {
+                        continue;
+                    }
                     let d = dist(&g.ma.vertices[i as usize], &g.mb.vertices[j as usize]);
-                    if best.is_none_or(|b| c > b.0 || (c == b.0 && d < b.1)) {
+                    if best.is_none_or(|b| c > b.0 || d < b.1) {
                         best = Some((c, d, i, j));
                     }
                 }

@@ -173,24 +173,7 @@ impl Reader<'_> {
                     let o = self.vector(de, 1, 116)?;
                     self.frame(de, o, self.unit(de, 2)?, refdir(3)?)?
                 };
-                let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-                for p in pts {
-                    let d = p.sub(&f.o);
-                    let c = [crate::geom::dot(&d, &f.x), crate::geom::dot(&d, &f.y)];
-                    for i in 0..2 {
-                        lo[i] = lo[i].min(c[i]);
-                        hi[i] = hi[i].max(c[i]);
-                    }
-                }
-                if !(lo[0] < hi[0] && lo[1] < hi[1]) {
-                    (lo, hi) = ([-1.0, -1.0], [1.0, 1.0]);
-                }
-                let s = conv(construct::bilinear(
-                    f.at(lo[0], lo[1], 0.0),
-                    f.at(hi[0], lo[1], 0.0),
-                    f.at(lo[0], hi[1], 0.0),
-                    f.at(hi[0], hi[1], 0.0),
-                ))?;
+                let s = conv(construct::plane_spanning(&f, pts))?;
                 (s, SurfaceKind::Plane)
             }
             192 => {
