@@ -250,3 +250,92 @@ fn iges_b_rep_accounting_reads_every_topology_entity() {
         assert!(rep.issues.is_empty(), "{name}: {:?}", rep.issues);
     }
 }
+
+/// The source's pcurve of an edge on a face, as a 3D curve in the plane z = 0 (for closest
+/// points by projection).
+fn lifted(p: &vericad::brep::PCurve) -> Option<vericad::spline::NurbsCurve<f64, 3>> {
+    let vericad::brep::PCurveGeometry::Nurbs(c) = &p.geometry else {
+        return None;
+    };
+    let (pts, w) = c.points_weights();
+    let pts = pts.iter().map(|q| [q[0], q[1], 0.0]).collect();
+    vericad::spline::NurbsCurve::new(c.hom.knots.knots().to_vec(), c.hom.degree(), pts, w).ok()
+}
+
+/// Open CASCADE's IGES B-rep of t20 carries a pcurve for every edge on its B-spline faces;
+/// written again as STEP and as IGES, each edge's pcurve on such a face is the source's,
+/// restricted to the edge: every one of 17 points of the written pcurve lies on the source's
+/// pcurve (closest point by projection, within 1e-12 of the parameter box), and the
+/// surface at its ends is at the edge's vertices.
+#[test]
+fn source_pcurves_are_written_back_on_their_b_spline_faces() {
+    let m = model("gmsh-t20_data.igs");
+    let b = m.brep.as_ref().unwrap();
+    for (ext, text) in [
+        ("step", vericad::io::step::write::write(&m, "t20").0),
+        ("igs", vericad::io::iges::write::write(&m, "t20").0),
+    ] {
+        let back = if ext == "step" {
+            vericad::io::step::from_str(&text, "w.step").unwrap()
+        } else {
+            vericad::io::iges::from_str(&text, "w.igs").unwrap()
+        };
+        let y = back.brep.as_ref().unwrap();
+        assert_eq!(y.edges.len(), b.edges.len(), "{ext}");
+        let mut checked = 0;
+        for (ex, ey) in b.edges.iter().zip(&y.edges) {
+            for src in &ex.pcurves {
+                let face = b
+                    .faces
+                    .iter()
+                    .find(|f| f.surface_source == src.surface_source)
+                    .unwrap();
+                let si = face.surface.unwrap();
+                if m.surfaces[si].kind != vericad::model::SurfaceKind::BSpline {
+                    continue;
+                }
+                let Some(lift) = lifted(src) else { continue };
+                let foot = vericad::spline::project::CurveFoot::new(&lift);
+                // The written pcurve on the same surface (faces keep their order).
+                let fi = b.faces.iter().position(|f| std::ptr::eq(f, face)).unwrap();
+                let written = ey
+                    .pcurves
+                    .iter()
+                    .filter(|p| p.surface_source == y.faces[fi].surface_source)
+                    .collect::<Vec<_>>();
+                assert_eq!(written.len(), 1, "{ext}: edge {}", ex.source);
+                let vericad::brep::PCurveGeometry::Nurbs(w) = &written[0].geometry else {
+                    panic!("{ext}: a line")
+                };
+                let s = &m.surfaces[si].nurbs;
+                let (u0, u1, v0, v1) = s.hom.domain();
+                let scale = (u1 - u0).abs().max((v1 - v0).abs()).max(1.0);
+                let (t0, t1) = w.hom.domain();
+                for k in 0..=16 {
+                    let q = w.eval(&(t0 + (t1 - t0) * k as f64 / 16.0));
+                    let (_, _, d) = foot.closest(&[q[0], q[1], 0.0]);
+                    assert!(
+                        d <= 1e-12 * scale,
+                        "{ext}: edge {} off the source pcurve by {d:e}",
+                        ex.source
+                    );
+                }
+                // The ends on the surface are the edge's vertices (within the file's tolerance).
+                let ends = [w.eval(&t0), w.eval(&t1)].map(|q| s.eval(&q[0], &q[1]));
+                let vs = [b.vertices[ex.start].point, b.vertices[ex.end].point];
+                let near = |a: &[f64; 3], v: &[f64; 3]| {
+                    a.sub(v).iter().map(|x| x * x).sum::<f64>().sqrt()
+                        <= 1e-6 * b.extent() + 100.0 * b.tolerance
+                };
+                assert!(
+                    (near(&ends[0], &vs[0]) && near(&ends[1], &vs[1]))
+                        || (near(&ends[0], &vs[1]) && near(&ends[1], &vs[0])),
+                    "{ext}: edge {} ends",
+                    ex.source
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 90, "{ext}: {checked} pcurves checked");
+    }
+}

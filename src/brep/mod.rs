@@ -13,6 +13,7 @@
 
 pub mod check;
 pub mod counts;
+pub mod pcurve;
 pub mod place;
 pub mod report;
 pub mod sew;
@@ -176,6 +177,23 @@ pub struct Brep {
     /// The assembly tree, depth-first, when the source has one (STEP product structure):
     /// every solid and shell above is the shape of one occurrence, placed.
     pub occurrences: Vec<Occurrence>,
+}
+
+impl Brep {
+    /// Diagonal of the box of the vertices (1 when there are none or they coincide): the
+    /// model size that relative tolerances scale with.
+    pub fn extent(&self) -> f64 {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in &self.vertices {
+            for k in 0..3 {
+                lo[k] = lo[k].min(v.point[k]);
+                hi[k] = hi[k].max(v.point[k]);
+            }
+        }
+        let d = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+        if d.is_finite() && d > 0.0 { d } else { 1.0 }
+    }
 }
 
 /// An occurrence of a product in an assembly (STEP `next_assembly_usage_occurrence`, or a

@@ -68,19 +68,6 @@ impl BrepMesh {
     }
 }
 
-fn bbox_diagonal(brep: &Brep) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for v in &brep.vertices {
-        for k in 0..3 {
-            lo[k] = lo[k].min(v.point[k]);
-            hi[k] = hi[k].max(v.point[k]);
-        }
-    }
-    let d = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-    if d.is_finite() && d > 0.0 { d } else { 1.0 }
-}
-
 /// Number of segments for a curve sampled at `pts`: length over `h`, turn over `max_turn`.
 fn segments(pts: &[[f64; 3]], h: f64, max_turn: f64) -> usize {
     let len: f64 = pts
@@ -209,7 +196,7 @@ fn reversed_in_shell(brep: &Brep) -> Vec<bool> {
 
 /// Triangulate every face of `brep` (surfaces from `model`).
 pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
-    let size = bbox_diagonal(brep);
+    let size = brep.extent();
     let h = size * params.relative_edge;
     let mut t = Triangulation {
         name: "trimmed faces".into(),
@@ -272,7 +259,7 @@ pub fn face_regions(
     brep: &Brep,
     params: &MeshParams,
 ) -> Vec<Result<region::FaceRegion, String>> {
-    let size = bbox_diagonal(brep);
+    let size = brep.extent();
     let h = size * params.relative_edge;
     let mut t = Triangulation {
         name: String::new(),

@@ -6,14 +6,15 @@
 //! open) per shell with each face's orientation relative to its surface normal, and a
 //! manifold solid B-rep object (186) per solid, its voids as further shells.
 //!
-//! On planar faces the loops carry exact parameter-space curves (the edge curves mapped by
-//! the inverse of the plane's affine parametrization, each running the way the loop uses the
-//! edge, as Open CASCADE reads them); elsewhere a loop gives none and readers project the
-//! edges. What the file does not hold is returned as notes.
+//! The loops carry parameter-space curves where [`crate::brep::pcurve::for_face`] gives one,
+//! each running the way the loop uses the edge (as Open CASCADE reads them): the source's own
+//! on its B-spline surfaces, exact ones on planar faces (the edge curves mapped by the
+//! inverse of the plane's affine parametrization). Elsewhere a loop gives none and readers
+//! project the edge. What the file does not hold is returned as notes.
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
+use crate::brep::pcurve::for_face;
 use crate::brep::{Brep, LoopKind, OrientedEdge};
-use crate::io::step::write_pcurve::AffinePatch;
 use crate::model::{CurveGeometry, Model};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -78,6 +79,8 @@ pub(super) fn brep(
     }
     let el = push_form(p, 504, 1, format!("504,{}{entries};", index.len()), USED);
     let mut face_de = vec![None; b.faces.len()];
+    // `(edge, model surface)` of every parameter-space curve written.
+    let mut written_pc = BTreeSet::new();
     for (fi, face) in b.faces.iter().enumerate() {
         let Some(si) = face.surface.filter(|s| *s < m.surfaces.len()) else {
             notes.push(format!(
@@ -86,7 +89,6 @@ pub(super) fn brep(
             ));
             continue;
         };
-        let patch = AffinePatch::new(&m.surfaces[si].nurbs);
         let mut loops: Vec<(bool, usize)> = Vec::new();
         for l in &face.loops {
             let text = match &l.kind {
@@ -113,10 +115,11 @@ pub(super) fn brep(
                     }
                     let mut t = format!("508,{}", oes.len());
                     for o in &oes {
-                        let c = b.edges[o.edge].curve.as_ref().map(|c| &c.nurbs);
-                        let pc = c
-                            .and_then(|c| patch.as_ref()?.pcurve(c))
+                        let pc = for_face(b, o.edge, face, &m.surfaces[si])
                             .map(|pc| if o.forward { pc } else { pc.reversed() });
+                        if pc.is_some() {
+                            written_pc.insert((o.edge, si));
+                        }
                         let k = match pc {
                             Some(pc) => {
                                 let d = push(
@@ -165,10 +168,22 @@ pub(super) fn brep(
         ));
     }
     shells_and_solids(b, p, &face_de, notes);
-    let pcurves: usize = b.edges.iter().map(|e| e.pcurves.len()).sum();
-    if pcurves > 0 {
+    // A source pcurve is written back where a loop on its surface carries one for the edge.
+    let lost = b
+        .edges
+        .iter()
+        .enumerate()
+        .flat_map(|(i, e)| e.pcurves.iter().map(move |pc| (i, pc)))
+        .filter(|(i, pc)| {
+            !b.faces.iter().any(|f| {
+                f.surface_source == pc.surface_source
+                    && f.surface.is_some_and(|s| written_pc.contains(&(*i, s)))
+            })
+        })
+        .count();
+    if lost > 0 {
         notes.push(format!(
-            "{pcurves} pcurve(s) of the source not written (the edges' model-space curves are; exact parameter-space curves only on planar faces)"
+            "{lost} pcurve(s) of the source not written (the edges' model-space curves are; parameter-space curves only the source's own on its B-spline surfaces and exact ones on planes)"
         ));
     }
     written

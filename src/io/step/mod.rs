@@ -23,7 +23,6 @@ mod units;
 use entities::Reader;
 use units::unit;
 pub mod write;
-pub(crate) mod write_pcurve;
 mod write_topology;
 
 use crate::brep::IssueKind;

@@ -8,11 +8,13 @@
 //! model's NURBS surfaces, bit for bit.
 //!
 //! What the file does not hold is returned as notes: analytic surfaces and curves are written
-//! in their exact NURBS forms (the type is not kept), pcurves are not written, and faces
-//! without a surface or loops over an edge without a curve are left out, named.
+//! in their exact NURBS forms (the type is not kept), pcurves are written where
+//! [`crate::brep::pcurve::for_face`] gives one (the source's own on its B-spline surfaces,
+//! exact ones on planes) and left out elsewhere, and faces without a surface or loops over an
+//! edge without a curve are left out, named.
 
 use super::write::{Out, refs, text};
-use super::write_pcurve::AffinePatch;
+use crate::brep::pcurve::for_face;
 use crate::brep::{Brep, LoopKind};
 use crate::model::{CurveGeometry, Model};
 use std::collections::{BTreeMap, BTreeSet};
@@ -27,8 +29,6 @@ struct Topology<'a> {
     surfaces: BTreeMap<usize, u64>,
     /// Model surfaces of the faces whose loops use each edge.
     uses: Vec<Vec<usize>>,
-    /// Planar patches' inverses, by model surface (`None`: not planar).
-    patches: BTreeMap<usize, Option<AffinePatch>>,
     /// The parameter-space representation context of the pcurves.
     context_2d: Option<u64>,
     /// `(edge, model surface)` of every pcurve written.
@@ -66,14 +66,14 @@ impl Topology<'_> {
         let curve = edge.curve.as_ref()?;
         let (v0, v1) = (self.vertex(edge.start)?, self.vertex(edge.end)?);
         let mut g = self.o.curve(&curve.nurbs, "");
-        // Exact pcurves on the planar faces along the edge.
+        // Pcurves on the faces along the edge: the source's on its B-spline surfaces, exact
+        // ones on planes.
         let mut pcurves = Vec::new();
         for si in self.uses.get(e).cloned().unwrap_or_default() {
-            let patch = self
-                .patches
-                .entry(si)
-                .or_insert_with(|| AffinePatch::new(&self.m.surfaces[si].nurbs));
-            let Some(pc) = patch.as_ref().and_then(|p| p.pcurve(&curve.nurbs)) else {
+            let Some(face) = self.b.faces.iter().find(|f| f.surface == Some(si)) else {
+                continue;
+            };
+            let Some(pc) = for_face(self.b, e, face, &self.m.surfaces[si]) else {
                 continue;
             };
             let s = self.surface(si);
@@ -229,7 +229,6 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
         edges: BTreeMap::new(),
         surfaces: BTreeMap::new(),
         uses: edge_surfaces(m, b),
-        patches: BTreeMap::new(),
         context_2d: None,
         pcurves: BTreeSet::new(),
     };
@@ -398,7 +397,8 @@ fn free_geometry(t: &mut Topology, notes: &mut Vec<String>) -> Option<u64> {
     (!items.is_empty()).then(|| t.o.add(&format!("GEOMETRIC_SET('',{})", refs(&items))))
 }
 
-/// Notes on what changes form: analytic surfaces and curves written as NURBS, pcurves left out.
+/// Notes on what changes form: analytic surfaces and curves written as NURBS, source pcurves
+/// replaced by the writer's or left out.
 fn conversion_notes(m: &Model, b: &Brep, t: &Topology, notes: &mut Vec<String>) {
     let analytic = t
         .surfaces
@@ -443,7 +443,7 @@ fn conversion_notes(m: &Model, b: &Brep, t: &Topology, notes: &mut Vec<String>) 
     }
     if !lost.is_empty() {
         notes.push(format!(
-            "{} pcurve(s) of the source not written (the edges' 3D curves are; exact pcurves only on planar faces): {}",
+            "{} pcurve(s) of the source not written (the edges' 3D curves are; pcurves only the source's own on its B-spline surfaces and exact ones on planes): {}",
             lost.len(),
             crate::model::list_ids(lost)
         ));

@@ -1,4 +1,4 @@
-//! Exact pcurves for the STEP writer on planar patches. A surface of degree (1, 1) with 2 × 2
+//! Exact pcurves on planar patches, for the writers. A surface of degree (1, 1) with 2 × 2
 //! control points of equal weight forming a parallelogram (how planes are held) is an affine
 //! map `S(u, v) = O + s·A + t·B` with `s`, `t` the parameters scaled to `[0, 1]`; its inverse
 //! maps an edge's NURBS curve lying in the plane to its pcurve exactly: the same knots and
@@ -10,7 +10,7 @@ use crate::geom::{Point, dot};
 use crate::spline::{NurbsCurve, NurbsSurface};
 
 /// The inverse of a planar patch's affine parametrization.
-pub(crate) struct AffinePatch {
+pub struct AffinePatch {
     o: [f64; 3],
     a: [f64; 3],
     b: [f64; 3],
@@ -25,7 +25,7 @@ impl AffinePatch {
     /// The patch's inverse, when `s` is a parallelogram patch (`None` otherwise). A curve's
     /// control points may lie 1e-9 times the patch's extent (with its distance from the
     /// origin) from the plane: rounding, not an approximation.
-    pub(crate) fn new(s: &NurbsSurface<f64, 3>) -> Option<AffinePatch> {
+    pub fn new(s: &NurbsSurface<f64, 3>) -> Option<AffinePatch> {
         let h = &s.hom;
         if h.degrees() != (1, 1) || h.nu() != 2 || h.nv() != 2 || !s.is_polynomial() {
             return None;
@@ -70,7 +70,7 @@ impl AffinePatch {
 
     /// The pcurve of a curve lying in the plane (`None` when a control point is farther from
     /// the plane than the tolerance).
-    pub(crate) fn pcurve(&self, c: &NurbsCurve<f64, 3>) -> Option<NurbsCurve<f64, 2>> {
+    pub fn pcurve(&self, c: &NurbsCurve<f64, 3>) -> Option<NurbsCurve<f64, 2>> {
         let (pts, w) = c.points_weights();
         let mut uv = Vec::with_capacity(pts.len());
         for p in &pts {
