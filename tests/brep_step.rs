@@ -484,3 +484,20 @@ mod random_graphs {
         }
     }
 }
+
+/// A cylinder face from −1 to +1 rad about its placement's x direction (where the cylinder's
+/// NURBS form starts): its seam is moved out of the face, so the face has one region and its
+/// trimmed area is the constructed r·Δθ·h = 8 (tests/data/constructed/README.md).
+#[test]
+fn a_face_spanning_its_cylinders_start_direction_has_its_area() {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/constructed/cylinder-face-across-seam.step");
+    let m = vericad::io::read_model(&p).unwrap();
+    let b = m.brep.as_ref().unwrap();
+    let areas = vericad::tessellate::face_areas(&m, b);
+    assert_eq!(areas.len(), 1);
+    let a = areas[0]
+        .area
+        .unwrap_or_else(|| panic!("no area: {:?}", areas[0].note));
+    assert!((a - 8.0).abs() <= 1e-6 * 8.0, "{a}");
+}

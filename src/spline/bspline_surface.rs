@@ -202,6 +202,32 @@ impl<P: Point> BSplineSurface<P> {
         BSplineSurface { ku, kv, net }
     }
 
+    /// The same surface with its u-parametrization starting at `t` instead of `u_min`, for a
+    /// surface closed in u (`S(u_min, v) = S(u_max, v)`, homogeneous points included): the
+    /// parts over `[t, u_max]` and `[u_min, t]` joined at the old seam, the second shifted by
+    /// the period, so the domain is `[t, t + u_max − u_min]` and the seam lies at `t`. The
+    /// control points at the old seam are the first part's.
+    pub fn reseamed_u(&self, t: &P::S) -> Result<Self, SplineError> {
+        let (u0, u1, _, _) = self.domain();
+        let p = self.ku.degree();
+        let period = u1.clone() - u0.clone();
+        let cols: Result<Vec<_>, SplineError> = (0..self.nv())
+            .map(|j| {
+                let c = self.column(j);
+                let a = c.sub_curve(t, &u1)?;
+                let b = c.sub_curve(&u0, t)?;
+                let ka = a.knots.knots();
+                let kb = b.knots.knots();
+                let mut knots: Vec<P::S> = ka[..ka.len() - 1].to_vec();
+                knots.extend(kb[p + 1..].iter().map(|k| k.clone() + period.clone()));
+                let mut control = a.control.clone();
+                control.extend(b.control[1..].iter().cloned());
+                BSplineCurve::new(knots, p, control)
+            })
+            .collect();
+        Ok(Self::from_columns(self.kv.clone(), cols?))
+    }
+
     /// Insert the u-knot `t` `r` times (Boehm on every column); shape unchanged.
     pub fn insert_knot_u(&self, t: &P::S, r: usize) -> Self {
         let cols = (0..self.nv())
