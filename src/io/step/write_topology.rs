@@ -116,8 +116,10 @@ impl Topology<'_> {
         s
     }
 
-    /// The `advanced_face` of face `f`, or why it is left out.
-    fn face(&mut self, f: usize, notes: &mut Vec<String>) -> Option<u64> {
+    /// The `advanced_face` of face `f`, or why it is left out; `flip`: written reversed
+    /// (`same_sense` and every bound's orientation negated: the face an `oriented_face` with
+    /// orientation `.F.` would make of it).
+    fn face(&mut self, f: usize, flip: bool, notes: &mut Vec<String>) -> Option<u64> {
         let face = &self.b.faces[f];
         let Some(si) = face.surface.filter(|s| *s < self.m.surfaces.len()) else {
             notes.push(format!(
@@ -168,10 +170,10 @@ impl Topology<'_> {
             } else {
                 "FACE_BOUND"
             };
-            bounds.push(
-                self.o
-                    .add(&format!("{ty}('',#{lp},{})", logical(l.orientation))),
-            );
+            bounds.push(self.o.add(&format!(
+                "{ty}('',#{lp},{})",
+                logical(l.orientation != flip)
+            )));
         }
         if bounds.is_empty() {
             // An advanced face needs at least one bound.
@@ -186,7 +188,7 @@ impl Topology<'_> {
             "ADVANCED_FACE('{}',{},#{s},{})",
             text(&face.source),
             refs(&bounds),
-            logical(face.same_sense)
+            logical(face.same_sense != flip)
         )))
     }
 }
@@ -232,7 +234,25 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
         context_2d: None,
         pcurves: BTreeSet::new(),
     };
-    let faces: Vec<Option<u64>> = (0..b.faces.len()).map(|f| t.face(f, &mut notes)).collect();
+    // A face every shell uses reversed is written reversed, so that no `oriented_face` is
+    // needed (Open CASCADE 8.0.1 drops faces given as `oriented_face` in a shell: it read one
+    // face of three from gmsh-periodic_u_cst written this way).
+    let mut uses: Vec<(bool, bool)> = vec![(false, false); b.faces.len()];
+    for s in &b.shells {
+        for (f, orientation) in &s.faces {
+            if let Some(u) = uses.get_mut(*f) {
+                if *orientation {
+                    u.0 = true;
+                } else {
+                    u.1 = true;
+                }
+            }
+        }
+    }
+    let flipped: Vec<bool> = uses.iter().map(|&(fwd, rev)| rev && !fwd).collect();
+    let faces: Vec<Option<u64>> = (0..b.faces.len())
+        .map(|f| t.face(f, flipped[f], &mut notes))
+        .collect();
     // Shells, each face as the shell uses it.
     let mut in_shell = BTreeSet::new();
     let mut shells = Vec::with_capacity(b.shells.len());
@@ -248,7 +268,7 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
                 continue;
             };
             in_shell.insert(*f);
-            ids.push(if *orientation {
+            ids.push(if *orientation || flipped[*f] {
                 id
             } else {
                 t.o.add(&format!("ORIENTED_FACE('',*,#{id},.F.)"))
