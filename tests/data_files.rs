@@ -311,3 +311,24 @@ fn invalid_iges_units_flag_falls_back_to_inch_with_a_warning() {
     assert_eq!(again.unit.as_deref(), Some("inch"));
     assert!(again.warnings.is_empty(), "{:?}", again.warnings);
 }
+
+/// No public file has a face spanning the seam of its surface's NURBS form: none is
+/// re-parametrized on reading (brep::seams), so every public model keeps its parameters.
+#[test]
+fn no_public_surface_is_reparametrized() {
+    for e in std::fs::read_dir(data("")).unwrap() {
+        let p = e.unwrap().path();
+        let ext = p.extension().and_then(|x| x.to_str()).unwrap_or("");
+        if !["step", "stp", "igs", "iges"].contains(&ext) {
+            continue;
+        }
+        let m = read_model(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        assert!(
+            !m.warnings
+                .iter()
+                .any(|w| w.contains("re-parametrized so that their seam")),
+            "{}",
+            p.display()
+        );
+    }
+}

@@ -7,12 +7,16 @@
 //! the NURBS form is re-parametrized to start in the widest angular gap of the face's
 //! boundary ([`BSplineSurface::reseamed_u`]): the same surface, point for point.
 //!
-//! The face's boundary is sampled at 64 points per edge and projected onto the surface; points
-//! on the seam itself are left out. The seam is moved when boundary points come within 2 % of
-//! the period of the seam from both sides (the face spans it) and a gap of at least 10 % of
-//! the period lies elsewhere.
+//! The face's boundary is sampled at 65 points per edge (ends included) and projected onto
+//! the surface; points on the seam itself are left out. The seam is moved when boundary points
+//! lie on both sides of it, their two distances from it adding up to at most 2 % of the
+//! period, and a gap of at least 10 % of the period lies elsewhere. Not detected: a face that
+//! spans the seam with no boundary near it (a sphere lune bounded by two meridians 30° either
+//! side of the seam); surfaces carrying parameter-space trim loops (IGES) are left alone. Every
+//! surface moved is named in the model's warnings.
 
 use super::{Brep, LoopKind};
+use crate::geom::Point;
 use crate::geom::dist;
 use crate::model::Model;
 use crate::spline::closure::Closure;
@@ -72,7 +76,26 @@ pub fn place_seams(m: &mut Model) -> Vec<usize> {
     changed
 }
 
-/// Points along the edges of face `fi`'s loops, 64 per edge, ends included.
+/// [`place_seams`], with a warning naming the surfaces moved.
+pub fn warn(m: &mut Model) {
+    let moved = place_seams(m);
+    if !moved.is_empty() {
+        let ids: Vec<String> = moved
+            .iter()
+            .map(|&i| {
+                let s = &m.surfaces[i];
+                s.source.clone().unwrap_or_else(|| s.name.clone())
+            })
+            .collect();
+        m.warnings.push(format!(
+            "{} closed surface(s) re-parametrized so that their seam lies outside their face (the same surface; its parameters start elsewhere): {}",
+            ids.len(),
+            crate::model::list_ids(ids)
+        ));
+    }
+}
+
+/// Points along the edges of face `fi`'s loops, 65 per edge, ends included.
 fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
     let mut out = Vec::new();
     for l in &b.faces[fi].loops {
@@ -131,13 +154,23 @@ fn new_seam(mut params: Vec<f64>, lo: f64, hi: f64) -> Option<f64> {
     (gap >= 0.1 * per).then_some(at)
 }
 
-/// `s` re-parametrized to start at `t` in direction `d`.
+/// `s` re-parametrized to start at `t` in direction `d`; `None` unless the weights of the two
+/// seam rows differ by one common factor (then the second part is scaled by it: the same
+/// rational surface).
 fn reseamed(s: &NurbsSurface<f64, 3>, d: usize, t: f64) -> Option<NurbsSurface<f64, 3>> {
-    let hom = if d == 0 {
-        s.hom.reseamed_u(&t).ok()?
+    let h = if d == 0 {
+        s.hom.clone()
     } else {
-        transposed(&transposed(&s.hom).reseamed_u(&t).ok()?)
+        transposed(&s.hom)
     };
+    let (nu, nv) = (h.nu(), h.nv());
+    let ratios: Vec<f64> = (0..nv).map(|j| h.at(nu - 1, j).w / h.at(0, j).w).collect();
+    let r = *ratios.first()?;
+    if !(r > 0.0 && r.is_finite()) || ratios.iter().any(|x| (x - r).abs() > 1e-12 * r) {
+        return None;
+    }
+    let moved = h.reseamed_u(&t, |p| p.scale(&r)).ok()?;
+    let hom = if d == 0 { moved } else { transposed(&moved) };
     Some(NurbsSurface { hom })
 }
 

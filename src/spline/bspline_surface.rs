@@ -203,11 +203,13 @@ impl<P: Point> BSplineSurface<P> {
     }
 
     /// The same surface with its u-parametrization starting at `t` instead of `u_min`, for a
-    /// surface closed in u (`S(u_min, v) = S(u_max, v)`, homogeneous points included): the
-    /// parts over `[t, u_max]` and `[u_min, t]` joined at the old seam, the second shifted by
-    /// the period, so the domain is `[t, t + u_max − u_min]` and the seam lies at `t`. The
-    /// control points at the old seam are the first part's.
-    pub fn reseamed_u(&self, t: &P::S) -> Result<Self, SplineError> {
+    /// surface closed in u: the parts over `[t, u_max]` and `[u_min, t]` joined at the old
+    /// seam, the second shifted by the period and its control points mapped by `second`
+    /// (for homogeneous points of a rational surface whose seam rows differ by a common
+    /// weight factor `r = w(u_max) / w(u_min)`: scaled by `r`, the same rational surface), so
+    /// the domain is `[t, t + u_max − u_min]` and the seam lies at `t`. The control points at
+    /// the old seam are the first part's.
+    pub fn reseamed_u(&self, t: &P::S, second: impl Fn(&P) -> P) -> Result<Self, SplineError> {
         let (u0, u1, _, _) = self.domain();
         let p = self.ku.degree();
         let period = u1.clone() - u0.clone();
@@ -221,7 +223,7 @@ impl<P: Point> BSplineSurface<P> {
                 let mut knots: Vec<P::S> = ka[..ka.len() - 1].to_vec();
                 knots.extend(kb[p + 1..].iter().map(|k| k.clone() + period.clone()));
                 let mut control = a.control.clone();
-                control.extend(b.control[1..].iter().cloned());
+                control.extend(b.control[1..].iter().map(&second));
                 BSplineCurve::new(knots, p, control)
             })
             .collect();

@@ -1,6 +1,7 @@
 use super::*;
 use crate::geom::dist;
-use crate::spline::construct::{Frame, cylinder, torus};
+use crate::spline::NurbsCurve;
+use crate::spline::construct::{Frame, cylinder, extrude, torus};
 
 #[test]
 fn the_new_seam_is_in_the_widest_gap_only_when_the_boundary_spans_the_old_one() {
@@ -26,9 +27,27 @@ fn a_reseamed_surface_is_the_same_surface() {
         y: [0.0, 0.0, 1.0],
         z: [1.0, 0.0, 0.0],
     };
+    // A closed rational profile whose end weights differ (1 and 2, the same point): its
+    // seam rows' weights differ by a common factor.
+    let profile = NurbsCurve::new(
+        vec![0.0, 0.0, 0.0, 0.3, 0.7, 1.0, 1.0, 1.0],
+        2,
+        vec![
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [-1.0, -1.0, 0.0],
+            [1.0, 0.0, 0.0],
+        ],
+        vec![1.0, 0.8, 1.5, 0.6, 2.0],
+    )
+    .unwrap();
+    let swept = extrude(&profile, &[0.0, 0.0, 1.0]).unwrap();
+    assert!(Closure::of(&swept).seam_u);
     for (s, d) in [
         (cylinder(&f, 2.0, -1.0, 3.0).unwrap(), 0),
         (torus(&f, 3.0, 1.0).unwrap(), 1),
+        (swept, 0),
     ] {
         let (u0, u1, v0, v1) = s.hom.domain();
         let (lo, hi) = if d == 0 { (u0, u1) } else { (v0, v1) };

@@ -316,7 +316,7 @@ pub fn from_str_with(
     let tolerance = resolution.unwrap_or(0.0).max(1e-9 * size);
     if e.values().any(|x| x.etype == 510) {
         model.brep = Some(topology::read(&r, &surface_of, tolerance));
-        crate::brep::seams::place_seams(&mut model);
+        crate::brep::seams::warn(&mut model);
     } else if !surface_of.is_empty()
         && surface_of.len() == model.surfaces.len()
         && surface_of.keys().all(|f| matches!(e[f].etype, 143 | 144))

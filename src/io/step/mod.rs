@@ -224,7 +224,7 @@ pub fn from_str_with(
             topology::TopologyReader::new(&r, vertex_tolerance(&p)).read(&surface_of, &no_surface);
         model.warnings.extend(brep.report.warning_lines());
         model.brep = Some(brep);
-        crate::brep::seams::place_seams(&mut model);
+        crate::brep::seams::warn(&mut model);
         if let Some(tree) = assembly::read(&r) {
             occurrences::apply(&mut model, tree);
         }
