@@ -354,12 +354,18 @@ fn what_the_writer_cannot_hold_is_named() {
         all.contains("face #72 not written: none of its loops"),
         "{all}"
     );
-    // Face #70 remains, with its loop and reversed in its shell.
+    // Face #70 remains, with its loop; its shell used it reversed, so it is written reversed
+    // (`same_sense` negated, not as an `oriented_face`): it points the same way.
     let y = back.brep.as_ref().unwrap();
     assert_eq!(y.faces.len(), 1);
-    assert_eq!(y.shells[0].faces, vec![(0, false)]);
+    assert_eq!(y.shells[0].faces, vec![(0, true)]);
     assert_eq!((y.faces[0].loops.len(), y.edges.len()), (1, 4));
-    assert!(y.faces[0].same_sense);
+    assert!(!y.faces[0].same_sense);
+    assert_eq!(
+        b.shells[0].faces.iter().find(|f| f.0 == 0),
+        Some(&(0, false))
+    );
+    assert!(b.faces[0].same_sense);
     assert!(y.report.issues.is_empty(), "{:?}", y.report.issues);
 }
 
