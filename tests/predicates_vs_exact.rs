@@ -303,3 +303,70 @@ fn single_sided_agrees_with_exact() {
         "only {by_roots} cases reached the exact root analysis"
     );
 }
+
+/// The point where a segment crosses a triangle's plane, on segments lying in the plane up
+/// to rounding (where the interval filter fails and the exact construction runs): the point
+/// computed independently in BigRational, `a + o_a / (o_a − o_b) · (b − a)`, lies within the
+/// returned bound of the returned point, and the bound is a few ulps.
+#[test]
+fn segment_plane_points_near_the_plane_are_within_their_bound() {
+    use vericad::predicates::tri_tri::segment_plane_point;
+    let q = |x: f64| BigRational::from_float(x).unwrap();
+    let mut r = Rng(7);
+    let mut exact_runs = 0;
+    for k in 0..400 {
+        let scale = [1.0, 1e-3, 1e4][k % 3];
+        let t: [[f64; 3]; 3] =
+            std::array::from_fn(|_| std::array::from_fn(|_| r.range(-1.0, 1.0) * scale));
+        let in_plane = |r: &mut Rng| -> [f64; 3] {
+            let (al, be) = (r.range(-0.5, 1.0), r.range(-0.5, 1.0));
+            std::array::from_fn(|i| t[0][i] + al * (t[1][i] - t[0][i]) + be * (t[2][i] - t[0][i]))
+        };
+        let (a, b) = (in_plane(&mut r), in_plane(&mut r));
+        let c = segment_plane_point(&a, &b, &t);
+        let (qa, qb) = (a.map(q), b.map(q));
+        let qt = t.map(|p| p.map(q));
+        let d = |x: &[BigRational; 3], y: &[BigRational; 3]| -> [BigRational; 3] {
+            std::array::from_fn(|i| x[i].clone() - y[i].clone())
+        };
+        let (u, v) = (d(&qt[1], &qt[0]), d(&qt[2], &qt[0]));
+        let n: [BigRational; 3] = [
+            u[1].clone() * v[2].clone() - u[2].clone() * v[1].clone(),
+            u[2].clone() * v[0].clone() - u[0].clone() * v[2].clone(),
+            u[0].clone() * v[1].clone() - u[1].clone() * v[0].clone(),
+        ];
+        let o = |x: &[BigRational; 3]| -> BigRational {
+            let w = d(x, &qt[0]);
+            n[0].clone() * w[0].clone() + n[1].clone() * w[1].clone() + n[2].clone() * w[2].clone()
+        };
+        let (oa, ob) = (o(&qa), o(&qb));
+        let den = oa.clone() - ob;
+        let exact: [BigRational; 3] = if num_traits::Zero::is_zero(&den) {
+            qa.clone()
+        } else {
+            std::array::from_fn(|i| {
+                qa[i].clone() + oa.clone() / den.clone() * (qb[i].clone() - qa[i].clone())
+            })
+        };
+        let dist2: f64 = (0..3)
+            .map(|i| {
+                let e = num_traits::ToPrimitive::to_f64(&(exact[i].clone() - q(c.p[i]))).unwrap();
+                e * e
+            })
+            .sum();
+        assert!(
+            dist2.sqrt() <= c.err,
+            "case {k}: {} > {}",
+            dist2.sqrt(),
+            c.err
+        );
+        let mag = c.p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(
+            c.err <= 8.0 * f64::EPSILON * mag.max(f64::MIN_POSITIVE),
+            "case {k}: bound {} at {mag}",
+            c.err
+        );
+        exact_runs += usize::from(c.exact_fallback);
+    }
+    assert!(exact_runs >= 100, "only {exact_runs} exact constructions");
+}

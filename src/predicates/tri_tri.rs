@@ -19,7 +19,6 @@
 
 use super::orient::{dominant_axis, orient2d, orient3d, project};
 use crate::scalar::{Interval, Scalar, Sign};
-use num_rational::BigRational;
 
 /// A point of the intersection, named by how it arises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
@@ -271,25 +270,92 @@ pub fn segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> Con
     exact_segment_plane_point(a, b, t)
 }
 
+/// [`segment_plane_point`] in exact arithmetic: every coordinate is an integer times
+/// `2^e` for the smallest exponent `e` among them, so the orientations `o_a`, `o_b` and the
+/// numerators `a_i (o_a − o_b) + (b_i − a_i) o_a` are exact big integers (no fraction is
+/// reduced on the way); each coordinate is then the quotient by `o_a − o_b` rounded to f64,
+/// with its rounding error bounded from the exact remainder (the remainder's quotient, rounded
+/// to nearest by num-rational's conversion, then one ulp up).
 fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> ConstructedPoint {
-    use crate::geom::{Point, lift_point};
-    let q = |p: &[f64; 3]| -> [BigRational; 3] { lift_point(p) };
+    use num_bigint::{BigInt, Sign as BigSign};
+    use num_traits::{Float, Signed, ToPrimitive, Zero};
+    let all = [a, b, &t[0], &t[1], &t[2]];
+    let e0 = all
+        .iter()
+        .flat_map(|p| p.iter())
+        .filter(|x| **x != 0.0)
+        .map(|x| Float::integer_decode(*x).1)
+        .min()
+        .unwrap_or(0);
+    let big = |x: f64| -> BigInt {
+        let (m, e, sign) = Float::integer_decode(x);
+        if m == 0 {
+            return BigInt::zero();
+        }
+        let v = BigInt::from(m) << ((e - e0) as usize);
+        if sign < 0 { -v } else { v }
+    };
+    let q = |p: &[f64; 3]| -> [BigInt; 3] { [big(p[0]), big(p[1]), big(p[2])] };
     let (qa, qb) = (q(a), q(b));
     let qt = [q(&t[0]), q(&t[1]), q(&t[2])];
-    let n = crate::geom::cross(&qt[1].sub(&qt[0]), &qt[2].sub(&qt[0]));
-    let oa = crate::geom::dot(&n, &qa.sub(&qt[0]));
-    let ob = crate::geom::dot(&n, &qb.sub(&qt[0]));
-    let den = oa.clone() - ob;
-    let exact = if den.is_zero() {
-        qa.clone()
-    } else {
-        qa.lerp(&qb, &(oa / den))
+    let sub = |x: &[BigInt; 3], y: &[BigInt; 3]| -> [BigInt; 3] {
+        [&x[0] - &y[0], &x[1] - &y[1], &x[2] - &y[2]]
     };
-    let p: [f64; 3] = std::array::from_fn(|i| exact[i].to_f64());
+    let (u, v) = (sub(&qt[1], &qt[0]), sub(&qt[2], &qt[0]));
+    let n = [
+        &u[1] * &v[2] - &u[2] * &v[1],
+        &u[2] * &v[0] - &u[0] * &v[2],
+        &u[0] * &v[1] - &u[1] * &v[0],
+    ];
+    let dot = |x: &[BigInt; 3]| -> BigInt { &n[0] * &x[0] + &n[1] * &x[1] + &n[2] * &x[2] };
+    let oa = dot(&sub(&qa, &qt[0]));
+    let ob = dot(&sub(&qb, &qt[0]));
+    let mut den = &oa - &ob;
+    if den.is_zero() {
+        return ConstructedPoint {
+            p: *a,
+            err: 0.0,
+            exact_fallback: true,
+        };
+    }
+    let flip = den.sign() == BigSign::Minus;
+    let oa = if flip { -oa } else { oa };
+    if flip {
+        den = -den;
+    }
+    let mut p = [0.0; 3];
     let mut err = 0.0f64;
     for i in 0..3 {
-        let d = (exact[i].clone() - lift_point::<BigRational, 1>(&[p[i]])[0].clone()).abs();
-        err = (err + d.to_f64().next_up()).next_up();
+        // exact_i = num / den · 2^e0.
+        let mut num: BigInt = &qa[i] * &den + (&qb[i] - &qa[i]) * &oa;
+        let mut d = den.clone();
+        if e0 >= 0 {
+            num <<= e0 as usize;
+        } else {
+            d <<= (-e0) as usize;
+        }
+        let x = ToPrimitive::to_f64(&num_rational::Ratio::new_raw(num.clone(), d.clone()))
+            .unwrap_or(f64::NAN);
+        p[i] = x;
+        if !x.is_finite() {
+            err = f64::INFINITY;
+            continue;
+        }
+        // |exact - x| = |num - X·2^k·d| / d with x = X·2^k; both sides to the power 2^s.
+        let (m, k, sign) = Float::integer_decode(x);
+        let xm = if sign < 0 {
+            -BigInt::from(m)
+        } else {
+            BigInt::from(m)
+        };
+        let s = k.min(0);
+        let lhs = num << ((-s) as usize);
+        let rhs = xm * &d << ((k - s) as usize);
+        let rem = (lhs - rhs).abs();
+        let d2 = d << ((-s) as usize);
+        let r =
+            ToPrimitive::to_f64(&num_rational::Ratio::new_raw(rem, d2)).unwrap_or(f64::INFINITY);
+        err = (err + r.next_up()).next_up();
     }
     ConstructedPoint {
         p,
