@@ -350,7 +350,7 @@ fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> C
         };
         let s = k.min(0);
         let lhs = num << ((-s) as usize);
-        let rhs = xm * &d << ((k - s) as usize);
+        let rhs = (xm * &d) << ((k - s) as usize);
         let rem = (lhs - rhs).abs();
         let d2 = d << ((-s) as usize);
         let r =
