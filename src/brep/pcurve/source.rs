@@ -71,8 +71,9 @@ pub fn source_pcurve(
                 };
                 let h = (d1 - d0) / 64.0;
                 let k = (0..=64)
-                    .min_by(|&i, &j| f(d0 + h * i as f64).total_cmp(&f(d0 + h * j as f64)))
-                    .unwrap_or(0);
+                    .map(|i| (f(d0 + h * i as f64), i))
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+                    .map_or(0, |x| x.1);
                 // Golden section on the samples' neighbourhood.
                 let (mut lo, mut hi) = (
                     (d0 + h * (k as f64 - 1.0)).max(d0),

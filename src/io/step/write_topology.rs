@@ -27,8 +27,8 @@ struct Topology<'a> {
     vertices: BTreeMap<usize, u64>,
     edges: BTreeMap<usize, u64>,
     surfaces: BTreeMap<usize, u64>,
-    /// Model surfaces of the faces whose loops use each edge.
-    uses: Vec<Vec<usize>>,
+    /// Model surfaces of the faces whose loops use each edge, with the first such face.
+    uses: Vec<Vec<(usize, usize)>>,
     /// The parameter-space representation context of the pcurves.
     context_2d: Option<u64>,
     /// `(edge, model surface)` of every pcurve written.
@@ -69,10 +69,8 @@ impl Topology<'_> {
         // Pcurves on the faces along the edge: the source's on its B-spline surfaces, exact
         // ones on planes.
         let mut pcurves = Vec::new();
-        for si in self.uses.get(e).cloned().unwrap_or_default() {
-            let Some(face) = self.b.faces.iter().find(|f| f.surface == Some(si)) else {
-                continue;
-            };
+        for (si, fi) in self.uses.get(e).cloned().unwrap_or_default() {
+            let face = &self.b.faces[fi];
             let Some(pc) = for_face(self.b, e, face, &self.m.surfaces[si]) else {
                 continue;
             };
@@ -193,10 +191,11 @@ impl Topology<'_> {
     }
 }
 
-/// For each edge, the model surfaces (each once) of the faces whose loops use it.
-fn edge_surfaces(m: &Model, b: &Brep) -> Vec<Vec<usize>> {
-    let mut uses = vec![Vec::new(); b.edges.len()];
-    for f in &b.faces {
+/// For each edge, the model surfaces (each once) of the faces whose loops use it, each with
+/// the first such face.
+fn edge_surfaces(m: &Model, b: &Brep) -> Vec<Vec<(usize, usize)>> {
+    let mut uses: Vec<Vec<(usize, usize)>> = vec![Vec::new(); b.edges.len()];
+    for (fi, f) in b.faces.iter().enumerate() {
         let Some(si) = f.surface.filter(|s| *s < m.surfaces.len()) else {
             continue;
         };
@@ -204,9 +203,9 @@ fn edge_surfaces(m: &Model, b: &Brep) -> Vec<Vec<usize>> {
             if let LoopKind::Edges(oes) = &l.kind {
                 for oe in oes {
                     if let Some(u) = uses.get_mut(oe.edge)
-                        && !u.contains(&si)
+                        && !u.iter().any(|x| x.0 == si)
                     {
-                        u.push(si);
+                        u.push((si, fi));
                     }
                 }
             }
