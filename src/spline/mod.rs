@@ -29,6 +29,7 @@ pub mod elevate;
 pub mod enclose;
 pub mod enclose_net;
 pub mod enclosed_bezier;
+pub mod exact_point;
 pub mod fit;
 pub mod fit_knots;
 pub mod interpolate;

@@ -14,6 +14,7 @@ use super::enclose::enclose_point;
 use crate::geom::{Hom, Point, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
 use crate::spline::NurbsSurface;
+use crate::spline::exact_point::{ExactEvaluator, ExactPoint};
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive};
 
@@ -21,6 +22,8 @@ use num_traits::{Signed, ToPrimitive};
 pub struct ExactSurface {
     s: NurbsSurface<BigRational, 3>,
     f: NurbsSurface<f64, 3>,
+    /// Fraction-free exact points ([`ExactEvaluator`]).
+    ev: Option<ExactEvaluator>,
     /// Skip the interval path (reference answers only).
     pub exact_only: bool,
 }
@@ -48,6 +51,7 @@ impl ExactSurface {
     pub fn new(s: &NurbsSurface<f64, 3>) -> ExactSurface {
         ExactSurface {
             f: s.clone(),
+            ev: ExactEvaluator::new(s),
             exact_only: false,
             s: NurbsSurface {
                 hom: s.hom.map(
@@ -85,46 +89,11 @@ impl ExactSurface {
 }
 
 impl ExactSurface {
-    /// `S(u, v)` exactly, in rationals (the parameters are finite `f64` values, taken
-    /// exactly; a weight sum of 0 — refused for the surfaces used — gives `None`).
-    pub fn eval_exact(&self, uv: &[f64; 2]) -> Option<[BigRational; 3]> {
-        if !uv.iter().all(|c| c.is_finite()) {
-            return None;
-        }
-        let (u, v) = (lift::<BigRational>(uv[0]), lift::<BigRational>(uv[1]));
-        let h = self.s.hom.eval(&u, &v);
-        if h.w.is_zero() {
-            return None;
-        }
-        Some(std::array::from_fn(|k| h.wp[k].clone() / h.w.clone()))
+    /// `S(u, v)` exactly (the parameters are finite `f64` values, taken exactly; `None`
+    /// outside the domain, or for a weight sum of 0 — refused for the surfaces used).
+    pub fn exact_point(&self, uv: &[f64; 2]) -> Option<ExactPoint> {
+        self.ev.as_ref()?.point(uv[0], uv[1])
     }
-}
-
-/// The tightest `f64` interval found holding the rational `q` (end points proven by exact
-/// comparison); `None` when `q` is beyond the `f64` range.
-pub fn rat_interval(q: &BigRational) -> Option<Interval> {
-    let a = ToPrimitive::to_f64(q)?;
-    if !a.is_finite() {
-        return None;
-    }
-    let (mut lo, mut hi) = (a, a);
-    for _ in 0..8 {
-        if lift::<BigRational>(lo) <= *q {
-            break;
-        }
-        lo = lo.next_down();
-    }
-    for _ in 0..8 {
-        if lift::<BigRational>(hi) >= *q {
-            break;
-        }
-        hi = hi.next_up();
-    }
-    (lift::<BigRational>(lo) <= *q
-        && lift::<BigRational>(hi) >= *q
-        && lo.is_finite()
-        && hi.is_finite())
-    .then(|| Interval::new(lo, hi))
 }
 
 /// Smallest `f64` `r` tried with `r² >= q` (proven in rationals).

@@ -52,7 +52,7 @@
 
 mod circles;
 
-use super::certify::{ExactSurface, rat_interval};
+use super::certify::ExactSurface;
 use super::enclose::{enclose_jet, enclose_point};
 use super::refine::point_d1;
 use crate::geom::dot;
@@ -257,12 +257,8 @@ impl Foot<'_> {
         if h.contains_zero() {
             // Undecided in intervals: S(x) − F(yc) exactly (both points are f64 parameters),
             // rounded outward per component.
-            let (a, b) = (self.es.eval_exact(x)?, self.ef.eval_exact(&yc)?);
-            let d: [I; 3] = [
-                rat_interval(&(a[0].clone() - b[0].clone()))?,
-                rat_interval(&(a[1].clone() - b[1].clone()))?,
-                rat_interval(&(a[2].clone() - b[2].clone()))?,
-            ];
+            let (a, b) = (self.es.exact_point(x)?, self.ef.exact_point(&yc)?);
+            let d = a.minus_enclosed(&b)?;
             h = d3(&d, &self.n) - rest;
         }
         if h.is_pos() {
