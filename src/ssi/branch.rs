@@ -7,6 +7,7 @@ use super::certify::{ExactSurface, distance_upper};
 use super::fit::fit_branch;
 use super::insert::{Inserter, newton_onto_curve, onto_curve, seams, small_angle};
 use super::jet_cache::JetCache;
+use super::krawczyk::RunCertifier;
 
 /// Consecutive points sharing one Jacobian enclosure in the per-point certificates.
 const JET_RUN: usize = 16;
@@ -306,9 +307,21 @@ pub fn refine_branch(
             let cache = (prm.curve_certificates && !small_angle(g, &run[0]))
                 .then(|| JetCache::over(g.sa, g.sb, run.iter().map(|r| (r.uv_a, r.uv_b))))
                 .flatten();
+            // One plane direction, preconditioner and Krawczyk matrix for the whole run
+            // where they settle a point within tol/8; other points on their own.
+            let shared = cache.as_ref().and_then(|c| {
+                let m = &run[run.len() / 2];
+                RunCertifier::new(g.sa, g.sb, c, (&m.uv_a, &m.uv_b))
+            });
             run.iter_mut()
                 .map(|r| {
-                    let c = if prm.curve_certificates {
+                    let fast = shared
+                        .as_ref()
+                        .and_then(|s| s.certify(&r.xyz, &r.uv_a, &r.uv_b))
+                        .filter(|c| c.radius <= prm.tol / 8.0);
+                    let c = if let Some(c) = fast {
+                        Ok(adopt_centre(g, r, c))
+                    } else if prm.curve_certificates {
                         onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| adopt_centre(g, r, c))
                     } else {
                         Err(Uncertified::NotRequested)

@@ -29,6 +29,10 @@
 //! ([`super::jet_cache`]: an enclosure over a superset is one over `X`). The box is chosen by ε-inflation: radius from
 //! the Newton correction `|Y F(y)|`, doubled (or grown to hold `K`) for a few tries.
 //!
+//! **Runs.** Consecutive output points share one plane direction, one preconditioner and one
+//! matrix `I − Y J` over their common box ([`RunCertifier`]); a point that shared test does
+//! not settle within tol/8 is certified on its own as above.
+//!
 //! **The radius.** The zero `z*` lies in `K(X) ∩ X`; the point `q = S_A(z*_uv) = S_B(z*_st)` in
 //! the intersection of the enclosures of `S_A` and `S_B` over that box (mean-value forms about
 //! `y`, with the derivative enclosures over `X`), and `r` bounds
@@ -50,7 +54,10 @@
 //! points of the intersection, where the zero leaves both a domain and the border retry, and
 //! where an enclosure fails. The reason is reported per point ([`Uncertified`]).
 
+mod run;
 mod system;
+
+pub use run::RunCertifier;
 
 use super::certify::distance_upper;
 use super::enclose::Jet;

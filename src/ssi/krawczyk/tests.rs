@@ -109,3 +109,63 @@ fn tangency_is_uncertified() {
         }
     }
 }
+
+/// The shared test of a run ([`RunCertifier`]) on the sphere of radius 2 cut by z = h, in
+/// a tilted frame's plane: 16 consecutive points 1e-8 off the circle (spaced as output
+/// points are), one Jacobian enclosure over their hull. Every point is settled; its radius is
+/// at least its true distance to the circle (closed form) and the enclosed common point holds
+/// a point of the circle.
+#[test]
+fn a_run_shares_one_test() {
+    let s = sphere(&Frame::WORLD, 2.0).unwrap();
+    let h = 0.7;
+    let a = plane_z(h);
+    let rho = (4.0f64 - h * h).sqrt();
+    let pts: Vec<([f64; 3], [f64; 2], [f64; 2])> = (0..16)
+        .map(|k| {
+            let phi = 1.1 + 6e-4 * k as f64;
+            let x = [(rho + 1e-8) * phi.cos(), (rho + 1e-8) * phi.sin(), h];
+            let uv_a = [(x[0] + 2.0) / 4.0, (x[1] + 2.0) / 4.0];
+            (x, uv_a, crate::spline::project::project(&s, &x))
+        })
+        .collect();
+    let cache = JetCache::over(&a, &s, pts.iter().map(|p| (p.1, p.2))).unwrap();
+    let mid = &pts[8];
+    let run = RunCertifier::new(&a, &s, &cache, (&mid.1, &mid.2)).unwrap();
+    let off_circle = |q: &[f64; 3]| ((q[0] * q[0] + q[1] * q[1]).sqrt() - rho).hypot(q[2] - h);
+    for (x, uv_a, uv_b) in &pts {
+        let c = run
+            .certify(x, uv_a, uv_b)
+            .expect("settled by the shared test");
+        let d = off_circle(x);
+        assert!(
+            c.radius >= d - 1e-15 && c.radius <= d + 1e-12,
+            "{} {d}",
+            c.radius
+        );
+        let q = c.point.map(|i| i.mid());
+        let half_diag = c.point.iter().map(|i| i.hi - i.lo).fold(0.0, f64::hypot) / 2.0;
+        assert!(off_circle(&q) <= half_diag + 1e-15, "{q:?}");
+        // The centre is the Newton solution: both surfaces meet there to f64 accuracy.
+        let (pa, pb) = (
+            a.eval(&c.centre[0], &c.centre[1]),
+            s.eval(&c.centre[2], &c.centre[3]),
+        );
+        assert!(crate::geom::dist(&pa, &pb) < 1e-14 && off_circle(&pa) < 1e-14);
+    }
+    // A point of the circle a quarter turn away: its box leaves the shared enclosure, so it
+    // is left to the one-by-one test.
+    let phi = 1.1 + std::f64::consts::FRAC_PI_2;
+    let far = [rho * phi.cos(), rho * phi.sin(), h];
+    let uv = [(far[0] + 2.0) / 4.0, (far[1] + 2.0) / 4.0];
+    assert!(
+        run.certify(&far, &uv, &crate::spline::project::project(&s, &far))
+            .is_none()
+    );
+    // A point far off the curve gets no radius below its distance.
+    let off = pts[0].0.map(|c| c * 0.9);
+    let uv = [(off[0] + 2.0) / 4.0, (off[1] + 2.0) / 4.0];
+    if let Some(c) = run.certify(&off, &uv, &pts[0].2) {
+        assert!(c.radius >= off_circle(&off) - 1e-15, "{}", c.radius);
+    }
+}
