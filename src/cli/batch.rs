@@ -1,4 +1,4 @@
-//! `vericad batch`: arguments, their checks, the call into [`crate::batch::run`], the summary.
+//! `vericad batch`: arguments, their checks, the call into [`fn@crate::batch::run`], the summary.
 
 use std::path::PathBuf;
 

@@ -98,7 +98,7 @@ fn polar_net_fixed<const P1: usize, const Q1: usize>(
     }
 }
 
-/// [`polar_net_fixed`] for runtime sizes: `Some(())` when a fixed kernel exists (both
+/// `polar_net_fixed` for runtime sizes: `Some(())` when a fixed kernel exists (both
 /// directions with at most [`FIXED_MAX`] points), `None` otherwise (nothing written).
 pub fn polar_net(
     m: &[[f64; 3]],

@@ -22,7 +22,7 @@ const MIN_PARAM_LEN: f64 = 1e-10;
 /// Most ε_T splits in the line of descent of one segment. A junction still above ε_T after
 /// this many splits on either side is a corner (of D, of S, or a cusp where D doubles back
 /// with zero speed): splitting cannot remove it, and without the cap the splits at such a
-/// point grow the segment count by thousands before [`MIN_PARAM_LEN`] stops them.
+/// point grow the segment count by thousands before `MIN_PARAM_LEN` stops them.
 pub const MAX_SPLIT_DEPTH: u32 = 24;
 
 /// End tangent (`at_end`) or start tangent of the image of the chord `a → b` on a patch

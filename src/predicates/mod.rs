@@ -5,9 +5,9 @@
 //! * [`orient`] — orient2d / orient3d;
 //! * [`segment_plane`] — where a segment meets a triangle's plane;
 //! * [`point_in_triangle`] — exact location of a point relative to a triangle;
-//! * [`tri_tri`] — triangle–triangle intersection, classified exactly, with the crossing
+//! * [`fn@tri_tri`] — triangle–triangle intersection, classified exactly, with the crossing
 //!   segment's endpoints and a rigorous bound on their rounding error;
-//! * [`single_sided`] — a planar Bézier curve against its chord (Yang et al. §3);
+//! * [`fn@single_sided`] — a planar Bézier curve against its chord (Yang et al. §3);
 //! * [`poly`] — exact polynomials, Sturm sequences, root isolation.
 
 pub mod descartes;

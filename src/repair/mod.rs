@@ -4,9 +4,9 @@
 //! |---|---|
 //! | corners, edges, arc-length samples, closest points | [`edges`] |
 //! | 1 connectivity (Algorithm 1), T-connectivity | [`connectivity`], [`kdtree`] |
-//! | 2 edge verification | [`verify`] |
+//! | 2 edge verification | [`fn@verify`] |
 //! | 3 boundary averaging | [`average`]; knot classes [`classes`], fitted shared curves [`fit_edge`], interior blending and deviation [`blend`] |
-//! | 4 feature lines | [`features`] |
+//! | 4 feature lines | [`fn@features`] |
 //! | 5 group-of-patches growing (Algorithm 2) | [`group`]; common i/j directions [`orient`] |
 //! | 6 merging control information | [`merge`] |
 

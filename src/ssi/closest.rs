@@ -3,7 +3,7 @@
 //! # Distance (branch and bound)
 //!
 //! Every face is cut into its Bézier pieces (exact rational knot insertion, every control
-//! point then enclosed in an outward-rounded interval: [`super::coverage::roots`]); pieces
+//! point then enclosed in an outward-rounded interval: `super::coverage::roots`); pieces
 //! are quartered by de Casteljau at ½ in interval arithmetic, so each piece stands for the
 //! exact sub-patch. For a query point `x` and a piece `P`:
 //!

@@ -2,7 +2,7 @@
 //! refined points of a branch until every chord's midpoint lies within `tol` of the true
 //! curve point found from it (the Auxiliary Plane Method, [`super::refine`], started from the
 //! chord's parameter midpoint). Near tangency the new points are moved onto the curve
-//! ([`newton_onto_curve`]) before chords are measured against it.
+//! (`newton_onto_curve`) before chords are measured against it.
 
 use super::branch::PairGeometry;
 use super::jet_cache::JetCache;

@@ -24,8 +24,8 @@ const MAX_WIDTH: f64 = 1e-2;
 
 impl JetCache {
     /// The enclosures over the hull of the parameter points `uvs` (`(uv_a, uv_b)` each),
-    /// grown by [`MARGIN`] of the domains; `None` for no points, non-finite parameters, a hull
-    /// wider than [`MAX_WIDTH`] of a domain, or a failed enclosure.
+    /// grown by `MARGIN` of the domains; `None` for no points, non-finite parameters, a hull
+    /// wider than `MAX_WIDTH` of a domain, or a failed enclosure.
     pub fn over(
         sa: &NurbsSurface<f64, 3>,
         sb: &NurbsSurface<f64, 3>,

@@ -220,7 +220,7 @@ const STALL_RATIO: f64 = 0.9;
 /// central-difference Jacobian. Such points are the touching points and the singular (branch)
 /// points of the intersection, where the Auxiliary Plane Method breaks down. Returns the point
 /// with status `Tangential` when both residuals vanish within `tol` and `tangent_sin`. A run
-/// whose squared residual falls by less than [`STALL_RATIO`] over [`STALL_SPAN`] iterations
+/// whose squared residual falls by less than `STALL_RATIO` over `STALL_SPAN` iterations
 /// stops (a local minimum that is not a root: 80 % of the runs on crossing free-form sheets,
 /// which went on to the iteration limit before). The search only proposes points: what it
 /// misses the coverage certificate reports as uncertified.

@@ -8,7 +8,7 @@
 //! * attributing a point to an edge: its distance to the edge *curve*, found by a local search
 //!   from the nearest sample (evidence);
 //! * the reach `r = clamp(2 (g_a + g_b) / sin θ, base, cap)` from measured gaps and angles
-//!   (evidence, [`edge_reach`]);
+//!   (evidence, `edge_reach`);
 //! * the coverage's use of a tube is a theorem about the polyline and the number `r` as they
 //!   are, whatever their accuracy: the claim then excludes every branch with a point in the
 //!   tube (also where it runs on outside it: a border crossing in a tube decides its pair).

@@ -10,7 +10,7 @@
 //! orientation), and a vertex of B against a triangle of A gets `-sign(n_A·d)`. The perturbed
 //! configuration is generic, so the segments of all triangle pairs fit together into curves
 //! whatever the input; the real contacts that were not transversal (touching, coplanar) are
-//! reported separately by the exact classification [`crate::predicates::tri_tri`].
+//! reported separately by the exact classification [`fn@crate::predicates::tri_tri`].
 //!
 //! Side tests are perturbed the same way. For the crossing of A's edge `a_i a_j` with plane B
 //! against B's edge `cd`, `orient3d(c, d, a_i+εd, a_j+εd) = O + ε det[d-c, d, a_j-a_i]`; for

@@ -78,7 +78,7 @@ fn halves_f64(c: &[[f64; 2]], w: &mut Vec<[f64; 2]>, out: &mut Vec<[f64; 2]>) {
     }
 }
 
-/// Scratch storage of [`hull_bound`], kept across segments.
+/// Scratch storage of `hull_bound`, kept across segments.
 #[derive(Default)]
 pub struct HullScratch {
     parts: Vec<[f64; 2]>,

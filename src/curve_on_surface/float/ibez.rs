@@ -72,7 +72,7 @@ fn mr_error<const D: usize>(mr: &MidRad<D>, levels: usize, sum_dt: f64) -> f64 {
 }
 
 /// Bound added by `levels` de Casteljau levels with exact parameters in `[0, 1]` on values
-/// of magnitude at most `mx` (the lerp lemma of [`mr_error`]), to an input radius `r`.
+/// of magnitude at most `mx` (the lerp lemma of `mr_error`), to an input radius `r`.
 pub fn mr_levels_error(r: f64, levels: usize, mx: f64) -> f64 {
     (r + levels as f64 * (3.4e-16 * mx * (1.0 + 1e-13) + 1e-300)) * (1.0 + 1e-14)
 }
@@ -118,7 +118,7 @@ fn fast_params(ts: &[I], n_ctrl: usize) -> Option<(ArrayVec<f64, FAST_CAP>, f64)
 
 /// Blossom `b(t_1, …, t_n)` of the Bézier curve with control points `ctrl` (degree
 /// `n = ctrl.len() - 1 = ts.len()`), enclosed. Parameters inside `[0, 1]` take the fast
-/// path (f64 de Casteljau on midpoints with the error bound of [`mr_error`]); others the
+/// path (f64 de Casteljau on midpoints with the error bound of `mr_error`); others the
 /// interval recurrence.
 pub fn blossom<const D: usize>(ctrl: &[IP<D>], ts: &[I]) -> IP<D> {
     debug_assert_eq!(ts.len(), ctrl.len() - 1);
@@ -263,7 +263,7 @@ pub fn dist_hi<const D: usize>(x: &IP<D>, y: &[f64; D]) -> f64 {
 /// the distance to one chosen point `y` of the segment (the projection of the box's centre,
 /// computed in f64 — any point of the segment gives an upper bound). With `c`, `ρ` the
 /// box's centre and largest coordinate radius and `ŷ = fl(a + t (b - a))` (within
-/// `3.0000001 u max|a|,|b|` per coordinate of `y`, the lerp lemma of [`mr_error`]), the
+/// `3.0000001 u max|a|,|b|` per coordinate of `y`, the lerp lemma of `mr_error`), the
 /// distance is at most `‖c - ŷ‖ + √2 (ρ + 3.4e-16 max|a|,|b|)`; `‖c - ŷ‖` is computed in f64
 /// and enlarged by `1e-15` relatively (a few roundings), the sum likewise.
 pub fn dist_to_segment_hi(x: &IP<2>, a: &[f64; 2], b: &[f64; 2]) -> f64 {

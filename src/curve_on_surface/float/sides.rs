@@ -1,6 +1,6 @@
 //! Step 2, f64 path — classify each segment's piece single-/double-sided exactly (the hull
 //! signs by the exact `orient2d`, a crossing proven by certified opposite values of the
-//! enclosed `f`, otherwise the exact analysis of [`crate::predicates::single_sided`]), for
+//! enclosed `f`, otherwise the exact analysis of [`fn@crate::predicates::single_sided`]), for
 //! the f64 control points of the piece (the midpoints of its enclosures, i.e. the piece as
 //! rounded to f64), and split a double-sided one at every crossing with its chord. The certificate does not rest on this step — every final segment's bound is
 //! computed from the enclosures — it is the paper's step that keeps Theorem 1 applicable.

@@ -1,7 +1,7 @@
 //! Step 1a, f64 path — the Bézier extraction of S (de Boor on one span) in f64, with its
 //! error bound.
 
-/// [`bspline_span_bezier`] on exact f64 control points (or midpoints with radius `r`), in
+/// `bspline_span_bezier` on exact f64 control points (or midpoints with radius `r`), in
 /// f64: the Bézier control points of span `s` and a bound on every coordinate's distance to
 /// the exact ones. Each de Boor level computes `fl((1 - α̂) d + α̂ d')` with
 /// `α̂ = fl(fl(x - u_j) / fl(u_e - u_j)) ∈ [0, 1]` (rounding is monotone), `|α̂ - α| ≤

@@ -1,5 +1,5 @@
 //! IGES writer: rational B-spline surfaces (128) and curves (126) of a model; a B-rep's faces
-//! as trimmed surfaces ([`super::write_faces`]). Reals are written with the shortest decimal
+//! as trimmed surfaces (`super::write_faces`). Reals are written with the shortest decimal
 //! that reads back to the same double (round trips keep every bit).
 
 use crate::model::{CurveGeometry, Model};
@@ -103,12 +103,12 @@ pub(super) fn surface_128(s: &crate::spline::NurbsSurface<f64, 3>) -> String {
     t
 }
 
-/// The model as IGES text ([`write`] without its notes).
+/// The model as IGES text ([`fn@write`] without its notes).
 pub fn to_string(m: &Model, name: &str) -> String {
     write(m, name).0
 }
 
-/// Write the model: a B-rep's faces as 144 (see [`super::write_faces`]), the other surfaces
+/// Write the model: a B-rep's faces as 144 (see `super::write_faces`), the other surfaces
 /// as 128 (144 with 142/102/126 when they have trim loops) and 3D curves (126); and what the
 /// file does not hold.
 pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {

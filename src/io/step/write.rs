@@ -1,5 +1,5 @@
 //! STEP writer: the model as AP214 entities. A model with a B-rep is written with its
-//! topology ([`super::write_topology`]); otherwise its B-spline surfaces and curves form a
+//! topology (`super::write_topology`); otherwise its B-spline surfaces and curves form a
 //! geometric set (rational ones as complex instances). Reals are written with the shortest
 //! decimal that reads back to the same double, so a write/read round trip keeps every bit.
 
@@ -236,7 +236,7 @@ impl Out {
     }
 }
 
-/// The model as STEP text, and what the file does not hold (see [`super::write_topology`] for
+/// The model as STEP text, and what the file does not hold (see `super::write_topology` for
 /// a model with a B-rep; without one, surfaces and 3D curves in a geometric set).
 pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
     if let Some(b) = &m.brep {
@@ -262,7 +262,7 @@ pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
     (o.finish(name, "vericad geometry"), Vec::new())
 }
 
-/// The model as STEP text ([`write`] without its notes).
+/// The model as STEP text ([`fn@write`] without its notes).
 pub fn to_string(m: &Model, name: &str) -> String {
     write(m, name).0
 }

@@ -1,5 +1,5 @@
 //! Proven disjointness before any tracing: a face pair whose bounding boxes overlap is
-//! subdivided together — the Bézier pieces of both surfaces ([`super::roots`]), quartered —
+//! subdivided together — the Bézier pieces of both surfaces (`super::roots`), quartered —
 //! until every pair of pieces is *free* (case 1 of the coverage theorem, module
 //! [`super`]: disjoint boxes of the enclosed Cartesian control points, or control points
 //! separated along one piece's rough normal; convex hull property) or lies outside the faces.

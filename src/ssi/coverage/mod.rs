@@ -141,7 +141,7 @@ const MAX_CONE_PIECES: usize = 64;
 /// a piece is a non-negative combination of its own generators, so of the union's). Then the
 /// surfaces have no tangential points at all — no touching point, no singular point of the
 /// intersection. `false` (no claim) when the test fails, a piece's cone cannot be enclosed,
-/// or a surface has more than [`MAX_CONE_PIECES`] pieces.
+/// or a surface has more than `MAX_CONE_PIECES` pieces.
 pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> bool {
     let cone = |s: &NurbsSurface<f64, 3>| -> Option<Vec<V>> {
         let pieces = roots(s);

@@ -73,7 +73,7 @@ fn foot(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> (f64, [f64; 3]) {
 }
 
 /// Upper bound on the distance from `c` to the segment `[p, q]`: the distance from `c` to the
-/// point `x = p + (q − p) t` of the segment, `t ∈ [0, 1]` the `f64` foot of [`foot`] (taken as
+/// point `x = p + (q − p) t` of the segment, `t ∈ [0, 1]` the `f64` foot of `foot` (taken as
 /// the exact number it is, so `x` lies on the segment), computed in `f64` and enlarged by a
 /// forward error bound. With `u = 2⁻⁵³`, each rounding `fl(a ∘ b) = (a ∘ b)(1 + δ)`,
 /// `|δ| ≤ u`, so its error is at most `u′ |fl(a ∘ b)|`, `u′ = u / (1 − u)`:
