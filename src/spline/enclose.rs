@@ -32,8 +32,11 @@
 //! gradients, each in the hull. Continuity holds because interior knot multiplicity above the
 //! degree is refused when a surface is built ([`crate::spline`]).
 
+mod point;
+
 use crate::scalar::Interval;
 use crate::spline::{KnotVector, NurbsSurface};
+pub use point::enclose_point_f64;
 
 /// Enclosures of `S`, `∂S/∂u`, `∂S/∂v` over a parameter box.
 #[derive(Clone, Copy, Debug)]
@@ -222,7 +225,15 @@ fn enclose(s: &NurbsSurface<f64, 3>, u: Interval, v: Interval, deriv: bool) -> O
 
 /// Enclosure of `{S(u, v) : u ∈ U, v ∈ V}` (see the module comment); `None` when a weight
 /// enclosure contains 0 or an input is not finite.
+/// At a point (`u`, `v` of zero width) the homogeneous sum is taken in `f64` with a forward
+/// error bound ([`enclose_point_f64`]), the interval sum where that refuses.
 pub fn enclose_point(s: &NurbsSurface<f64, 3>, u: Interval, v: Interval) -> Option<[Interval; 3]> {
+    if u.lo == u.hi
+        && v.lo == v.hi
+        && let Some(p) = point::enclose_point_f64(s, u.lo, v.lo)
+    {
+        return Some(p);
+    }
     enclose(s, u, v, false).map(|j| j.s)
 }
 
