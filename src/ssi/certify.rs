@@ -1,9 +1,10 @@
 //! Step 9a — the point certificate: for every output point `x` with parameters `(u, v)` on a
 //! surface `S`, a proven upper bound on `||x - S(u, v)||`.
 //!
-//! Fast path: `S(u, v)` is evaluated in outward-rounded interval arithmetic (Cox–de Boor basis,
-//! The NURBS Book A2.2, and the homogeneous sum, then the quotient: [`super::enclose`]), which
-//! encloses the exact value; `||x - S||` is bounded above from the enclosure with upward rounding. Reference path
+//! Fast path: `S(u, v)` is enclosed by [`super::enclose`] (Cox–de Boor basis, The NURBS Book
+//! A2.2, in outward-rounded interval arithmetic; the homogeneous sum in `f64` with a forward
+//! error bound, or in intervals where that refuses; then the quotient), which encloses the
+//! exact value; `||x - S||` is bounded above from the enclosure with upward rounding. Reference path
 //! (used when an interval division straddles zero, and on request): `x`, `u`, `v` and the
 //! control net are `f64`, so they lift exactly into rationals; `S(u, v)` is evaluated exactly,
 //! `||x - S(u,v)||²` is an exact rational `q`, and the bound is the smallest `f64` found whose
