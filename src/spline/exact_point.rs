@@ -190,8 +190,8 @@ impl ExactPoint {
 }
 
 /// `[lo, hi] · 2^e` outward, for `0 ≤ lo ≤ hi` normal numbers: products by powers of two
-/// are exact while the results stay normal; a result below the normal range (possibly
-/// rounded, in one or several steps) is replaced by `0` (a lower bound) or by
+/// are exact while the results stay normal; a lower end at or below `2^-1022` (possibly
+/// rounded up to it from the subnormal range) is replaced by `0`, an upper end below it by
 /// `2 · 2^-1022` (an upper bound of anything that rounded below `2^-1022`). `None` on
 /// overflow.
 fn scale_outward(lo: f64, hi: f64, e: i64) -> Option<(f64, f64)> {
@@ -206,7 +206,7 @@ fn scale_outward(lo: f64, hi: f64, e: i64) -> Option<(f64, f64)> {
     if !(l.is_finite() && h.is_finite()) {
         return None;
     }
-    if l < f64::MIN_POSITIVE {
+    if l <= f64::MIN_POSITIVE {
         l = 0.0;
     }
     if h < f64::MIN_POSITIVE {

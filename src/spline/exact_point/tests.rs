@@ -120,8 +120,9 @@ fn exact_points_equal_the_rational_sum() {
     }
 }
 
-/// The difference of two points is enclosed to a few ulps of the difference itself, where
-/// it is 1e-20 of the coordinates (an f64 interval evaluation of each point would give 1e-13).
+/// The difference of two points is enclosed to a few ulps of the difference itself, down to
+/// points one ulp of `u` apart (a difference about 1e-16 of the coordinates, where an f64
+/// enclosure of each point would be as wide as the difference).
 #[test]
 fn differences_are_enclosed_relative_to_themselves() {
     let s = sphere(&Frame::WORLD, 2.0).unwrap();
@@ -129,7 +130,7 @@ fn differences_are_enclosed_relative_to_themselves() {
     let (u0, u1, v0, v1) = s.hom.domain();
     let (u, v) = (u0 + 0.3 * (u1 - u0), v0 + 0.6 * (v1 - v0));
     let a = ev.point(u, v).unwrap();
-    for du in [0.0, 1e-300, f64::EPSILON * u, 1e-12, 1e-3] {
+    for du in [0.0, u.next_up() - u, f64::EPSILON * u, 1e-12, 1e-3] {
         let b = ev.point(u + du, v).unwrap();
         let d = a.minus_enclosed(&b).unwrap();
         let (wa, wb) = (oracle(&s, u, v), oracle(&s, u + du, v));
