@@ -315,12 +315,16 @@ pub fn refine_branch(
             });
             run.iter_mut()
                 .map(|r| {
+                    // Kept when the radius, measured from the point moved to the
+                    // certificate's centre (a point left up to tol/8 off the curve by the
+                    // refinement lands on it), is within tol/8.
                     let fast = shared
                         .as_ref()
                         .and_then(|s| s.certify(&r.xyz, &r.uv_a, &r.uv_b))
-                        .filter(|c| c.radius <= prm.tol / 8.0);
+                        .map(|c| adopt_centre(g, r, c))
+                        .filter(|c| c.0 <= prm.tol / 8.0);
                     let c = if let Some(c) = fast {
-                        Ok(adopt_centre(g, r, c))
+                        Ok(c)
                     } else if prm.curve_certificates {
                         onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| adopt_centre(g, r, c))
                     } else {
