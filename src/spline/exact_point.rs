@@ -165,6 +165,17 @@ impl ExactEvaluator {
 }
 
 impl ExactPoint {
+    /// The coordinates as exact rationals (reference answers).
+    pub fn rational(&self) -> [BigRational; 3] {
+        let two = BigRational::from_integer(BigInt::from(2));
+        let scale = if self.shift >= 0 {
+            num_traits::pow(two, self.shift as usize)
+        } else {
+            num_traits::pow(two, (-self.shift) as usize).recip()
+        };
+        std::array::from_fn(|k| BigRational::new(self.x[k].clone(), self.w.clone()) * &scale)
+    }
+
     /// The coordinates of `self − other`, each rounded outward to an `f64` interval (`None`
     /// when a coordinate is beyond the `f64` range).
     pub fn minus_enclosed(&self, other: &ExactPoint) -> Option<[Interval; 3]> {

@@ -38,6 +38,8 @@ pub mod linalg;
 pub mod nurbs;
 pub mod project;
 pub mod sides;
+#[cfg(test)]
+pub(crate) mod test_params;
 
 pub use bezier_curve::BezierCurve;
 pub use bezier_surface::BezierSurface;

@@ -16,17 +16,6 @@ fn rng(seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
-/// The exact rational value of `x_k 2^shift / w`.
-fn value(p: &ExactPoint, k: usize) -> BigRational {
-    let two = BigRational::from_integer(BigInt::from(2));
-    let scale = if p.shift >= 0 {
-        num_traits::pow(two, p.shift as usize)
-    } else {
-        num_traits::pow(two, (-p.shift) as usize).recip()
-    };
-    BigRational::new(p.x[k].clone(), p.w.clone()) * scale
-}
-
 /// The oracle: the same formula (eq. 4.9) summed term by term in reduced rationals, every
 /// basis function by the Cox–de Boor recursion written out here (not the crate's A2.2).
 fn oracle(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> [BigRational; 3] {
@@ -94,18 +83,16 @@ fn exact_points_equal_the_rational_sum() {
     ] {
         let ev = ExactEvaluator::new(&s).unwrap();
         let (u0, u1, v0, v1) = s.hom.domain();
-        let knots_u: Vec<f64> = s.hom.ku.knots().to_vec();
         for k in 0..60 {
-            let (u, v) = match k {
-                0 => (u0, v0),
-                1 => (u1, v1),
-                2 => (knots_u[knots_u.len() / 2], v0 + 0.5 * (v1 - v0)),
-                _ => (u0 + r() * (u1 - u0), v0 + r() * (v1 - v0)),
-            };
+            let (u, v) = crate::spline::test_params::params(&s, k, &mut r);
             let p = ev.point(u, v).unwrap();
             let want = oracle(&s, u, v);
             for c in 0..3 {
-                assert_eq!(value(&p, c), want[c], "({u}, {v}) coordinate {c}");
+                assert_eq!(
+                    p.rational()[c].clone(),
+                    want[c],
+                    "({u}, {v}) coordinate {c}"
+                );
             }
             // The enclosure holds the value and is a few ulps wide.
             let e = p.enclosed().unwrap();

@@ -70,28 +70,17 @@ fn point_enclosures_hold_the_exact_point() {
     for s in &surfaces {
         let ev = ExactEvaluator::new(s).unwrap();
         let (u0, u1, v0, v1) = s.hom.domain();
-        let ku: Vec<f64> = s.hom.ku.knots().to_vec();
         for k in 0..40 {
-            let (u, v) = match k {
-                0 => (u0, v0),
-                1 => (u1, v1),
-                2 => (ku[ku.len() / 2], v0 + 0.3 * (v1 - v0)),
-                _ => (u0 + r() * (u1 - u0), v0 + r() * (v1 - v0)),
-            };
+            let (u, v) = crate::spline::test_params::params(s, k, &mut r);
             let Some(e) = enclose_point_f64(s, u, v) else {
                 continue;
             };
             fast += 1;
             let x = ev.point(u, v).unwrap();
-            let two = BigRational::from_integer(2.into());
-            let sc = if x.shift >= 0 {
-                num_traits::pow(two, x.shift as usize)
-            } else {
-                num_traits::pow(two, (-x.shift) as usize).recip()
-            };
+            let q = x.rational();
             for c in 0..3 {
-                let exact = BigRational::new(x.x[c].clone(), x.w.clone()) * &sc;
-                assert!(contains(&e[c], &exact), "({u}, {v}) {c}: {:?}", e[c]);
+                let exact = &q[c];
+                assert!(contains(&e[c], exact), "({u}, {v}) {c}: {:?}", e[c]);
                 // Narrow: relative to the point's scale (the control points' magnitude).
                 let m = s
                     .hom
@@ -157,19 +146,14 @@ fn cancellation_at_exact_basis_values() {
     .unwrap();
     let e = enclose_point_f64(&s, 0.5, 0.5).unwrap();
     let x = ExactEvaluator::new(&s).unwrap().point(0.5, 0.5).unwrap();
-    let two = BigRational::from_integer(2.into());
-    let sc = if x.shift >= 0 {
-        num_traits::pow(two, x.shift as usize)
-    } else {
-        num_traits::pow(two, (-x.shift) as usize).recip()
-    };
+    let q = x.rational();
     for c in 0..3 {
-        let exact = BigRational::new(x.x[c].clone(), x.w.clone()) * &sc;
-        assert!(contains(&e[c], &exact), "{c}: {:?}", e[c]);
+        let exact = &q[c];
+        assert!(contains(&e[c], exact), "{c}: {:?}", e[c]);
     }
     // The x coordinate's computed sum is off by more than an ulp of itself.
     let naive: f64 = 0.5 * (0.5 * 0.1 + 0.5 * 0.2) + 0.5 * (0.5 * -0.3 + 0.5 * 0.0);
-    let exact_x = BigRational::new(x.x[0].clone(), x.w.clone()) * &sc;
+    let exact_x = q[0].clone();
     let one_ulp = Interval::new(naive.next_down(), naive.next_up());
     assert!(!contains(&one_ulp, &exact_x));
 }
