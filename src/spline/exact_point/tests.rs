@@ -1,19 +1,10 @@
 use super::*;
 use crate::spline::construct::{Frame, sphere, torus};
+use crate::spline::test_params::rng;
 use num_traits::ToPrimitive;
 
 fn q(x: f64) -> BigRational {
     BigRational::from_float(x).unwrap()
-}
-
-fn rng(seed: u64) -> impl FnMut() -> f64 {
-    let mut x = seed;
-    move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// The oracle: the same formula (eq. 4.9) summed term by term in reduced rationals, every
@@ -82,7 +73,7 @@ fn exact_points_equal_the_rational_sum() {
         torus(&frame, 3.0, 0.7).unwrap(),
     ] {
         let ev = ExactEvaluator::new(&s).unwrap();
-        let (u0, u1, v0, v1) = s.hom.domain();
+        let (_, u1, v0, _) = s.hom.domain();
         for k in 0..60 {
             let (u, v) = crate::spline::test_params::params(&s, k, &mut r);
             let p = ev.point(u, v).unwrap();

@@ -1,17 +1,8 @@
 use super::*;
 use crate::spline::construct::{Frame, sphere, torus};
 use crate::spline::exact_point::ExactEvaluator;
+use crate::spline::test_params::rng;
 use num_rational::BigRational;
-
-fn rng(seed: u64) -> impl FnMut() -> f64 {
-    let mut x = seed;
-    move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// A random rational surface: degrees 1–5, clamped knots with random interior knots
 /// (repeated ones included), control points of magnitude `scale` around an offset, weights
@@ -69,7 +60,6 @@ fn point_enclosures_hold_the_exact_point() {
     let mut fast = 0;
     for s in &surfaces {
         let ev = ExactEvaluator::new(s).unwrap();
-        let (u0, u1, v0, v1) = s.hom.domain();
         for k in 0..40 {
             let (u, v) = crate::spline::test_params::params(s, k, &mut r);
             let Some(e) = enclose_point_f64(s, u, v) else {
