@@ -2,6 +2,7 @@
 //! refined by damped Gauss–Newton (Newton on a curve). It finds *a* nearby foot, not the global closest point, and proves nothing:
 //! callers use it for measured distances (evidence) and as a start for certified searches.
 
+use super::closure::Closure;
 use super::{NurbsCurve, NurbsSurface};
 use crate::geom::{Point, dot};
 
@@ -75,7 +76,9 @@ pub fn descend(
 
 /// Parameters of (a local) closest point of `s` to `x`: the best of four grid starts at
 /// distinct distances from `x` (so not four copies of one pole), each refined by damped
-/// Gauss–Newton.
+/// Gauss–Newton; on a closed surface, a result on the seam is refined again from the other
+/// end of that parameter's domain (the grid's start there is the same point, dropped as a
+/// copy, and a descent stops at the domain's border).
 pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
     let (u0, u1, v0, v1) = s.hom.domain();
     let d = [u0, u1, v0, v1];
@@ -102,11 +105,28 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
             chosen.push(*st);
         }
     }
-    chosen
+    let Some(mut best) = chosen
         .iter()
         .map(|(_, uv)| descend(s, x, *uv, &d))
         .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map_or([d[0], d[2]], |r| r.0)
+    else {
+        return [d[0], d[2]];
+    };
+    // On a closed surface a descent that stopped on the seam may want to go on past it:
+    // start again from the same point at the other end of that parameter's domain.
+    let c = Closure::of(s);
+    for (k, closed) in [(0, c.seam_u), (1, c.seam_v)] {
+        let (lo, hi) = (d[2 * k], d[2 * k + 1]);
+        if closed && (best.0[k] == lo || best.0[k] == hi) {
+            let mut uv = best.0;
+            uv[k] = if best.0[k] == lo { hi } else { lo };
+            let other = descend(s, x, uv, &d);
+            if other.1 < best.1 {
+                best = other;
+            }
+        }
+    }
+    best.0
 }
 
 /// Samples per closest-point search (plus one): the curve's domain in 32 equal steps.
@@ -173,5 +193,42 @@ impl<'a> CurveFoot<'a> {
             .min_by(|a, b| d2(&a.1).total_cmp(&d2(&b.1)))
             .unwrap_or((t0, c.eval(&t0)));
         (t, p, d2(&p).sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::{Frame, cylinder, sphere};
+
+    /// Points just either side of the seam of closed surfaces (in a tilted frame) project to
+    /// their own feet, not to the seam: the grid start on the far side of the seam is the
+    /// same point as the near one, and a descent from it stops at the domain's border.
+    #[test]
+    fn feet_next_to_a_seam() {
+        let f = Frame {
+            o: [1.0, -2.0, 0.5],
+            x: [0.6, 0.8, 0.0],
+            y: [0.0, 0.0, 1.0],
+            z: [0.8, -0.6, 0.0],
+        };
+        for s in [
+            cylinder(&f, 2.0, 0.0, 3.0).unwrap(),
+            sphere(&f, 2.0).unwrap(),
+        ] {
+            let (u0, u1, v0, v1) = s.hom.domain();
+            let v = v0 + 0.4 * (v1 - v0);
+            for du in [1e-3, 1e-6, -1e-3, -1e-6] {
+                let u = if du > 0.0 { u0 + du } else { u1 + du };
+                let q = s.eval(&u, &v);
+                // 0.1 out along the normal.
+                let n = s.unit_normal(&u, &v).unwrap();
+                let x: [f64; 3] = std::array::from_fn(|k| q[k] + 0.1 * n[k]);
+                let p = project(&s, &x);
+                let foot = s.eval(&p[0], &p[1]);
+                let d = (0..3).map(|k| (foot[k] - q[k]).powi(2)).sum::<f64>().sqrt();
+                assert!(d < 1e-7, "du {du}: foot {p:?} is {d} from the true foot");
+            }
+        }
     }
 }
