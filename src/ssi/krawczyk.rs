@@ -167,6 +167,32 @@ fn newton(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Option<([f
     Some((y, j, converged))
 }
 
+/// Enclosure of the common point `q = S_A(z*_uv) = S_B(z*_st)` for a zero `z*` in the box `z`:
+/// the intersection of the mean-value forms of both surfaces about `y` (`at_y` their
+/// enclosures at `y`, `jets` derivative enclosures over a box holding `y` and `z`); `None` when
+/// the two do not meet (impossible for a true zero: a claim is refused rather than made).
+fn common_point(
+    z: &[Interval; 4],
+    y: &[f64; 4],
+    at_y: &[[Interval; 3]; 2],
+    jets: &[Jet; 2],
+) -> Option<[Interval; 3]> {
+    let mv = |s0: &[Interval; 3], j: &Jet, a: usize| -> [Interval; 3] {
+        let (du, dv) = (z[a] - pt(y[a]), z[a + 1] - pt(y[a + 1]));
+        std::array::from_fn(|c| s0[c] + j.su[c] * du + j.sv[c] * dv)
+    };
+    let (ea, eb) = (mv(&at_y[0], &jets[0], 0), mv(&at_y[1], &jets[1], 2));
+    let mut q = [pt(0.0); 3];
+    for c in 0..3 {
+        let (lo, hi) = (ea[c].lo.max(eb[c].lo), ea[c].hi.min(eb[c].hi));
+        if lo > hi {
+            return None;
+        }
+        q[c] = Interval::new(lo, hi);
+    }
+    Some(q)
+}
+
 fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
     // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
     let Some((y, j, _)) = newton(sys, z0, at_z0) else {
@@ -250,20 +276,10 @@ fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
         }
     }
     // q = S_A(z*_uv) = S_B(z*_st), enclosed by the mean-value form about y over z ⊂ X.
-    let mv = |s0: &[Interval; 3], j: &Jet, a: usize| -> [Interval; 3] {
-        let (du, dv) = (z[a] - pt(y[a]), z[a + 1] - pt(y[a + 1]));
-        std::array::from_fn(|c| s0[c] + j.su[c] * du + j.sv[c] * dv)
+    let Some(q) = common_point(&z, &y, &at_y, &jets) else {
+        // Both enclose q: cannot happen; refuse rather than claim.
+        return Attempt::Fail(Uncertified::Enclosure);
     };
-    let (ea, eb) = (mv(&at_y[0], &jets[0], 0), mv(&at_y[1], &jets[1], 2));
-    let mut q = [pt(0.0); 3];
-    for c in 0..3 {
-        let (lo, hi) = (ea[c].lo.max(eb[c].lo), ea[c].hi.min(eb[c].hi));
-        if lo > hi {
-            // Both enclose q: cannot happen; refuse rather than claim.
-            return Attempt::Fail(Uncertified::Enclosure);
-        }
-        q[c] = Interval::new(lo, hi);
-    }
     match distance_upper(&sys.p, &q) {
         Some(radius) => Attempt::Done(CurveCertificate {
             radius,

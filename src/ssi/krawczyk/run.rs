@@ -21,9 +21,9 @@
 //! ([`super::certify_on_curve_cached`]): this path only saves work, it never decides a point
 //! uncertified.
 
-use super::newton;
 use super::system::{Fourth, System, pt};
 use super::{CurveCertificate, M4, inverse4};
+use super::{common_point, newton};
 use crate::geom::{cross, dot, norm};
 use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
@@ -191,20 +191,7 @@ impl<'a> RunCertifier<'a> {
         }
         // q = S_A(z*_uv) = S_B(z*_st), enclosed by the mean-value forms about z0 with the
         // derivative enclosures over the cache's box (which holds z0 and z).
-        let [ja, jb] = &self.cache.jets;
-        let mv = |s0: &[Interval; 3], su: &[Interval; 3], sv: &[Interval; 3], a: usize| {
-            let (du, dv) = (z[a] - pt(z0[a]), z[a + 1] - pt(z0[a + 1]));
-            std::array::from_fn::<Interval, 3, _>(|c| s0[c] + su[c] * du + sv[c] * dv)
-        };
-        let (ea, eb) = (mv(&fa, &ja.su, &ja.sv, 0), mv(&fb, &jb.su, &jb.sv, 2));
-        let mut q = [pt(0.0); 3];
-        for c in 0..3 {
-            let (lo, hi) = (ea[c].lo.max(eb[c].lo), ea[c].hi.min(eb[c].hi));
-            if lo > hi {
-                return None;
-            }
-            q[c] = Interval::new(lo, hi);
-        }
+        let q = common_point(&z, &z0, &[fa, fb], &self.cache.jets)?;
         Some(CurveCertificate {
             radius: distance_upper(p, &q)?,
             params: z,
