@@ -12,16 +12,15 @@
 //! stated parameters (and bounds the distance to the surface, as `S(u, v)` lies on it).
 
 use super::enclose::enclose_point;
-use crate::geom::{Hom, Point, lift_point};
+use crate::geom::{Point, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
 use crate::spline::NurbsSurface;
 use crate::spline::exact_point::{ExactEvaluator, ExactPoint};
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive};
 
-/// A surface lifted once into exact rationals.
+/// A surface with its exact evaluator (knots lifted into rationals once).
 pub struct ExactSurface {
-    s: NurbsSurface<BigRational, 3>,
     f: NurbsSurface<f64, 3>,
     /// Fraction-free exact points ([`ExactEvaluator`]).
     ev: Option<ExactEvaluator>,
@@ -54,15 +53,6 @@ impl ExactSurface {
             f: s.clone(),
             ev: ExactEvaluator::new(s),
             exact_only: false,
-            s: NurbsSurface {
-                hom: s.hom.map(
-                    |k| lift::<BigRational>(*k),
-                    |h| Hom {
-                        wp: lift_point(&h.wp),
-                        w: lift(h.w),
-                    },
-                ),
-            },
         }
     }
 
@@ -81,8 +71,7 @@ impl ExactSurface {
         {
             return Some(b);
         }
-        let (u, v) = (lift::<BigRational>(uv[0]), lift::<BigRational>(uv[1]));
-        let p = self.s.eval(&u, &v);
+        let p = self.exact_point(uv)?.rational();
         let d = lift_point::<BigRational, 3>(x).sub(&p);
         let q = crate::geom::dot(&d, &d);
         Some(sqrt_upper(&q))
