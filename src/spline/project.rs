@@ -114,10 +114,14 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
     };
     // On a closed surface a descent that stopped on the seam may want to go on past it:
     // start again from the same point at the other end of that parameter's domain.
+    let on_border = |uv: &[f64; 2], k: usize| uv[k] == d[2 * k] || uv[k] == d[2 * k + 1];
+    if !(on_border(&best.0, 0) || on_border(&best.0, 1)) {
+        return best.0;
+    }
     let c = Closure::of(s);
     for (k, closed) in [(0, c.seam_u), (1, c.seam_v)] {
         let (lo, hi) = (d[2 * k], d[2 * k + 1]);
-        if closed && (best.0[k] == lo || best.0[k] == hi) {
+        if closed && on_border(&best.0, k) {
             let mut uv = best.0;
             uv[k] = if best.0[k] == lo { hi } else { lo };
             let other = descend(s, x, uv, &d);
