@@ -65,11 +65,14 @@ pub fn net_diagonal(ss: &[&NurbsSurface<f64, 3>]) -> f64 {
 }
 
 /// Triangulate both surfaces, refining cells where the meshes come close at a small angle
-/// (near tangency), up to `rounds` times.
+/// (near tangency), up to `rounds` times — none when `transversal` (no normal of one surface
+/// is ever parallel to one of the other, proven: the surfaces meet at no tangential point, so
+/// planes at a small angle get no finer mesh than planes at a large one).
 fn meshes(
     sa: &NurbsSurface<f64, 3>,
     sb: &NurbsSurface<f64, 3>,
     prm: &SsiParams,
+    transversal: bool,
     stats: &mut PairStats,
 ) -> (SurfaceMesh, SurfaceMesh) {
     let diag = net_diagonal(&[sa, sb]).max(f64::MIN_POSITIVE);
@@ -82,7 +85,8 @@ fn meshes(
     let cos_t = prm.tangent_angle_deg.to_radians().cos();
     let mut ma = triangulate(sa, &tp, &fa);
     let mut mb = triangulate(sb, &tp, &fb);
-    for _ in 0..prm.tangency_rounds {
+    let rounds = if transversal { 0 } else { prm.tangency_rounds };
+    for _ in 0..rounds {
         let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
         let (na, nb) = (fa.len(), fb.len());
         for (ta, tb) in pairs {
@@ -147,8 +151,11 @@ pub fn intersect_surfaces(
     if let Some(c) = coincidence(sa, sb) {
         return early(stats, true, None, Some(c));
     }
+    // Where no normal of A is ever parallel to one of B (proven), there is no tangential
+    // point to look for, and no near-tangency to mesh finely.
+    let transversal = super::coverage::normals_never_parallel(sa, sb);
     ctl.report(ids, "triangulate", 0, 2);
-    let (ma, mb) = meshes(sa, sb, prm, &mut stats);
+    let (ma, mb) = meshes(sa, sb, prm, transversal, &mut stats);
     stats.triangles_a = ma.triangles.len();
     stats.triangles_b = mb.triangles.len();
     stats.unresolved_cells_a = ma.unresolved_cells;
@@ -172,12 +179,11 @@ pub fn intersect_surfaces(
         max_iter: 60,
         tangent_sin: prm.refine_tangent_sin,
         curve_certificates: prm.certify,
+        fits: prm.fits,
     };
     let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
     ctl.report(ids, "tangential points", 0, 0);
-    // Where no normal of A is ever parallel to one of B (proven), there is no tangential
-    // point to look for.
-    let singular = if super::coverage::normals_never_parallel(sa, sb) {
+    let singular = if transversal {
         Vec::new()
     } else {
         tangential_points(&g, flat, prm.tangent_angle_deg, &rp)
