@@ -389,7 +389,11 @@ pub fn refine_branch(
     let points: Vec<[f64; 3]> = all.iter().map(|r| r.xyz).collect();
     let uv_a: Vec<[f64; 2]> = all.iter().map(|r| r.uv_a).collect();
     let uv_b: Vec<[f64; 2]> = all.iter().map(|r| r.uv_b).collect();
-    let fit = fit_branch(&points, &uv_a, &uv_b, b.closed);
+    let fit = if prm.fits {
+        fit_branch(&points, &uv_a, &uv_b, b.closed)
+    } else {
+        None
+    };
     let mut out = BranchOut {
         closed: b.closed,
         points,

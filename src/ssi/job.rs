@@ -207,6 +207,8 @@ pub fn run(
     };
     // Inside a long face pair too, at most once a second.
     let mut prm = prm.clone();
+    // The cubic fits only where an output holds them.
+    prm.fits = outputs.fits || outputs.iges.is_some();
     if prm.control.progress.is_none() {
         let last = std::sync::Mutex::new(0.0f64);
         prm.control.progress = Some(std::sync::Arc::new(move |s: &super::control::Stage| {

@@ -47,6 +47,8 @@ pub struct RefineParams {
     /// Certify every output point against the curve ([`super::krawczyk`]); off: each is
     /// reported `not_requested` ([`super::SsiParams::certify`]).
     pub curve_certificates: bool,
+    /// Fit each branch's cubic ([`super::SsiParams::fits`]).
+    pub fits: bool,
 }
 
 type V3 = [f64; 3];

@@ -225,6 +225,7 @@ fn region_run(
         max_iter: 60,
         tangent_sin: prm.refine_tangent_sin,
         curve_certificates: prm.certify,
+        fits: prm.fits,
     };
     let near = BranchNear::new(Vec::new(), prm.tol);
     let (mut branches, mut points) = (Vec::new(), Vec::new());

@@ -155,7 +155,10 @@ pub fn clip_mask(b: &BranchOut, keep: &[bool]) -> Vec<BranchOut> {
                     .map(|&i| curve.get(i).copied().unwrap_or(Err(Uncertified::NotFinite)))
                     .collect(),
             );
-            refit(&mut out);
+            // The part gets its own fit when the branch had one.
+            if b.fit.is_some() {
+                refit(&mut out);
+            }
             out
         })
         .collect()
