@@ -1,7 +1,7 @@
 //! B-spline curves: de Boor evaluation, derivative splines, Boehm knot insertion, Bézier
 //! extraction, sub-curves (The NURBS Book, ch. 2–5).
 
-use super::basis::basis_funs;
+use super::basis::{Buf, basis_funs_into};
 use super::bezier_curve::BezierCurve;
 use super::knots::KnotVector;
 use super::{MAX_DEGREE, SplineError};
@@ -52,7 +52,8 @@ impl<P: Point> BSplineCurve<P> {
     pub fn eval(&self, t: &P::S) -> P {
         let p = self.degree();
         let span = self.knots.find_span(t);
-        let n = basis_funs(&self.knots, span, t);
+        let mut n = Buf::new();
+        basis_funs_into(&self.knots, span, t, &mut n);
         let mut acc = P::origin();
         for (j, nj) in n.iter().enumerate() {
             acc = acc.add(&self.control[span - p + j].scale(nj));

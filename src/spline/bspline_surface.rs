@@ -1,7 +1,7 @@
 //! Tensor-product B-spline surfaces: evaluation, partial derivative surfaces, knot
 //! insertion, Bézier patch extraction, sub-patches (The NURBS Book, ch. 3, 5).
 
-use super::basis::{basis_funs, basis_funs_d1, ders_basis_funs};
+use super::basis::{Buf, basis_funs_d1_into, basis_funs_into, ders_basis_funs};
 use super::bezier_surface::BezierSurface;
 use super::bspline_curve::BSplineCurve;
 use super::knots::KnotVector;
@@ -90,8 +90,9 @@ impl<P: Point> BSplineSurface<P> {
         let nv = self.nv();
         let su = self.ku.find_span(u);
         let sv = self.kv.find_span(v);
-        let nu_ = basis_funs(&self.ku, su, u);
-        let nv_ = basis_funs(&self.kv, sv, v);
+        let (mut nu_, mut nv_) = (Buf::new(), Buf::new());
+        basis_funs_into(&self.ku, su, u, &mut nu_);
+        basis_funs_into(&self.kv, sv, v, &mut nv_);
         let mut acc = P::origin();
         for (a, na) in nu_.iter().enumerate() {
             let row = (su - p + a) * nv + sv - q;
@@ -123,8 +124,9 @@ impl<P: Point> BSplineSurface<P> {
         let nv = self.nv();
         let su = self.ku.find_span(u);
         let sv = self.kv.find_span(v);
-        let (nu_, du_) = basis_funs_d1(&self.ku, su, u);
-        let (nv_, dv_) = basis_funs_d1(&self.kv, sv, v);
+        let (mut nu_, mut du_, mut nv_, mut dv_) = (Buf::new(), Buf::new(), Buf::new(), Buf::new());
+        basis_funs_d1_into(&self.ku, su, u, &mut nu_, &mut du_);
+        basis_funs_d1_into(&self.kv, sv, v, &mut nv_, &mut dv_);
         let (mut s, mut s_u, mut s_v) = (P::origin(), P::origin(), P::origin());
         for a in 0..=p {
             let row = (su - p + a) * nv + sv - q;
