@@ -146,20 +146,42 @@ impl Near {
             let pts: Vec<[f64; 3]> = std::iter::once(segs[start].0)
                 .chain(segs[start..end].iter().map(|s| s.1))
                 .collect();
+            // `kept[i]`: the chord of the last length from vertex `i` was kept. A chord of
+            // length 2L from `i` (a multiple of L) is tried only when both chords of length L
+            // it spans, from `i` and `i + L`, were kept: where the curve bends enough to fail
+            // a chord, a chord twice as long over it mostly fails too (on curved output at
+            // small `d`, no chord of 4 segments passes at all). Which chords are tried changes
+            // only how often a box is decided by one, never what a kept chord claims.
+            let mut kept = vec![true; pts.len()];
             let mut len = 2;
             while len <= 64 && len < pts.len() {
+                let mut now = vec![false; pts.len()];
+                let mut any = false;
                 let mut i = 0;
                 while i + len < pts.len() {
-                    let (p, q) = (pts[i], pts[i + len]);
-                    let delta = pts[i + 1..i + len]
-                        .iter()
-                        .map(|m| dist_upper(m, &p, &q))
-                        .fold(0.0, f64::max);
-                    if delta <= 0.5 * d {
-                        chords.push(((p, q), delta));
+                    let half = len / 2;
+                    let tried = kept[i] && kept.get(i + half).copied().unwrap_or(false);
+                    if tried {
+                        let (p, q) = (pts[i], pts[i + len]);
+                        let mut delta = 0.0f64;
+                        for m in &pts[i + 1..i + len] {
+                            delta = delta.max(dist_upper(m, &p, &q));
+                            if delta > 0.5 * d {
+                                break;
+                            }
+                        }
+                        if delta <= 0.5 * d {
+                            chords.push(((p, q), delta));
+                            now[i] = true;
+                            any = true;
+                        }
                     }
-                    i += len / 2;
+                    i += half;
                 }
+                if !any {
+                    break;
+                }
+                kept = now;
                 len *= 2;
             }
             start = end;
