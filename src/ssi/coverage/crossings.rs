@@ -4,8 +4,10 @@
 //! match distance of the output (see [`super::near`]). What neither can be shown for, down
 //! to the depth limit, is returned as a *possible crossing away from the output*.
 
+use super::crossing_newton::{Crossings, PatchJet, crossings, patch_jet};
 use super::near::Near;
 use super::patch::{Box3, ICurve, IPatch, V, box_of, diagonal, disjoint, meet, separated_along};
+use std::cell::OnceCell;
 use std::rc::Rc;
 
 /// What the search established for one border curve against one piece.
@@ -22,8 +24,9 @@ pub(crate) struct CrossingSearch {
     pub open: Option<Box3>,
 }
 
-/// A piece of the surface with its enclosed Cartesian control points.
-type Piece = (IPatch, Option<Vec<V>>);
+/// A piece of the surface with its enclosed Cartesian control points, and its enclosures for
+/// the crossing test (made when first asked for).
+type Piece = (IPatch, Option<Vec<V>>, OnceCell<Option<PatchJet>>);
 
 /// Search `curve` against `patch`: subdivide both until every part is empty, within `d` of
 /// the output `near` or inside a tube (within its reach of its polyline); stop at `max_depth`
@@ -40,7 +43,7 @@ pub(crate) fn search(
     // A piece with its enclosed Cartesian control points, shared while only the curve splits.
     let piece = |s: IPatch| {
         let pts = s.cartesian();
-        Rc::new((s, pts))
+        Rc::new((s, pts, OnceCell::new()))
     };
     let mut stack: Vec<(ICurve, Rc<Piece>, u32)> = vec![(curve.clone(), piece(patch.clone()), 0)];
     // Consecutive parts of the curve are usually near the same output chord.
@@ -76,6 +79,29 @@ pub(crate) fn search(
         {
             out.near_tubes += 1;
             continue;
+        }
+        // Krawczyk's enclosure of every crossing of these two parts (`crossing_newton`).
+        let jet = sp.2.get_or_init(|| patch_jet(s));
+        match jet
+            .as_ref()
+            .map_or(Crossings::Undecided, |j| crossings(&c, s, j, d / 16.0))
+        {
+            Crossings::None => continue,
+            Crossings::Within(b) => {
+                if disjoint(&b, &m) {
+                    continue;
+                }
+                let b = meet(&b, &m);
+                if near.box_within(&b, d) {
+                    out.near_output += 1;
+                    continue;
+                }
+                if tubes.iter().any(|(t, r)| t.box_within(&b, *r)) {
+                    out.near_tubes += 1;
+                    continue;
+                }
+            }
+            Crossings::Undecided => {}
         }
         // Parts far smaller than `d` that are not near the output will not become near by
         // splitting: a crossing away from the output is likely there.

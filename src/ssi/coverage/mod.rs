@@ -58,6 +58,7 @@
 //! halves.
 
 pub mod cones;
+mod crossing_newton;
 pub mod crossings;
 pub mod disjoint;
 pub mod near;

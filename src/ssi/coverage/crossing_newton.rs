@@ -1,0 +1,613 @@
+//! Krawczyk's enclosure of the border crossings of one curve piece with one surface piece.
+//!
+//! The border search ([`super::crossings`]) halves a border curve `C` of one surface and a
+//! piece `S` of the other until every part is empty or within the match distance of the
+//! output; a transversal crossing then costs about two boxes per halving, down to parts the
+//! size of the match distance. This test encloses every crossing of the current parts at
+//! once, so the search can stop while the parts are still large.
+//!
+//! **The enclosure.** Let `C(t) = X(t) / w(t)`, `t ∈ [0, 1]`, and `S(u, v) = Y(u, v) /
+//! ω(u, v)` be rational Bézier pieces whose homogeneous control points lie in the given
+//! interval boxes, with weights enclosed positive, and `F(t, u, v) = C(t) − S(u, v)` on
+//! `X = [0, 1]³`, centre `y = (½, ½, ½)`. `F` is smooth on `X`. Let `J` be an interval matrix
+//! holding `F′(ξ)` for every `ξ ∈ X`: `C′ = (X′ w − X w′) / w²` and the partial derivatives
+//! of `S` alike, each factor enclosed by the hull of its control points (convex hull
+//! property: a Bézier function takes its values in the hull of its coefficients; the
+//! derivative's coefficients are the hodograph's). For any real matrix `Λ` and any zero
+//! `x* ∈ X` of `F`, the mean-value theorem applied to each component gives
+//! `F(x*) − F(y) = M (x* − y)` with the rows of `M` in those of `J` (their points lie on the
+//! segment `[y, x*] ⊂ X`, which is convex), so
+//! `x* = y − Λ F(y) + (I − Λ M)(x* − y) ∈ K = y − Λ F(y) + (I − Λ J)(X − y)`
+//! (Krawczyk 1969; Neumaier, *Interval methods for systems of equations*, 1990, §5.1).
+//! Hence every zero in `X` lies in `K ∩ X`: none when that is empty, and otherwise every
+//! crossing point is `C(t*)` with `t* ∈ T = (K ∩ X)_t`, inside
+//! `C(½) + C′([0, 1]) (T − ½)` (mean-value form). `F(y)` is enclosed by de Casteljau's
+//! algorithm at `½` on the interval control points (halving is exact; sums round outward).
+//! No claim of uniqueness is made or needed.
+
+use super::patch::{Box3, ICurve, IPatch, V};
+use crate::scalar::Interval;
+
+type M3 = [[Interval; 3]; 3];
+
+/// What the test established for a curve piece against a surface piece.
+#[derive(Debug, PartialEq)]
+pub(crate) enum Crossings {
+    /// No point of the curve piece lies on the surface piece.
+    None,
+    /// Every common point lies in this model-space box.
+    Within(Box3),
+    /// Nothing shown (an enclosure failed, or `K` did not shrink).
+    Undecided,
+}
+
+/// What the test needs of a surface piece: `S(½, ½)` and `S_u`, `S_v` over the whole piece,
+/// enclosed (computed once per piece while the search splits only the curve).
+#[derive(Debug)]
+pub(crate) struct PatchJet {
+    mid: V,
+    su: V,
+    sv: V,
+    /// `S_u × S_v` enclosed over the piece.
+    normal: V,
+}
+
+/// The enclosures of [`PatchJet`]; `None` where one fails (weights not enclosed positive,
+/// degree 0, overflow).
+pub(crate) fn patch_jet(s: &IPatch) -> Option<PatchJet> {
+    let ds = |along_u: bool| -> Option<V> {
+        let h = s.hodograph(along_u)?;
+        derivative(&s.x, &s.w, &h.x, &h.w)
+    };
+    let (su, sv) = (ds(true)?, ds(false)?);
+    Some(PatchJet {
+        su,
+        sv,
+        normal: [
+            su[1] * sv[2] - su[2] * sv[1],
+            su[2] * sv[0] - su[0] * sv[2],
+            su[0] * sv[1] - su[1] * sv[0],
+        ],
+        mid: cartesian(patch_at_half(s))?,
+    })
+}
+
+/// Most Krawczyk steps in one call of [`crossings`].
+const MAX_STEPS: usize = 6;
+
+/// Every crossing of `c` with the piece `s` (whose [`patch_jet`] is `jet`) enclosed (see the
+/// module comment). Where `K ∩ X` shrinks, the parts are cut down to it (de Casteljau at the
+/// ends, in intervals: the cut parts hold every crossing) and the step repeated, so the box
+/// shrinks about quadratically, as Newton's method converges, until its diagonal is at most
+/// `target`. A part is not cut narrower than [`MIN_CUT`] of its parameter range (narrower
+/// parts have derivative enclosures made of rounding alone).
+pub(crate) fn crossings(c: &ICurve, s: &IPatch, jet: &PatchJet, target: f64) -> Crossings {
+    let mut best = Crossings::Undecided;
+    let (mut c, mut s) = (c.clone(), std::borrow::Cow::Borrowed(s));
+    let mut own: Option<PatchJet> = None;
+    for _ in 0..MAX_STEPS {
+        let j = own.as_ref().unwrap_or(jet);
+        match step(&c, j) {
+            None => return best,
+            Some(Step::Empty) => return Crossings::None,
+            Some(Step::Shrunk(r, b)) => {
+                best = Crossings::Within(b);
+                if r[0].1 - r[0].0 >= 0.5 || super::patch::diagonal(&b) <= target {
+                    return best;
+                }
+                let r = r.map(widen);
+                let Some(cut) = sub_row(&c.x, &c.w, r[0]) else {
+                    return best;
+                };
+                c = ICurve { x: cut.0, w: cut.1 };
+                if r[1] != (0.0, 1.0) || r[2] != (0.0, 1.0) {
+                    let Some(p) = sub_patch(&s, r[1], r[2]) else {
+                        return best;
+                    };
+                    let Some(pj) = patch_jet(&p) else {
+                        return best;
+                    };
+                    s = std::borrow::Cow::Owned(p);
+                    own = Some(pj);
+                }
+            }
+        }
+    }
+    best
+}
+
+/// Narrowest range a part is cut to.
+const MIN_CUT: f64 = 1.0 / 1024.0 / 1024.0;
+
+/// `[a, b]` grown about its middle to about [`MIN_CUT`], inside `[0, 1]`; always holding
+/// `[a, b]` (the `min`/`max` keep it whatever the rounding).
+fn widen((a, b): (f64, f64)) -> (f64, f64) {
+    if b - a >= MIN_CUT {
+        return (a, b);
+    }
+    let (m, h) = (0.5 * (a + b), 0.5 * MIN_CUT);
+    let (mut lo, mut hi) = ((m - h).max(0.0).min(a), (m + h).min(1.0).max(b));
+    if lo == 0.0 {
+        hi = hi.max(MIN_CUT);
+    }
+    if hi == 1.0 {
+        lo = lo.min(1.0 - MIN_CUT);
+    }
+    (lo, hi)
+}
+
+/// Split a row of homogeneous interval points at `t` (de Casteljau, `1 − t` enclosed): the
+/// rows of `[0, t]` and `[t, 1]`.
+fn split_row(xs: &[V], ws: &[Interval], t: f64) -> (Row, Row) {
+    let (t, s) = (
+        Interval::point(t),
+        Interval::point(1.0) - Interval::point(t),
+    );
+    let n = xs.len() - 1;
+    let (mut x, mut w) = (xs.to_vec(), ws.to_vec());
+    let (mut lx, mut lw) = (vec![x[0]; n + 1], vec![w[0]; n + 1]);
+    let (mut rx, mut rw) = (vec![x[n]; n + 1], vec![w[n]; n + 1]);
+    for level in 1..=n {
+        for k in 0..=n - level {
+            x[k] = std::array::from_fn(|c| x[k][c] * s + x[k + 1][c] * t);
+            w[k] = w[k] * s + w[k + 1] * t;
+        }
+        lx[level] = x[0];
+        lw[level] = w[0];
+        rx[n - level] = x[n - level];
+        rw[n - level] = w[n - level];
+    }
+    ((lx, lw), (rx, rw))
+}
+
+type Row = (Vec<V>, Vec<Interval>);
+
+/// The row of a part covering at least `[a, b] ⊂ [0, 1]`: cut at `b`, then the left part at
+/// `a / b` rounded down (so the part kept starts at or before `a`).
+fn sub_row(xs: &[V], ws: &[Interval], (a, b): (f64, f64)) -> Option<Row> {
+    if !(0.0 <= a && a <= b && b <= 1.0) {
+        return None;
+    }
+    let left = if b < 1.0 {
+        split_row(xs, ws, b).0
+    } else {
+        (xs.to_vec(), ws.to_vec())
+    };
+    if a == 0.0 {
+        return Some(left);
+    }
+    let s = (a / b).next_down().max(0.0);
+    Some(split_row(&left.0, &left.1, s).1)
+}
+
+/// The part of `s` covering at least `[u0, u1] × [v0, v1]`.
+fn sub_patch(s: &IPatch, u: (f64, f64), v: (f64, f64)) -> Option<IPatch> {
+    let mut out = s.clone();
+    for (along_u, range) in [(true, u), (false, v)] {
+        if range == (0.0, 1.0) {
+            continue;
+        }
+        let (n, m) = if along_u { (s.p, s.q) } else { (s.q, s.p) };
+        for line in 0..=m {
+            let idx = |k: usize| {
+                if along_u {
+                    s.at(k, line)
+                } else {
+                    s.at(line, k)
+                }
+            };
+            let xs: Vec<V> = (0..=n).map(|k| out.x[idx(k)]).collect();
+            let ws: Vec<Interval> = (0..=n).map(|k| out.w[idx(k)]).collect();
+            let (cx, cw) = sub_row(&xs, &ws, range)?;
+            for k in 0..=n {
+                out.x[idx(k)] = cx[k];
+                out.w[idx(k)] = cw[k];
+            }
+        }
+    }
+    Some(out)
+}
+
+fn hull(xs: impl Iterator<Item = Interval>) -> Option<Interval> {
+    xs.reduce(Interval::hull).filter(Interval::is_finite)
+}
+
+fn hull_v(xs: &[V], k: usize) -> Option<Interval> {
+    hull(xs.iter().map(|x| x[k]))
+}
+
+/// `(X′ w − X w′) / w²` per coordinate, from enclosures of each factor.
+fn quotient_rule(x: [Interval; 3], dx: [Interval; 3], w: Interval, dw: Interval) -> Option<V> {
+    let w2 = w * w;
+    let mut out = [Interval::point(0.0); 3];
+    for k in 0..3 {
+        out[k] = (dx[k] * w - x[k] * dw).checked_div(w2)?;
+    }
+    out.iter().all(Interval::is_finite).then_some(out)
+}
+
+/// Enclosure of the derivative of the rational piece with homogeneous net `(x, w)` and
+/// hodograph `(dx, dw)` over its whole parameter domain.
+fn derivative(x: &[V], w: &[Interval], dx: &[V], dw: &[Interval]) -> Option<V> {
+    let wr = hull(w.iter().copied())?;
+    if !wr.is_pos() {
+        return None;
+    }
+    let xr = [hull_v(x, 0)?, hull_v(x, 1)?, hull_v(x, 2)?];
+    let dxr = [hull_v(dx, 0)?, hull_v(dx, 1)?, hull_v(dx, 2)?];
+    quotient_rule(xr, dxr, wr, hull(dw.iter().copied())?)
+}
+
+/// de Casteljau at `½` on a row of homogeneous interval points.
+fn at_half(xs: &[V], ws: &[Interval]) -> (V, Interval) {
+    let half = Interval::point(0.5);
+    let (mut x, mut w) = (xs.to_vec(), ws.to_vec());
+    for level in 1..x.len() {
+        for k in 0..x.len() - level {
+            x[k] = std::array::from_fn(|c| (x[k][c] + x[k + 1][c]) * half);
+            w[k] = (w[k] + w[k + 1]) * half;
+        }
+    }
+    (x[0], w[0])
+}
+
+fn cartesian((x, w): (V, Interval)) -> Option<V> {
+    if !w.is_pos() {
+        return None;
+    }
+    let p = [
+        x[0].checked_div(w)?,
+        x[1].checked_div(w)?,
+        x[2].checked_div(w)?,
+    ];
+    p.iter().all(Interval::is_finite).then_some(p)
+}
+
+/// `S(½, ½)`: each row along v at `½`, then the column of results at `½`.
+fn patch_at_half(s: &IPatch) -> (V, Interval) {
+    let (mut xs, mut ws) = (Vec::with_capacity(s.p + 1), Vec::with_capacity(s.p + 1));
+    for i in 0..=s.p {
+        let r = (0..=s.q).map(|j| s.at(i, j));
+        let (x, w) = at_half(
+            &r.clone().map(|k| s.x[k]).collect::<Vec<_>>(),
+            &r.map(|k| s.w[k]).collect::<Vec<_>>(),
+        );
+        xs.push(x);
+        ws.push(w);
+    }
+    at_half(&xs, &ws)
+}
+
+/// Inverse of a real 3 × 3 matrix (Cramer's rule; any real matrix serves as `Λ`).
+fn inverse3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let c = |i: usize, j: usize| {
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+        m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]
+    };
+    let det = m[0][0] * c(0, 0) + m[0][1] * c(0, 1) + m[0][2] * c(0, 2);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| c(j, i) / det));
+    inv.iter().flatten().all(|x| x.is_finite()).then_some(inv)
+}
+
+/// One Krawczyk step on the whole parts.
+enum Step {
+    /// `K ∩ X` is empty: no crossing.
+    Empty,
+    /// `K ∩ X` (its `t`, `u`, `v` ranges) and a box holding every crossing point.
+    Shrunk([(f64, f64); 3], Box3),
+}
+
+fn step(c: &ICurve, s: &PatchJet) -> Option<Step> {
+    // Derivative enclosures over the whole pieces.
+    let dc = {
+        let n = c.x.len() - 1;
+        if n == 0 {
+            return None;
+        }
+        let deg = Interval::point(n as f64);
+        let dx: Vec<V> = (0..n)
+            .map(|k| std::array::from_fn(|i| (c.x[k + 1][i] - c.x[k][i]) * deg))
+            .collect();
+        let dw: Vec<Interval> = (0..n).map(|k| (c.w[k + 1] - c.w[k]) * deg).collect();
+        derivative(&c.x, &c.w, &dx, &dw)?
+    };
+    let (su, sv) = (s.su, s.sv);
+    // Where the curve's tangents may lie in a tangent plane of the surface (C′ · (S_u × S_v)
+    // not proven of one sign), the crossings need not be isolated (a border lying in the
+    // other surface) and K would not shrink: left to the search, at the cost of one dot
+    // product. A scheduling choice: the theorem needs no such condition.
+    if (0..3)
+        .map(|k| dc[k] * s.normal[k])
+        .fold(Interval::point(0.0), |a, b| a + b)
+        .contains_zero()
+    {
+        return None;
+    }
+    // J = [C′ | −S_u | −S_v], F(y) = C(½) − S(½, ½).
+    let j: M3 = std::array::from_fn(|r| [dc[r], -su[r], -sv[r]]);
+    let c_mid = cartesian(at_half(&c.x, &c.w))?;
+    let s_mid = s.mid;
+    let f: V = std::array::from_fn(|r| c_mid[r] - s_mid[r]);
+    let l = inverse3(&std::array::from_fn(|r| {
+        std::array::from_fn(|k| j[r][k].mid())
+    }))?;
+    let half = Interval::point(0.5);
+    let dev = Interval::new(-0.5, 0.5);
+    let mut k_box = [Interval::point(0.0); 3];
+    for (r, kr) in k_box.iter_mut().enumerate() {
+        let mut acc = half;
+        for m in 0..3 {
+            acc = acc - Interval::point(l[r][m]) * f[m];
+        }
+        for col in 0..3 {
+            // (I − Λ J)[r][col]
+            let mut e = Interval::point(if r == col { 1.0 } else { 0.0 });
+            for m in 0..3 {
+                e = e - Interval::point(l[r][m]) * j[m][col];
+            }
+            acc = acc + e * dev;
+        }
+        if !acc.is_finite() {
+            return None;
+        }
+        *kr = acc;
+    }
+    // K ∩ X.
+    let meet: [(f64, f64); 3] = k_box.map(|k| (k.lo.max(0.0), k.hi.min(1.0)));
+    if meet.iter().any(|&(a, b)| a > b) {
+        return Some(Step::Empty);
+    }
+    let (t0, t1) = meet[0];
+    let dt = Interval::new(t0, t1) - half;
+    let mut b: Box3 = ([0.0; 3], [0.0; 3]);
+    for k in 0..3 {
+        let p = c_mid[k] + dc[k] * dt;
+        if !p.is_finite() {
+            return None;
+        }
+        (b.0[k], b.1[k]) = (p.lo, p.hi);
+    }
+    Some(Step::Shrunk(meet, b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn iv(x: f64) -> Interval {
+        Interval::point(x)
+    }
+
+    /// The plane z = 0 over [-1, 1]² as a bilinear patch, and a straight segment from `a` to
+    /// `b` as a degree-2 Bézier curve (middle point at the midpoint).
+    fn plane() -> IPatch {
+        let pts = [
+            [-1.0, -1.0, 0.0],
+            [-1.0, 1.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        IPatch {
+            p: 1,
+            q: 1,
+            x: pts.iter().map(|p| p.map(iv)).collect(),
+            w: vec![iv(1.0); 4],
+        }
+    }
+    fn segment(a: [f64; 3], b: [f64; 3]) -> ICurve {
+        let m: [f64; 3] = std::array::from_fn(|k| 0.5 * (a[k] + b[k]));
+        ICurve {
+            x: [a, m, b].iter().map(|p| p.map(iv)).collect(),
+            w: vec![iv(1.0); 3],
+        }
+    }
+
+    /// A segment crossing the plane at a known point: the box holds it and is small; a
+    /// segment above the plane: no crossing.
+    #[test]
+    fn a_crossing_is_enclosed_and_a_miss_is_excluded() {
+        let c = segment([0.2, 0.1, -0.3], [0.3, -0.1, 0.1]);
+        // z = 0 at t = 0.75: (0.275, -0.05, 0).
+        match crossings(&c, &plane(), &patch_jet(&plane()).unwrap(), 1e-15) {
+            Crossings::Within(b) => {
+                let x = [0.275, -0.05, 0.0];
+                for k in 0..3 {
+                    assert!(b.0[k] <= x[k] && x[k] <= b.1[k], "{b:?}");
+                    assert!(b.1[k] - b.0[k] < 1e-12, "{b:?}");
+                }
+            }
+            other => panic!("{other:?}"),
+        }
+        let above = segment([0.2, 0.1, 0.3], [0.3, -0.1, 0.1]);
+        assert_eq!(
+            crossings(&above, &plane(), &patch_jet(&plane()).unwrap(), 1e-15),
+            Crossings::None
+        );
+    }
+
+    /// de Casteljau in `f64` (a few ulps off the exact value).
+    fn casteljau(mut c: Vec<f64>, t: f64) -> f64 {
+        for l in 1..c.len() {
+            for k in 0..c.len() - l {
+                c[k] = c[k] * (1.0 - t) + c[k + 1] * t;
+            }
+        }
+        c[0]
+    }
+
+    /// A bicubic graph `z = f(x, y)` (control points on the grid `x = i/3`, `y = j/3`, so
+    /// `x = u`, `y = v` exactly) crossed by vertical lines at known `(x*, y*)`: the crossing
+    /// is `t* = (f(x*, y*) + 1) / 3` on `C(t) = (x*, y*, 3t − 1)`. Curve and patch are split
+    /// together with their parameter ranges tracked; wherever the ranges hold the crossing,
+    /// "no crossing" would be false and a box must hold the point — and the test must find
+    /// the crossing in a small box at some depth.
+    #[test]
+    fn crossings_of_lines_with_a_bicubic_graph() {
+        let mut rng = crate::spline::test_params::rng(7);
+        for _ in 0..40 {
+            let z: Vec<f64> = (0..16).map(|_| rng() - 0.5).collect();
+            let patch = IPatch {
+                p: 3,
+                q: 3,
+                x: (0..16)
+                    .map(|k| [iv((k / 4) as f64 / 3.0), iv((k % 4) as f64 / 3.0), iv(z[k])])
+                    .collect(),
+                w: vec![iv(1.0); 16],
+            };
+            let (xs, ys) = (0.05 + 0.9 * rng(), 0.05 + 0.9 * rng());
+            let rows: Vec<f64> = (0..4)
+                .map(|i| casteljau(z[4 * i..4 * i + 4].to_vec(), ys))
+                .collect();
+            let f = casteljau(rows, xs);
+            let root = [(f + 1.0) / 3.0, xs, ys];
+            let line = ICurve {
+                x: [-1.0, 0.5, 2.0]
+                    .iter()
+                    .map(|&z| [iv(xs), iv(ys), iv(z)])
+                    .collect(),
+                w: vec![iv(1.0); 3],
+            };
+            let mut found = false;
+            let mut stack = vec![(line, patch, [0.0, 1.0, 0.0, 1.0, 0.0, 1.0], 0)];
+            while let Some((c, s, r, depth)) = stack.pop() {
+                let holds = (0..3).all(|k| r[2 * k] <= root[k] && root[k] <= r[2 * k + 1]);
+                let split = match crossings(&c, &s, &patch_jet(&s).unwrap(), 1e-9) {
+                    Crossings::None => {
+                        assert!(!holds, "no crossing claimed at {r:?}");
+                        false
+                    }
+                    Crossings::Within(b) => {
+                        let small = (0..3).all(|k| b.1[k] - b.0[k] < 1e-6);
+                        if holds {
+                            let p = [xs, ys, f];
+                            for k in 0..3 {
+                                assert!(b.0[k] - 1e-13 <= p[k] && p[k] <= b.1[k] + 1e-13);
+                            }
+                            found |= small;
+                        }
+                        !small
+                    }
+                    Crossings::Undecided => true,
+                };
+                match split {
+                    true if depth < 8 => {
+                        let (tm, um, vm) = (
+                            0.5 * (r[0] + r[1]),
+                            0.5 * (r[2] + r[3]),
+                            0.5 * (r[4] + r[5]),
+                        );
+                        let (c0, c1) = c.halve();
+                        let q = s.quarters();
+                        let uvs = [
+                            [r[2], um, r[4], vm],
+                            [r[2], um, vm, r[5]],
+                            [um, r[3], r[4], vm],
+                            [um, r[3], vm, r[5]],
+                        ];
+                        for (ci, tr) in [(c0, [r[0], tm]), (c1, [tm, r[1]])] {
+                            for (qi, uv) in q.iter().zip(uvs) {
+                                let rr = [tr[0], tr[1], uv[0], uv[1], uv[2], uv[3]];
+                                stack.push((ci.clone(), qi.clone(), rr, depth + 1));
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            assert!(
+                found,
+                "the crossing at {root:?} was never enclosed in a small box"
+            );
+        }
+    }
+
+    /// The cut rows enclose the exact control points of the curve on `[fl↓(a/b)·b, b]`
+    /// (exact rational de Casteljau at the same `f64` parameters), for random rational rows.
+    #[test]
+    fn cut_rows_enclose_the_exact_sub_curve() {
+        use crate::scalar::lift;
+        use num_rational::BigRational as Q;
+        use num_traits::One;
+        let split_q = |xs: &[Q], t: &Q, left: bool| -> Vec<Q> {
+            let mut x = xs.to_vec();
+            let n = x.len() - 1;
+            let mut out = vec![if left { x[0].clone() } else { x[n].clone() }; n + 1];
+            for level in 1..=n {
+                for k in 0..=n - level {
+                    x[k] = x[k].clone() * (Q::one() - t) + x[k + 1].clone() * t;
+                }
+                if left {
+                    out[level] = x[0].clone();
+                } else {
+                    out[n - level] = x[n - level].clone();
+                }
+            }
+            out
+        };
+        let mut rng = crate::spline::test_params::rng(11);
+        for _ in 0..300 {
+            let n = 1 + (rng() * 4.0) as usize;
+            let xs: Vec<[f64; 3]> = (0..=n)
+                .map(|_| [rng() * 8.0 - 4.0, rng(), -rng()])
+                .collect();
+            let ws: Vec<f64> = (0..=n).map(|_| 0.2 + rng()).collect();
+            let (a, b) = {
+                let (p, q) = (rng(), rng());
+                (p.min(q), p.max(q))
+            };
+            let (cx, cw) = sub_row(
+                &xs.iter().map(|x| x.map(iv)).collect::<Vec<_>>(),
+                &ws.iter().map(|&w| iv(w)).collect::<Vec<_>>(),
+                (a, b),
+            )
+            .unwrap();
+            let s = if a == 0.0 {
+                0.0
+            } else {
+                (a / b).next_down().max(0.0)
+            };
+            assert!(lift::<Q>(s) * lift::<Q>(b) <= lift::<Q>(a));
+            // Homogeneous coordinates, one component at a time.
+            for k in 0..4 {
+                let row: Vec<Q> = (0..=n)
+                    .map(|i| {
+                        let w = lift::<Q>(ws[i]);
+                        if k == 3 { w } else { lift::<Q>(xs[i][k]) }
+                    })
+                    .collect();
+                let left = if b < 1.0 {
+                    split_q(&row, &lift(b), true)
+                } else {
+                    row
+                };
+                let part = if a == 0.0 {
+                    left
+                } else {
+                    split_q(&left, &lift(s), false)
+                };
+                for (i, e) in part.iter().enumerate() {
+                    let got = if k == 3 { cw[i] } else { cx[i][k] };
+                    assert!(
+                        lift::<Q>(got.lo) <= *e && *e <= lift::<Q>(got.hi),
+                        "{k} {i}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// A curve lying in the surface (every point a crossing) is never enclosed in a small box.
+    #[test]
+    fn a_curve_in_the_surface_is_not_claimed_small() {
+        let c = segment([-0.5, 0.0, 0.0], [0.5, 0.0, 0.0]);
+        match crossings(&c, &plane(), &patch_jet(&plane()).unwrap(), 1e-15) {
+            Crossings::Within(b) => assert!(b.0[0] <= -0.5 && b.1[0] >= 0.5, "{b:?}"),
+            Crossings::Undecided => {}
+            Crossings::None => panic!("the curve lies in the plane"),
+        }
+    }
+}
