@@ -208,8 +208,10 @@ fn sub_patch(s: &IPatch, u: (f64, f64), v: (f64, f64)) -> Option<IPatch> {
     Some(out)
 }
 
-fn hull(xs: impl Iterator<Item = Interval>) -> Option<Interval> {
-    xs.reduce(Interval::hull).filter(Interval::is_finite)
+/// The hull of enclosures, each of them finite (`Interval::hull` passes a NaN end over).
+fn hull(mut xs: impl Iterator<Item = Interval>) -> Option<Interval> {
+    let first = xs.next().filter(Interval::is_finite)?;
+    xs.try_fold(first, |h, x| x.is_finite().then(|| h.hull(x)))
 }
 
 fn hull_v(xs: &[V], k: usize) -> Option<Interval> {
@@ -304,7 +306,7 @@ enum Step {
 fn step(c: &ICurve, s: &PatchJet) -> Option<Step> {
     // Derivative enclosures over the whole pieces.
     let dc = {
-        let n = c.x.len() - 1;
+        let n = c.x.len().checked_sub(1)?;
         if n == 0 {
             return None;
         }

@@ -3,7 +3,7 @@
 //! rational knot insertion then outward rounding — and their quarters, each with its
 //! control-point box and normal-cone generators, cached for reuse.
 
-use super::cones::normal_generators;
+use super::cones::{normal_box, normal_generators};
 use super::patch::{Box3, IPatch, V, box_of, diagonal};
 use crate::geom::{Hom, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
@@ -30,6 +30,7 @@ pub(crate) struct Cell {
     pub(super) normal: [f64; 3],
     polynomial: bool,
     normals: OnceCell<Vec<V>>,
+    normal_box: OnceCell<Option<V>>,
     kids: OnceCell<[Rc<Cell>; 4]>,
 }
 
@@ -44,12 +45,19 @@ impl Cell {
             patch,
             polynomial,
             normals: OnceCell::new(),
+            normal_box: OnceCell::new(),
             kids: OnceCell::new(),
         })
     }
     pub(super) fn normals(&self) -> &[V] {
         self.normals
             .get_or_init(|| normal_generators(&self.patch, self.polynomial))
+    }
+    /// The piece's normals as one interval vector ([`normal_box`]).
+    pub(super) fn normal_box(&self) -> Option<&V> {
+        self.normal_box
+            .get_or_init(|| normal_box(&self.patch, self.polynomial))
+            .as_ref()
     }
     /// The four quarters, kept for the next pair that splits this piece while fewer than
     /// [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past that, made
