@@ -6,10 +6,36 @@ pub const CURVE_SAMPLES: usize = 200;
 /// A foreign curve as points: `(name, kind, points)`.
 pub type ForeignInput = (String, &'static str, Vec<[f64; 3]>);
 
+/// Why a foreign result file gave no curves to check; each names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum ForeignError {
+    #[error("{path}: {reason}")]
+    Io { path: String, reason: String },
+    #[error("{path}: curve {index}: expected [[x,y,z],...]: {reason}")]
+    NotPoints {
+        path: String,
+        index: usize,
+        reason: String,
+    },
+    /// Nothing to check: certifying it would be vacuous.
+    #[error("{path}: curve {index}: no points")]
+    Empty { path: String, index: usize },
+    #[error("{path}: curve {index}: non-finite coordinate")]
+    NotFinite { path: String, index: usize },
+    #[error(transparent)]
+    Model(#[from] crate::io::ReadError),
+    #[error("{path}: no curves found")]
+    NoCurves { path: String },
+}
+
 /// The curves of a foreign result file: a model's space curves (sampled), or JSON
 /// polylines (`[[[x,y,z],...],...]`, `{"curves": [...]}`, or a vericad `ssi` result).
-pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, String> {
-    let text = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, ForeignError> {
+    let name = || path.display().to_string();
+    let text = std::fs::read(path).map_err(|e| ForeignError::Io {
+        path: name(),
+        reason: e.to_string(),
+    })?;
     if let Ok(v) = serde_json::from_slice::<serde_json::Value>(&text) {
         let polys = if let Some(pairs) = v.get("pairs").and_then(|p| p.as_array()) {
             pairs
@@ -29,27 +55,32 @@ pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, String>
                 .iter()
                 .enumerate()
                 .map(|(i, p)| {
-                    let pts: Vec<[f64; 3]> = serde_json::from_value(p.clone()).map_err(|e| {
-                        format!("{}: curve {i}: expected [[x,y,z],...]: {e}", path.display())
-                    })?;
+                    let pts: Vec<[f64; 3]> =
+                        serde_json::from_value(p.clone()).map_err(|e| ForeignError::NotPoints {
+                            path: name(),
+                            index: i,
+                            reason: e.to_string(),
+                        })?;
                     if pts.is_empty() {
-                        // Nothing to check: certifying it would be vacuous.
-                        return Err(format!("{}: curve {i}: no points", path.display()));
+                        return Err(ForeignError::Empty {
+                            path: name(),
+                            index: i,
+                        });
                     }
                     if pts.iter().flatten().any(|c| !c.is_finite()) {
-                        return Err(format!(
-                            "{}: curve {i}: non-finite coordinate",
-                            path.display()
-                        ));
+                        return Err(ForeignError::NotFinite {
+                            path: name(),
+                            index: i,
+                        });
                     }
                     Ok((format!("polyline {i}"), "polyline", pts))
                 })
                 .collect();
         }
     }
-    let m = crate::io::read_model(path).map_err(|e| e.to_string())?;
+    let m = crate::io::read_model(path)?;
     if m.curves.is_empty() {
-        return Err(format!("{}: no curves found", path.display()));
+        return Err(ForeignError::NoCurves { path: name() });
     }
     Ok(m.curves
         .iter()

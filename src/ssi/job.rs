@@ -22,7 +22,7 @@ pub enum JobError {
     #[error("thread pool: {0}")]
     Threads(String),
     #[error("foreign curves: {0}")]
-    Foreign(String),
+    Foreign(#[from] super::foreign_read::ForeignError),
     #[error("{0}: {1}")]
     Range(String, crate::model::check::RangeError),
 }
@@ -297,7 +297,7 @@ pub fn run_certify(
         Some(f) => Some(read_in_range(f)?),
         None => None,
     };
-    let foreign = super::foreign::read_foreign(curves).map_err(JobError::Foreign)?;
+    let foreign = super::foreign::read_foreign(curves)?;
     check_writable([json_out])?;
     let t0 = Instant::now();
     let r = intersect_models(

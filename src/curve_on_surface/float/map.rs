@@ -4,7 +4,7 @@
 //! of the exact patch on the f64 chord (which lies on S exactly).
 
 use super::cells::FCells;
-use super::{FSeg, FloatError};
+use super::{FSeg, FloatError, Undecided};
 use crate::curve_on_surface::CosError;
 
 /// The printed control points of every segment, and the largest rounding.
@@ -39,13 +39,11 @@ pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError>
             local(s.b[0], c.u0, c.u1),
             local(s.b[1], c.v0, c.v1),
         ) else {
-            return Err(FloatError::Undecided(
-                "a patch of (nearly) zero width".into(),
-            ));
+            return Err(FloatError::Undecided(Undecided::ZeroWidthPatch));
         };
         let (cps, err) = c.mpatch.compose_line([a0, a1], [b0, b1], 3.4e-16 + 1e-30);
         if !err.is_finite() || cps.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(FloatError::Undecided("overflow in the mapping".into()));
+            return Err(FloatError::Undecided(Undecided::MappingOverflow));
         }
         rounding = rounding.max(err);
         out.push(cps);

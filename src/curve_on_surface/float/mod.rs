@@ -30,7 +30,29 @@ pub enum FloatError {
     /// A real refusal (bad input, too many segments): the exact path would give the same.
     Cos(CosError),
     /// The enclosures could not decide something (named); rerun exactly.
-    Undecided(String),
+    Undecided(Undecided),
+}
+
+/// What the `f64` enclosures could not decide (the exact path decides it).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Undecided {
+    #[error("domain curve knots")]
+    DomainKnots,
+    /// The crossing of the domain curve, on the parameter window `t`, with a knot line.
+    #[error("crossing of the domain curve (t in [{}, {}]) with the knot line {} = {knot}", t[0], t[1], if *along_u { "u" } else { "v" })]
+    KnotLineCrossing {
+        t: [f64; 2],
+        along_u: bool,
+        knot: f64,
+    },
+    #[error("whether the domain curve at t = {t} is inside the domain")]
+    InsideDomain { t: f64 },
+    #[error("the cell of the domain curve at t = {t}")]
+    Cell { t: f64 },
+    #[error("a patch of (nearly) zero width")]
+    ZeroWidthPatch,
+    #[error("overflow in the mapping")]
+    MappingOverflow,
 }
 
 /// A Bézier piece of D: enclosed control points, their midpoints, its global parameter range.
@@ -159,5 +181,34 @@ pub fn run(
 impl From<CosError> for FloatError {
     fn from(e: CosError) -> Self {
         FloatError::Cos(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Undecided;
+
+    /// The reasons read as they did when they were strings (the text goes into the result's
+    /// `arithmetic` field and the progress line).
+    #[test]
+    fn undecided_reasons_read_as_before() {
+        let k = Undecided::KnotLineCrossing {
+            t: [0.25, 0.5],
+            along_u: false,
+            knot: 0.375,
+        };
+        assert_eq!(
+            k.to_string(),
+            "crossing of the domain curve (t in [0.25, 0.5]) with the knot line v = 0.375"
+        );
+        assert_eq!(
+            Undecided::InsideDomain { t: 0.5 }.to_string(),
+            "whether the domain curve at t = 0.5 is inside the domain"
+        );
+        assert_eq!(
+            Undecided::Cell { t: 1.0 }.to_string(),
+            "the cell of the domain curve at t = 1"
+        );
+        assert_eq!(Undecided::DomainKnots.to_string(), "domain curve knots");
     }
 }

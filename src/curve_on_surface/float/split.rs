@@ -14,7 +14,7 @@
 
 use super::cells::FCells;
 use super::ibez::{I, IP, bspline_span_bezier, dist_hi, eval, ip, mid, mr_levels_error, split_at};
-use super::{FSeg, FloatError, Piece};
+use super::{FSeg, FloatError, Piece, Undecided};
 use crate::curve_on_surface::CosError;
 use crate::curve_on_surface::casteljau;
 use crate::spline::BSplineCurve;
@@ -184,18 +184,17 @@ pub fn split(
     for w in curve.knots.breakpoints().windows(2) {
         let s = curve.knots.find_span(&w[0]);
         let bz = bspline_span_bezier(knots, p, &ctrl, s)
-            .ok_or_else(|| FloatError::Undecided("domain curve knots".into()))?;
+            .ok_or_else(|| FloatError::Undecided(Undecided::DomainKnots))?;
         let mut cuts: Vec<(f64, Snap)> = Vec::new();
         for (dim, breaks) in [(0usize, &cells.u_breaks), (1usize, &cells.v_breaks)] {
             for (bi, &k) in breaks.iter().enumerate() {
                 let interior = bi > 0 && bi + 1 < breaks.len();
                 let ts = crossings(&bz, dim, k, interior).map_err(|_| {
-                    FloatError::Undecided(format!(
-                        "crossing of the domain curve (t in [{}, {}]) with the knot line {} = {k}",
-                        w[0],
-                        w[1],
-                        if dim == 0 { "u" } else { "v" }
-                    ))
+                    FloatError::Undecided(Undecided::KnotLineCrossing {
+                        t: [w[0], w[1]],
+                        along_u: dim == 0,
+                        knot: k,
+                    })
                 })?;
                 cuts.extend(
                     ts.into_iter()
@@ -240,20 +239,18 @@ pub fn split(
                 }));
             }
             if !inside {
-                return Err(FloatError::Undecided(format!(
-                    "whether the domain curve at t = {} is inside the domain",
-                    global(t0 + (t1 - t0) / 2.0)
-                )));
+                return Err(FloatError::Undecided(Undecided::InsideDomain {
+                    t: global(t0 + (t1 - t0) / 2.0),
+                }));
             }
             // The exact test says inside; a cell the f64 lookup cannot find is left to the
             // exact rerun.
             match cells.locate(&mid(&m)) {
                 Some(c) => cell_of.push(c),
                 None => {
-                    return Err(FloatError::Undecided(format!(
-                        "the cell of the domain curve at t = {}",
-                        global(t0 + (t1 - t0) / 2.0)
-                    )));
+                    return Err(FloatError::Undecided(Undecided::Cell {
+                        t: global(t0 + (t1 - t0) / 2.0),
+                    }));
                 }
             }
         }
