@@ -92,7 +92,11 @@ impl Job {
                             seconds: s.seconds,
                         })
                     }
-                    Err(e @ SsiError::Topology(_)) => error(Status::Failed, "ssi", e),
+                    Err(
+                        e @ (SsiError::Topology(_)
+                        | SsiError::InvalidMesh { .. }
+                        | SsiError::MeshStopped),
+                    ) => error(Status::Failed, "ssi", e),
                     Err(e) => error(Status::BadInput, "ssi", e),
                 }
             }

@@ -20,7 +20,7 @@ pub enum JobError {
     #[error("cannot write {0}: {1}")]
     Write(String, String),
     #[error("thread pool: {0}")]
-    Threads(String),
+    Threads(#[from] rayon::ThreadPoolBuildError),
     #[error("foreign curves: {0}")]
     Foreign(#[from] super::foreign_read::ForeignError),
     #[error("{0}: {1}")]
@@ -230,9 +230,7 @@ pub fn run(
     if let Some(n) = threads {
         builder = builder.num_threads(n);
     }
-    let pool = builder
-        .build()
-        .map_err(|e| JobError::Threads(e.to_string()))?;
+    let pool = builder.build()?;
     let mut r = pool.install(|| intersect_models(&a, b.as_ref(), prm, &progress))?;
     if let Some(p) = outputs.vtk {
         write(p, &to_vtp(&r, &a, b.as_ref()))?;

@@ -80,10 +80,7 @@ pub fn intersect_meshes(
 ) -> Result<PairOut, SsiError> {
     let t0 = Instant::now();
     if !valid(a) || !valid(b) {
-        return Err(SsiError::Topology(format!(
-            "triangulation {} or {} has a vertex index out of range or a non-finite coordinate",
-            ids.0, ids.1
-        )));
+        return Err(SsiError::InvalidMesh { a: ids.0, b: ids.1 });
     }
     let tree = |m: &Triangulation| {
         let boxes: Vec<_> = (0..m.triangles.len() as u32)
@@ -108,10 +105,10 @@ pub fn intersect_meshes(
         &|e| e,
         &|_, _| false,
     ) else {
-        return Err(SsiError::Topology("mesh intersection stopped".into()));
+        return Err(SsiError::MeshStopped);
     };
     let branches = trace(&mut topo);
-    check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
+    check_invariants(&topo, &branches)?;
     let (ea, eb) = (
         edge_use(a, &end_edges(&topo, &branches, true)),
         edge_use(b, &end_edges(&topo, &branches, false)),

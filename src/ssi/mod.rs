@@ -75,7 +75,14 @@ pub enum SsiError {
     #[error("the model has no faces or triangulations to intersect")]
     Empty,
     #[error("internal topology check failed: {0}")]
-    Topology(String),
+    Topology(#[from] trace::InvariantError),
+    /// A triangulation of mesh-mode input (faces `a`, `b`) is not usable.
+    #[error(
+        "internal topology check failed: triangulation {a} or {b} has a vertex index out of range or a non-finite coordinate"
+    )]
+    InvalidMesh { a: usize, b: usize },
+    #[error("internal topology check failed: mesh intersection stopped")]
+    MeshStopped,
     /// Geometry the intersection cannot compute with: not finite (a model built in code
     /// without [`crate::model::Model::validate`]) or outside the coordinate range.
     #[error("{0}")]

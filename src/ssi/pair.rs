@@ -209,7 +209,7 @@ pub fn intersect_surfaces(
         return stopped(stats);
     };
     let branches = trace(&mut topo);
-    check_invariants(&topo, &branches).map_err(SsiError::Topology)?;
+    check_invariants(&topo, &branches)?;
     let mut out = PairOut {
         a: ids.0,
         b: ids.1,

@@ -79,20 +79,50 @@ pub fn trace(t: &mut Topology) -> Vec<Branch> {
     out
 }
 
+/// A violated loop-topology invariant ([`check_invariants`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum InvariantError {
+    #[error("branch {branch}: {points} points for {segments} segments")]
+    PointCount {
+        branch: usize,
+        points: usize,
+        segments: usize,
+    },
+    #[error("branch {branch}: segment {segment} does not join points {p} and {q}")]
+    SegmentNotJoining {
+        branch: usize,
+        segment: u32,
+        p: u32,
+        q: u32,
+    },
+    #[error("branch {branch}: closed but does not return to its start")]
+    ClosedOpen { branch: usize },
+    #[error("branch {branch}: closed through a point of use count != 2")]
+    ClosedThroughEnd { branch: usize },
+    #[error("branch {branch}: open end at point {point} of use count 2")]
+    OpenEndInterior { branch: usize, point: u32 },
+    #[error("branch {branch}: passes through an end point")]
+    OpenThroughEnd { branch: usize },
+    #[error("branch {branch}: point {point} visited twice")]
+    PointTwice { branch: usize, point: u32 },
+    #[error("segment {segment} used {uses} times")]
+    SegmentUse { segment: usize, uses: u32 },
+}
+
 /// The loop-topology invariants: every Segment is used by exactly one branch, once;
 /// consecutive Points are the two ends of the Segment between them; closed branches end where
 /// they start and pass only through Points of use count two; open branches end at Points of
 /// use count other than two and pass through interior Points of use count two; no Point
 /// appears twice inside a branch (branches are simple paths / simple loops).
-pub fn check_invariants(t: &Topology, branches: &[Branch]) -> Result<(), String> {
+pub fn check_invariants(t: &Topology, branches: &[Branch]) -> Result<(), InvariantError> {
     let mut seg_used = vec![0u32; t.segments.len()];
     for (bi, b) in branches.iter().enumerate() {
         if b.points.len() != b.segments.len() + 1 || b.segments.is_empty() {
-            return Err(format!(
-                "branch {bi}: {} points for {} segments",
-                b.points.len(),
-                b.segments.len()
-            ));
+            return Err(InvariantError::PointCount {
+                branch: bi,
+                points: b.points.len(),
+                segments: b.segments.len(),
+            });
         }
         for (k, &s) in b.segments.iter().enumerate() {
             let seg = &t.segments[s as usize];
@@ -102,9 +132,12 @@ pub fn check_invariants(t: &Topology, branches: &[Branch]) -> Result<(), String>
             ];
             let (p, q) = (b.points[k], b.points[k + 1]);
             if !((ends[0] == p && ends[1] == q) || (ends[0] == q && ends[1] == p)) {
-                return Err(format!(
-                    "branch {bi}: segment {s} does not join points {p} and {q}"
-                ));
+                return Err(InvariantError::SegmentNotJoining {
+                    branch: bi,
+                    segment: s,
+                    p,
+                    q,
+                });
             }
             seg_used[s as usize] += 1;
         }
@@ -117,34 +150,69 @@ pub fn check_invariants(t: &Topology, branches: &[Branch]) -> Result<(), String>
         };
         if b.closed {
             if b.points[0] != b.points[n - 1] {
-                return Err(format!(
-                    "branch {bi}: closed but does not return to its start"
-                ));
+                return Err(InvariantError::ClosedOpen { branch: bi });
             }
             if b.points.iter().any(|&p| count(p) != 2) {
-                return Err(format!(
-                    "branch {bi}: closed through a point of use count != 2"
-                ));
+                return Err(InvariantError::ClosedThroughEnd { branch: bi });
             }
         } else {
             for &e in [b.points[0], b.points[n - 1]].iter() {
                 if count(e) == 2 {
-                    return Err(format!("branch {bi}: open end at point {e} of use count 2"));
+                    return Err(InvariantError::OpenEndInterior {
+                        branch: bi,
+                        point: e,
+                    });
                 }
             }
             if interior.iter().any(|&p| count(p) != 2) {
-                return Err(format!("branch {bi}: passes through an end point"));
+                return Err(InvariantError::OpenThroughEnd { branch: bi });
             }
         }
         let mut seen = std::collections::HashSet::new();
         for &p in interior {
             if !seen.insert(p) {
-                return Err(format!("branch {bi}: point {p} visited twice"));
+                return Err(InvariantError::PointTwice {
+                    branch: bi,
+                    point: p,
+                });
             }
         }
     }
     if let Some(s) = seg_used.iter().position(|&c| c != 1) {
-        return Err(format!("segment {s} used {} times", seg_used[s]));
+        return Err(InvariantError::SegmentUse {
+            segment: s,
+            uses: seg_used[s],
+        });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A triangle loop passes; the same branch listed twice, or cut short, is named by the
+    /// violated invariant.
+    #[test]
+    fn violations_are_named() {
+        let mut t = Topology::from_soup(&[(0, 1), (1, 2), (2, 0)]);
+        let branches = trace(&mut t);
+        assert_eq!(branches.len(), 1);
+        assert_eq!(check_invariants(&t, &branches), Ok(()));
+        let twice = vec![branches[0].clone(), branches[0].clone()];
+        assert!(matches!(
+            check_invariants(&t, &twice),
+            Err(InvariantError::SegmentUse { uses: 2, .. })
+        ));
+        let mut short = branches[0].clone();
+        short.points.pop();
+        assert_eq!(
+            check_invariants(&t, &[short]),
+            Err(InvariantError::PointCount {
+                branch: 0,
+                points: 3,
+                segments: 3
+            })
+        );
+    }
 }
