@@ -2,6 +2,7 @@
 //! algorithm, write the JSON result and an optional SVG plot of the domain.
 
 use super::{CosError, CurveOnSurface, Params, approximate_with_progress};
+use crate::curve_on_surface::CosInternal;
 use crate::model::{CurveGeometry, ModelError};
 use crate::spline::NurbsCurve;
 
@@ -141,7 +142,7 @@ pub fn run(
             b.control_points.clone(),
             vec![1.0; b.control_points.len()],
         )
-        .map_err(|e| JobError::Compute(CosError::Internal(e.to_string())))?;
+        .map_err(|e| JobError::Compute(CosInternal::Curve(e).into()))?;
         let m = crate::model::Model {
             surfaces: vec![surf.clone()],
             curves: vec![crate::model::Curve {

@@ -5,6 +5,7 @@
 use super::CosError;
 use super::cells::Cells;
 use super::segments::Seg;
+use crate::curve_on_surface::CosInternal;
 use crate::geom::to_f64_point;
 use crate::scalar::Scalar;
 use crate::spline::BezierCurve;
@@ -36,10 +37,7 @@ pub fn map_segments(segs: &[Seg], cells: &Cells) -> Result<(Vec<MappedSegment>, 
         // The chord must lie in its patch: then its image is on S exactly.
         for x in a.iter().chain(b.iter()) {
             if *x < zero || *x > one {
-                return Err(CosError::Internal(format!(
-                    "chord {:?} -> {:?} leaves its patch",
-                    s.a, s.b
-                )));
+                return Err(CosInternal::ChordLeavesPatch { a: s.a, b: s.b }.into());
             }
         }
         let exact = compose_line(&cells.cells[s.cell].patch, &a, &b);

@@ -28,6 +28,7 @@ pub mod examples;
 pub mod float;
 pub mod g1;
 pub mod hausdorff;
+pub mod internal;
 pub mod job;
 pub mod map;
 pub mod picture;
@@ -41,6 +42,7 @@ mod exact;
 
 use crate::spline::{BSplineCurve, BSplineSurface, NurbsCurve, NurbsSurface};
 use exact::exact_chain;
+pub use internal::CosInternal;
 use serde::Serialize;
 
 /// Why the computation was refused or failed.
@@ -65,7 +67,7 @@ pub enum CosError {
     #[error("more than {0} segments would be needed: the tolerance is too small for this input")]
     TooManySegments(usize),
     #[error("internal consistency check failed: {0}")]
-    Internal(String),
+    Internal(#[from] CosInternal),
 }
 
 /// Which Lipschitz bound turns the 3D tolerance into the 2D one.
@@ -309,9 +311,7 @@ pub fn approximate_with_progress(
     };
     let bound = chain.segments.iter().map(|x| x.bound).fold(0.0, f64::max);
     if bound > params.eps_d {
-        return Err(CosError::Internal(format!(
-            "certified bound {bound} exceeds eps_d"
-        )));
+        return Err(CosInternal::BoundAboveTolerance { bound }.into());
     }
     let (pdeg, qdeg) = s.degrees();
     let deg = pdeg + qdeg;

@@ -17,6 +17,7 @@
 
 use super::CosError;
 use super::float::{cells::FCells, ibez::mid, split::split};
+use crate::curve_on_surface::CosInternal;
 use crate::geom::dist;
 use crate::spline::compose::compose;
 use crate::spline::{
@@ -116,13 +117,13 @@ pub fn degree_reduction(
     let cells = FCells::new(&s);
     let (pieces, segs) = split(&d, &cells).map_err(|e| match e {
         super::float::FloatError::Cos(e) => e,
-        super::float::FloatError::Undecided(w) => CosError::Internal(format!("undecided: {w}")),
+        super::float::FloatError::Undecided(w) => CosInternal::Undecided(w).into(),
     })?;
     let mut cubics = Vec::new();
     let mut worst = 0.0f64;
     let mut exact_degree = 0;
     for seg in &segs {
-        let cell = cells.get(seg.cell).map_err(|e| CosError::Internal(e.0))?;
+        let cell = cells.get(seg.cell).map_err(CosError::from)?;
         let patch = BezierSurface {
             p: cell.patch.p,
             q: cell.patch.q,

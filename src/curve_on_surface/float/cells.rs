@@ -42,9 +42,16 @@ pub struct FCells<'a> {
     cells: Vec<OnceCell<FCell>>,
 }
 
-/// Why a cell could not be built (an invalid knot vector would be the only cause).
+/// Why a cell could not be built (an invalid knot vector would be the only cause): its
+/// rectangle `[u0, u1, v0, v1]`.
 #[derive(Debug)]
-pub struct CellError(pub String);
+pub struct CellError(pub [f64; 4]);
+
+impl From<CellError> for crate::curve_on_surface::CosError {
+    fn from(e: CellError) -> Self {
+        crate::curve_on_surface::CosInternal::CellKnots { cell: e.0 }.into()
+    }
+}
 
 impl<'a> FCells<'a> {
     pub fn new(s: &'a BSplineSurface<[f64; 3]>) -> FCells<'a> {
@@ -91,11 +98,7 @@ impl<'a> FCells<'a> {
         let su = self.s.ku.find_span(&u0);
         let sv = self.s.kv.find_span(&v0);
         let nv = self.s.nv();
-        let err = || {
-            CellError(format!(
-                "invalid knots near cell [{u0}, {u1}] x [{v0}, {v1}]"
-            ))
-        };
+        let err = || CellError([u0, u1, v0, v1]);
         // Rows (fixed u index) → Bézier in v; then columns → Bézier in u (f64 with the
         // error bound of `bspline_span_bezier_f64`, applied twice).
         let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));

@@ -21,6 +21,7 @@
 use super::cells::FCells;
 use super::ibez::{I, dist_to_segment_mr, mid, mr_levels_error, mr_polar_values};
 use super::{FSeg, FloatError, Piece};
+use crate::curve_on_surface::CosInternal;
 use crate::curve_on_surface::{Bound, CosError};
 
 /// Subdivision levels used to tighten the hull bound.
@@ -150,7 +151,7 @@ fn region(c: &SubCurve, s: &FSeg, dom: [f64; 4]) -> [f64; 4] {
 fn lipschitz(r: [f64; 4], cells: &FCells, bound: Bound) -> Result<f64, FloatError> {
     cells
         .lipschitz_on(r, bound == Bound::Local)
-        .map_err(|e| FloatError::Cos(CosError::Internal(e.0)))
+        .map_err(|e| FloatError::Cos(e.into()))
 }
 
 /// Whether rectangle `inner` lies in `outer`.
@@ -393,12 +394,13 @@ pub fn enforce_distance(
             }
             changed = true;
             let (l, r) = split_at(&s, t_far, pieces, cells).ok_or_else(|| {
-                FloatError::Cos(CosError::Internal(format!(
-                    "segment t in [{}, {}] cannot be split further (bound {:.3e} > eps_d)",
-                    s.t0,
-                    s.t1,
-                    s.k * s.h
-                )))
+                FloatError::Cos(
+                    CosInternal::Unsplittable {
+                        t: [s.t0, s.t1],
+                        bound: s.k * s.h,
+                    }
+                    .into(),
+                )
             })?;
             out.push(l);
             out.push(r);

@@ -5,7 +5,7 @@
 
 use super::cells::FCells;
 use super::{FSeg, FloatError, Undecided};
-use crate::curve_on_surface::CosError;
+use crate::curve_on_surface::CosInternal;
 
 /// The printed control points of every segment, and the largest rounding.
 pub type Mapped = (Vec<Vec<[f64; 3]>>, f64);
@@ -16,15 +16,12 @@ pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError>
     let mut out = Vec::with_capacity(segs.len());
     let mut rounding = 0.0f64;
     for s in segs {
-        let c = cells
-            .get(s.cell)
-            .map_err(|e| FloatError::Cos(CosError::Internal(e.0)))?;
+        let c = cells.get(s.cell).map_err(|e| FloatError::Cos(e.into()))?;
         let inside = |p: &[f64; 2]| c.u0 <= p[0] && p[0] <= c.u1 && c.v0 <= p[1] && p[1] <= c.v1;
         if !inside(&s.a) || !inside(&s.b) {
-            return Err(FloatError::Cos(CosError::Internal(format!(
-                "chord {:?} -> {:?} leaves its patch",
-                s.a, s.b
-            ))));
+            return Err(FloatError::Cos(
+                CosInternal::ChordLeavesPatch { a: s.a, b: s.b }.into(),
+            ));
         }
         // Local coordinates `(x - u0) / (u1 - u0)` in f64: two roundings in the operands and
         // one in the quotient give `|x̂ - x*| ≤ ((1 + u)² / (1 - u) - 1) x* ≤ 3.4e-16` for the
