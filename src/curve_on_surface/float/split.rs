@@ -184,7 +184,7 @@ pub fn split(
     for w in curve.knots.breakpoints().windows(2) {
         let s = curve.knots.find_span(&w[0]);
         let bz = bspline_span_bezier(knots, p, &ctrl, s)
-            .ok_or_else(|| FloatError::Undecided(Undecided::DomainKnots))?;
+            .ok_or(FloatError::Undecided(Undecided::DomainKnots))?;
         let mut cuts: Vec<(f64, Snap)> = Vec::new();
         for (dim, breaks) in [(0usize, &cells.u_breaks), (1usize, &cells.v_breaks)] {
             for (bi, &k) in breaks.iter().enumerate() {
