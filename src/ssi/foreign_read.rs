@@ -6,7 +6,8 @@ pub const CURVE_SAMPLES: usize = 200;
 /// A foreign curve as points: `(name, kind, points)`.
 pub type ForeignInput = (String, &'static str, Vec<[f64; 3]>);
 
-/// Why a foreign result file gave no curves to check; each names the file.
+/// Why a foreign result file gave no curves to check; each names the file (a model that
+/// cannot be read: as its reader says).
 #[derive(Debug, thiserror::Error)]
 pub enum ForeignError {
     #[error("{path}: {reason}")]

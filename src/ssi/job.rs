@@ -298,6 +298,11 @@ pub fn run_certify(
     let foreign = super::foreign::read_foreign(curves)?;
     check_writable([json_out])?;
     let t0 = Instant::now();
+    // The check compares points; no fit is output.
+    let prm = &SsiParams {
+        fits: false,
+        ..prm.clone()
+    };
     let r = intersect_models(
         &a,
         b.as_ref(),

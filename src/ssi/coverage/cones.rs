@@ -15,7 +15,7 @@
 //! the curve cannot close (Sederberg & Meyers 1988). Every sign is taken on an interval
 //! enclosure and counts only when the whole interval has it.
 
-use super::patch::{IPatch, V, zero_net};
+use super::patch::{IPatch, V, derivative_numerator, hull_finite_v, zero_net};
 use crate::scalar::{Interval, binomial_i64};
 
 fn cross(a: &V, b: &V) -> V {
@@ -102,35 +102,12 @@ pub fn normal_generators(h: &IPatch, polynomial: bool) -> Vec<V> {
 /// it as the only generator. Far coarser than [`normal_generators`] on large pieces and far
 /// cheaper (no Bernstein products): tried first. `None` when an enclosure fails or holds 0.
 pub fn normal_box(h: &IPatch, polynomial: bool) -> Option<V> {
-    let hull = |xs: &mut dyn Iterator<Item = Interval>| -> Option<Interval> {
-        let mut h = xs.next().filter(Interval::is_finite)?;
-        for x in xs {
-            if !x.is_finite() {
-                return None;
-            }
-            h = h.hull(x);
-        }
-        Some(h)
-    };
-    let hull_v = |xs: &[V]| -> Option<V> {
-        Some([
-            hull(&mut xs.iter().map(|x| x[0]))?,
-            hull(&mut xs.iter().map(|x| x[1]))?,
-            hull(&mut xs.iter().map(|x| x[2]))?,
-        ])
-    };
     let (hu, hv) = (h.hodograph(true)?, h.hodograph(false)?);
     let side = |d: &IPatch| -> Option<V> {
-        let dx = hull_v(&d.x)?;
         if polynomial {
-            return Some(dx);
+            return hull_finite_v(&d.x);
         }
-        let (x, w, dw) = (
-            hull_v(&h.x)?,
-            hull(&mut h.w.iter().copied())?,
-            hull(&mut d.w.iter().copied())?,
-        );
-        Some(std::array::from_fn(|k| w * dx[k] - dw * x[k]))
+        derivative_numerator(&h.x, &h.w, &d.x, &d.w).map(|(n, _)| n)
     };
     let n = cross(&side(&hu)?, &side(&hv)?);
     (n.iter().all(Interval::is_finite) && !n.iter().all(Interval::contains_zero)).then_some(n)

@@ -25,7 +25,7 @@
 //! algorithm at `½` on the interval control points (halving is exact; sums round outward).
 //! No claim of uniqueness is made or needed.
 
-use super::patch::{Box3, ICurve, IPatch, V};
+use super::patch::{Box3, ICurve, IPatch, V, derivative_numerator};
 use crate::scalar::Interval;
 
 type M3 = [[Interval; 3]; 3];
@@ -208,36 +208,20 @@ fn sub_patch(s: &IPatch, u: (f64, f64), v: (f64, f64)) -> Option<IPatch> {
     Some(out)
 }
 
-/// The hull of enclosures, each of them finite (`Interval::hull` passes a NaN end over).
-fn hull(mut xs: impl Iterator<Item = Interval>) -> Option<Interval> {
-    let first = xs.next().filter(Interval::is_finite)?;
-    xs.try_fold(first, |h, x| x.is_finite().then(|| h.hull(x)))
-}
-
-fn hull_v(xs: &[V], k: usize) -> Option<Interval> {
-    hull(xs.iter().map(|x| x[k]))
-}
-
-/// `(X′ w − X w′) / w²` per coordinate, from enclosures of each factor.
-fn quotient_rule(x: [Interval; 3], dx: [Interval; 3], w: Interval, dw: Interval) -> Option<V> {
-    let w2 = w * w;
-    let mut out = [Interval::point(0.0); 3];
-    for k in 0..3 {
-        out[k] = (dx[k] * w - x[k] * dw).checked_div(w2)?;
-    }
-    out.iter().all(Interval::is_finite).then_some(out)
-}
-
-/// Enclosure of the derivative of the rational piece with homogeneous net `(x, w)` and
-/// hodograph `(dx, dw)` over its whole parameter domain.
+/// Enclosure of the derivative `(X′ w − X w′) / w²` of the rational piece with homogeneous
+/// net `(x, w)` and hodograph `(dx, dw)` over its whole parameter domain.
 fn derivative(x: &[V], w: &[Interval], dx: &[V], dw: &[Interval]) -> Option<V> {
-    let wr = hull(w.iter().copied())?;
+    let (n, wr) = derivative_numerator(x, w, dx, dw)?;
     if !wr.is_pos() {
         return None;
     }
-    let xr = [hull_v(x, 0)?, hull_v(x, 1)?, hull_v(x, 2)?];
-    let dxr = [hull_v(dx, 0)?, hull_v(dx, 1)?, hull_v(dx, 2)?];
-    quotient_rule(xr, dxr, wr, hull(dw.iter().copied())?)
+    let w2 = wr * wr;
+    let out = [
+        n[0].checked_div(w2)?,
+        n[1].checked_div(w2)?,
+        n[2].checked_div(w2)?,
+    ];
+    out.iter().all(Interval::is_finite).then_some(out)
 }
 
 /// de Casteljau at `½` on a row of homogeneous interval points.

@@ -11,6 +11,45 @@ fn iv0() -> Interval {
     Interval::point(0.0)
 }
 
+/// The hull of enclosures, each of them finite (`Interval::hull` passes a NaN end over);
+/// `None` for none or a non-finite one. A Bézier function takes its values in the hull of its
+/// coefficients, so this encloses its range.
+pub fn hull_finite(mut xs: impl Iterator<Item = Interval>) -> Option<Interval> {
+    let mut h = xs.next().filter(Interval::is_finite)?;
+    for x in xs {
+        if !x.is_finite() {
+            return None;
+        }
+        h = h.hull(x);
+    }
+    Some(h)
+}
+
+/// [`hull_finite`] per coordinate of vector coefficients.
+pub fn hull_finite_v(xs: &[V]) -> Option<V> {
+    Some([
+        hull_finite(xs.iter().map(|x| x[0]))?,
+        hull_finite(xs.iter().map(|x| x[1]))?,
+        hull_finite(xs.iter().map(|x| x[2]))?,
+    ])
+}
+
+/// The range of `w X′ − w′ X` (∝ the derivative of the rational piece `X / w`, by the
+/// positive factor `1 / w²`) over the piece with homogeneous net `(x, w)` and hodograph
+/// `(dx, dw)`: each factor enclosed by the hull of its coefficients. Also returns the hull
+/// of `w` (for the quotient).
+pub fn derivative_numerator(
+    x: &[V],
+    w: &[Interval],
+    dx: &[V],
+    dw: &[Interval],
+) -> Option<(V, Interval)> {
+    let (xr, wr) = (hull_finite_v(x)?, hull_finite(w.iter().copied())?);
+    let (dxr, dwr) = (hull_finite_v(dx)?, hull_finite(dw.iter().copied())?);
+    let n: V = std::array::from_fn(|k| wr * dxr[k] - dwr * xr[k]);
+    n.iter().all(Interval::is_finite).then_some((n, wr))
+}
+
 /// Axis-aligned box `[lo, hi]` in model space.
 pub type Box3 = ([f64; 3], [f64; 3]);
 
