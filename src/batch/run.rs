@@ -45,9 +45,11 @@ impl Job {
             Job::Ssi { tol, time_limit } => (*tol, *time_limit),
             _ => (crate::ssi::SsiParams::default().tol, None),
         };
+        // The batch report counts branches; it holds no fit.
         crate::ssi::SsiParams {
             tol,
             time_limit,
+            fits: false,
             ..Default::default()
         }
     }

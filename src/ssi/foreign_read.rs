@@ -95,3 +95,38 @@ pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, Foreign
         })
         .collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each refusal names the file and the curve, in the words they had as strings.
+    #[test]
+    fn refusals_name_file_and_curve() {
+        let dir = std::env::temp_dir().join(format!("vericad-foreign-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let f = dir.join("c.json");
+        std::fs::write(&f, r#"{"curves": [[[0, 0, 0], [1, 0, 0]], []]}"#).unwrap();
+        let e = read_foreign(&f).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!("{}: curve 1: no points", f.display())
+        );
+        std::fs::write(&f, r#"{"curves": [[[0, 0]]]}"#).unwrap();
+        let e = read_foreign(&f).unwrap_err();
+        assert!(matches!(e, ForeignError::NotPoints { index: 0, .. }), "{e}");
+        assert!(
+            e.to_string().starts_with(&format!(
+                "{}: curve 0: expected [[x,y,z],...]: ",
+                f.display()
+            )),
+            "{e}"
+        );
+        let missing = dir.join("missing.json");
+        assert!(matches!(
+            read_foreign(&missing),
+            Err(ForeignError::Io { .. })
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

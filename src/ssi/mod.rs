@@ -134,9 +134,10 @@ pub struct SsiParams {
     /// certified (every point `not_requested`, no coverage); the distances to each surface
     /// are bounded either way.
     pub certify: bool,
-    /// Fit each branch's C1 cubic ([`report::BranchOut::fit`]). On by default; `vericad ssi`
-    /// asks for it only with `--fits` or `--iges`, `certify-ssi` never (about 8 % of a run on
-    /// a circle of 9,000 points). Batch runs and the Python bindings keep the default.
+    /// Fit each branch's C1 cubic ([`report::BranchOut::fit`]). On by default for library
+    /// callers; `vericad ssi` (and Python's `ssi`) asks for it only with `--fits` or `--iges`
+    /// (`fits=`, `iges=`), `certify-ssi` and batch runs never (about 8 % of a run on a circle
+    /// of 9,000 points).
     pub fits: bool,
     /// Cancel flag and progress from inside face pairs ([`control`]).
     pub control: control::Control,

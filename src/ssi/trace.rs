@@ -204,6 +204,19 @@ mod tests {
             check_invariants(&t, &twice),
             Err(InvariantError::SegmentUse { uses: 2, .. })
         ));
+        let mut open = branches[0].clone();
+        open.points[3] = open.points[1];
+        assert!(matches!(
+            check_invariants(&t, &[open]),
+            Err(InvariantError::SegmentNotJoining { branch: 0, .. })
+                | Err(InvariantError::ClosedOpen { branch: 0 })
+        ));
+        let mut unclosed = branches[0].clone();
+        unclosed.closed = false;
+        assert!(matches!(
+            check_invariants(&t, &[unclosed]),
+            Err(InvariantError::OpenEndInterior { branch: 0, .. })
+        ));
         let mut short = branches[0].clone();
         short.points.pop();
         assert_eq!(
