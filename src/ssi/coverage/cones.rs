@@ -15,16 +15,8 @@
 //! the curve cannot close (Sederberg & Meyers 1988). Every sign is taken on an interval
 //! enclosure and counts only when the whole interval has it.
 
-use super::patch::{IPatch, V, derivative_numerator, hull_finite_v, zero_net};
+use super::patch::{IPatch, V, cross, derivative_numerator, hull_finite_v, zero_net};
 use crate::scalar::{Interval, binomial_i64};
-
-fn cross(a: &V, b: &V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 
 /// Bernstein product of scalar grid `f` (`fp × fq`) and vector grid `g` (`gp × gq`).
 fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) -> Option<Vec<V>> {

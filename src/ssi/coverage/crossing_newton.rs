@@ -25,7 +25,7 @@
 //! algorithm at `½` on the interval control points (halving is exact; sums round outward).
 //! No claim of uniqueness is made or needed.
 
-use super::patch::{Box3, ICurve, IPatch, V, derivative_numerator};
+use super::patch::{Box3, ICurve, IPatch, V, cross, derivative_numerator};
 use crate::scalar::Interval;
 
 type M3 = [[Interval; 3]; 3];
@@ -63,11 +63,7 @@ pub(crate) fn patch_jet(s: &IPatch) -> Option<PatchJet> {
     Some(PatchJet {
         su,
         sv,
-        normal: [
-            su[1] * sv[2] - su[2] * sv[1],
-            su[2] * sv[0] - su[0] * sv[2],
-            su[0] * sv[1] - su[1] * sv[0],
-        ],
+        normal: cross(&su, &sv),
         mid: cartesian(patch_at_half(s))?,
     })
 }
@@ -289,18 +285,8 @@ enum Step {
 
 fn step(c: &ICurve, s: &PatchJet) -> Option<Step> {
     // Derivative enclosures over the whole pieces.
-    let dc = {
-        let n = c.x.len().checked_sub(1)?;
-        if n == 0 {
-            return None;
-        }
-        let deg = Interval::point(n as f64);
-        let dx: Vec<V> = (0..n)
-            .map(|k| std::array::from_fn(|i| (c.x[k + 1][i] - c.x[k][i]) * deg))
-            .collect();
-        let dw: Vec<Interval> = (0..n).map(|k| (c.w[k + 1] - c.w[k]) * deg).collect();
-        derivative(&c.x, &c.w, &dx, &dw)?
-    };
+    let h = c.hodograph()?;
+    let dc = derivative(&c.x, &c.w, &h.x, &h.w)?;
     let (su, sv) = (s.su, s.sv);
     // Where the curve's tangents may lie in a tangent plane of the surface (C′ · (S_u × S_v)
     // not proven of one sign), the crossings need not be isolated (a border lying in the

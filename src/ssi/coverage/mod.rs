@@ -319,12 +319,7 @@ pub fn coverage(
             uncertified(&mut out, &a, &b, Reason::Budget, Some(centre(&m)));
             continue;
         }
-        // The one-box cones first (cheap), the generators where those overlap.
-        let boxes_apart = match (a.normal_box(), b.normal_box()) {
-            (Some(x), Some(y)) => cones_separated(std::slice::from_ref(x), std::slice::from_ref(y)),
-            _ => false,
-        };
-        if boxes_apart || cones_separated(a.normals(), b.normals()) {
+        if a.cones_apart(&b) {
             let mut open = None;
             'sides: for (k, (from, to)) in [(&a, &b), (&b, &a)].into_iter().enumerate() {
                 for side in SIDES {

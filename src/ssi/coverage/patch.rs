@@ -11,6 +11,15 @@ fn iv0() -> Interval {
     Interval::point(0.0)
 }
 
+/// Cross product of enclosed vectors.
+pub fn cross(a: &V, b: &V) -> V {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
 /// The hull of enclosures, each of them finite (`Interval::hull` passes a NaN end over);
 /// `None` for none or a non-finite one. A Bézier function takes its values in the hull of its
 /// coefficients, so this encloses its range.
@@ -178,6 +187,17 @@ impl ICurve {
     }
     pub fn cartesian(&self) -> Option<Vec<V>> {
         cartesian(&self.x, &self.w)
+    }
+    /// Hodograph (degree one less), homogeneous `(X', w')`; `None` at degree 0.
+    pub fn hodograph(&self) -> Option<ICurve> {
+        let n = self.x.len().checked_sub(1).filter(|&n| n > 0)?;
+        let deg = Interval::point(n as f64);
+        Some(ICurve {
+            x: (0..n)
+                .map(|k| std::array::from_fn(|c| (self.x[k + 1][c] - self.x[k][c]) * deg))
+                .collect(),
+            w: (0..n).map(|k| (self.w[k + 1] - self.w[k]) * deg).collect(),
+        })
     }
 }
 

@@ -3,7 +3,7 @@
 //! rational knot insertion then outward rounding — and their quarters, each with its
 //! control-point box and normal-cone generators, cached for reuse.
 
-use super::cones::{normal_box, normal_generators};
+use super::cones::{cones_separated, normal_box, normal_generators};
 use super::patch::{Box3, IPatch, V, box_of, diagonal};
 use crate::geom::{Hom, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
@@ -54,10 +54,19 @@ impl Cell {
             .get_or_init(|| normal_generators(&self.patch, self.polynomial))
     }
     /// The piece's normals as one interval vector ([`normal_box`]).
-    pub(super) fn normal_box(&self) -> Option<&V> {
+    fn normal_box(&self) -> Option<&V> {
         self.normal_box
             .get_or_init(|| normal_box(&self.patch, self.polynomial))
             .as_ref()
+    }
+    /// Whether no normal of this piece is parallel to one of `other` (the separation lemma):
+    /// the one-box cones first (cheap), the generators where those overlap.
+    pub(super) fn cones_apart(&self, other: &Cell) -> bool {
+        let boxes = match (self.normal_box(), other.normal_box()) {
+            (Some(x), Some(y)) => cones_separated(std::slice::from_ref(x), std::slice::from_ref(y)),
+            _ => false,
+        };
+        boxes || cones_separated(self.normals(), other.normals())
     }
     /// The four quarters, kept for the next pair that splits this piece while fewer than
     /// [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past that, made
