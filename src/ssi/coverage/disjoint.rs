@@ -77,12 +77,12 @@ pub fn proven_disjoint(
         }
         // Quarter the larger piece.
         if a.diag() >= b.diag() {
-            for k in a.kids(&kept) {
-                stack.push((k, b.clone()));
+            for k in a.kids(&kept).iter() {
+                stack.push((k.clone(), b.clone()));
             }
         } else {
-            for k in b.kids(&kept) {
-                stack.push((a.clone(), k));
+            for k in b.kids(&kept).iter() {
+                stack.push((a.clone(), k.clone()));
             }
         }
     }

@@ -6,7 +6,8 @@
 //! Let `S_A`, `S_B` be NURBS surfaces with positive weights on the parameter rectangles `D_A`,
 //! `D_B`, `I = {(z_a, z_b) : S_A(z_a) = S_B(z_b)}` their true intersection in `D_A × D_B`, and
 //! `O` the output (reported branch polylines, closed ones closed, and touching points). The
-//! rectangles are cut into Bézier pieces (knot spans) and these, adaptively, into quarters;
+//! rectangles are cut into Bézier pieces (knot spans) and these, adaptively, into quarters
+//! (or halves across the longer direction of a long, narrow piece: `pieces::Cell::kids`);
 //! the *leaf pairs* `α × β` of this refinement cover `D_A × D_B`. Every leaf pair is
 //! classified as one of:
 //!
@@ -84,7 +85,7 @@ use std::time::Instant;
 pub struct CoverageParams {
     /// `d`: every branch must come within this distance of the output.
     pub match_distance: f64,
-    /// Quarterings of a piece in the pair refinement.
+    /// Splits (quarterings or halvings) of a piece in the pair refinement.
     pub max_pair_depth: u32,
     /// Halvings in one border-crossing search.
     pub max_crossing_depth: u32,
@@ -362,17 +363,17 @@ pub fn coverage(
             }
             continue;
         }
-        // Not decided: quarter the larger piece (pieces below a quarter of the match
+        // Not decided: split the larger piece (pieces below a quarter of the match
         // distance are not split further: they are decided by the output or listed).
         let can_a = da < prm.max_pair_depth && a.diag() > 0.25 * d;
         let can_b = db < prm.max_pair_depth && b.diag() > 0.25 * d;
         let split_a = can_a && (!can_b || a.diag() >= b.diag());
         if split_a {
-            for k in a.kids(&kept) {
+            for k in a.kids(&kept).iter() {
                 stack.push((k.clone(), b.clone(), da + 1, db));
             }
         } else if can_b {
-            for k in b.kids(&kept) {
+            for k in b.kids(&kept).iter() {
                 stack.push((a.clone(), k.clone(), da, db + 1));
             }
         } else {

@@ -257,8 +257,9 @@ impl Near {
         self.net_within_hinted(pts, d, &Hint::default())
     }
     /// [`Near::net_within`], trying first the entry that decided the last call given the
-    /// same `hint` (a query along a curve is usually decided by the chord that decided its
-    /// neighbour). The hint only orders the search: the same test decides.
+    /// same `hint` and the entries listed beside it (a query along a curve is usually decided
+    /// by the segment or chord that decided its neighbour, or the next one). The hint only
+    /// orders the search: the same test decides.
     pub fn net_within_hinted(&self, pts: &[V], d: f64, hint: &Hint) -> bool {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
@@ -296,11 +297,15 @@ impl Near {
         {
             return false;
         }
-        if let Some(s) = hint.0.get()
-            && (s as usize) < self.segs.len()
-            && self.entry_holds(s, corners, d)
-        {
-            return true;
+        // The hinted entry, then its neighbours in the list (the next part along a curve is
+        // usually under the next segment or chord of the same run).
+        if let Some(s) = hint.0.get() {
+            for t in [s, s.wrapping_add(1), s.wrapping_sub(1)] {
+                if (t as usize) < self.segs.len() && self.entry_holds(t, corners, d) {
+                    hint.0.set(Some(t));
+                    return true;
+                }
+            }
         }
         let mut stack = vec![0u32];
         while let Some(i) = stack.pop() {

@@ -308,6 +308,13 @@ impl IPatch {
     /// Whether the net is longer along u than along v (by the midpoints of its border rows;
     /// a heuristic that only chooses which way to split).
     pub fn longer_in_u(&self) -> bool {
+        let (lu, lv) = self.border_lengths();
+        lv.partial_cmp(&lu) != Some(std::cmp::Ordering::Greater)
+    }
+    /// Squared lengths of the net along u and along v, each the sum over its two border
+    /// rows of the squared distance between the row's end points (midpoints of the
+    /// enclosures, rounded to nearest: a scheduling figure only).
+    pub fn border_lengths(&self) -> (f64, f64) {
         let pt = |k: usize| -> [f64; 3] {
             let w = self.w[k].mid();
             std::array::from_fn(|c| self.x[k][c].mid() / w)
@@ -320,7 +327,7 @@ impl IPatch {
             d(self.at(0, 0), self.at(self.p, 0)) + d(self.at(0, self.q), self.at(self.p, self.q));
         let lv =
             d(self.at(0, 0), self.at(0, self.q)) + d(self.at(self.p, 0), self.at(self.p, self.q));
-        lv.partial_cmp(&lu) != Some(std::cmp::Ordering::Greater)
+        (lu, lv)
     }
     /// Hodograph in u or v (degree one less), homogeneous `(X', w')`; `None` at degree 0.
     pub fn hodograph(&self, along_u: bool) -> Option<IPatch> {

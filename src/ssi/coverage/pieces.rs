@@ -31,7 +31,7 @@ pub(crate) struct Cell {
     polynomial: bool,
     normals: OnceCell<Vec<V>>,
     normal_box: OnceCell<Option<V>>,
-    kids: OnceCell<[Rc<Cell>; 4]>,
+    kids: OnceCell<Rc<[Rc<Cell>]>>,
 }
 
 impl Cell {
@@ -68,24 +68,44 @@ impl Cell {
         };
         boxes || cones_separated(self.normals(), other.normals())
     }
-    /// The four quarters, kept for the next pair that splits this piece while fewer than
-    /// [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past that, made
-    /// afresh each time, so memory stays bounded however deep the refinement goes.
-    pub(super) fn kids(&self, kept: &std::cell::Cell<usize>) -> [Rc<Cell>; 4] {
+    /// The piece's children: its two halves across the longer direction where the net is
+    /// more than four times as long one way as the other (squared lengths by
+    /// [`IPatch::border_lengths`] more than 16 times), else its
+    /// four quarters. Any partition of the piece serves the certificate; halving a long,
+    /// narrow piece (beside a pole, where the parameter lines converge) keeps the children
+    /// from growing narrower still. Kept for the next pair that splits this piece while
+    /// fewer than [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past
+    /// that, made afresh each time, so memory stays bounded however deep the refinement goes.
+    pub(super) fn kids(&self, kept: &std::cell::Cell<usize>) -> Rc<[Rc<Cell>]> {
         if let Some(k) = self.kids.get() {
             return k.clone();
         }
         let [u0, u1, v0, v1] = self.uv;
         let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
-        let [a, b, c, d] = self.patch.quarters();
-        let k = [
-            Cell::new(a, [u0, um, v0, vm], self.polynomial),
-            Cell::new(b, [u0, um, vm, v1], self.polynomial),
-            Cell::new(c, [um, u1, v0, vm], self.polynomial),
-            Cell::new(d, [um, u1, vm, v1], self.polynomial),
-        ];
+        let (lu, lv) = self.patch.border_lengths();
+        let k: Rc<[Rc<Cell>]> = if lu > 16.0 * lv {
+            let (a, b) = self.patch.halve(true);
+            Rc::new([
+                Cell::new(a, [u0, um, v0, v1], self.polynomial),
+                Cell::new(b, [um, u1, v0, v1], self.polynomial),
+            ])
+        } else if lv > 16.0 * lu {
+            let (a, b) = self.patch.halve(false);
+            Rc::new([
+                Cell::new(a, [u0, u1, v0, vm], self.polynomial),
+                Cell::new(b, [u0, u1, vm, v1], self.polynomial),
+            ])
+        } else {
+            let [a, b, c, d] = self.patch.quarters();
+            Rc::new([
+                Cell::new(a, [u0, um, v0, vm], self.polynomial),
+                Cell::new(b, [u0, um, vm, v1], self.polynomial),
+                Cell::new(c, [um, u1, v0, vm], self.polynomial),
+                Cell::new(d, [um, u1, vm, v1], self.polynomial),
+            ])
+        };
         if kept.get() < CACHED_CELLS {
-            kept.set(kept.get() + 4);
+            kept.set(kept.get() + k.len());
             let _ = self.kids.set(k.clone());
         }
         k
@@ -169,4 +189,97 @@ pub(crate) fn roots_exact(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
             Cell::new(patch, uv, polynomial)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A bilinear patch with corners `c` (in the order (0,0), (0,1), (1,0), (1,1)).
+    fn bilinear(c: [[f64; 3]; 4]) -> Rc<Cell> {
+        let patch = IPatch {
+            p: 1,
+            q: 1,
+            x: c.iter().map(|p| p.map(Interval::point)).collect(),
+            w: vec![Interval::point(1.0); 4],
+        };
+        Cell::new(patch, [0.0, 1.0, 0.0, 1.0], true)
+    }
+
+    /// The bilinear point at `(u, v)` of corners `c`, evaluated the direct way.
+    fn at(c: &[[f64; 3]; 4], u: f64, v: f64) -> [f64; 3] {
+        std::array::from_fn(|k| {
+            (1.0 - u) * ((1.0 - v) * c[0][k] + v * c[1][k])
+                + u * ((1.0 - v) * c[2][k] + v * c[3][k])
+        })
+    }
+
+    /// A piece ten times longer along u than along v is halved across u, one twice as long
+    /// along v as along u quartered, one ten times longer along v halved across v; each
+    /// child's corners are the parent's points at the corners of the child's label.
+    #[test]
+    fn children_partition_their_parent_and_carry_its_points() {
+        let cases: [([[f64; 3]; 4], usize); 3] = [
+            (
+                [
+                    [0.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [10.0, 0.0, 0.0],
+                    [10.0, 1.0, 1.0],
+                ],
+                2,
+            ),
+            (
+                [
+                    [0.0, 0.0, 0.0],
+                    [0.0, 2.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 2.0, 1.0],
+                ],
+                4,
+            ),
+            (
+                [
+                    [0.0, 0.0, 0.0],
+                    [0.0, 10.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 10.0, 1.0],
+                ],
+                2,
+            ),
+        ];
+        for (c, n) in cases {
+            let kept = std::cell::Cell::new(0);
+            let kids = bilinear(c).kids(&kept);
+            assert_eq!(kids.len(), n, "{c:?}");
+            // The labels tile [0, 1]²: areas sum to 1 and no two overlap in their interiors.
+            let area: f64 = kids
+                .iter()
+                .map(|k| (k.uv[1] - k.uv[0]) * (k.uv[3] - k.uv[2]))
+                .sum();
+            assert_eq!(area, 1.0);
+            for (i, a) in kids.iter().enumerate() {
+                for b in &kids[i + 1..] {
+                    let apart = a.uv[1] <= b.uv[0]
+                        || b.uv[1] <= a.uv[0]
+                        || a.uv[3] <= b.uv[2]
+                        || b.uv[3] <= a.uv[2];
+                    assert!(apart, "{:?} {:?}", a.uv, b.uv);
+                }
+                let [u0, u1, v0, v1] = a.uv;
+                for (i, j, u, v) in [
+                    (0, 0, u0, v0),
+                    (0, 1, u0, v1),
+                    (1, 0, u1, v0),
+                    (1, 1, u1, v1),
+                ] {
+                    let want = at(&c, u, v);
+                    let got = a.patch.x[a.patch.at(i, j)];
+                    for k in 0..3 {
+                        assert!(got[k].lo <= want[k] && want[k] <= got[k].hi, "{:?}", a.uv);
+                    }
+                }
+            }
+        }
+    }
 }
