@@ -16,6 +16,7 @@ pub mod counts;
 pub mod pcurve;
 pub mod place;
 pub mod report;
+pub mod seam_edges;
 pub mod seams;
 pub mod sew;
 

@@ -6,7 +6,12 @@
 //! open) per shell with each face's orientation relative to its surface normal, and a
 //! manifold solid B-rep object (186) per solid, its voids as further shells.
 //!
-//! The loops carry parameter-space curves where [`crate::brep::pcurve::for_face`] gives one,
+//! What is written is the B-rep with its seams made explicit
+//! ([`crate::brep::seam_edges::explicit_seams`]): a face bounded by loops that run round its
+//! closed surface gets one loop with a seam edge, its pole edges written as vertex uses
+//! (TYPE 1), each use with the pcurve the rebuilding made.
+//!
+//! The other loops carry parameter-space curves where [`crate::brep::pcurve::for_face`] gives one,
 //! each running the way the loop uses the edge (as Open CASCADE reads them): the source's own
 //! on its B-spline surfaces, exact ones on planar faces (the edge curves mapped by the
 //! inverse of the plane's affine parametrization). Elsewhere a loop gives none and readers
@@ -14,6 +19,7 @@
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
 use crate::brep::pcurve::for_face;
+use crate::brep::seam_edges::explicit_seams;
 use crate::brep::{Brep, LoopKind, OrientedEdge};
 use crate::model::{CurveGeometry, Model};
 use std::collections::{BTreeMap, BTreeSet};
@@ -58,6 +64,8 @@ pub(super) fn brep(
     notes: &mut Vec<String>,
 ) -> BTreeSet<usize> {
     let mut written = BTreeSet::new();
+    let seamed = explicit_seams(m, b, notes);
+    let b = &seamed.brep;
     let mut coords = format!("502,{}", b.vertices.len());
     for v in &b.vertices {
         for x in v.point {
@@ -69,7 +77,9 @@ pub(super) fn brep(
     let mut index = BTreeMap::new();
     let mut entries = String::new();
     for (i, e) in b.edges.iter().enumerate() {
-        let Some(c) = &e.curve else { continue };
+        let Some(c) = e.curve.as_ref().filter(|_| !seamed.poles.contains(&i)) else {
+            continue;
+        };
         if e.start >= b.vertices.len() || e.end >= b.vertices.len() {
             continue;
         }
@@ -104,7 +114,11 @@ pub(super) fn brep(
                 }
                 LoopKind::Edges(oes) => {
                     let oes = ordered(oes, l.orientation);
-                    if let Some(bad) = oes.iter().find(|o| !index.contains_key(&o.edge)) {
+                    let pole = |o: &OrientedEdge| seamed.poles.contains(&o.edge);
+                    if let Some(bad) = oes
+                        .iter()
+                        .find(|o| !index.contains_key(&o.edge) && !pole(o))
+                    {
                         notes.push(format!(
                             "loop {} of face {} not written: its edge {} has no 3D curve or vertex",
                             l.source,
@@ -115,8 +129,11 @@ pub(super) fn brep(
                     }
                     let mut t = format!("508,{}", oes.len());
                     for o in &oes {
-                        let pc = for_face(b, o.edge, face, &m.surfaces[si])
-                            .map(|pc| if o.forward { pc } else { pc.reversed() });
+                        let pc = match seamed.pcurves.get(&(fi, o.edge, o.forward)) {
+                            Some(pc) => Some(pc.clone()),
+                            None => for_face(b, o.edge, face, &m.surfaces[si])
+                                .map(|pc| if o.forward { pc } else { pc.reversed() }),
+                        };
                         if pc.is_some() {
                             written_pc.insert((o.edge, si));
                         }
@@ -132,7 +149,11 @@ pub(super) fn brep(
                             }
                             None => "0".to_string(),
                         };
-                        t += &format!(",0,{el},{},{},{k}", index[&o.edge], u8::from(o.forward));
+                        t += &match index.get(&o.edge) {
+                            Some(i) => format!(",0,{el},{i},{},{k}", u8::from(o.forward)),
+                            // A pole: a degenerate edge, written as its vertex (TYPE 1).
+                            None => format!(",1,{vl},{},1,{k}", b.edges[o.edge].start + 1),
+                        };
                     }
                     t + ";"
                 }
