@@ -208,3 +208,40 @@ fn abc_0000_written_as_iges_has_open_cascades_wires_and_area() {
     let occt = 404864.5993;
     assert!((total - occt).abs() / occt < 1e-5, "{total} vs {occt}");
 }
+
+#[test]
+fn sphere_caps_written_as_step_close_at_the_poles_of_the_spheres_nurbs_form() {
+    // The caps' vertex loops (at the apexes ±R·AXIS) are written at the poles of the sphere's
+    // NURBS form, ±R·(1, 2, 2)/3 from its frame, where Open CASCADE's STEP reader looks for
+    // them (it read the top cap's complement, 40.21 where 10.05 is right, from the apex).
+    let m = zones();
+    let (text, notes) = step::write::write(&m, "zones");
+    let moved = notes
+        .iter()
+        .filter(|n| n.contains("written at the pole"))
+        .count();
+    assert_eq!(moved, 2, "{notes:?}");
+    let back = step::from_str(&text, "zones-written.step").unwrap();
+    let b = back.brep.as_ref().unwrap();
+    let north = [2.0 / 3.0, 4.0 / 3.0, 4.0 / 3.0].map(|x| x * R / 2.0);
+    let mut poles = Vec::new();
+    for f in &b.faces {
+        for l in &f.loops {
+            if let LoopKind::Vertex(v) = l.kind {
+                poles.push(b.vertices[v].point);
+            }
+        }
+    }
+    assert_eq!(poles.len(), 2);
+    for (p, sign) in poles.iter().zip([1.0, -1.0]) {
+        let want = north.map(|x| sign * x);
+        assert!(
+            vericad::geom::dist(p, &want) <= 1e-12 * R,
+            "{p:?} vs {want:?}"
+        );
+    }
+    let exact = [R - Z2, Z2 - Z1, R + Z1].map(|h| 2.0 * PI * R * h);
+    for (g, e) in areas(&back).iter().zip(exact) {
+        assert!((g - e).abs() / e < 1e-5, "{g} vs {e}");
+    }
+}

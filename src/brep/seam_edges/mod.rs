@@ -164,25 +164,72 @@ fn plan(b: &Brep, face: &Face, s: &NurbsSurface<f64, 3>, off: f64) -> Result<Opt
     }
 }
 
-/// The faces of `b` (on `m`'s surfaces) rebuilt with explicit seams (module comment); notes
-/// name the faces with a loop that runs round their surface that were left as they are.
-pub fn explicit_seams(m: &Model, b: &Brep, notes: &mut Vec<String>) -> Seamed {
-    let mut out = b.clone();
-    let off = (100.0 * b.tolerance).max(1e-6 * b.extent());
-    let surface = |f: &Face| f.surface.and_then(|s| m.surfaces.get(s)).map(|s| &s.nurbs);
+/// The accepted distance between points of `b` meant to coincide.
+fn accepted(b: &Brep) -> f64 {
+    (100.0 * b.tolerance).max(1e-6 * b.extent())
+}
+
+/// The NURBS surface of `f` in `m`.
+fn surface<'a>(m: &'a Model, f: &Face) -> Option<&'a NurbsSurface<f64, 3>> {
+    f.surface.and_then(|s| m.surfaces.get(s)).map(|s| &s.nurbs)
+}
+
+/// The plan of every face of `b` to rebuild; notes name the faces with a loop that runs
+/// round that are of neither kind.
+fn plans(m: &Model, b: &Brep, notes: &mut Vec<String>) -> BTreeMap<usize, Plan> {
+    let off = accepted(b);
     let mut plans = BTreeMap::new();
-    let mut cuts: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
     for (fi, face) in b.faces.iter().enumerate() {
-        let Some(s) = surface(face) else { continue };
+        let Some(s) = surface(m, face) else { continue };
         match plan(b, face, s, off) {
             Ok(Some(p)) => {
-                for (edge, _, r) in &p.rounds {
-                    cuts.entry(*edge).or_default().push(r.t);
-                }
                 plans.insert(fi, p);
             }
             Ok(None) => {}
             Err(why) => notes.push(format!("face {}: {why}; written as read", face.source)),
+        }
+    }
+    plans
+}
+
+/// The caps of `b` (module comment) whose vertex loop lies away from the pole it stands
+/// for: `(face, loop, the pole's point)`. The vertex loop only says which side of the circle
+/// the face is on, and the pole lies on that side; readers that take a cap's vertex loop
+/// for its pole (Open CASCADE's STEP reader does, on B-spline surfaces, and then builds the
+/// complement of the cap) read the same face when the vertex loop is written at the pole.
+pub fn caps_off_their_poles(m: &Model, b: &Brep) -> Vec<(usize, usize, [f64; 3])> {
+    let off = accepted(b);
+    let mut out = Vec::new();
+    for (fi, p) in plans(m, b, &mut Vec::new()) {
+        let (Some((v, cp)), Some(s)) = (p.pole, surface(m, &b.faces[fi])) else {
+            continue;
+        };
+        let pole = build::point(s, p.k, bounds(s).0[p.k], cp);
+        let Some(x) = b.vertices.get(v) else { continue };
+        if dist(&x.point, &pole) <= off {
+            continue;
+        }
+        let loops = &b.faces[fi].loops;
+        if let Some(li) = loops
+            .iter()
+            .position(|l| matches!(l.kind, LoopKind::Vertex(w) if w == v))
+        {
+            out.push((fi, li, pole));
+        }
+    }
+    out
+}
+
+/// The faces of `b` (on `m`'s surfaces) rebuilt with explicit seams (module comment); notes
+/// name the faces with a loop that runs round their surface that were left as they are.
+pub fn explicit_seams(m: &Model, b: &Brep, notes: &mut Vec<String>) -> Seamed {
+    let mut out = b.clone();
+    let off = accepted(b);
+    let mut cuts: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
+    let plans = plans(m, b, notes);
+    for p in plans.values() {
+        for (edge, _, r) in &p.rounds {
+            cuts.entry(*edge).or_default().push(r.t);
         }
     }
     let arcs: BTreeMap<usize, Vec<usize>> = cuts
@@ -203,7 +250,8 @@ pub fn explicit_seams(m: &Model, b: &Brep, notes: &mut Vec<String>) -> Seamed {
     for (fi, p) in plans {
         let face = &b.faces[fi];
         let round = |l: &Loop| matches!(&l.kind, LoopKind::Edges(o) if o.len() == 1 && p.rounds.iter().any(|r| r.0 == o[0].edge));
-        let (Some(s), Some(first)) = (surface(face), face.loops.iter().find(|l| round(l))) else {
+        let (Some(s), Some(first)) = (surface(m, face), face.loops.iter().find(|l| round(l)))
+        else {
             continue;
         };
         let (lo, hi) = bounds(s);

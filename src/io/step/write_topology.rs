@@ -11,10 +11,12 @@
 //! in their exact NURBS forms (the type is not kept), pcurves are written where
 //! [`crate::brep::pcurve::for_face`] gives one (the source's own on its B-spline surfaces,
 //! exact ones on planes) and left out elsewhere, and faces without a surface or loops over an
-//! edge without a curve are left out, named.
+//! edge without a curve are left out, named. A cap's vertex loop away from the pole of its
+//! surface's NURBS form is written at the pole (named).
 
 use super::write::{Out, refs, text};
 use crate::brep::pcurve::for_face;
+use crate::brep::seam_edges::caps_off_their_poles;
 use crate::brep::{Brep, LoopKind};
 use crate::model::{CurveGeometry, Model};
 use std::collections::{BTreeMap, BTreeSet};
@@ -33,6 +35,9 @@ struct Topology<'a> {
     context_2d: Option<u64>,
     /// `(edge, model surface)` of every pcurve written.
     pcurves: BTreeSet<(usize, usize)>,
+    /// `(face, loop)` → the pole a cap's vertex loop is written at
+    /// ([`crate::brep::seam_edges::caps_off_their_poles`]).
+    cap_poles: BTreeMap<(usize, usize), [f64; 3]>,
 }
 
 impl Topology<'_> {
@@ -127,8 +132,18 @@ impl Topology<'_> {
             return None;
         };
         let mut bounds = Vec::new();
-        for l in &face.loops {
+        for (li, l) in face.loops.iter().enumerate() {
             let lp = match &l.kind {
+                LoopKind::Vertex(_) if self.cap_poles.contains_key(&(f, li)) => {
+                    let pole = self.cap_poles[&(f, li)];
+                    let p = self.o.point(&pole);
+                    let v = self.o.add(&format!("VERTEX_POINT('',#{p})"));
+                    notes.push(format!(
+                        "vertex loop {} of face {} written at the pole of its surface, where the face's cap closes",
+                        l.source, face.source
+                    ));
+                    self.o.add(&format!("VERTEX_LOOP('',#{v})"))
+                }
                 LoopKind::Vertex(v) => {
                     let Some(v) = self.vertex(*v) else {
                         notes.push(format!(
@@ -232,6 +247,10 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
         uses: edge_surfaces(m, b),
         context_2d: None,
         pcurves: BTreeSet::new(),
+        cap_poles: caps_off_their_poles(m, b)
+            .into_iter()
+            .map(|(f, l, pole)| ((f, l), pole))
+            .collect(),
     };
     // A face every shell uses reversed is written reversed, so that no `oriented_face` is
     // needed (Open CASCADE 8.0.1 drops faces given as `oriented_face` in a shell: it read one
