@@ -11,8 +11,9 @@ Prints a Markdown table; exits 1 when a count or validity differs, an area or vo
 more than TOLERANCE (relative), or nothing was compared.
 
 A second table (for information, not a pass/fail check) has Open CASCADE read vericad's IGES
-output of the same files (`vericad convert IN OUT.igs`: entities 186/514/510/508/504/502)
-beside the original STEP file.
+output of the same files in both forms beside the original STEP file: B-rep entities
+(`vericad convert IN OUT.igs`: 186/514/510/508/504/502) and trimmed surfaces
+(`--format iges-faces`: 144/142 over 128).
 
 Usage: cargo build --release && python3 scripts/occt_brep_roundtrip.py [FILES...]
 """
@@ -117,11 +118,12 @@ def main(files):
             if bad:
                 failures.append(f"{name}: differs in {', '.join(bad)}")
             rows.append((name, a, b, da, dv, bad))
-            igs = os.path.join(tmp, name + ".vericad.igs")
-            c = subprocess.run([VERICAD, "convert", path, igs], capture_output=True, text=True)
-            if c.returncode == 0:
-                g = measure(igs)
-                iges_rows.append((name, a, g, rel(a["area"], g["area"]), rel(a["volume"], g["volume"])))
+            for form, extra in (("186", []), ("144", ["--format", "iges-faces"])):
+                igs = os.path.join(tmp, f"{name}.vericad-{form}.igs")
+                c = subprocess.run([VERICAD, "convert", path, igs, *extra], capture_output=True, text=True)
+                if c.returncode == 0:
+                    g = measure(igs)
+                    iges_rows.append((f"{name} ({form})", a, g, rel(a["area"], g["area"]), rel(a["volume"], g["volume"])))
     print("| file | Open CASCADE reads the original | Open CASCADE reads vericad's STEP | valid (orig / vericad) | face area mm² (orig / vericad, rel. diff) | solid volume mm³ (orig / vericad, rel. diff) |")
     print("|---|---|---|---|---|---|")
     for name, a, b, da, dv, _ in rows:
@@ -131,7 +133,7 @@ def main(files):
             f"{a['volume']:.10g} / {b['volume']:.10g} ({dv:.1e}) |"
         )
     print()
-    print("| file | Open CASCADE reads vericad's IGES | valid | face area mm² (rel. diff to the STEP original) | solid volume mm³ (rel. diff) |")
+    print("| file (IGES form) | Open CASCADE reads vericad's IGES | valid | face area mm² (rel. diff to the STEP original) | solid volume mm³ (rel. diff) |")
     print("|---|---|---|---|---|")
     for name, a, g, da, dv in iges_rows:
         print(

@@ -7,6 +7,7 @@
 use std::path::Path;
 use vericad::brep::LoopKind;
 use vericad::brep::seam_edges::explicit_seams;
+use vericad::io::iges::write::BrepForm;
 use vericad::io::{iges, step};
 
 fn public(name: &str) -> vericad::model::Model {
@@ -28,7 +29,7 @@ fn the_brep_is_written_as_iges_brep_entities() {
         // pole edges as vertex uses (not in the edge list).
         let seamed = explicit_seams(&m, m.brep.as_ref().unwrap(), &mut Vec::new());
         let b = &seamed.brep;
-        let (text, notes) = iges::write::write(&m, name);
+        let (text, notes) = iges::write::write_with(&m, name, BrepForm::BrepEntities);
         assert!(notes.is_empty(), "{name}: {notes:?}");
         let back = iges::from_str(&text, "written.igs").unwrap_or_else(|e| panic!("{name}: {e}"));
         let n = |t: &str| back.source_entities.get(t).copied().unwrap_or(0);
@@ -123,7 +124,7 @@ fn a_face_without_a_surface_is_named() {
         "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n"
     );
     let m = step::from_str(&text, "t.step").unwrap();
-    let (igs, notes) = iges::write::write(&m, "t");
+    let (igs, notes) = iges::write::write_with(&m, "t", BrepForm::BrepEntities);
     let all = notes.join("\n");
     assert!(
         all.contains("face #71 not written: its surface #6 was not converted"),

@@ -273,7 +273,15 @@ fn source_pcurves_are_written_back_on_their_b_spline_faces() {
     let b = m.brep.as_ref().unwrap();
     for (ext, text) in [
         ("step", vericad::io::step::write::write(&m, "t20").0),
-        ("igs", vericad::io::iges::write::write(&m, "t20").0),
+        (
+            "igs",
+            vericad::io::iges::write::write_with(
+                &m,
+                "t20",
+                vericad::io::iges::write::BrepForm::BrepEntities,
+            )
+            .0,
+        ),
     ] {
         let back = if ext == "step" {
             vericad::io::step::from_str(&text, "w.step").unwrap()

@@ -8,7 +8,9 @@
 use std::f64::consts::PI;
 use std::path::Path;
 use vericad::brep::{Brep, LoopKind, OrientedEdge};
+use vericad::io::iges::write::BrepForm;
 use vericad::io::{iges, step};
+use vericad::spline::NurbsCurve;
 use vericad::spline::project::CurveFoot;
 
 /// Sphere radius of [`zones`].
@@ -103,7 +105,7 @@ fn areas(m: &vericad::model::Model) -> Vec<f64> {
 #[test]
 fn sphere_zones_written_as_iges_keep_archimedes_areas() {
     let m = zones();
-    let (text, notes) = iges::write::write(&m, "zones");
+    let (text, notes) = iges::write::write_with(&m, "zones", BrepForm::BrepEntities);
     assert!(notes.is_empty(), "{notes:?}");
     let back = iges::from_str(&text, "zones.igs").unwrap();
     let b = back.brep.as_ref().unwrap();
@@ -138,6 +140,16 @@ fn check_rebuilt(m: &vericad::model::Model, name: &str) -> usize {
     assert!(notes.is_empty(), "{name}: {notes:?}");
     let b = &s.brep;
     let off = (100.0 * b0.tolerance).max(1e-6 * b0.extent());
+    // Every edge's curve, and the curve run backwards (as loops use it), is a valid NURBS
+    // curve: the arcs of cut circles keep proper knot vectors.
+    for e in &b.edges {
+        let c = &e.curve.as_ref().unwrap().nurbs;
+        for c in [c.clone(), c.reversed()] {
+            let (pts, w) = c.points_weights();
+            let again = NurbsCurve::new(c.hom.knots.knots().to_vec(), c.hom.degree(), pts, w);
+            assert!(again.is_ok(), "{name}: edge {}: {again:?}", e.source);
+        }
+    }
     for (fi, f) in b.faces.iter().enumerate() {
         let surface = &m.surfaces[f.surface.unwrap()].nurbs;
         let (u0, u1, v0, v1) = surface.hom.domain();
@@ -197,7 +209,7 @@ fn rebuilt_loops_chain_in_space_and_in_parameters() {
 fn abc_0000_written_as_iges_has_open_cascades_wires_and_area() {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
     let m = step::read(&p).unwrap();
-    let (text, notes) = iges::write::write(&m, "abc-0000");
+    let (text, notes) = iges::write::write_with(&m, "abc-0000", BrepForm::BrepEntities);
     assert!(notes.is_empty(), "{notes:?}");
     let back = iges::from_str(&text, "abc-0000.igs").unwrap();
     let b = back.brep.as_ref().unwrap();
@@ -243,5 +255,30 @@ fn sphere_caps_written_as_step_close_at_the_poles_of_the_spheres_nurbs_form() {
     let exact = [R - Z2, Z2 - Z1, R + Z1].map(|h| 2.0 * PI * R * h);
     for (g, e) in areas(&back).iter().zip(exact) {
         assert!((g - e).abs() / e < 1e-5, "{g} vs {e}");
+    }
+}
+
+#[test]
+fn sphere_zones_written_as_trimmed_surfaces_keep_archimedes_areas() {
+    // Entity 144 per face, one 142 per loop with its model-space and parameter-space curves;
+    // vericad reads the file back as trimmed surfaces and sews them into faces.
+    let m = zones();
+    let (text, notes) = iges::write::write_with(&m, "zones", BrepForm::TrimmedSurfaces);
+    assert!(
+        notes.iter().all(|n| n.contains("trimmed surfaces (144)")),
+        "{notes:?}"
+    );
+    let back = iges::from_str(&text, "zones.igs").unwrap();
+    assert_eq!(back.source_entities.get("144 (form 0)"), Some(&3));
+    assert_eq!(back.source_entities.get("142 (form 0)"), Some(&3));
+    let b = back
+        .brep
+        .as_ref()
+        .expect("trimmed surfaces are sewn into a B-rep");
+    assert_eq!(b.faces.len(), 3);
+    let exact = [R - Z2, Z2 - Z1, R + Z1].map(|h| 2.0 * PI * R * h);
+    let got = areas(&back);
+    for (g, e) in got.iter().zip(exact) {
+        assert!((g - e).abs() / e < 1e-5, "{got:?} vs {exact:?}");
     }
 }

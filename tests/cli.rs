@@ -466,6 +466,42 @@ fn convert_format_override_and_binary_stl() {
     assert_eq!(vericad::io::step::read(&out).unwrap().surfaces.len(), 7);
 }
 
+/// A STEP B-rep converted to IGES: the B-rep entities (186 per solid, 510 per face) by
+/// default, trimmed surfaces (144, one per face) with `--format iges-faces`; the warnings say
+/// which.
+#[test]
+fn convert_writes_iges_trimmed_surfaces_or_brep_entities() {
+    let d = tmp("iges-forms");
+    let src =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
+    let brep = d.join("brep.igs");
+    let (code, _, stderr) = vericad(&["convert", src.to_str().unwrap(), brep.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(!stderr.contains("trimmed surfaces"), "{stderr}");
+    let faces = d.join("faces.igs");
+    let (code, _, stderr) = vericad(&[
+        "convert",
+        src.to_str().unwrap(),
+        faces.to_str().unwrap(),
+        "--format",
+        "iges-faces",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.contains("25 trimmed surfaces (144)"), "{stderr}");
+    let n = |path: &std::path::Path, ty: &str| {
+        let m = vericad::io::read_model(path).unwrap();
+        m.source_entities.get(ty).copied().unwrap_or(0)
+    };
+    assert_eq!(
+        (n(&faces, "144 (form 0)"), n(&faces, "186 (form 0)")),
+        (25, 0)
+    );
+    assert_eq!(
+        (n(&brep, "510 (form 1)"), n(&brep, "186 (form 0)")),
+        (25, 6)
+    );
+}
+
 /// Output paths are checked before the intersection starts: an unwritable `--out` fails at
 /// once (exit 1, "cannot write"), and no partial file is left.
 #[test]

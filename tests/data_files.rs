@@ -297,7 +297,7 @@ fn iges_trim_loops_are_kept_and_closed() {
 }
 
 /// occt-bad_header.igs has the invalid units flag 0: read as the IGES default, inch (as Open
-/// CASCADE reads it), with a warning; written back with flag 1.
+/// CASCADE reads it), with a warning; written back with flag 1, in either IGES form.
 #[test]
 fn invalid_iges_units_flag_falls_back_to_inch_with_a_warning() {
     let m = read_model(&data("occt-bad_header.igs")).unwrap();
@@ -307,9 +307,21 @@ fn invalid_iges_units_flag_falls_back_to_inch_with_a_warning() {
         "{:?}",
         m.warnings
     );
-    let again = iges::from_str(&iges::write::to_string(&m, "x"), "x.igs").unwrap();
+    let brep = iges::write::write_with(&m, "x", iges::write::BrepForm::BrepEntities).0;
+    let again = iges::from_str(&brep, "x.igs").unwrap();
     assert_eq!(again.unit.as_deref(), Some("inch"));
     assert!(again.warnings.is_empty(), "{:?}", again.warnings);
+    // As a trimmed surface: the face sewn from the file's trims has no pcurve, so its 142
+    // holds the model-space boundary only, which the reader sews again (and says so).
+    let faces = iges::write::write_with(&m, "x", iges::write::BrepForm::TrimmedSurfaces).0;
+    let again = iges::from_str(&faces, "x.igs").unwrap();
+    assert_eq!(again.unit.as_deref(), Some("inch"));
+    assert!(
+        again.warnings.iter().all(|w| !w.contains("units")),
+        "{:?}",
+        again.warnings
+    );
+    assert_eq!(again.brep.as_ref().map(|b| b.faces.len()), Some(1));
 }
 
 /// No public file has a face spanning the seam of its surface's NURBS form: none is

@@ -38,7 +38,9 @@ pub enum Command {
         input: PathBuf,
         /// File to write (.json, .step/.stp, .igs/.iges, .stl, .vtp, .obj).
         output: PathBuf,
-        /// Output format, overriding the extension: json, step, iges, stl, stl-binary, vtp, obj.
+        /// Output format, overriding the extension: json, step, iges, iges-faces, stl,
+        /// stl-binary, vtp, obj. A B-rep is written to IGES as B-rep entities
+        /// (186/514/510/508/504/502); `iges-faces` writes trimmed surfaces (144/142) instead.
         #[arg(long)]
         format: Option<String>,
         #[command(flatten)]

@@ -228,7 +228,7 @@ fn trimmed_mesh_model(
 }
 
 /// Format names accepted by `--format`.
-pub const FORMAT_NAMES: &str = "json, step, iges, stl, stl-binary, vtp, obj";
+pub const FORMAT_NAMES: &str = "json, step, iges, iges-faces, stl, stl-binary, vtp, obj";
 
 /// Write a model in the format named by `format` (see [`FORMAT_NAMES`]) or, when `None`, by
 /// the path's extension. Returns what the format could not hold (e.g. trim loops in IGES 128 / STEP geometric sets), so nothing is lost
@@ -246,6 +246,11 @@ pub fn write_model_as(
             .and_then(|e| e.to_str())
             .unwrap_or("")
             .to_ascii_lowercase(),
+    };
+    // `iges-faces`: IGES with a B-rep as trimmed surfaces rather than its B-rep entities.
+    let (ext, brep_form) = match ext.as_str() {
+        "iges-faces" => ("igs".to_string(), iges::write::BrepForm::TrimmedSurfaces),
+        _ => (ext, iges::write::BrepForm::default()),
     };
     if let Some(b) = &m.brep {
         if matches!(ext.as_str(), "stl" | "stl-binary" | "vtp" | "obj") {
@@ -349,7 +354,7 @@ pub fn write_model_as(
             text
         }
         Some(Format::Iges) => {
-            let (text, mut notes) = iges::write::write(m, stem);
+            let (text, mut notes) = iges::write::write_with(m, stem, brep_form);
             warnings.append(&mut notes);
             text
         }

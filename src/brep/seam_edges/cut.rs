@@ -14,9 +14,22 @@ pub(super) fn cut_closed(b: &mut Brep, e: usize, ts: &[f64], off: f64) -> Vec<us
     let c = &curve.nurbs;
     let (d0, d1) = c.hom.domain();
     let v = b.edges[e].start;
-    let mut ts: Vec<f64> = ts.to_vec();
+    // A cut within 1e-9 of the domain from a knot is made at the knot: a span of a few ulps
+    // next to it would not survive the rounding of the arc's reversal.
+    let near = 1e-9 * (d1 - d0);
+    let knots = c.hom.knots.knots();
+    let mut ts: Vec<f64> = ts
+        .iter()
+        .map(|t| {
+            knots
+                .iter()
+                .copied()
+                .find(|k| (k - t).abs() <= near)
+                .unwrap_or(*t)
+        })
+        .collect();
     ts.sort_by(f64::total_cmp);
-    ts.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * (d1 - d0));
+    ts.dedup_by(|a, b| (*a - *b).abs() <= near);
     // Cuts at the edge's own vertex need none.
     let at_vertex = |t: f64| dist(&c.eval(&t), &b.vertices[v].point) <= off;
     let keep_v = ts.iter().any(|t| at_vertex(*t));

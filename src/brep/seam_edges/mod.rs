@@ -85,8 +85,12 @@ fn plan(b: &Brep, face: &Face, s: &NurbsSurface<f64, 3>, off: f64) -> Result<Opt
     for l in &face.loops {
         match &l.kind {
             LoopKind::Edges(oes) if oes.len() == 1 => {
-                let e = &b.edges[oes[0].edge];
-                let round = match e.curve.as_ref().filter(|_| e.start == e.end) {
+                let Some(e) = b.edges.get(oes[0].edge) else {
+                    others += 1;
+                    continue;
+                };
+                let closed = e.start == e.end && e.start < b.vertices.len();
+                let round = match e.curve.as_ref().filter(|_| closed) {
                     Some(c) => runs_round(s, &closure, &c.nurbs, off)?,
                     None => None,
                 };

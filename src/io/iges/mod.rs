@@ -16,6 +16,7 @@ mod topology;
 mod trims;
 pub mod write;
 mod write_brep;
+mod write_faces;
 
 use crate::model::{Curve, CurveGeometry, Model, Outcome, Surface};
 use std::collections::{BTreeMap, BTreeSet};

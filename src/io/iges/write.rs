@@ -108,15 +108,36 @@ pub fn to_string(m: &Model, name: &str) -> String {
     write(m, name).0
 }
 
-/// Write the model: a B-rep's faces as 144 (see `super::write_faces`), the other surfaces
-/// as 128 (144 with 142/102/126 when they have trim loops) and 3D curves (126); and what the
-/// file does not hold.
+/// How a B-rep is written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BrepForm {
+    /// The B-rep entities (186/514/510/508/504/502; `super::write_brep`): shells, solids,
+    /// edges shared between faces.
+    #[default]
+    BrepEntities,
+    /// Trimmed surfaces (144 over 128, a 142 per loop; `super::write_faces`): the form most
+    /// IGES readers take; no shells, solids or shared edges, and loops whose edges have no
+    /// pcurve are left for the reader to project.
+    TrimmedSurfaces,
+}
+
+/// Write the model with its B-rep (if any) as B-rep entities ([`write_with`]).
 pub fn write(m: &Model, name: &str) -> (String, Vec<String>) {
+    write_with(m, name, BrepForm::default())
+}
+
+/// Write the model: a B-rep in the form `form`, the other surfaces as 128 (144 with
+/// 142/102/126 when they have trim loops) and 3D curves (126); and what the file does not
+/// hold.
+pub fn write_with(m: &Model, name: &str, form: BrepForm) -> (String, Vec<String>) {
     let mut params: Params = Vec::new();
     let mut notes = Vec::new();
-    let as_faces = match &m.brep {
-        Some(b) => super::write_brep::brep(m, b, &mut params, &mut notes),
-        None => BTreeSet::new(),
+    let as_faces = match (&m.brep, form) {
+        (Some(b), BrepForm::TrimmedSurfaces) => {
+            super::write_faces::faces(m, b, &mut params, &mut notes)
+        }
+        (Some(b), BrepForm::BrepEntities) => super::write_brep::brep(m, b, &mut params, &mut notes),
+        (None, _) => BTreeSet::new(),
     };
     let de_next = |params: &Params| 2 * params.len() + 1;
     for (si, s) in m.surfaces.iter().enumerate() {

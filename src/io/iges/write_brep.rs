@@ -19,20 +19,21 @@
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
 use crate::brep::pcurve::for_face;
-use crate::brep::seam_edges::explicit_seams;
+use crate::brep::seam_edges::{Seamed, explicit_seams};
 use crate::brep::{Brep, LoopKind, OrientedEdge};
 use crate::model::{CurveGeometry, Model};
+use crate::spline::NurbsCurve;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Status of an entity used by another (physically dependent).
-const USED: &str = "00010000";
+pub(super) const USED: &str = "00010000";
 
 fn de_next(p: &Params) -> usize {
     2 * p.len() + 1
 }
 
 /// Add an entity of form 0.
-fn push(p: &mut Params, ty: i64, text: String, status: &'static str) -> usize {
+pub(super) fn push(p: &mut Params, ty: i64, text: String, status: &'static str) -> usize {
     push_form(p, ty, 0, text, status)
 }
 
@@ -43,7 +44,7 @@ fn push_form(p: &mut Params, ty: i64, form: u8, text: String, status: &'static s
 }
 
 /// The loop's edges in the order the loop runs (a bound with orientation .F. reversed).
-fn ordered(oes: &[OrientedEdge], orientation: bool) -> Vec<OrientedEdge> {
+pub(super) fn ordered(oes: &[OrientedEdge], orientation: bool) -> Vec<OrientedEdge> {
     if orientation {
         return oes.to_vec();
     }
@@ -129,11 +130,7 @@ pub(super) fn brep(
                     }
                     let mut t = format!("508,{}", oes.len());
                     for o in &oes {
-                        let pc = match seamed.pcurves.get(&(fi, o.edge, o.forward)) {
-                            Some(pc) => Some(pc.clone()),
-                            None => for_face(b, o.edge, face, &m.surfaces[si])
-                                .map(|pc| if o.forward { pc } else { pc.reversed() }),
-                        };
+                        let pc = use_pcurve(m, &seamed, fi, si, o);
                         if pc.is_some() {
                             written_pc.insert((o.edge, si));
                         }
@@ -208,6 +205,24 @@ pub(super) fn brep(
         ));
     }
     written
+}
+
+/// The pcurve of use `o` in face `fi` (model surface `si`) of the seamed B-rep, running the
+/// way the loop uses the edge: the one the seams' rebuilding made, else
+/// [`crate::brep::pcurve::for_face`]'s.
+pub(super) fn use_pcurve(
+    m: &Model,
+    seamed: &Seamed,
+    fi: usize,
+    si: usize,
+    o: &OrientedEdge,
+) -> Option<NurbsCurve<f64, 2>> {
+    if let Some(pc) = seamed.pcurves.get(&(fi, o.edge, o.forward)) {
+        return Some(pc.clone());
+    }
+    let b = &seamed.brep;
+    for_face(b, o.edge, &b.faces[fi], &m.surfaces[si])
+        .map(|pc| if o.forward { pc } else { pc.reversed() })
 }
 
 /// Shells (514) and solids (186); faces in no shell go into one more open shell.
