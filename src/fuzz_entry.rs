@@ -147,6 +147,21 @@ pub fn readers(data: &[u8]) {
             let p = s.nurbs.eval(&u0, &v0);
             assert!(p.iter().all(|x| !x.is_nan()), "{}", s.name);
         }
+        // What was read is written (a B-rep in every form, seams made explicit) and read
+        // back: the writers never panic and their output is readable.
+        if m.brep.is_some() {
+            use crate::io::iges::write::{BrepForm, write_with};
+            for form in [BrepForm::BrepEntities, BrepForm::TrimmedSurfaces] {
+                let (text, _) = write_with(&m, "fuzz", form);
+                if let Err(e) = crate::io::iges::from_str(&text, "written.igs") {
+                    panic!("vericad's IGES ({form:?}) does not read back: {e}");
+                }
+            }
+            let (text, _) = crate::io::step::write::write(&m, "fuzz");
+            if let Err(e) = crate::io::step::from_str(&text, "written.step") {
+                panic!("vericad's STEP does not read back: {e}");
+            }
+        }
     };
     // Both ways of treating an invalid face: refuse the file, or skip and account it.
     for skip_invalid_faces in [false, true] {
