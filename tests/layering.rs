@@ -95,3 +95,19 @@ fn the_checker_sees_imports() {
         vec![(1, "ssi".to_string()), (2, "repair".to_string())]
     );
 }
+
+/// Small files (ARCHITECTURE.md): no source file over 500 lines.
+#[test]
+fn no_source_file_over_500_lines() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut all = Vec::new();
+    files(&src, &mut all);
+    let long: Vec<String> = all
+        .iter()
+        .filter_map(|f| {
+            let n = std::fs::read_to_string(f).unwrap().lines().count();
+            (n > 500).then(|| format!("{} ({n} lines)", f.display()))
+        })
+        .collect();
+    assert!(long.is_empty(), "{long:?}");
+}
