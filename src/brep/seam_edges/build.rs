@@ -3,16 +3,11 @@
 
 use super::Plan;
 use super::cut::uses;
-use super::round::{arc_pcurve, at};
+use super::round::{arc_pcurve, at, segment};
 use crate::brep::{Brep, CurveKind, Edge, EdgeCurve, OrientedEdge, Vertex};
 use crate::geom::{Hom, dist};
 use crate::spline::{BSplineCurve, NurbsCurve, NurbsSurface};
 use std::collections::{BTreeMap, BTreeSet};
-
-/// A straight pcurve from `a` to `b`.
-fn segment(a: [f64; 2], b: [f64; 2]) -> Option<NurbsCurve<f64, 2>> {
-    NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0, 1.0]).ok()
-}
 
 /// The surface point with the `k`-th parameter `x` and the other `y`.
 pub(super) fn point(s: &NurbsSurface<f64, 3>, k: usize, x: f64, y: f64) -> [f64; 3] {
@@ -166,8 +161,7 @@ impl Builder<'_> {
             curve: Some(EdgeCurve {
                 source: String::new(),
                 kind: CurveKind::Line,
-                nurbs: NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![x, x], vec![1.0; 2])
-                    .ok()?,
+                nurbs: segment(x, x)?,
                 vertex_gap: 0.0,
             }),
             pcurves: Vec::new(),

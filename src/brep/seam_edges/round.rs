@@ -8,7 +8,7 @@ use crate::spline::project::{CurveFoot, project};
 use crate::spline::{NurbsCurve, NurbsSurface};
 
 /// Samples along a closed edge when deciding whether it runs round a closed surface.
-pub const SAMPLES: usize = 33;
+const SAMPLES: usize = 33;
 
 /// Bisection steps locating a seam crossing.
 const BISECTIONS: usize = 64;
@@ -64,6 +64,11 @@ impl Round {
                 (a.min(p[r]), b.max(p[r]))
             })
     }
+}
+
+/// The straight segment from `a` to `b` (degree 1 over `[0, 1]`).
+pub(super) fn segment<const D: usize>(a: [f64; D], b: [f64; D]) -> Option<NurbsCurve<f64, D>> {
+    NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0, 1.0]).ok()
 }
 
 /// `x` moved by whole periods to the value nearest `near`.
@@ -324,8 +329,7 @@ pub(super) fn arc_pcurve(
         .iter()
         .all(|p| (p[r] - from[r]).abs() <= 1e-8 * (hi[r] - lo[r]))
     {
-        let line = NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![from, last], vec![1.0; 2]);
-        return line.ok().map(|l| (l, last));
+        return segment(from, last).map(|l| (l, last));
     }
     let mut cuts = knot_crossings(s, arc, k, &ts, &scan);
     let tiny = 1e-9 * (t1 - t0);
