@@ -20,7 +20,7 @@
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
 use crate::brep::pcurve::for_face;
 use crate::brep::seam_edges::{Seamed, explicit_seams};
-use crate::brep::{Brep, LoopKind, OrientedEdge};
+use crate::brep::{Brep, Face, LoopKind, OrientedEdge};
 use crate::model::{CurveGeometry, Model};
 use crate::spline::NurbsCurve;
 use std::collections::{BTreeMap, BTreeSet};
@@ -93,11 +93,7 @@ pub(super) fn brep(
     // `(edge, model surface)` of every parameter-space curve written.
     let mut written_pc = BTreeSet::new();
     for (fi, face) in b.faces.iter().enumerate() {
-        let Some(si) = face.surface.filter(|s| *s < m.surfaces.len()) else {
-            notes.push(format!(
-                "face {} not written: its surface {} was not converted",
-                face.source, face.surface_source
-            ));
+        let Some(si) = face_surface(m, face, notes) else {
             continue;
         };
         let mut loops: Vec<(bool, usize)> = Vec::new();
@@ -205,6 +201,18 @@ pub(super) fn brep(
         ));
     }
     written
+}
+
+/// The model surface of `face`, or `None` with a note that the face is not written.
+pub(super) fn face_surface(m: &Model, face: &Face, notes: &mut Vec<String>) -> Option<usize> {
+    let si = face.surface.filter(|s| *s < m.surfaces.len());
+    if si.is_none() {
+        notes.push(format!(
+            "face {} not written: its surface {} was not converted",
+            face.source, face.surface_source
+        ));
+    }
+    si
 }
 
 /// The pcurve of use `o` in face `fi` (model surface `si`) of the seamed B-rep, running the

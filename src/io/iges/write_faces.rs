@@ -13,7 +13,7 @@
 //! entities (186 and below, [`super::write_brep`]) keep it.
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
-use super::write_brep::{USED, ordered, push, use_pcurve};
+use super::write_brep::{USED, face_surface, ordered, push, use_pcurve};
 use crate::brep::seam_edges::explicit_seams;
 use crate::brep::{Brep, LoopKind};
 use crate::model::{CurveGeometry, Model};
@@ -55,11 +55,7 @@ pub(super) fn faces(
     let (mut reversed, mut vertex_loops, mut count) = (Vec::new(), 0, 0);
     let mut model_space_only = 0;
     for (fi, face) in b.faces.iter().enumerate() {
-        let Some(si) = face.surface.filter(|s| *s < m.surfaces.len()) else {
-            notes.push(format!(
-                "face {} not written: its surface {} was not converted",
-                face.source, face.surface_source
-            ));
+        let Some(si) = face_surface(m, face, notes) else {
             continue;
         };
         let mut loops: Vec<(bool, LoopCurves)> = Vec::new();
