@@ -27,6 +27,11 @@ const AXIS: [f64; 3] = [0.0, 0.6, 0.8];
 /// (vertex loop at `−R·AXIS`). The circles' frames have axis `AXIS`; the sphere's frame does
 /// not, so no circle is a parameter line of the sphere's NURBS form.
 fn zones() -> vericad::model::Model {
+    step::from_str(&zones_text(), "zones.step").unwrap()
+}
+
+/// The STEP text of [`zones`].
+fn zones_text() -> String {
     let r = |z: f64| (R * R - z * z).sqrt();
     let [a, b, c] = AXIS;
     let data = format!(
@@ -88,10 +93,9 @@ fn zones() -> vericad::model::Model {
         nb = -R * b,
         nc = -R * c,
     );
-    let text = format!(
+    format!(
         "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n"
-    );
-    step::from_str(&text, "zones.step").unwrap()
+    )
 }
 
 fn areas(m: &vericad::model::Model) -> Vec<f64> {
@@ -281,4 +285,34 @@ fn sphere_zones_written_as_trimmed_surfaces_keep_archimedes_areas() {
     for (g, e) in got.iter().zip(exact) {
         assert!((g - e).abs() / e < 1e-5, "{got:?} vs {exact:?}");
     }
+}
+
+#[test]
+fn faces_on_the_other_side_of_their_loops_are_written_as_read_and_named() {
+    // The band's two bounds reversed: the face would be what lies outside the band (two
+    // caps, not one region of the parameter rectangle); the top cap's bound reversed: the
+    // face would lie on the side of its circle away from its vertex loop. Neither is rebuilt.
+    let text = zones_text()
+        .replace(
+            "#52=FACE_OUTER_BOUND('',#51,.T.);",
+            "#52=FACE_OUTER_BOUND('',#51,.F.);",
+        )
+        .replace("#55=FACE_BOUND('',#54,.T.);", "#55=FACE_BOUND('',#54,.F.);")
+        .replace(
+            "#42=FACE_OUTER_BOUND('',#41,.T.);",
+            "#42=FACE_OUTER_BOUND('',#41,.F.);",
+        );
+    let m = step::from_str(&text, "flipped.step").unwrap();
+    let mut notes = Vec::new();
+    let s = vericad::brep::seam_edges::explicit_seams(&m, m.brep.as_ref().unwrap(), &mut notes);
+    let all = notes.join("\n");
+    assert!(
+        all.contains("face #56: ") && all.contains("outside the band"),
+        "{all}"
+    );
+    assert!(
+        all.contains("face #44: ") && all.contains("away from the vertex loop"),
+        "{all}"
+    );
+    assert_eq!(s.faces, 1, "only the bottom cap is rebuilt: {all}");
 }

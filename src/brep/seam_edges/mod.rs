@@ -19,8 +19,11 @@
 //!   edge at the pole (a curve of zero length, its pcurve the border line), and the seam
 //!   edge back. The vertex loop (a point of the face) only says which side; it is dropped.
 //!
-//! The loop keeps the direction the first loop had, so the face stays on the same side of
-//! it. A closed edge is cut where it crosses the seam (two faces needing different seam
+//! The face must lie where its loops' directions put it (left of each loop seen along the
+//! face's normal): between the band's loops, on the cap's side of its loop. A face whose
+//! loops say otherwise (outside the band: across the other direction's seam on a torus, or
+//! two caps on a sphere) is not rebuilt. The loop keeps the direction the first loop had,
+//! so the face stays on the same side of it. A closed edge is cut where it crosses the seam (two faces needing different seam
 //! points on one circle cut it in two arcs), its old vertex dropped where no cut is at it;
 //! every face using it then uses its arcs in order. Each edge use of a rebuilt loop carries
 //! its pcurve: the seam and pole edges' are straight segments of the border lines; an arc's
@@ -121,6 +124,11 @@ fn plan(b: &Brep, face: &Face, s: &NurbsSurface<f64, 3>, off: f64) -> Result<Opt
     let (lo, hi) = bounds(s);
     // The direction a round loop runs in: the closed parameter increasing or not.
     let up = |x: &(usize, bool, Round)| x.1 == x.2.up;
+    // The face lies left of its loops seen along its normal, so in the parameter plane
+    // (normal S_u × S_v) a loop on the low side of the face (in the other parameter) runs
+    // counter-clockwise round it: towards +u when closed in u, towards −v when closed in v;
+    // the other way when the face's normal is reversed.
+    let low_side_up = (k == 0) == face.same_sense;
     match (rounds.len(), poles.as_slice()) {
         (2, []) => {
             let (a, z) = (rounds[0].2.other_range(), rounds[1].2.other_range());
@@ -128,6 +136,9 @@ fn plan(b: &Brep, face: &Face, s: &NurbsSurface<f64, 3>, off: f64) -> Result<Opt
                 refuse("both run the same way")
             } else if !(a.1 < z.0 || z.1 < a.0) {
                 refuse("their ranges across the closed direction overlap")
+            } else if up(&rounds[if a.1 < z.0 { 0 } else { 1 }]) != low_side_up {
+                // The face is the other band, across the seam of the other direction.
+                refuse("the face lies outside the band between them")
             } else {
                 Ok(Some(Plan {
                     k,
@@ -156,6 +167,10 @@ fn plan(b: &Brep, face: &Face, s: &NurbsSurface<f64, 3>, off: f64) -> Result<Opt
             let border = if k == 0 { [2, 3] } else { [0, 1] }[high as usize];
             if !closure.degenerate[border] {
                 return refuse("the side of the vertex loop reaches a border that is not a pole");
+            }
+            // The loop is the low side of a cap towards the high border.
+            if up(&rounds[0]) != (low_side_up == high) {
+                return refuse("the face lies on the side of its loop away from the vertex loop");
             }
             let cp = if high { hi[r] } else { lo[r] };
             Ok(Some(Plan {
