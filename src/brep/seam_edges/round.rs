@@ -4,7 +4,7 @@
 use crate::geom::dist;
 use crate::spline::closure::Closure;
 use crate::spline::interpolate::interpolate_with_parameters;
-use crate::spline::project::{CurveFoot, project};
+use crate::spline::project::{CurveFoot, descend, project};
 use crate::spline::{NurbsCurve, NurbsSurface};
 
 /// Samples along a closed edge when deciding whether it runs round a closed surface.
@@ -170,7 +170,11 @@ pub(super) fn runs_round(
                 break;
             }
             let guess = ka + (mid - ts[i]) / (ts[i + 1] - ts[i]) * (kb - ka);
-            let x = unwrap(project(s, &c.eval(&mid))[k], guess, period(k));
+            let x = unwrap(
+                seeded(s, &c.eval(&mid), k, at(k, guess, chain[i][r]))[k],
+                guess,
+                period(k),
+            );
             if passed(x) { b = mid } else { a = mid }
         }
         let foot = project(s, &c.eval(&b));
@@ -185,8 +189,32 @@ pub(super) fn runs_round(
     Ok(None)
 }
 
+/// The parameters of a closest point of `s` to `x` near `seed` (its closed parameter `k`
+/// taken modulo the period): damped Gauss–Newton from the seed, or the global search
+/// ([`project`]) where the descent stops on a border of a closed direction or moves more
+/// than a quarter of the domain (a search figure: the pcurves made from these points are
+/// checked against the edges themselves).
+fn seeded(s: &NurbsSurface<f64, 3>, x: &[f64; 3], k: usize, seed: [f64; 2]) -> [f64; 2] {
+    let (lo, hi) = bounds(s);
+    let mut start = seed;
+    start[k] = lo[k] + (seed[k] - lo[k]).rem_euclid(hi[k] - lo[k]);
+    let r = 1 - k;
+    start[r] = start[r].clamp(lo[r], hi[r]);
+    let d = [lo[0], hi[0], lo[1], hi[1]];
+    let (uv, _) = descend(s, x, start, &d);
+    let closed = Closure::of(s);
+    let on_seam =
+        |j: usize| [closed.seam_u, closed.seam_v][j] && (uv[j] == lo[j] || uv[j] == hi[j]);
+    let far = (0..2).any(|j| (uv[j] - start[j]).abs() > 0.25 * (hi[j] - lo[j]));
+    if on_seam(0) || on_seam(1) || far || !uv.iter().all(|v| v.is_finite()) {
+        project(s, x)
+    } else {
+        uv
+    }
+}
+
 /// The parameters of `arc`'s point at `t` on `s`, the closed one (`k`) unwrapped to the value
-/// nearest `near`'s.
+/// nearest `near`'s (which also seeds the search).
 fn foot(
     s: &NurbsSurface<f64, 3>,
     arc: &NurbsCurve<f64, 3>,
@@ -195,7 +223,7 @@ fn foot(
     near: [f64; 2],
 ) -> [f64; 2] {
     let (lo, hi) = bounds(s);
-    let p = project(s, &arc.eval(&t));
+    let p = seeded(s, &arc.eval(&t), k, near);
     at(k, unwrap(p[k], near[k], hi[k] - lo[k]), p[1 - k])
 }
 
