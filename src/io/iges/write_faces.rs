@@ -38,8 +38,8 @@ fn chain(p: &mut Params, curves: &[NurbsCurve<f64, 3>], status: &'static str) ->
     )
 }
 
-/// One loop of face `fi`: its model-space curves and, when every use has one, its
-/// parameter-space curves (in `(u, v, 0)`), or why it cannot be written.
+/// One loop: its model-space curves and, when every use has one, its parameter-space curves
+/// (in `(u, v, 0)`).
 type LoopCurves = (Vec<NurbsCurve<f64, 3>>, Option<Vec<NurbsCurve<f64, 3>>>);
 
 /// Write every face of `b` as a 144; returns the model surfaces written as faces.
