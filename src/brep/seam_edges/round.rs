@@ -99,21 +99,25 @@ pub(super) fn runs_round(
     off: f64,
 ) -> Result<Option<Round>, String> {
     let (t0, t1) = c.hom.domain();
-    let (lo, hi) = bounds(s);
+    let chart = Chart::new(s, closure);
+    let (lo, hi) = (chart.lo, chart.hi);
     let ts: Vec<f64> = (0..SAMPLES)
         .map(|i| t0 + (t1 - t0) * i as f64 / (SAMPLES - 1) as f64)
         .collect();
-    let mut uv = Vec::with_capacity(SAMPLES);
+    let mut uv: Vec<[f64; 2]> = Vec::with_capacity(SAMPLES);
     for t in &ts {
         let x = c.eval(t);
-        let p = project(s, &x);
+        let p = match uv.last() {
+            Some(last) => chart.seeded(&x, *last),
+            None => project(s, &x),
+        };
         let on = dist(&s.eval(&p[0], &p[1]), &x) <= off;
         if !on {
             return Ok(None);
         }
         uv.push(p);
     }
-    let closed = [closure.seam_u, closure.seam_v];
+    let closed = chart.closed;
     for k in 0..2 {
         let r = 1 - k;
         if !closed[k] {
@@ -171,13 +175,13 @@ pub(super) fn runs_round(
             }
             let guess = ka + (mid - ts[i]) / (ts[i + 1] - ts[i]) * (kb - ka);
             let x = unwrap(
-                seeded(s, &c.eval(&mid), k, at(k, guess, chain[i][r]))[k],
+                chart.seeded(&c.eval(&mid), at(k, guess, chain[i][r]))[k],
                 guess,
                 period(k),
             );
             if passed(x) { b = mid } else { a = mid }
         }
-        let foot = project(s, &c.eval(&b));
+        let foot = chart.seeded(&c.eval(&b), at(k, kb, chain[i + 1][r]));
         return Ok(Some(Round {
             k,
             c: foot[r],
@@ -189,57 +193,68 @@ pub(super) fn runs_round(
     Ok(None)
 }
 
-/// The parameters of a closest point of `s` to `x` near `seed` (its closed parameter `k`
-/// taken modulo the period): damped Gauss–Newton from the seed, or the global search
-/// ([`project`]) where the descent stops on a border of a closed direction or moves more
-/// than a quarter of the domain (a search figure: the pcurves made from these points are
-/// checked against the edges themselves).
-fn seeded(s: &NurbsSurface<f64, 3>, x: &[f64; 3], k: usize, seed: [f64; 2]) -> [f64; 2] {
-    let (lo, hi) = bounds(s);
-    let mut start = seed;
-    start[k] = lo[k] + (seed[k] - lo[k]).rem_euclid(hi[k] - lo[k]);
-    let r = 1 - k;
-    start[r] = start[r].clamp(lo[r], hi[r]);
-    let d = [lo[0], hi[0], lo[1], hi[1]];
-    let (uv, _) = descend(s, x, start, &d);
-    let closed = Closure::of(s);
-    let on_seam =
-        |j: usize| [closed.seam_u, closed.seam_v][j] && (uv[j] == lo[j] || uv[j] == hi[j]);
-    let far = (0..2).any(|j| (uv[j] - start[j]).abs() > 0.25 * (hi[j] - lo[j]));
-    if on_seam(0) || on_seam(1) || far || !uv.iter().all(|v| v.is_finite()) {
-        project(s, x)
-    } else {
-        uv
-    }
+/// A surface with its domain and closed directions (found once, not per search).
+struct Chart<'a> {
+    s: &'a NurbsSurface<f64, 3>,
+    lo: [f64; 2],
+    hi: [f64; 2],
+    closed: [bool; 2],
 }
 
-/// The parameters of `arc`'s point at `t` on `s`, the closed one (`k`) unwrapped to the value
-/// nearest `near`'s (which also seeds the search).
-fn foot(
-    s: &NurbsSurface<f64, 3>,
-    arc: &NurbsCurve<f64, 3>,
-    k: usize,
-    t: f64,
-    near: [f64; 2],
-) -> [f64; 2] {
-    let (lo, hi) = bounds(s);
-    let p = seeded(s, &arc.eval(&t), k, near);
-    at(k, unwrap(p[k], near[k], hi[k] - lo[k]), p[1 - k])
+impl<'a> Chart<'a> {
+    fn new(s: &'a NurbsSurface<f64, 3>, closure: &Closure) -> Chart<'a> {
+        let (lo, hi) = bounds(s);
+        Chart {
+            s,
+            lo,
+            hi,
+            closed: [closure.seam_u, closure.seam_v],
+        }
+    }
+    /// The parameters of a closest point of the surface to `x` near `seed` (its closed
+    /// parameters taken modulo their periods): damped Gauss–Newton from the seed, or the
+    /// global search ([`project`]) where the descent stops on a border of a closed direction
+    /// or moves more than a quarter of the domain (a search figure: the pcurves made from
+    /// these points are checked against the edges themselves).
+    fn seeded(&self, x: &[f64; 3], seed: [f64; 2]) -> [f64; 2] {
+        let (lo, hi) = (self.lo, self.hi);
+        let start: [f64; 2] = std::array::from_fn(|j| {
+            if self.closed[j] {
+                lo[j] + (seed[j] - lo[j]).rem_euclid(hi[j] - lo[j])
+            } else {
+                seed[j].clamp(lo[j], hi[j])
+            }
+        });
+        let (uv, _) = descend(self.s, x, start, &[lo[0], hi[0], lo[1], hi[1]]);
+        let on_seam = |j: usize| self.closed[j] && (uv[j] == lo[j] || uv[j] == hi[j]);
+        let far = (0..2).any(|j| (uv[j] - start[j]).abs() > 0.25 * (hi[j] - lo[j]));
+        if on_seam(0) || on_seam(1) || far || !uv.iter().all(|v| v.is_finite()) {
+            project(self.s, x)
+        } else {
+            uv
+        }
+    }
+    /// The parameters of `arc`'s point at `t`, the closed one (`k`) unwrapped to the value
+    /// nearest `near`'s (which also seeds the search).
+    fn foot(&self, arc: &NurbsCurve<f64, 3>, k: usize, t: f64, near: [f64; 2]) -> [f64; 2] {
+        let p = self.seeded(&arc.eval(&t), near);
+        at(k, unwrap(p[k], near[k], self.hi[k] - self.lo[k]), p[1 - k])
+    }
 }
 
 /// The curve parameters in `(a, b)` where `arc` crosses a knot line of `s` (inside each
 /// knot span the surface is smooth, so is the arc's pcurve; across one it need not be).
 /// `scan` holds the arc's parameters at `ts` (unwrapped).
 fn knot_crossings(
-    s: &NurbsSurface<f64, 3>,
+    c: &Chart,
     arc: &NurbsCurve<f64, 3>,
     k: usize,
     ts: &[f64],
     scan: &[[f64; 2]],
 ) -> Vec<f64> {
-    let (lo, hi) = bounds(s);
-    let period = hi[k] - lo[k];
-    let lines = [s.hom.ku.interior_breaks(), s.hom.kv.interior_breaks()];
+    let lo = c.lo;
+    let period = c.hi[k] - lo[k];
+    let lines = [c.s.hom.ku.interior_breaks(), c.s.hom.kv.interior_breaks()];
     let mut out = Vec::new();
     for (i, w) in scan.windows(2).enumerate() {
         for d in 0..2 {
@@ -265,7 +280,7 @@ fn knot_crossings(
                     if mid <= a || mid >= b {
                         break;
                     }
-                    let q = foot(s, arc, k, mid, w[0])[d];
+                    let q = c.foot(arc, k, mid, w[0])[d];
                     if (q - kappa) * (x - kappa) > 0.0 {
                         a = mid
                     } else {
@@ -281,10 +296,11 @@ fn knot_crossings(
 
 /// The cubic pcurve of `arc` over `[a, b]` from `from`, pinned to `end` when given: through
 /// projected samples, doubled until its image halfway between them lies within `off` of the
-/// arc (module comment of [`super`]).
+/// arc (module comment of [`super`]). A doubling keeps the samples it has and adds the
+/// halfway ones.
 #[allow(clippy::too_many_arguments)]
 fn piece(
-    s: &NurbsSurface<f64, 3>,
+    c: &Chart,
     arc: &NurbsCurve<f64, 3>,
     k: usize,
     a: f64,
@@ -293,20 +309,23 @@ fn piece(
     end: Option<[f64; 2]>,
     off: f64,
 ) -> Option<(NurbsCurve<f64, 2>, [f64; 2])> {
-    let (lo, hi) = bounds(s);
+    let (lo, hi) = (c.lo, c.hi);
     let near = CurveFoot::new(arc);
+    let at_f = |f: f64| a + (b - a) * f;
+    // Samples at the fractions `i / (n − 1)`, the first `from`.
     let mut n = PIECE_SAMPLES;
+    let mut pts = vec![from];
+    for i in 1..n {
+        let last = pts[i - 1];
+        pts.push(c.foot(arc, k, at_f(i as f64 / (n - 1) as f64), last));
+    }
     while n <= MAX_ARC_SAMPLES {
         let f: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
-        let mut pts = vec![from];
-        for fi in &f[1..] {
-            let last = pts[pts.len() - 1];
-            pts.push(foot(s, arc, k, a + (b - a) * fi, last));
-        }
+        let mut fitted = pts.clone();
         if let Some(e) = end {
-            pts[n - 1] = e;
+            fitted[n - 1] = e;
         }
-        let fit = interpolate_with_parameters(&pts, &f, 3).ok()?;
+        let fit = interpolate_with_parameters(&fitted, &f, 3).ok()?;
         let pc = NurbsCurve::new(
             fit.knots.knots().to_vec(),
             fit.knots.degree(),
@@ -317,12 +336,21 @@ fn piece(
         let close = f.windows(2).all(|w| {
             let q = pc.eval(&(0.5 * (w[0] + w[1])));
             let q = [q[0].clamp(lo[0], hi[0]), q[1].clamp(lo[1], hi[1])];
-            near.closest(&s.eval(&q[0], &q[1])).2 <= off
+            near.closest(&c.s.eval(&q[0], &q[1])).2 <= off
         });
         if close {
-            return Some((pc, pts[n - 1]));
+            return Some((pc, fitted[n - 1]));
         }
-        n = 2 * n - 1;
+        let m = 2 * n - 1;
+        let mut more = Vec::with_capacity(m);
+        for (i, p) in pts.iter().enumerate() {
+            if i > 0 {
+                let last = more[more.len() - 1];
+                more.push(c.foot(arc, k, at_f((2 * i - 1) as f64 / (m - 1) as f64), last));
+            }
+            more.push(*p);
+        }
+        (pts, n) = (more, m);
     }
     None
 }
@@ -340,7 +368,8 @@ pub(super) fn arc_pcurve(
     end: Option<[f64; 2]>,
     off: f64,
 ) -> Option<(NurbsCurve<f64, 2>, [f64; 2])> {
-    let (lo, hi) = bounds(s);
+    let c = Chart::new(s, &Closure::of(s));
+    let (lo, hi) = (c.lo, c.hi);
     let r = 1 - k;
     let (t0, t1) = arc.hom.domain();
     let n = 4 * SAMPLES;
@@ -350,7 +379,7 @@ pub(super) fn arc_pcurve(
     let mut scan = vec![from];
     for t in &ts[1..] {
         let last = scan[scan.len() - 1];
-        scan.push(foot(s, arc, k, *t, last));
+        scan.push(c.foot(arc, k, *t, last));
     }
     let last = end.unwrap_or(scan[n - 1]);
     if scan
@@ -359,7 +388,7 @@ pub(super) fn arc_pcurve(
     {
         return segment(from, last).map(|l| (l, last));
     }
-    let mut cuts = knot_crossings(s, arc, k, &ts, &scan);
+    let mut cuts = knot_crossings(&c, arc, k, &ts, &scan);
     let tiny = 1e-9 * (t1 - t0);
     cuts.retain(|t| *t > t0 + tiny && *t < t1 - tiny);
     cuts.sort_by(f64::total_cmp);
@@ -372,7 +401,7 @@ pub(super) fn arc_pcurve(
     let pieces = bounds.len() - 1;
     for (i, w) in bounds.windows(2).enumerate() {
         let e = if i + 1 == pieces { end } else { None };
-        let (pc, y) = piece(s, arc, k, w[0], w[1], x, e, off)?;
+        let (pc, y) = piece(&c, arc, k, w[0], w[1], x, e, off)?;
         out = Some(match out {
             None => pc,
             Some(c) => c.joined(&pc).ok()?,
