@@ -95,6 +95,28 @@ impl Builder<'_> {
         }
         Some((us, v))
     }
+    /// A new edge of this face (`what`: seam or pole) between `ends` along `nurbs`; its index.
+    fn edge(
+        &mut self,
+        what: &str,
+        ends: (usize, usize),
+        kind: CurveKind,
+        nurbs: NurbsCurve<f64, 3>,
+    ) -> usize {
+        self.b.edges.push(Edge {
+            source: format!("{what} of face {}", self.b.faces[self.fi].source),
+            start: ends.0,
+            end: ends.1,
+            curve: Some(EdgeCurve {
+                source: String::new(),
+                kind,
+                nurbs,
+                vertex_gap: 0.0,
+            }),
+            pcurves: Vec::new(),
+        });
+        self.b.edges.len() - 1
+    }
     /// A new edge from vertex `va` (at `other = a`) to `vb` (at `z`) along the seam, and its
     /// two uses: forward on the closed parameter's high side when `high`, backward on the
     /// other.
@@ -111,19 +133,7 @@ impl Builder<'_> {
         } else {
             seam_curve(self.s, self.k, z, a)?.reversed()
         };
-        let e = self.b.edges.len();
-        self.b.edges.push(Edge {
-            source: format!("seam of face {}", self.b.faces[self.fi].source),
-            start: va,
-            end: vb,
-            curve: Some(EdgeCurve {
-                source: String::new(),
-                kind: CurveKind::RationalBSpline,
-                nurbs: curve,
-                vertex_gap: 0.0,
-            }),
-            pcurves: Vec::new(),
-        });
+        let e = self.edge("seam", (va, vb), CurveKind::RationalBSpline, curve);
         let (x, y) = if high {
             (self.hi, self.lo)
         } else {
@@ -153,19 +163,7 @@ impl Builder<'_> {
     /// to its start side.
     fn pole(&mut self, v: usize, c: f64, up: bool) -> Option<OrientedEdge> {
         let x = self.b.vertices.get(v)?.point;
-        let e = self.b.edges.len();
-        self.b.edges.push(Edge {
-            source: format!("pole of face {}", self.b.faces[self.fi].source),
-            start: v,
-            end: v,
-            curve: Some(EdgeCurve {
-                source: String::new(),
-                kind: CurveKind::Line,
-                nurbs: segment(x, x)?,
-                vertex_gap: 0.0,
-            }),
-            pcurves: Vec::new(),
-        });
+        let e = self.edge("pole", (v, v), CurveKind::Line, segment(x, x)?);
         let (from, to) = if up {
             (self.hi, self.lo)
         } else {
