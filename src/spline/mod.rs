@@ -36,6 +36,7 @@ pub mod interpolate;
 pub mod knots;
 pub mod linalg;
 pub mod nurbs;
+pub mod pcurve_bound;
 pub mod project;
 pub mod sides;
 #[cfg(test)]
