@@ -1,19 +1,26 @@
 //! Parameter-space curves (pcurves) the writers give an edge on a face: the source's own,
 //! restricted to the edge, where the face's surface is the source's B-spline surface
 //! ([`source_pcurve`]); otherwise exact ones on planar patches ([`AffinePatch`]); otherwise
-//! none, and readers project the edge's 3D curve themselves.
+//! one made by projecting the edge's 3D curve onto the surface ([`project`]), with a proven
+//! bound on its image's distance from the edge where one can be had; otherwise none, and
+//! readers project the edge themselves (an edge a face uses twice — a seam — or whose
+//! projection would cross the surface's seam).
 
 mod affine;
+pub(crate) mod project;
 mod source;
 pub use affine::AffinePatch;
 pub use source::source_pcurve;
 
-use crate::brep::{Brep, Face};
-use crate::model::{Surface, SurfaceKind};
+use crate::brep::{Brep, Face, LoopKind};
+use crate::model::{Model, Surface, SurfaceKind};
 use crate::spline::NurbsCurve;
+use project::{Fit, Projector};
+use std::collections::BTreeMap;
 
-/// The pcurve a writer gives edge `e` on `face` of `b` (its model surface `surface`),
-/// running from the edge's start vertex to its end vertex (see the module comment).
+/// The pcurve a writer gives edge `e` on `face` of `b` (its model surface `surface`) from the
+/// source or a plane, running from the edge's start vertex to its end vertex (see the module
+/// comment); [`Pcurves`] adds projected ones.
 pub fn for_face(b: &Brep, e: usize, face: &Face, surface: &Surface) -> Option<NurbsCurve<f64, 2>> {
     let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
     if surface.kind == SurfaceKind::BSpline {
@@ -23,4 +30,100 @@ pub fn for_face(b: &Brep, e: usize, face: &Face, surface: &Surface) -> Option<Nu
         }
     }
     AffinePatch::new(&surface.nurbs)?.pcurve(c)
+}
+
+/// The pcurves one writer gives a B-rep's edges, projected ones included, with what the
+/// projections gave for its notes.
+pub struct Pcurves<'a> {
+    b: &'a Brep,
+    m: &'a Model,
+    /// How near a projected pcurve's image is to lie to its edge: aiming at 1e-8 of the
+    /// model's size, accepting the model tolerance.
+    fit: Fit,
+    projectors: BTreeMap<usize, Projector<'a>>,
+    /// `(edge, model surface)` → the projected pcurve and its proven bound.
+    made: BTreeMap<(usize, usize), Option<(NurbsCurve<f64, 2>, Option<f64>)>>,
+}
+
+impl<'a> Pcurves<'a> {
+    pub fn new(b: &'a Brep, m: &'a Model) -> Pcurves<'a> {
+        Pcurves {
+            b,
+            m,
+            fit: Fit {
+                aim: 1e-8 * b.extent(),
+                off: b.tolerance.max(1e-8 * b.extent()),
+            },
+            projectors: BTreeMap::new(),
+            made: BTreeMap::new(),
+        }
+    }
+
+    /// The pcurve of edge `e` on face `fi`, from its start vertex to its end vertex.
+    pub fn get(&mut self, e: usize, fi: usize) -> Option<NurbsCurve<f64, 2>> {
+        let (b, m) = (self.b, self.m);
+        let face = b.faces.get(fi)?;
+        let si = face.surface?;
+        let surface = m.surfaces.get(si)?;
+        if let Some(pc) = for_face(b, e, face, surface) {
+            return Some(pc);
+        }
+        if let Some(made) = self.made.get(&(e, si)) {
+            return made.as_ref().map(|x| x.0.clone());
+        }
+        let twice = face
+            .loops
+            .iter()
+            .filter_map(|l| match &l.kind {
+                LoopKind::Edges(oes) => Some(oes.iter().filter(|o| o.edge == e).count()),
+                LoopKind::Vertex(_) => None,
+            })
+            .sum::<usize>()
+            > 1;
+        let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
+        let made = if twice {
+            None
+        } else {
+            let proj = self
+                .projectors
+                .entry(si)
+                .or_insert_with(|| Projector::new(&surface.nurbs));
+            proj.project(c, None, None, self.fit)
+                .map(|p| (p.curve, p.bound))
+        };
+        let out = made.as_ref().map(|x| x.0.clone());
+        self.made.insert((e, si), made);
+        out
+    }
+
+    /// What the projections gave, for a writer's notes (`None` when none was tried).
+    pub fn note(&self) -> Option<String> {
+        if self.made.is_empty() {
+            return None;
+        }
+        let made: Vec<Option<f64>> = self.made.values().flatten().map(|x| x.1).collect();
+        let proven: Vec<f64> = made.iter().flatten().copied().collect();
+        let worst = proven.iter().copied().fold(0.0, f64::max);
+        let mut s = format!(
+            "pcurves made by projecting edges onto faces the source gave none on: {} of {} edge-surface pairs; {} proven within {:.1e} of their edges (largest bound {:.1e}; interval Bézier composition, crate::spline::pcurve_bound)",
+            made.len(),
+            self.made.len(),
+            proven.len(),
+            self.fit.off,
+            worst
+        );
+        if proven.len() < made.len() {
+            s += &format!(
+                ", {} checked at samples only",
+                made.len() - proven.len()
+            );
+        }
+        if made.len() < self.made.len() {
+            s += &format!(
+                "; {} left to the reader (a seam its face uses twice, a projection that would cross the surface's seam, or none within the tolerance)",
+                self.made.len() - made.len()
+            );
+        }
+        Some(s)
+    }
 }

@@ -167,10 +167,15 @@ fn binom(n: usize, k: usize) -> f64 {
 fn mul(f: &[I], g: &[I]) -> Vec<I> {
     let (m, n) = (f.len() - 1, g.len() - 1);
     let mut c = vec![I::point(0.0); m + n + 1];
+    let gs: Vec<I> = g
+        .iter()
+        .enumerate()
+        .map(|(j, gj)| I::point(binom(n, j)) * *gj)
+        .collect();
     for (i, fi) in f.iter().enumerate() {
-        let bi = I::point(binom(m, i)) * *fi;
-        for (j, gj) in g.iter().enumerate() {
-            c[i + j] = c[i + j] + bi * I::point(binom(n, j)) * *gj;
+        let fs = I::point(binom(m, i)) * *fi;
+        for (ck, gj) in c[i..].iter_mut().zip(&gs) {
+            *ck = *ck + fs * *gj;
         }
     }
     for (k, ck) in c.iter_mut().enumerate() {
@@ -219,6 +224,16 @@ impl SurfaceCells {
             return Err(Unproven::Extraction);
         }
         let (pc, cc) = (hom2(p), hom3(c));
+        // A polynomial pcurve whose control points lie in the domain lies in it (convex
+        // hull; the comparison is exact): its pieces' boxes, wider by the enclosures'
+        // rounding, are then cut back to the domain.
+        let d = [self.ub[0], self.ub[self.ub.len() - 1], self.vb[0], self.vb[self.vb.len() - 1]];
+        let inside = p.hom.control.iter().all(|h| {
+            h.w == 1.0
+                && (d[0]..=d[1]).contains(&h.wp[0])
+                && (d[2]..=d[3]).contains(&h.wp[1])
+        });
+        let pc = (pc, inside);
         let to_t = |f: f64| c0 + (f - f0) * ((c1 - c0) / (f1 - f0));
         let to_f = |t: f64| f0 + (t - c0) * ((f1 - f0) / (c1 - c0));
         // Breakpoints (f, t, f exact, t exact).
@@ -273,7 +288,7 @@ impl SurfaceCells {
     /// which halving divides by about four), and halving stops.
     fn piece(
         &self,
-        pc: &HomCurve<3>,
+        pc: &(HomCurve<3>, bool),
         cc: &HomCurve<4>,
         f: (f64, f64),
         t: (f64, f64),
@@ -286,7 +301,7 @@ impl SurfaceCells {
     #[allow(clippy::too_many_arguments)]
     fn refine(
         &self,
-        pc: &HomCurve<3>,
+        pc: &(HomCurve<3>, bool),
         cc: &HomCurve<4>,
         f: (f64, f64),
         t: (f64, f64),
@@ -315,13 +330,13 @@ impl SurfaceCells {
     /// `max_c r_c` over the cells the pcurve piece's box meets (module comment).
     fn matched(
         &self,
-        pc: &HomCurve<3>,
+        pc: &(HomCurve<3>, bool),
         cc: &HomCurve<4>,
         f: (f64, f64),
         t: (f64, f64),
     ) -> Result<f64, Unproven> {
         let weight = Unproven::Weight { t: t.0 };
-        let pp = pc.piece(f.0, f.1).ok_or(Unproven::Extraction)?;
+        let pp = pc.0.piece(f.0, f.1).ok_or(Unproven::Extraction)?;
         let cp = cc.piece(t.0, t.1).ok_or(Unproven::Extraction)?;
         if pp.iter().any(|x| !x[2].is_pos()) || cp.iter().any(|x| !x[3].is_pos()) {
             return Err(weight);
@@ -333,6 +348,15 @@ impl SurfaceCells {
                 bx[2 * d] = bx[2 * d].min(a.lo);
                 bx[2 * d + 1] = bx[2 * d + 1].max(a.hi);
             }
+        }
+        if pc.1 {
+            let (u, v) = (&self.ub, &self.vb);
+            bx = [
+                bx[0].max(u[0]),
+                bx[1].min(u[u.len() - 1]),
+                bx[2].max(v[0]),
+                bx[3].min(v[v.len() - 1]),
+            ];
         }
         let off = Unproven::OffDomain { t: t.0 };
         let (iu0, iu1) = cells_meeting(&self.ub, bx[0], bx[1]).ok_or(off.clone())?;

@@ -3,7 +3,8 @@
 
 use super::Plan;
 use super::cut::uses;
-use super::round::{arc_pcurve, at, segment};
+use super::round::at;
+use crate::brep::pcurve::project::{Fit, Projector, segment};
 use crate::brep::{Brep, CurveKind, Edge, EdgeCurve, OrientedEdge, Vertex};
 use crate::geom::{Hom, dist};
 use crate::spline::{BSplineCurve, NurbsCurve, NurbsSurface};
@@ -44,14 +45,16 @@ fn start_of(b: &Brep, o: &OrientedEdge) -> usize {
 pub(super) struct Builder<'a> {
     pub b: &'a mut Brep,
     pub s: &'a NurbsSurface<f64, 3>,
+    /// The pcurves' maker on `s`.
+    pub proj: &'a Projector<'a>,
     pub fi: usize,
     pub k: usize,
     pub lo: f64,
     pub hi: f64,
     /// The accepted distance between vertices and points meant to coincide.
     pub off: f64,
-    /// The accepted distance between an arc and its pcurve's image.
-    pub fit: f64,
+    /// How near an arc's pcurve's image is to lie to it.
+    pub fit: Fit,
     pub pcurves: &'a mut BTreeMap<(usize, usize, bool), NurbsCurve<f64, 2>>,
     /// The pole edges made.
     pub poles: &'a mut BTreeSet<usize>,
@@ -89,9 +92,9 @@ impl Builder<'_> {
                 curve.reversed()
             };
             let end = (i + 1 == n).then(|| at(self.k, to, c));
-            let (pc, y) = arc_pcurve(self.s, &arc, self.k, x, end, self.fit)?;
-            self.pcurves.insert((self.fi, u.edge, u.forward), pc);
-            x = y;
+            let p = self.proj.project(&arc, Some(x), end, self.fit)?;
+            self.pcurves.insert((self.fi, u.edge, u.forward), p.curve);
+            x = p.end;
         }
         Some((us, v))
     }

@@ -27,10 +27,10 @@
 //! points on one circle cut it in two arcs), its old vertex dropped where no cut is at it;
 //! every face using it then uses its arcs in order. Each edge use of a rebuilt loop carries
 //! its pcurve: the seam and pole edges' are straight segments of the border lines; an arc's
-//! is a straight segment where it runs along a parameter line, otherwise cubic pieces (one
-//! per knot span of the surface it crosses) through its projected samples, whose image,
-//! checked halfway between samples, lies within the model tolerance (at least 1e-8 of its
-//! size) of the arc.
+//! is made by [`crate::brep::pcurve::project`] — a straight segment along a parameter line or
+//! cubic pieces between the surface's knot lines through projected samples — and its image
+//! lies within the model tolerance (at least 1e-8 of its size) of the arc: proven where the
+//! surface's cells can be enclosed, otherwise checked halfway between samples.
 //!
 //! How a loop is recognised (evidence, sampled; not a proof): the closed edge's curve is
 //! sampled at 33 parameters and each sample projected onto the surface; every sample must lie within the accepted distance of it, and the closed parameter,
@@ -48,6 +48,7 @@ use crate::model::Model;
 use crate::spline::closure::Closure;
 use crate::spline::project::project;
 use crate::spline::{NurbsCurve, NurbsSurface};
+use crate::brep::pcurve::project::{Fit, Projector};
 use build::Builder;
 use cut::{cut_closed, uses};
 use round::{Round, bounds, runs_round};
@@ -275,15 +276,20 @@ pub fn explicit_seams(m: &Model, b: &Brep, notes: &mut Vec<String>) -> Seamed {
         };
         let (lo, hi) = bounds(s);
         let (edges, vertices) = (out.edges.len(), out.vertices.len());
+        let proj = Projector::new(s);
         let mut builder = Builder {
             b: &mut out,
             s,
+            proj: &proj,
             fi,
             k: p.k,
             lo: lo[p.k],
             hi: hi[p.k],
             off,
-            fit: b.tolerance.max(1e-8 * b.extent()),
+            fit: Fit {
+                aim: 1e-8 * b.extent(),
+                off: b.tolerance.max(1e-8 * b.extent()),
+            },
             pcurves: &mut pcurves,
             poles: &mut poles,
         };

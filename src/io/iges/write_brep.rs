@@ -11,14 +11,15 @@
 //! closed surface gets one loop with a seam edge, its pole edges written as vertex uses
 //! (TYPE 1), each use with the pcurve the rebuilding made.
 //!
-//! The other loops carry parameter-space curves where [`crate::brep::pcurve::for_face`] gives one,
-//! each running the way the loop uses the edge (as Open CASCADE reads them): the source's own
-//! on its B-spline surfaces, exact ones on planar faces (the edge curves mapped by the
-//! inverse of the plane's affine parametrization). Elsewhere a loop gives none and readers
+//! The other loops carry parameter-space curves where [`crate::brep::pcurve::Pcurves`] gives
+//! one, each running the way the loop uses the edge (as Open CASCADE reads them): the
+//! source's own on its B-spline surfaces, exact ones on planar faces (the edge curves mapped
+//! by the inverse of the plane's affine parametrization), projected ones elsewhere (with a
+//! proven bound where one can be had; a note sums them up). Where it gives none, readers
 //! project the edge. What the file does not hold is returned as notes.
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
-use crate::brep::pcurve::for_face;
+use crate::brep::pcurve::Pcurves;
 use crate::brep::seam_edges::{Seamed, explicit_seams};
 use crate::brep::{Brep, Face, LoopKind, OrientedEdge};
 use crate::model::{CurveGeometry, Model};
@@ -67,6 +68,7 @@ pub(super) fn brep(
     let mut written = BTreeSet::new();
     let seamed = explicit_seams(m, b, notes);
     let b = &seamed.brep;
+    let mut pcs = Pcurves::new(b, m);
     let mut coords = format!("502,{}", b.vertices.len());
     for v in &b.vertices {
         for x in v.point {
@@ -126,7 +128,7 @@ pub(super) fn brep(
                     }
                     let mut t = format!("508,{}", oes.len());
                     for o in &oes {
-                        let pc = use_pcurve(m, &seamed, fi, si, o);
+                        let pc = use_pcurve(&mut pcs, &seamed, fi, o);
                         if pc.is_some() {
                             written_pc.insert((o.edge, si));
                         }
@@ -181,6 +183,7 @@ pub(super) fn brep(
             USED,
         ));
     }
+    notes.extend(pcs.note());
     shells_and_solids(b, p, &face_de, notes);
     // A source pcurve is written back where a loop on its surface carries one for the edge.
     let lost = b
@@ -215,21 +218,18 @@ pub(super) fn face_surface(m: &Model, face: &Face, notes: &mut Vec<String>) -> O
     si
 }
 
-/// The pcurve of use `o` in face `fi` (model surface `si`) of the seamed B-rep, running the
-/// way the loop uses the edge: the one the seams' rebuilding made, else
-/// [`crate::brep::pcurve::for_face`]'s.
+/// The pcurve of use `o` in face `fi` of the seamed B-rep, running the way the loop uses the
+/// edge: the one the seams' rebuilding made, else [`Pcurves`]' (made on `seamed.brep`).
 pub(super) fn use_pcurve(
-    m: &Model,
+    pcs: &mut Pcurves,
     seamed: &Seamed,
     fi: usize,
-    si: usize,
     o: &OrientedEdge,
 ) -> Option<NurbsCurve<f64, 2>> {
     if let Some(pc) = seamed.pcurves.get(&(fi, o.edge, o.forward)) {
         return Some(pc.clone());
     }
-    let b = &seamed.brep;
-    for_face(b, o.edge, &b.faces[fi], &m.surfaces[si])
+    pcs.get(o.edge, fi)
         .map(|pc| if o.forward { pc } else { pc.reversed() })
 }
 

@@ -14,6 +14,7 @@
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
 use super::write_brep::{USED, face_surface, ordered, push, use_pcurve};
+use crate::brep::pcurve::Pcurves;
 use crate::brep::seam_edges::explicit_seams;
 use crate::brep::{Brep, LoopKind};
 use crate::model::{CurveGeometry, Model};
@@ -52,6 +53,7 @@ pub(super) fn faces(
     let mut written = BTreeSet::new();
     let seamed = explicit_seams(m, b, notes);
     let b = &seamed.brep;
+    let mut pcs = Pcurves::new(b, m);
     let (mut reversed, mut vertex_loops, mut count) = (Vec::new(), 0, 0);
     let mut model_space_only = 0;
     for (fi, face) in b.faces.iter().enumerate() {
@@ -79,7 +81,7 @@ pub(super) fn faces(
             let pcurves: Option<Vec<_>> = oes
                 .iter()
                 .map(|o| {
-                    use_pcurve(m, &seamed, fi, si, o).map(|d| CurveGeometry::Domain(d).to_space())
+                    use_pcurve(&mut pcs, &seamed, fi, o).map(|d| CurveGeometry::Domain(d).to_space())
                 })
                 .collect();
             match curves {
@@ -152,9 +154,10 @@ pub(super) fn faces(
             crate::model::list_ids(reversed)
         ));
     }
+    notes.extend(pcs.note());
     if model_space_only > 0 {
         notes.push(format!(
-            "{model_space_only} loop(s) written with their model-space curves only (a use without a pcurve: none in the source on that surface, none exact): readers project them"
+            "{model_space_only} loop(s) written with their model-space curves only (a use without a pcurve: see the note on projected pcurves): readers project them"
         ));
     }
     if vertex_loops > 0 {

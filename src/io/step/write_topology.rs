@@ -9,13 +9,14 @@
 //!
 //! What the file does not hold is returned as notes: analytic surfaces and curves are written
 //! in their exact NURBS forms (the type is not kept), pcurves are written where
-//! [`crate::brep::pcurve::for_face`] gives one (the source's own on its B-spline surfaces,
-//! exact ones on planes) and left out elsewhere, and faces without a surface or loops over an
+//! [`crate::brep::pcurve::Pcurves`] gives one (the source's own on its B-spline surfaces,
+//! exact ones on planes, projected ones with their proven bounds elsewhere, summed up in a
+//! note) and left out where it gives none, and faces without a surface or loops over an
 //! edge without a curve are left out, named. A cap's vertex loop away from the pole of its
 //! surface's NURBS form is written at the pole (named).
 
 use super::write::{Out, refs, text};
-use crate::brep::pcurve::for_face;
+use crate::brep::pcurve::Pcurves;
 use crate::brep::seam_edges::caps_off_their_poles;
 use crate::brep::{Brep, LoopKind};
 use crate::model::{CurveGeometry, Model};
@@ -35,6 +36,8 @@ struct Topology<'a> {
     context_2d: Option<u64>,
     /// `(edge, model surface)` of every pcurve written.
     pcurves: BTreeSet<(usize, usize)>,
+    /// Where the pcurves come from.
+    pcs: Pcurves<'a>,
     /// `(face, loop)` → the pole a cap's vertex loop is written at
     /// ([`crate::brep::seam_edges::caps_off_their_poles`]).
     cap_poles: BTreeMap<(usize, usize), [f64; 3]>,
@@ -75,8 +78,7 @@ impl Topology<'_> {
         // ones on planes.
         let mut pcurves = Vec::new();
         for (si, fi) in self.uses.get(e).cloned().unwrap_or_default() {
-            let face = &self.b.faces[fi];
-            let Some(pc) = for_face(self.b, e, face, &self.m.surfaces[si]) else {
+            let Some(pc) = self.pcs.get(e, fi) else {
                 continue;
             };
             let s = self.surface(si);
@@ -247,6 +249,7 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
         uses: edge_surfaces(m, b),
         context_2d: None,
         pcurves: BTreeSet::new(),
+        pcs: Pcurves::new(b, m),
         cap_poles: caps_off_their_poles(m, b)
             .into_iter()
             .map(|(f, l, pole)| ((f, l), pole))
@@ -271,6 +274,7 @@ pub(super) fn write(m: &Model, b: &Brep, name: &str) -> (String, Vec<String>) {
     let faces: Vec<Option<u64>> = (0..b.faces.len())
         .map(|f| t.face(f, flipped[f], &mut notes))
         .collect();
+    notes.extend(t.pcs.note());
     // Shells, each face as the shell uses it.
     let mut in_shell = BTreeSet::new();
     let mut shells = Vec::with_capacity(b.shells.len());

@@ -1,0 +1,398 @@
+//! Pcurves made by projecting an edge's 3D curve onto a face's surface, each with a proven
+//! bound on how far its image lies from the edge where one can be had
+//! ([`crate::spline::pcurve_bound`]).
+//!
+//! The edge is sampled at evenly spread parameters and each sample projected onto the surface
+//! (seeded from the previous one; closed parameters unwrapped along the edge). The pcurve is
+//! cut where the samples cross a knot line of the surface and at the edge's own knots (inside
+//! such a piece both the surface and the edge are smooth, so is the preimage), and each piece
+//! is a cubic through projected samples at the same fractions of the piece's edge range as of
+//! its own. A piece's samples are doubled until its image is near the edge (`Fit`) and
+//! *proven* within the model tolerance of the edge
+//! (the bound pairs the two ranges linearly, which this construction makes a good pairing);
+//! where the bound cannot be had (the surface's cells cannot be enclosed, the pcurve would
+//! leave the domain) the piece is accepted on evidence — its image halfway between samples
+//! within the tolerance of the edge, by projection onto the edge — and the pcurve carries no
+//! bound.
+//! A straight segment is tried first where a parameter stays constant (an edge along a
+//! parameter line).
+
+use crate::spline::closure::Closure;
+use crate::spline::interpolate::interpolate_with_parameters;
+use crate::spline::pcurve_bound::SurfaceCells;
+use crate::spline::project::{CurveFoot, descend, project};
+use crate::spline::{NurbsCurve, NurbsSurface};
+
+/// Samples scanned along an edge before it is cut into pieces.
+const SCAN: usize = 132;
+
+/// Bisection steps locating a knot crossing.
+const BISECTIONS: usize = 64;
+
+/// Samples a piece of a pcurve is first interpolated through.
+const PIECE_SAMPLES: usize = 9;
+
+/// Most samples a piece is interpolated through before it is given up.
+const MAX_PIECE_SAMPLES: usize = 257;
+
+/// The straight segment from `a` to `b` (degree 1 over `[0, 1]`).
+pub(crate) fn segment<const D: usize>(a: [f64; D], b: [f64; D]) -> Option<NurbsCurve<f64, D>> {
+    NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0, 1.0]).ok()
+}
+
+/// `x` moved by whole periods to the value nearest `near`.
+pub(crate) fn unwrap(x: f64, near: f64, period: f64) -> f64 {
+    x - period * ((x - near) / period).round()
+}
+
+/// A surface with its domain and closed directions (found once, not per search).
+pub(crate) struct Chart<'a> {
+    pub s: &'a NurbsSurface<f64, 3>,
+    pub lo: [f64; 2],
+    pub hi: [f64; 2],
+    pub closed: [bool; 2],
+}
+
+impl<'a> Chart<'a> {
+    pub fn new(s: &'a NurbsSurface<f64, 3>, closure: &Closure) -> Chart<'a> {
+        let (u0, u1, v0, v1) = s.hom.domain();
+        Chart {
+            s,
+            lo: [u0, v0],
+            hi: [u1, v1],
+            closed: [closure.seam_u, closure.seam_v],
+        }
+    }
+    pub fn period(&self, d: usize) -> f64 {
+        self.hi[d] - self.lo[d]
+    }
+    /// The parameters of a closest point of the surface to `x` near `seed` (its closed
+    /// parameters taken modulo their periods): damped Gauss–Newton from the seed, or the
+    /// global search ([`project`]) where the descent stops on a border of a closed direction
+    /// or moves more than a quarter of the domain (a search figure: the pcurves made from
+    /// these points are checked against the edges themselves).
+    pub fn seeded(&self, x: &[f64; 3], seed: [f64; 2]) -> [f64; 2] {
+        let (lo, hi) = (self.lo, self.hi);
+        let start: [f64; 2] = std::array::from_fn(|j| {
+            if self.closed[j] {
+                lo[j] + (seed[j] - lo[j]).rem_euclid(hi[j] - lo[j])
+            } else {
+                seed[j].clamp(lo[j], hi[j])
+            }
+        });
+        let (uv, _) = descend(self.s, x, start, &[lo[0], hi[0], lo[1], hi[1]]);
+        let on_seam = |j: usize| self.closed[j] && (uv[j] == lo[j] || uv[j] == hi[j]);
+        let far = (0..2).any(|j| (uv[j] - start[j]).abs() > 0.25 * (hi[j] - lo[j]));
+        if on_seam(0) || on_seam(1) || far || !uv.iter().all(|v| v.is_finite()) {
+            project(self.s, x)
+        } else {
+            uv
+        }
+    }
+    /// The parameters of `arc`'s point at `t`, each closed one unwrapped to the value nearest
+    /// `near`'s (which also seeds the search).
+    pub fn foot(&self, arc: &NurbsCurve<f64, 3>, t: f64, near: [f64; 2]) -> [f64; 2] {
+        let p = self.seeded(&arc.eval(&t), near);
+        std::array::from_fn(|d| {
+            if self.closed[d] {
+                unwrap(p[d], near[d], self.period(d))
+            } else {
+                p[d]
+            }
+        })
+    }
+}
+
+/// A projected pcurve.
+pub(crate) struct Projected {
+    pub curve: NurbsCurve<f64, 2>,
+    /// Its end's parameters.
+    pub end: [f64; 2],
+    /// A proven bound on the Hausdorff distance between its image and the edge, when every
+    /// piece has one.
+    pub bound: Option<f64>,
+}
+
+/// One surface, ready to take pcurves of many edges.
+pub(crate) struct Projector<'a> {
+    pub chart: Chart<'a>,
+    cells: Option<SurfaceCells>,
+}
+
+impl<'a> Projector<'a> {
+    pub fn new(s: &'a NurbsSurface<f64, 3>) -> Projector<'a> {
+        Projector {
+            chart: Chart::new(s, &Closure::of(s)),
+            cells: SurfaceCells::new(s),
+        }
+    }
+
+    /// The pcurve of `arc` (its whole domain, in its direction), starting at `from` when
+    /// given (the closed parameters already unwrapped as the caller wants them) and pinned
+    /// to `end` when given; without `from` the pcurve is placed inside the domain, and
+    /// `None` is returned where it cannot be (it would cross a seam). `None` also where no
+    /// piece meets `fit.off` even on evidence.
+    pub fn project(
+        &self,
+        arc: &NurbsCurve<f64, 3>,
+        from: Option<[f64; 2]>,
+        end: Option<[f64; 2]>,
+        fit: Fit,
+    ) -> Option<Projected> {
+        let c = &self.chart;
+        let (lo, hi) = (c.lo, c.hi);
+        let (t0, t1) = arc.hom.domain();
+        let ts: Vec<f64> = (0..SCAN)
+            .map(|i| t0 + (t1 - t0) * i as f64 / (SCAN - 1) as f64)
+            .collect();
+        let first = from.unwrap_or_else(|| project(c.s, &arc.eval(&t0)));
+        let mut scan = vec![first];
+        for t in &ts[1..] {
+            let last = scan[scan.len() - 1];
+            scan.push(c.foot(arc, *t, last));
+        }
+        if from.is_none() {
+            self.into_domain(&mut scan)?;
+        }
+        let first = scan[0];
+        let last = end.unwrap_or(scan[SCAN - 1]);
+        let flat = (0..2).any(|d| {
+            scan.iter()
+                .all(|p| (p[d] - first[d]).abs() <= 1e-8 * (hi[d] - lo[d]))
+        });
+        // A segment along a parameter line, and its bound when proven within `off`.
+        let mut straight = None;
+        if flat {
+            let l = segment(first, last)?;
+            let cert = self.cells.as_ref().map(|x| x.bound(&l, arc, (t0, t1), fit.aim));
+            match cert {
+                Some(Ok(r)) if r <= fit.aim => {
+                    return Some(Projected {
+                        curve: l,
+                        end: last,
+                        bound: Some(r),
+                    });
+                }
+                // Proven, but not within `aim`: the pairing may be what is off; cubic
+                // pieces pair by the same fractions.
+                Some(Ok(r)) => straight = Some((l, Some(r).filter(|r| *r <= fit.off))),
+                _ => {
+                    return Some(Projected {
+                        curve: l,
+                        end: last,
+                        bound: None,
+                    });
+                }
+            }
+        }
+        let mut cuts = self.knot_crossings(arc, &ts, &scan);
+        cuts.extend(arc.hom.knots.interior_breaks());
+        let tiny = 1e-9 * (t1 - t0);
+        cuts.retain(|t| *t > t0 + tiny && *t < t1 - tiny);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|x, y| (*x - *y).abs() <= tiny);
+        let mut bounds = vec![t0];
+        bounds.extend(cuts);
+        bounds.push(t1);
+        let mut x = first;
+        let mut out: Option<NurbsCurve<f64, 2>> = None;
+        let mut bound = Some(0.0f64);
+        let pieces = bounds.len() - 1;
+        let as_straight = |s: (NurbsCurve<f64, 2>, Option<f64>)| Projected {
+            curve: s.0,
+            end: last,
+            bound: s.1,
+        };
+        for (i, w) in bounds.windows(2).enumerate() {
+            let e = if i + 1 == pieces { end } else { None };
+            let Some((pc, y, r)) = self.piece(arc, w[0], w[1], x, e, fit) else {
+                return straight.map(as_straight);
+            };
+            bound = bound.zip(r).map(|(a, b)| a.max(b));
+            out = Some(match out {
+                None => pc,
+                Some(c) => c.joined(&pc).ok()?,
+            });
+            x = y;
+        }
+        match straight {
+            Some(s) if s.1.is_some_and(|r| bound.is_none_or(|b| r <= b)) => Some(as_straight(s)),
+            _ => out.map(|curve| Projected {
+                curve,
+                end: x,
+                bound,
+            }),
+        }
+    }
+
+    /// Moves unwrapped samples by whole periods into the domain; `None` where they span more
+    /// than it (the edge crosses a seam). Rounding outside is clamped.
+    fn into_domain(&self, scan: &mut [[f64; 2]]) -> Option<()> {
+        let c = &self.chart;
+        for d in 0..2 {
+            let (lo, hi) = (c.lo[d], c.hi[d]);
+            let slack = 1e-9 * (hi - lo);
+            let (mn, mx) = scan
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p[d]), b.max(p[d]))
+                });
+            let shift = if c.closed[d] && mn < lo - slack {
+                ((lo - slack - mn) / c.period(d)).ceil() * c.period(d)
+            } else if c.closed[d] && mx > hi + slack {
+                -((mx - hi - slack) / c.period(d)).ceil() * c.period(d)
+            } else {
+                0.0
+            };
+            if !(mn + shift >= lo - slack && mx + shift <= hi + slack) {
+                return None;
+            }
+            for p in scan.iter_mut() {
+                p[d] = (p[d] + shift).clamp(lo, hi);
+            }
+        }
+        Some(())
+    }
+
+    /// The curve parameters where `arc` crosses a knot line of the surface (inside each knot
+    /// span the surface is smooth, so is the pcurve; across one it need not be). `scan`
+    /// holds the arc's parameters at `ts` (unwrapped).
+    fn knot_crossings(&self, arc: &NurbsCurve<f64, 3>, ts: &[f64], scan: &[[f64; 2]]) -> Vec<f64> {
+        let c = &self.chart;
+        let lines = [c.s.hom.ku.interior_breaks(), c.s.hom.kv.interior_breaks()];
+        let mut out = Vec::new();
+        for (i, w) in scan.windows(2).enumerate() {
+            for d in 0..2 {
+                let (x, y) = (w[0][d], w[1][d]);
+                // A closed direction's knots, its ends included, repeat every period.
+                let shifts: Vec<f64> = if c.closed[d] {
+                    let p = c.period(d);
+                    let lo_m = ((x.min(y) - c.lo[d]) / p).floor() as i64;
+                    let hi_m = ((x.max(y) - c.lo[d]) / p).floor() as i64;
+                    (lo_m..=hi_m).map(|m| m as f64 * p).collect()
+                } else {
+                    vec![0.0]
+                };
+                let mut lines_d = lines[d].clone();
+                if c.closed[d] {
+                    lines_d.push(c.lo[d]);
+                }
+                for kappa in lines_d
+                    .iter()
+                    .flat_map(|l| shifts.iter().map(move |m| l + m))
+                {
+                    if (x - kappa) * (y - kappa) >= 0.0 {
+                        continue;
+                    }
+                    let (mut a, mut b) = (ts[i], ts[i + 1]);
+                    for _ in 0..BISECTIONS {
+                        let mid = 0.5 * (a + b);
+                        if mid <= a || mid >= b {
+                            break;
+                        }
+                        let q = c.foot(arc, mid, w[0])[d];
+                        if (q - kappa) * (x - kappa) > 0.0 {
+                            a = mid
+                        } else {
+                            b = mid
+                        }
+                    }
+                    out.push(0.5 * (a + b));
+                }
+            }
+        }
+        out
+    }
+
+    /// The cubic pcurve of `arc` over `[a, b]` from `from`, pinned to `end` when given, with
+    /// its end and its proven bound (module comment). A doubling keeps the samples it has
+    /// and adds the halfway ones. Doubling stops when the image, measured halfway between
+    /// samples, is within `fit.aim` of the arc, or within `fit.off` and no longer halving
+    /// (the arc lies off the surface by about that much, as edges of files with a coarse
+    /// tolerance do), or at [`MAX_PIECE_SAMPLES`].
+    fn piece(
+        &self,
+        arc: &NurbsCurve<f64, 3>,
+        a: f64,
+        b: f64,
+        from: [f64; 2],
+        end: Option<[f64; 2]>,
+        fit: Fit,
+    ) -> Option<(NurbsCurve<f64, 2>, [f64; 2], Option<f64>)> {
+        let c = &self.chart;
+        let (lo, hi) = (c.lo, c.hi);
+        let near = CurveFoot::new(arc);
+        let at_f = |f: f64| a + (b - a) * f;
+        // Samples at the fractions `i / (n − 1)`, the first `from`.
+        let mut n = PIECE_SAMPLES;
+        let mut pts = vec![from];
+        for i in 1..n {
+            let last = pts[i - 1];
+            pts.push(c.foot(arc, at_f(i as f64 / (n - 1) as f64), last));
+        }
+        // The last piece that met `off` on evidence only.
+        let mut evidence = None;
+        let mut before = f64::INFINITY;
+        while n <= MAX_PIECE_SAMPLES {
+            let f: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+            let mut fitted = pts.clone();
+            if let Some(e) = end {
+                fitted[n - 1] = e;
+            }
+            let interp = interpolate_with_parameters(&fitted, &f, 3).ok()?;
+            // Control points outside the domain by rounding (or an overshoot, which both
+            // checks then see) are moved onto its border.
+            let ctrl: Vec<[f64; 2]> = interp
+                .control
+                .iter()
+                .map(|q| [q[0].clamp(lo[0], hi[0]), q[1].clamp(lo[1], hi[1])])
+                .collect();
+            let w = vec![1.0; ctrl.len()];
+            let knots = interp.knots.knots().to_vec();
+            let pc = NurbsCurve::new(knots, interp.knots.degree(), ctrl, w).ok()?;
+            let err = f
+                .windows(2)
+                .map(|w| {
+                    let q = pc.eval(&(0.5 * (w[0] + w[1])));
+                    let q = [q[0].clamp(lo[0], hi[0]), q[1].clamp(lo[1], hi[1])];
+                    near.closest(&c.s.eval(&q[0], &q[1])).2
+                })
+                .fold(0.0, f64::max);
+            let last = 2 * n - 1 > MAX_PIECE_SAMPLES || err > 0.5 * before;
+            if err <= fit.aim || (last && err <= fit.off) {
+                let target = fit.aim.max(2.0 * err);
+                let dbg = self.cells.as_ref().map(|x| x.bound(&pc, arc, (a, b), target));
+                if std::env::var("DBG").is_ok() { eprintln!("piece n {n} err {err:e} target {target:e} -> {dbg:?}"); }
+                match dbg {
+                    Some(Ok(r)) if r <= fit.off => return Some((pc, fitted[n - 1], Some(r))),
+                    Some(Ok(_)) => evidence = Some((pc, fitted[n - 1], None)),
+                    _ => return Some((pc, fitted[n - 1], None)),
+                }
+            }
+            if 2 * n - 1 > MAX_PIECE_SAMPLES {
+                break;
+            }
+            before = err;
+            let m = 2 * n - 1;
+            let mut more = Vec::with_capacity(m);
+            for (i, p) in pts.iter().enumerate() {
+                if i > 0 {
+                    let last = more[more.len() - 1];
+                    more.push(c.foot(arc, at_f((2 * i - 1) as f64 / (m - 1) as f64), last));
+                }
+                more.push(*p);
+            }
+            (pts, n) = (more, m);
+        }
+        evidence
+    }
+}
+
+/// How close a projected pcurve's image is to be to its edge: doubling its samples aims at
+/// `aim`; `off` is the most that is accepted (the model's tolerance).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fit {
+    pub aim: f64,
+    pub off: f64,
+}
+
