@@ -96,6 +96,14 @@ impl<'a> Pcurves<'a> {
         out
     }
 
+    /// The proven bound on the distance between the image of the projected pcurve of edge
+    /// `e` on face `fi` and the edge (`None` where [`Pcurves::get`] gave none, gave the
+    /// source's or a plane's, or gave one on evidence only).
+    pub fn bound(&self, e: usize, fi: usize) -> Option<f64> {
+        let si = self.b.faces.get(fi)?.surface?;
+        self.made.get(&(e, si))?.as_ref()?.1
+    }
+
     /// What the projections gave, for a writer's notes (`None` when none was tried).
     pub fn note(&self) -> Option<String> {
         if self.made.is_empty() {
@@ -113,10 +121,7 @@ impl<'a> Pcurves<'a> {
             worst
         );
         if proven.len() < made.len() {
-            s += &format!(
-                ", {} checked at samples only",
-                made.len() - proven.len()
-            );
+            s += &format!(", {} checked at samples only", made.len() - proven.len());
         }
         if made.len() < self.made.len() {
             s += &format!(

@@ -127,7 +127,9 @@ fn hom2(c: &NurbsCurve<f64, 2>) -> HomCurve<3> {
     let ctrl = c.hom.control.iter();
     HomCurve {
         knots: c.hom.knots.clone(),
-        ctrl: ctrl.map(|h| [h.wp[0], h.wp[1], h.w].map(I::point)).collect(),
+        ctrl: ctrl
+            .map(|h| [h.wp[0], h.wp[1], h.w].map(I::point))
+            .collect(),
     }
 }
 
@@ -227,18 +229,27 @@ impl SurfaceCells {
         // A polynomial pcurve whose control points lie in the domain lies in it (convex
         // hull; the comparison is exact): its pieces' boxes, wider by the enclosures'
         // rounding, are then cut back to the domain.
-        let d = [self.ub[0], self.ub[self.ub.len() - 1], self.vb[0], self.vb[self.vb.len() - 1]];
+        let d = [
+            self.ub[0],
+            self.ub[self.ub.len() - 1],
+            self.vb[0],
+            self.vb[self.vb.len() - 1],
+        ];
         let inside = p.hom.control.iter().all(|h| {
-            h.w == 1.0
-                && (d[0]..=d[1]).contains(&h.wp[0])
-                && (d[2]..=d[3]).contains(&h.wp[1])
+            h.w == 1.0 && (d[0]..=d[1]).contains(&h.wp[0]) && (d[2]..=d[3]).contains(&h.wp[1])
         });
         let pc = (pc, inside);
         let to_t = |f: f64| c0 + (f - f0) * ((c1 - c0) / (f1 - f0));
         let to_f = |t: f64| f0 + (t - c0) * ((f1 - f0) / (c1 - c0));
         // Breakpoints (f, t, f exact, t exact).
         let mut br: Vec<(f64, f64, bool, bool)> = vec![(f0, c0, true, true), (f1, c1, true, true)];
-        br.extend(p.hom.knots.interior_breaks().into_iter().map(|f| (f, to_t(f), true, false)));
+        br.extend(
+            p.hom
+                .knots
+                .interior_breaks()
+                .into_iter()
+                .map(|f| (f, to_t(f), true, false)),
+        );
         br.extend(
             c.hom
                 .knots
@@ -341,7 +352,12 @@ impl SurfaceCells {
         if pp.iter().any(|x| !x[2].is_pos()) || cp.iter().any(|x| !x[3].is_pos()) {
             return Err(weight);
         }
-        let mut bx = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+        let mut bx = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
         for x in &pp {
             for d in 0..2 {
                 let a = x[d].checked_div(x[2]).ok_or(weight.clone())?;
@@ -365,10 +381,11 @@ impl SurfaceCells {
         let mut r: f64 = 0.0;
         for iu in iu0..=iu1 {
             for iv in iv0..=iv1 {
-                let rc = cell_bound(&self.patches[iu * nv + iv], &pp, &cp).map_err(|e| match e {
-                    Unproven::Weight { .. } => Unproven::Weight { t: t.0 },
-                    e => e,
-                })?;
+                let rc =
+                    cell_bound(&self.patches[iu * nv + iv], &pp, &cp).map_err(|e| match e {
+                        Unproven::Weight { .. } => Unproven::Weight { t: t.0 },
+                        e => e,
+                    })?;
                 r = r.max(rc);
             }
         }
@@ -395,7 +412,12 @@ fn cell_bound(patch: &EnclosedPatch, pp: &[[I; 3]], cp: &[[I; 4]]) -> Result<f64
     };
     let (xh, aw) = local(0, u0, u1).ok_or(Unproven::Extraction)?;
     let (yh, bw) = local(1, v0, v1).ok_or(Unproven::Extraction)?;
-    let (xp, ap, yp, bp) = (powers(&xh, p), powers(&aw, p), powers(&yh, q), powers(&bw, q));
+    let (xp, ap, yp, bp) = (
+        powers(&xh, p),
+        powers(&aw, p),
+        powers(&yh, q),
+        powers(&bw, q),
+    );
     let scaled = |v: Vec<I>, s: f64| -> Vec<I> { v.into_iter().map(|x| x * I::point(s)).collect() };
     let bx: Vec<Vec<I>> = (0..=p)
         .map(|i| scaled(mul(&xp[i], &ap[p - i]), binom(p, i)))

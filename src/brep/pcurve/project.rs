@@ -164,7 +164,10 @@ impl<'a> Projector<'a> {
         let mut straight = None;
         if flat {
             let l = segment(first, last)?;
-            let cert = self.cells.as_ref().map(|x| x.bound(&l, arc, (t0, t1), fit.aim));
+            let cert = self
+                .cells
+                .as_ref()
+                .map(|x| x.bound(&l, arc, (t0, t1), fit.aim));
             match cert {
                 Some(Ok(r)) if r <= fit.aim => {
                     return Some(Projected {
@@ -361,9 +364,11 @@ impl<'a> Projector<'a> {
             let last = 2 * n - 1 > MAX_PIECE_SAMPLES || err > 0.5 * before;
             if err <= fit.aim || (last && err <= fit.off) {
                 let target = fit.aim.max(2.0 * err);
-                let dbg = self.cells.as_ref().map(|x| x.bound(&pc, arc, (a, b), target));
-                if std::env::var("DBG").is_ok() { eprintln!("piece n {n} err {err:e} target {target:e} -> {dbg:?}"); }
-                match dbg {
+                match self
+                    .cells
+                    .as_ref()
+                    .map(|x| x.bound(&pc, arc, (a, b), target))
+                {
                     Some(Ok(r)) if r <= fit.off => return Some((pc, fitted[n - 1], Some(r))),
                     Some(Ok(_)) => evidence = Some((pc, fitted[n - 1], None)),
                     _ => return Some((pc, fitted[n - 1], None)),
@@ -395,4 +400,3 @@ pub(crate) struct Fit {
     pub aim: f64,
     pub off: f64,
 }
-

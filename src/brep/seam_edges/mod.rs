@@ -43,12 +43,12 @@ mod cut;
 mod round;
 
 use super::{Brep, Face, Loop, LoopKind};
+use crate::brep::pcurve::project::{Fit, Projector};
 use crate::geom::dist;
 use crate::model::Model;
 use crate::spline::closure::Closure;
 use crate::spline::project::project;
 use crate::spline::{NurbsCurve, NurbsSurface};
-use crate::brep::pcurve::project::{Fit, Projector};
 use build::Builder;
 use cut::{cut_closed, uses};
 use round::{Round, bounds, runs_round};

@@ -81,7 +81,8 @@ pub(super) fn faces(
             let pcurves: Option<Vec<_>> = oes
                 .iter()
                 .map(|o| {
-                    use_pcurve(&mut pcs, &seamed, fi, o).map(|d| CurveGeometry::Domain(d).to_space())
+                    use_pcurve(&mut pcs, &seamed, fi, o)
+                        .map(|d| CurveGeometry::Domain(d).to_space())
                 })
                 .collect();
             match curves {

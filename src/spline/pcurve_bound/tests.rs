@@ -120,8 +120,14 @@ fn circles_on_a_sphere_are_bounded_soundly_and_tightly() {
                 to_circle(&s.eval(&uv[0], &uv[1]), &frame.o, &n, rho)
             })
             .fold(0.0, f64::max);
-        assert!(r >= measured, "m = {m}: bound {r} below measured {measured}");
-        assert!(r <= 4.0 * measured + 1e-12, "m = {m}: bound {r}, measured {measured}");
+        assert!(
+            r >= measured,
+            "m = {m}: bound {r} below measured {measured}"
+        );
+        assert!(
+            r <= 4.0 * measured + 1e-12,
+            "m = {m}: bound {r}, measured {measured}"
+        );
         assert!(r < last, "m = {m}: {r} not below {last}");
         last = r;
         // The same pcurve against a circle 1e-3 wider: at least the widening, measured.
