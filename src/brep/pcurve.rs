@@ -43,7 +43,12 @@ pub struct Pcurves<'a> {
     projectors: BTreeMap<usize, Projector<'a>>,
     /// `(edge, model surface)` → the projected pcurve and its proven bound.
     made: BTreeMap<(usize, usize), Option<(NurbsCurve<f64, 2>, Option<f64>)>>,
+    /// `(seam edge, model surface)` → its pcurves on both sides and their proven bound.
+    seams: BTreeMap<(usize, usize), Option<SeamSides>>,
 }
+
+/// A seam edge's pcurves on the two sides of its surface's seam, and their proven bound.
+type SeamSides = ([NurbsCurve<f64, 2>; 2], f64);
 
 impl<'a> Pcurves<'a> {
     pub fn new(b: &'a Brep, m: &'a Model) -> Pcurves<'a> {
@@ -56,6 +61,7 @@ impl<'a> Pcurves<'a> {
             },
             projectors: BTreeMap::new(),
             made: BTreeMap::new(),
+            seams: BTreeMap::new(),
         }
     }
 
@@ -80,20 +86,42 @@ impl<'a> Pcurves<'a> {
             })
             .sum::<usize>()
             > 1;
+        if twice {
+            // A seam edge: one pcurve per side ([`Pcurves::seam_sides`]).
+            return None;
+        }
         let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
-        let made = if twice {
-            None
-        } else {
-            let proj = self
-                .projectors
-                .entry(si)
-                .or_insert_with(|| Projector::new(&surface.nurbs));
-            proj.project(c, None, None, self.fit)
-                .map(|p| (p.curve, p.bound))
-        };
+        let fit = self.fit;
+        let made = self
+            .projector(si, surface)
+            .project(c, None, None, fit)
+            .map(|p| (p.curve, p.bound));
         let out = made.as_ref().map(|x| x.0.clone());
         self.made.insert((e, si), made);
         out
+    }
+
+    fn projector(&mut self, si: usize, surface: &'a Surface) -> &Projector<'a> {
+        self.projectors
+            .entry(si)
+            .or_insert_with(|| Projector::new(&surface.nurbs))
+    }
+
+    /// The pcurves of edge `e` on both sides of the seam of face `fi`'s closed surface, each
+    /// from the edge's start vertex to its end vertex, where the face's loops use `e` twice
+    /// (a seam edge) and it lies along the seam; a loop takes the side its neighbours' pcurves
+    /// meet ([`crate::io`]'s writers decide).
+    pub fn seam_sides(&mut self, e: usize, fi: usize) -> Option<[NurbsCurve<f64, 2>; 2]> {
+        let (b, m) = (self.b, self.m);
+        let si = b.faces.get(fi)?.surface?;
+        let surface = m.surfaces.get(si)?;
+        if !self.seams.contains_key(&(e, si)) {
+            let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
+            let fit = self.fit;
+            let sides = self.projector(si, surface).seam_sides(c, fit);
+            self.seams.insert((e, si), sides);
+        }
+        self.seams.get(&(e, si))?.as_ref().map(|s| s.0.clone())
     }
 
     /// The proven bound on the distance between the image of the projected pcurve of edge
@@ -106,7 +134,7 @@ impl<'a> Pcurves<'a> {
 
     /// What the projections gave, for a writer's notes (`None` when none was tried).
     pub fn note(&self) -> Option<String> {
-        if self.made.is_empty() {
+        if self.made.is_empty() && self.seams.is_empty() {
             return None;
         }
         let made: Vec<Option<f64>> = self.made.values().flatten().map(|x| x.1).collect();
@@ -125,8 +153,16 @@ impl<'a> Pcurves<'a> {
         }
         if made.len() < self.made.len() {
             s += &format!(
-                "; {} left to the reader (a seam its face uses twice, a projection that would cross the surface's seam, or none within the tolerance)",
+                "; {} left to the reader (a projection that would cross the surface's seam, or none within the tolerance)",
                 self.made.len() - made.len()
+            );
+        }
+        let seams: Vec<f64> = self.seams.values().flatten().map(|x| x.1).collect();
+        if !seams.is_empty() {
+            s += &format!(
+                "; {} seam edge(s) given pcurves on both sides of their surface's seam, proven (largest bound {:.1e})",
+                seams.len(),
+                seams.iter().copied().fold(0.0, f64::max)
             );
         }
         Some(s)

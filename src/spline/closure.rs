@@ -52,15 +52,16 @@ fn one_point(row: &[&Hom<f64, 3>], eps: f64) -> bool {
     row[1..].iter().all(|h| !far(&cart(h), &p0, eps))
 }
 
-/// Whether two rows are the same curve (points within `eps`, weights proportional).
-fn same_row(a: &[&Hom<f64, 3>], b: &[&Hom<f64, 3>], eps: f64) -> bool {
+/// Whether two rows are the same curve (points within `eps`, weights proportional within a
+/// relative `close`).
+fn same_row(a: &[&Hom<f64, 3>], b: &[&Hom<f64, 3>], eps: f64, close: f64) -> bool {
     if a.len() != b.len() || a.is_empty() {
         return false;
     }
     let (wa0, wb0) = (a[0].w, b[0].w);
     a.iter().zip(b).all(|(x, y)| {
         let r = (x.w / wa0) / (y.w / wb0);
-        !far(&cart(x), &cart(y), eps) && (r - 1.0).abs() <= CLOSE
+        !far(&cart(x), &cart(y), eps) && (r - 1.0).abs() <= close
     })
 }
 
@@ -85,7 +86,14 @@ pub fn exact_seam(s: &NurbsSurface<f64, 3>, dir: usize) -> bool {
 }
 
 impl Closure {
+    /// The closure with [`CLOSE`] (see the module comment).
     pub fn of(s: &NurbsSurface<f64, 3>) -> Closure {
+        Closure::within(s, CLOSE)
+    }
+    /// The closure with the relative closeness `close` in place of [`CLOSE`]: for searches
+    /// that only need to know where a parameter may run on across a border (files whose
+    /// closed surfaces meet themselves within a coarser rounding than [`CLOSE`]).
+    pub fn within(s: &NurbsSurface<f64, 3>, close: f64) -> Closure {
         let h = &s.hom;
         let (nu, nv) = (h.ku.n_ctrl(), h.kv.n_ctrl());
         if !clamped(h.ku.knots(), h.ku.degree()) || !clamped(h.kv.knots(), h.kv.degree()) {
@@ -100,7 +108,7 @@ impl Closure {
             return Closure::default();
         }
         let scale = pts.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-        let eps = CLOSE * scale;
+        let eps = close * scale;
         let at = |i: usize, j: usize| &h.net[i * nv + j];
         let row_u = |i: usize| (0..nv).map(|j| at(i, j)).collect::<Vec<_>>();
         let row_v = |j: usize| (0..nu).map(|i| at(i, j)).collect::<Vec<_>>();
@@ -112,8 +120,8 @@ impl Closure {
                 one_point(&v0, eps),
                 one_point(&v1, eps),
             ],
-            seam_u: same_row(&u0, &u1, eps),
-            seam_v: same_row(&v0, &v1, eps),
+            seam_u: same_row(&u0, &u1, eps, close),
+            seam_v: same_row(&v0, &v1, eps, close),
         }
     }
     /// The Cartesian point of a degenerate border, side `0..4` as in `degenerate` (its

@@ -51,6 +51,8 @@ pub(crate) struct Chart<'a> {
     pub lo: [f64; 2],
     pub hi: [f64; 2],
     pub closed: [bool; 2],
+    /// Borders `u = lo`, `u = hi`, `v = lo`, `v = hi` that are a point (a pole).
+    pub poles: [bool; 4],
 }
 
 impl<'a> Chart<'a> {
@@ -61,7 +63,27 @@ impl<'a> Chart<'a> {
             lo: [u0, v0],
             hi: [u1, v1],
             closed: [closure.seam_u, closure.seam_v],
+            poles: closure.degenerate,
         }
+    }
+    /// The first and last of `pts` lying on a pole take the other parameter of their
+    /// neighbour (at a pole that parameter is arbitrary; the pcurve must arrive along it).
+    pub fn at_poles(&self, pts: &mut [[f64; 2]]) {
+        let n = pts.len();
+        if n >= 2 {
+            pts[0] = self.at_pole(pts[0], pts[1]);
+            pts[n - 1] = self.at_pole(pts[n - 1], pts[n - 2]);
+        }
+    }
+    /// `p`, with the other parameter of `next` where `p` lies on a pole.
+    fn at_pole(&self, mut p: [f64; 2], next: [f64; 2]) -> [f64; 2] {
+        for side in 0..4 {
+            let (d, end) = (side / 2, if side % 2 == 0 { self.lo } else { self.hi });
+            if self.poles[side] && (p[d] - end[d]).abs() <= 1e-9 * self.period(d) {
+                p[1 - d] = next[1 - d];
+            }
+        }
+        p
     }
     pub fn period(&self, d: usize) -> f64 {
         self.hi[d] - self.lo[d]
@@ -122,7 +144,9 @@ pub(crate) struct Projector<'a> {
 impl<'a> Projector<'a> {
     pub fn new(s: &'a NurbsSurface<f64, 3>) -> Projector<'a> {
         Projector {
-            chart: Chart::new(s, &Closure::of(s)),
+            // A search aid only (the pcurves are checked): borders that meet within 1e-7
+            // of the net's size count as a seam.
+            chart: Chart::new(s, &Closure::within(s, 1e-7)),
             cells: SurfaceCells::new(s),
         }
     }
@@ -152,6 +176,7 @@ impl<'a> Projector<'a> {
             scan.push(c.foot(arc, *t, last));
         }
         if from.is_none() {
+            c.at_poles(&mut scan);
             self.into_domain(&mut scan)?;
         }
         let first = scan[0];
@@ -228,13 +253,61 @@ impl<'a> Projector<'a> {
         }
     }
 
+    /// The pcurves of `arc`, an edge along the seam of a closed direction, on both sides of
+    /// it (the projection with that parameter set to the end of the domain it lies at, and
+    /// the same curve at the other end), with the larger of their proven bounds. `None` when
+    /// the projection does not lie along a border, or either side is not proven within
+    /// `fit.off` of the edge (the other side: the surface is not closed there).
+    pub fn seam_sides(
+        &self,
+        arc: &NurbsCurve<f64, 3>,
+        fit: Fit,
+    ) -> Option<([NurbsCurve<f64, 2>; 2], f64)> {
+        let c = &self.chart;
+        let p = self.project(arc, None, None, fit)?;
+        // The direction whose parameter stays at one end of the domain (within 1e-6 of its
+        // length, as in `into_domain`), and that end; both sides are checked.
+        let (pts, w) = p.curve.points_weights();
+        let at_end = |d: usize, x: f64| pts.iter().all(|q| (q[d] - x).abs() <= 1e-6 * c.period(d));
+        // The surface need not be found closed ([`Closure`] compares the border rows
+        // exactly): the other side is accepted only with a proven bound.
+        let (d, here, other) = (0..2).find_map(|d| {
+            if at_end(d, c.lo[d]) {
+                Some((d, c.lo[d], c.hi[d]))
+            } else if at_end(d, c.hi[d]) {
+                Some((d, c.hi[d], c.lo[d]))
+            } else {
+                None
+            }
+        })?;
+        let put = |x: f64| -> Vec<[f64; 2]> {
+            pts.iter()
+                .map(|q| if d == 0 { [x, q[1]] } else { [q[0], x] })
+                .collect()
+        };
+        let knots = p.curve.hom.knots.knots().to_vec();
+        let deg = p.curve.hom.degree();
+        let one = NurbsCurve::new(knots.clone(), deg, put(here), w.clone()).ok()?;
+        let twin = NurbsCurve::new(knots, deg, put(other), w).ok()?;
+        let (t0, t1) = arc.hom.domain();
+        let bound = |pc: &NurbsCurve<f64, 2>| {
+            self.cells
+                .as_ref()
+                .and_then(|x| x.bound(pc, arc, (t0, t1), fit.aim).ok())
+                .filter(|r| *r <= fit.off)
+        };
+        let bound = bound(&one)?.max(bound(&twin)?);
+        Some(([one, twin], bound))
+    }
+
     /// Moves unwrapped samples by whole periods into the domain; `None` where they span more
-    /// than it (the edge crosses a seam). Rounding outside is clamped.
+    /// than it (the edge crosses a seam). Samples outside by up to 1e-6 of the period (a
+    /// vertex on the seam projected a little off it) are clamped; the pcurve is checked.
     fn into_domain(&self, scan: &mut [[f64; 2]]) -> Option<()> {
         let c = &self.chart;
         for d in 0..2 {
             let (lo, hi) = (c.lo[d], c.hi[d]);
-            let slack = 1e-9 * (hi - lo);
+            let slack = 1e-6 * (hi - lo);
             let (mn, mx) = scan
                 .iter()
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
@@ -341,6 +414,8 @@ impl<'a> Projector<'a> {
             let mut fitted = pts.clone();
             if let Some(e) = end {
                 fitted[n - 1] = e;
+            } else {
+                fitted[n - 1] = c.at_pole(fitted[n - 1], fitted[n - 2]);
             }
             let interp = interpolate_with_parameters(&fitted, &f, 3).ok()?;
             // Control points outside the domain by rounding (or an overshoot, which both
@@ -351,12 +426,25 @@ impl<'a> Projector<'a> {
                 .map(|q| [q[0].clamp(lo[0], hi[0]), q[1].clamp(lo[1], hi[1])])
                 .collect();
             let w = vec![1.0; ctrl.len()];
-            let knots = interp.knots.knots().to_vec();
+            // On the arc's own range `[a, b]`: joined, the pieces share the edge's parameter.
+            let k = interp.knots.knots();
+            let knots: Vec<f64> = k
+                .iter()
+                .map(|x| {
+                    if *x <= 0.0 {
+                        a
+                    } else if *x >= 1.0 {
+                        b
+                    } else {
+                        at_f(*x)
+                    }
+                })
+                .collect();
             let pc = NurbsCurve::new(knots, interp.knots.degree(), ctrl, w).ok()?;
             let err = f
                 .windows(2)
                 .map(|w| {
-                    let q = pc.eval(&(0.5 * (w[0] + w[1])));
+                    let q = pc.eval(&at_f(0.5 * (w[0] + w[1])));
                     let q = [q[0].clamp(lo[0], hi[0]), q[1].clamp(lo[1], hi[1])];
                     near.closest(&c.s.eval(&q[0], &q[1])).2
                 })

@@ -22,6 +22,7 @@ use super::write::{DEPENDENT, Params, curve_126, surface_128};
 use crate::brep::pcurve::Pcurves;
 use crate::brep::seam_edges::{Seamed, explicit_seams};
 use crate::brep::{Brep, Face, LoopKind, OrientedEdge};
+use crate::geom::dist;
 use crate::model::{CurveGeometry, Model};
 use crate::spline::NurbsCurve;
 use std::collections::{BTreeMap, BTreeSet};
@@ -127,8 +128,8 @@ pub(super) fn brep(
                         continue;
                     }
                     let mut t = format!("508,{}", oes.len());
-                    for o in &oes {
-                        let pc = use_pcurve(&mut pcs, &seamed, fi, o);
+                    let pcurves = loop_pcurves(&mut pcs, &seamed, fi, &oes);
+                    for (o, pc) in oes.iter().zip(pcurves) {
                         if pc.is_some() {
                             written_pc.insert((o.edge, si));
                         }
@@ -218,19 +219,50 @@ pub(super) fn face_surface(m: &Model, face: &Face, notes: &mut Vec<String>) -> O
     si
 }
 
-/// The pcurve of use `o` in face `fi` of the seamed B-rep, running the way the loop uses the
-/// edge: the one the seams' rebuilding made, else [`Pcurves`]' (made on `seamed.brep`).
-pub(super) fn use_pcurve(
+/// The pcurves of the uses `oes` of a loop of face `fi` of the seamed B-rep, each running the
+/// way the loop uses its edge: the ones the seams' rebuilding made, else [`Pcurves`]' (made
+/// on `seamed.brep`); a seam edge the face uses twice takes, per use, the side of the seam
+/// whose ends meet its neighbours' pcurves (nearest in the parameter plane).
+pub(super) fn loop_pcurves(
     pcs: &mut Pcurves,
     seamed: &Seamed,
     fi: usize,
-    o: &OrientedEdge,
-) -> Option<NurbsCurve<f64, 2>> {
-    if let Some(pc) = seamed.pcurves.get(&(fi, o.edge, o.forward)) {
-        return Some(pc.clone());
+    oes: &[OrientedEdge],
+) -> Vec<Option<NurbsCurve<f64, 2>>> {
+    let orient =
+        |o: &OrientedEdge, pc: NurbsCurve<f64, 2>| if o.forward { pc } else { pc.reversed() };
+    let mut out: Vec<Option<NurbsCurve<f64, 2>>> = oes
+        .iter()
+        .map(|o| match seamed.pcurves.get(&(fi, o.edge, o.forward)) {
+            Some(pc) => Some(pc.clone()),
+            None => pcs.get(o.edge, fi).map(|pc| orient(o, pc)),
+        })
+        .collect();
+    let n = oes.len();
+    let end = |c: &NurbsCurve<f64, 2>, last: bool| {
+        let (a, z) = c.hom.domain();
+        c.eval(if last { &z } else { &a })
+    };
+    for i in 0..n {
+        if out[i].is_some() {
+            continue;
+        }
+        let Some(sides) = pcs.seam_sides(oes[i].edge, fi) else {
+            continue;
+        };
+        let before = out[(i + n - 1) % n].as_ref().map(|c| end(c, true));
+        let after = out[(i + 1) % n].as_ref().map(|c| end(c, false));
+        if before.is_none() && after.is_none() {
+            continue;
+        }
+        let miss = |c: &NurbsCurve<f64, 2>| {
+            before.map_or(0.0, |p| dist(&p, &end(c, false)))
+                + after.map_or(0.0, |p| dist(&p, &end(c, true)))
+        };
+        let [a, b] = sides.map(|c| orient(&oes[i], c));
+        out[i] = Some(if miss(&a) <= miss(&b) { a } else { b });
     }
-    pcs.get(o.edge, fi)
-        .map(|pc| if o.forward { pc } else { pc.reversed() })
+    out
 }
 
 /// Shells (514) and solids (186); faces in no shell go into one more open shell.

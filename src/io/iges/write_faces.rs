@@ -13,7 +13,7 @@
 //! entities (186 and below, [`super::write_brep`]) keep it.
 
 use super::write::{DEPENDENT, Params, curve_126, surface_128};
-use super::write_brep::{USED, face_surface, ordered, push, use_pcurve};
+use super::write_brep::{USED, face_surface, loop_pcurves, ordered, push};
 use crate::brep::pcurve::Pcurves;
 use crate::brep::seam_edges::explicit_seams;
 use crate::brep::{Brep, LoopKind};
@@ -78,12 +78,9 @@ pub(super) fn faces(
                     Some(if o.forward { c.clone() } else { c.reversed() })
                 })
                 .collect();
-            let pcurves: Option<Vec<_>> = oes
-                .iter()
-                .map(|o| {
-                    use_pcurve(&mut pcs, &seamed, fi, o)
-                        .map(|d| CurveGeometry::Domain(d).to_space())
-                })
+            let pcurves: Option<Vec<_>> = loop_pcurves(&mut pcs, &seamed, fi, &oes)
+                .into_iter()
+                .map(|pc| pc.map(|d| CurveGeometry::Domain(d).to_space()))
                 .collect();
             match curves {
                 Some(c) if !c.is_empty() => loops.push((l.outer, (c, pcurves))),
