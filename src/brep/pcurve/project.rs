@@ -188,7 +188,9 @@ impl<'a> Projector<'a> {
         // A segment along a parameter line, and its bound when proven within `off`.
         let mut straight = None;
         if flat {
-            let l = segment(first, last)?;
+            // On the edge's own range, as the cubic pieces are.
+            let l =
+                NurbsCurve::new(vec![t0, t0, t1, t1], 1, vec![first, last], vec![1.0; 2]).ok()?;
             let cert = self
                 .cells
                 .as_ref()
