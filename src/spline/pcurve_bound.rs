@@ -62,6 +62,9 @@ const MAX_DEPTH: u32 = 10;
 /// Halving goes on only while the halves' bounds fall below this fraction of the whole's.
 const CONVERGED: f64 = 0.7;
 
+/// Halvings in one call of [`SurfaceCells::bound`] (each costs two pieces' compositions).
+const MAX_HALVINGS: usize = 2048;
+
 /// Why no bound was proven.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Unproven {
@@ -97,6 +100,8 @@ pub struct SurfaceCells {
     patches: Vec<EnclosedPatch>,
     ub: Vec<f64>,
     vb: Vec<f64>,
+    /// Halvings left in the current call of [`SurfaceCells::bound`].
+    halvings: std::cell::Cell<usize>,
 }
 
 /// A NURBS curve's knots, degree and homogeneous control points as point intervals.
@@ -206,13 +211,14 @@ impl SurfaceCells {
             patches,
             ub,
             vb,
+            halvings: std::cell::Cell::new(0),
         })
     }
 
     /// A proven upper bound on the Hausdorff distance between `S ∘ p` over `p`'s domain and
     /// `c` over `range`, pairing the two ranges linearly (module comment); pieces are halved
-    /// while their bound exceeds `target` (at most [`MAX_DEPTH`] times), so the bound
-    /// returned may exceed `target`.
+    /// while their bound exceeds `target` (at most [`MAX_DEPTH`] times, [`MAX_HALVINGS`] in
+    /// all), so the bound returned may exceed `target`.
     pub fn bound(
         &self,
         p: &NurbsCurve<f64, 2>,
@@ -225,6 +231,7 @@ impl SurfaceCells {
         if !(f0 < f1 && c0 < c1 && range.0.is_finite() && range.1.is_finite()) {
             return Err(Unproven::Extraction);
         }
+        self.halvings.set(MAX_HALVINGS);
         let (pc, cc) = (hom2(p), hom3(c));
         // A polynomial pcurve whose control points lie in the domain lies in it (convex
         // hull; the comparison is exact): its pieces' boxes, wider by the enclosures'
@@ -321,9 +328,15 @@ impl SurfaceCells {
         depth: u32,
     ) -> f64 {
         let (fm, tm) = (0.5 * (f.0 + f.1), 0.5 * (t.0 + t.1));
-        if r <= target || depth >= MAX_DEPTH || !(f.0 < fm && fm < f.1 && t.0 < tm && tm < t.1) {
+        let left = self.halvings.get();
+        if r <= target
+            || depth >= MAX_DEPTH
+            || left == 0
+            || !(f.0 < fm && fm < f.1 && t.0 < tm && tm < t.1)
+        {
             return r;
         }
+        self.halvings.set(left - 1);
         let (fa, ta, fb, tb) = ((f.0, fm), (t.0, tm), (fm, f.1), (tm, t.1));
         // The halves' boxes lie in the whole's: they fail only where it did not, by
         // rounding; the whole's bound stands then.
