@@ -124,6 +124,38 @@ impl<'a> Pcurves<'a> {
         self.seams.get(&(e, si))?.as_ref().map(|s| s.0.clone())
     }
 
+    /// Whether `a` and `b`, parameters on face `fi`'s surface, lie on one of its poles (one
+    /// point of space, where a loop may jump in the parameter plane).
+    pub fn on_one_pole(&mut self, fi: usize, a: [f64; 2], b: [f64; 2]) -> bool {
+        let (b0, m) = (self.b, self.m);
+        let Some(si) = b0.faces.get(fi).and_then(|f| f.surface) else {
+            return false;
+        };
+        let Some(surface) = m.surfaces.get(si) else {
+            return false;
+        };
+        self.projector(si, surface).chart.on_one_pole(a, b)
+    }
+
+    /// The loop of pcurves `pcs` of face `fi` with segments along its surface's poles where
+    /// the loop crosses one ([`project::pole_joins`]).
+    pub fn pole_joins(
+        &mut self,
+        fi: usize,
+        pcs: Vec<NurbsCurve<f64, 2>>,
+    ) -> Vec<NurbsCurve<f64, 2>> {
+        let (b0, m) = (self.b, self.m);
+        let Some((si, surface)) = b0
+            .faces
+            .get(fi)
+            .and_then(|f| f.surface)
+            .and_then(|si| Some((si, m.surfaces.get(si)?)))
+        else {
+            return pcs;
+        };
+        project::pole_joins(self.projector(si, surface), pcs)
+    }
+
     /// The proven bound on the distance between the image of the projected pcurve of edge
     /// `e` on face `fi` and the edge (`None` where [`Pcurves::get`] gave none, gave the
     /// source's or a plane's, or gave one on evidence only).

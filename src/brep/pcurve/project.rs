@@ -75,6 +75,15 @@ impl<'a> Chart<'a> {
             pts[n - 1] = self.at_pole(pts[n - 1], pts[n - 2]);
         }
     }
+    /// Whether `a` and `b` lie on one pole (one degenerate border: the same point of space),
+    /// apart.
+    pub fn on_one_pole(&self, a: [f64; 2], b: [f64; 2]) -> bool {
+        (0..4).any(|side| {
+            let (d, end) = (side / 2, if side % 2 == 0 { self.lo } else { self.hi });
+            let near = |x: f64| (x - end[d]).abs() <= 1e-9 * self.period(d);
+            self.poles[side] && near(a[d]) && near(b[d]) && a[1 - d] != b[1 - d]
+        })
+    }
     /// `p`, with the other parameter of `next` where `p` lies on a pole.
     fn at_pole(&self, mut p: [f64; 2], next: [f64; 2]) -> [f64; 2] {
         for side in 0..4 {
@@ -489,4 +498,30 @@ impl<'a> Projector<'a> {
 pub(crate) struct Fit {
     pub aim: f64,
     pub off: f64,
+}
+
+/// The parameter-space loop of `pcs` (a closed chain of pcurves on `s`) with a straight
+/// segment along the pole inserted wherever one pcurve ends on a degenerate border of `s` (a
+/// pole) and the next starts elsewhere on it: a loop that runs into a pole and out again
+/// crosses it in the parameter plane, where a 2D curve (IGES 142) must be continuous.
+pub(crate) fn pole_joins(p: &Projector, pcs: Vec<NurbsCurve<f64, 2>>) -> Vec<NurbsCurve<f64, 2>> {
+    let n = pcs.len();
+    let ends: Vec<([f64; 2], [f64; 2])> = pcs
+        .iter()
+        .map(|c| {
+            let (a, z) = c.hom.domain();
+            (c.eval(&a), c.eval(&z))
+        })
+        .collect();
+    let mut out = Vec::with_capacity(n + 2);
+    for (i, c) in pcs.into_iter().enumerate() {
+        out.push(c);
+        let (a, b) = (ends[i].1, ends[(i + 1) % n].0);
+        if p.chart.on_one_pole(a, b)
+            && let Some(seg) = segment(a, b)
+        {
+            out.push(seg);
+        }
+    }
+    out
 }

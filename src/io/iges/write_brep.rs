@@ -222,7 +222,8 @@ pub(super) fn face_surface(m: &Model, face: &Face, notes: &mut Vec<String>) -> O
 /// The pcurves of the uses `oes` of a loop of face `fi` of the seamed B-rep, each running the
 /// way the loop uses its edge: the ones the seams' rebuilding made, else [`Pcurves`]' (made
 /// on `seamed.brep`); a seam edge the face uses twice takes, per use, the side of the seam
-/// whose ends meet its neighbours' pcurves (nearest in the parameter plane).
+/// whose ends meet its neighbours' pcurves (nearest in the parameter plane; ends on one pole
+/// meet).
 pub(super) fn loop_pcurves(
     pcs: &mut Pcurves,
     seamed: &Seamed,
@@ -255,9 +256,17 @@ pub(super) fn loop_pcurves(
         if before.is_none() && after.is_none() {
             continue;
         }
-        let miss = |c: &NurbsCurve<f64, 2>| {
-            before.map_or(0.0, |p| dist(&p, &end(c, false)))
-                + after.map_or(0.0, |p| dist(&p, &end(c, true)))
+        // A gap along a pole is no gap (the loop may cross the pole there).
+        let mut miss = |c: &NurbsCurve<f64, 2>| {
+            let mut gap = |p: [f64; 2], q: [f64; 2]| {
+                if pcs.on_one_pole(fi, p, q) {
+                    0.0
+                } else {
+                    dist(&p, &q)
+                }
+            };
+            before.map_or(0.0, |p| gap(p, end(c, false)))
+                + after.map_or(0.0, |q| gap(end(c, true), q))
         };
         let [a, b] = sides.map(|c| orient(&oes[i], c));
         out[i] = Some(if miss(&a) <= miss(&b) { a } else { b });

@@ -80,8 +80,13 @@ pub(super) fn faces(
                 .collect();
             let pcurves: Option<Vec<_>> = loop_pcurves(&mut pcs, &seamed, fi, &oes)
                 .into_iter()
-                .map(|pc| pc.map(|d| CurveGeometry::Domain(d).to_space()))
-                .collect();
+                .collect::<Option<Vec<_>>>()
+                .map(|pc| {
+                    let pc = pcs.pole_joins(fi, pc);
+                    pc.into_iter()
+                        .map(|d| CurveGeometry::Domain(d).to_space())
+                        .collect()
+                });
             match curves {
                 Some(c) if !c.is_empty() => loops.push((l.outer, (c, pcurves))),
                 _ => notes.push(format!(
