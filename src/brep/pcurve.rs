@@ -7,6 +7,7 @@
 //! projection would cross the surface's seam).
 
 mod affine;
+mod chart;
 pub(crate) mod project;
 mod source;
 pub use affine::AffinePatch;
