@@ -8,7 +8,7 @@
 
 mod affine;
 mod chart;
-pub(crate) mod project;
+pub mod project;
 mod source;
 pub use affine::AffinePatch;
 pub use source::source_pcurve;
@@ -43,10 +43,13 @@ pub struct Pcurves<'a> {
     fit: Fit,
     projectors: BTreeMap<usize, Projector<'a>>,
     /// `(edge, model surface)` → the projected pcurve and its proven bound.
-    made: BTreeMap<(usize, usize), Option<(NurbsCurve<f64, 2>, Option<f64>)>>,
+    made: BTreeMap<(usize, usize), Option<Made>>,
     /// `(seam edge, model surface)` → its pcurves on both sides and their proven bound.
     seams: BTreeMap<(usize, usize), Option<SeamSides>>,
 }
+
+/// A projected pcurve and its proven bound, when it has one.
+type Made = (NurbsCurve<f64, 2>, Option<f64>);
 
 /// A seam edge's pcurves on the two sides of its surface's seam, and their proven bound.
 type SeamSides = ([NurbsCurve<f64, 2>; 2], f64);
@@ -139,7 +142,7 @@ impl<'a> Pcurves<'a> {
     }
 
     /// The loop of pcurves `pcs` of face `fi` with segments along its surface's poles where
-    /// the loop crosses one ([`project::pole_joins`]).
+    /// the loop crosses one (`project::pole_joins`).
     pub fn pole_joins(
         &mut self,
         fi: usize,

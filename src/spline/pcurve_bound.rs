@@ -57,13 +57,13 @@ type I = Interval;
 pub const MAX_ERROR_DEGREE: usize = 56;
 
 /// Halvings of one matched piece.
-const MAX_DEPTH: u32 = 10;
+pub const MAX_DEPTH: u32 = 10;
 
 /// Halving goes on only while the halves' bounds fall below this fraction of the whole's.
-const CONVERGED: f64 = 0.7;
+pub const CONVERGED: f64 = 0.7;
 
 /// Halvings in one call of [`SurfaceCells::bound`] (each costs two pieces' compositions).
-const MAX_HALVINGS: usize = 2048;
+pub const MAX_HALVINGS: usize = 2048;
 
 /// Why no bound was proven.
 #[derive(Clone, Debug, PartialEq)]

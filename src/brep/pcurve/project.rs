@@ -88,7 +88,7 @@ impl<'a> Projector<'a> {
         }
         if from.is_none() {
             c.at_poles(&mut scan);
-            self.into_domain(&mut scan)?;
+            self.place_in_domain(&mut scan)?;
         }
         let first = scan[0];
         let last = end.unwrap_or(scan[SCAN - 1]);
@@ -179,7 +179,7 @@ impl<'a> Projector<'a> {
         let c = &self.chart;
         let p = self.project(arc, None, None, fit)?;
         // The direction whose parameter stays at one end of the domain (within 1e-6 of its
-        // length, as in `into_domain`), and that end; both sides are checked.
+        // length, as in `place_in_domain`), and that end; both sides are checked.
         let (pts, w) = p.curve.points_weights();
         let at_end = |d: usize, x: f64| pts.iter().all(|q| (q[d] - x).abs() <= 1e-6 * c.period(d));
         // The surface need not be found closed ([`Closure`] compares the border rows
@@ -216,7 +216,7 @@ impl<'a> Projector<'a> {
     /// Moves unwrapped samples by whole periods into the domain; `None` where they span more
     /// than it (the edge crosses a seam). Samples outside by up to 1e-6 of the period (a
     /// vertex on the seam projected a little off it) are clamped; the pcurve is checked.
-    fn into_domain(&self, scan: &mut [[f64; 2]]) -> Option<()> {
+    fn place_in_domain(&self, scan: &mut [[f64; 2]]) -> Option<()> {
         let c = &self.chart;
         for d in 0..2 {
             let (lo, hi) = (c.lo[d], c.hi[d]);
