@@ -97,7 +97,8 @@ impl<'a> Pcurves<'a> {
         let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
         let fit = self.fit;
         let made = self
-            .projector(si, surface)
+            .face_projector(fi)?
+            .1
             .project(c, None, None, fit)
             .map(|p| (p.curve, p.bound));
         let out = made.as_ref().map(|x| x.0.clone());
@@ -105,10 +106,16 @@ impl<'a> Pcurves<'a> {
         out
     }
 
-    fn projector(&mut self, si: usize, surface: &'a Surface) -> &Projector<'a> {
-        self.projectors
+    /// Face `fi`'s model surface and the projector on it (made once per surface).
+    fn face_projector(&mut self, fi: usize) -> Option<(usize, &Projector<'a>)> {
+        let (b, m) = (self.b, self.m);
+        let si = b.faces.get(fi)?.surface?;
+        let surface = m.surfaces.get(si)?;
+        let p = self
+            .projectors
             .entry(si)
-            .or_insert_with(|| Projector::new(&surface.nurbs))
+            .or_insert_with(|| Projector::new(&surface.nurbs));
+        Some((si, p))
     }
 
     /// The pcurves of edge `e` on both sides of the seam of face `fi`'s closed surface, each
@@ -116,13 +123,12 @@ impl<'a> Pcurves<'a> {
     /// (a seam edge) and it lies along the seam; a loop takes the side its neighbours' pcurves
     /// meet ([`crate::io`]'s writers decide).
     pub fn seam_sides(&mut self, e: usize, fi: usize) -> Option<[NurbsCurve<f64, 2>; 2]> {
-        let (b, m) = (self.b, self.m);
+        let b = self.b;
         let si = b.faces.get(fi)?.surface?;
-        let surface = m.surfaces.get(si)?;
         if !self.seams.contains_key(&(e, si)) {
             let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
             let fit = self.fit;
-            let sides = self.projector(si, surface).seam_sides(c, fit);
+            let sides = self.face_projector(fi)?.1.seam_sides(c, fit);
             self.seams.insert((e, si), sides);
         }
         self.seams.get(&(e, si))?.as_ref().map(|s| s.0.clone())
@@ -131,14 +137,8 @@ impl<'a> Pcurves<'a> {
     /// Whether `a` and `b`, parameters on face `fi`'s surface, lie on one of its poles (one
     /// point of space, where a loop may jump in the parameter plane).
     pub fn on_one_pole(&mut self, fi: usize, a: [f64; 2], b: [f64; 2]) -> bool {
-        let (b0, m) = (self.b, self.m);
-        let Some(si) = b0.faces.get(fi).and_then(|f| f.surface) else {
-            return false;
-        };
-        let Some(surface) = m.surfaces.get(si) else {
-            return false;
-        };
-        self.projector(si, surface).chart.on_one_pole(a, b)
+        self.face_projector(fi)
+            .is_some_and(|(_, p)| p.chart.on_one_pole(a, b))
     }
 
     /// The loop of pcurves `pcs` of face `fi` with segments along its surface's poles where
@@ -148,16 +148,10 @@ impl<'a> Pcurves<'a> {
         fi: usize,
         pcs: Vec<NurbsCurve<f64, 2>>,
     ) -> Vec<NurbsCurve<f64, 2>> {
-        let (b0, m) = (self.b, self.m);
-        let Some((si, surface)) = b0
-            .faces
-            .get(fi)
-            .and_then(|f| f.surface)
-            .and_then(|si| Some((si, m.surfaces.get(si)?)))
-        else {
-            return pcs;
-        };
-        project::pole_joins(self.projector(si, surface), pcs)
+        match self.face_projector(fi) {
+            Some((_, p)) => project::pole_joins(p, pcs),
+            None => pcs,
+        }
     }
 
     /// The proven bound on the distance between the image of the projected pcurve of edge
