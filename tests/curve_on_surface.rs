@@ -281,15 +281,22 @@ fn bad_inputs_get_typed_errors() {
         Err(CosError::OutOfDomain { .. })
     ));
     let (_, c) = table2();
-    // Rational surface.
+    // Rational surface: the exact path is for polynomial surfaces; the f64 path takes it.
     let (pts, mut w) = s.points_weights();
     w[4] = 2.0;
     let k = vec![0., 0., 0., 1., 1., 1.];
     let rs = NurbsSurface::new(k.clone(), 2, k, 2, 3, 3, pts, w).unwrap();
+    let exact = Params {
+        arithmetic: vericad::curve_on_surface::Arithmetic::Exact,
+        ..Params::default()
+    };
     assert_eq!(
-        approximate(&rs, &c, &Params::default()).unwrap_err(),
-        CosError::RationalSurface
+        approximate(&rs, &c, &exact).unwrap_err(),
+        CosError::RationalExact
     );
+    let r = approximate(&rs, &c, &Params::default()).unwrap();
+    assert!(r.certificate.hausdorff_bound <= Params::default().eps_d);
+    assert!(r.segments.iter().all(|s| s.weights.is_some()));
     // Bad tolerances.
     for (e, t) in [
         (0.0, 10.0),

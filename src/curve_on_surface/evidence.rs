@@ -2,42 +2,50 @@
 //! `S(D(t))` at dense samples, in both directions, with the nearest point found by sampling
 //! and Newton refinement.
 
-use crate::geom::{Point, dist};
-use crate::spline::{BSplineSurface, BezierCurve};
+use crate::geom::dist;
+use crate::spline::{BSplineSurface, NurbsSurface};
 
-fn nearest_on(curve: &BezierCurve<[f64; 3]>, x: &[f64; 3]) -> f64 {
+/// Distance from `x` to the curve `f` on `[0, 1]`: the nearest of 33 samples, then a
+/// golden-section search to f64 resolution on the bracket around it (the distance is
+/// V-shaped where the curves meet, so a coarse bracket would show up directly as distance).
+fn nearest(f: &dyn Fn(f64) -> [f64; 3], x: &[f64; 3]) -> f64 {
     let k = 32;
-    let mut best = (f64::INFINITY, 0.0);
-    for i in 0..=k {
-        let t = i as f64 / k as f64;
-        let d = dist(&curve.eval(&t), x);
+    let mut best = (f64::INFINITY, 0usize);
+    for j in 0..=k {
+        let d = dist(&f(j as f64 / k as f64), x);
         if d < best.0 {
-            best = (d, t);
+            best = (d, j);
         }
     }
-    // Newton on g(t) = (C(t) - x)·C'(t).
-    let h = curve.hodograph();
-    let h2 = h.as_ref().and_then(|h| h.hodograph());
-    let mut t = best.1;
-    if let (Some(h), Some(h2)) = (h, h2) {
-        for _ in 0..8 {
-            let c = curve.eval(&t).sub(x);
-            let d1 = h.eval(&t);
-            let d2 = h2.eval(&t);
-            let g = crate::geom::dot(&c, &d1);
-            let gp = crate::geom::dot(&d1, &d1) + crate::geom::dot(&c, &d2);
-            if gp.abs() < 1e-300 {
-                break;
-            }
-            t = (t - g / gp).clamp(0.0, 1.0);
+    // The bracket stays inside [0, 1]: beyond it the curve is clamped, the distance is flat
+    // there, and ties would walk the search away from the minimum.
+    let (mut lo, mut hi) = (
+        ((best.1 as f64 - 1.0) / k as f64).max(0.0),
+        ((best.1 as f64 + 1.0) / k as f64).min(1.0),
+    );
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut m1, mut m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+    let (mut f1, mut f2) = (dist(&f(m1), x), dist(&f(m2), x));
+    for _ in 0..90 {
+        if f1 < f2 {
+            hi = m2;
+            (m2, f2) = (m1, f1);
+            m1 = hi - g * (hi - lo);
+            f1 = dist(&f(m1), x);
+        } else {
+            lo = m1;
+            (m1, f1) = (m2, f2);
+            m2 = lo + g * (hi - lo);
+            f2 = dist(&f(m2), x);
         }
     }
-    best.0.min(dist(&curve.eval(&t), x))
+    best.0.min(f1).min(f2).min(dist(&f((lo + hi) / 2.0), x))
 }
 
-/// Max sampled distance and number of samples (`per_segment == 0`: none measured).
+/// Max sampled distance and number of samples (`per_segment == 0`: none measured): each
+/// sample of either curve to the nearest point of the other ([`nearest`]).
 pub fn measure(
-    surface: &BSplineSurface<[f64; 3]>,
+    surface: &NurbsSurface<f64, 3>,
     segments: &[super::ChainSegment],
     per_segment: usize,
 ) -> (f64, usize) {
@@ -50,60 +58,16 @@ pub fn measure(
         let Some(c) = &m.domain_curve else {
             continue;
         };
-        let out = BezierCurve {
-            control: m.control_points.clone(),
-        };
-        for i in 0..=per_segment {
-            let t = i as f64 / per_segment as f64;
-            // Exact image point → output curve.
-            let uv = c.eval(&t);
-            let p = surface.eval(&uv[0], &uv[1]);
-            worst = worst.max(nearest_on(&out, &p));
-            n += 1;
-        }
-        // Output curve → exact image: nearest parameter of the piece by dense search, then
-        // ternary search on the distance in the bracketing interval.
+        let out = |t: f64| super::eval_segment(&m.control_points, m.weights.as_deref(), t);
         let image = |t: f64| {
             let uv = c.eval(&t.clamp(0.0, 1.0));
             surface.eval(&uv[0], &uv[1])
         };
-        let k = 16;
         for i in 0..=per_segment {
-            let x = out.eval(&(i as f64 / per_segment as f64));
-            let mut best = (f64::INFINITY, 0usize);
-            for j in 0..=k {
-                let d = dist(&image(j as f64 / k as f64), &x);
-                if d < best.0 {
-                    best = (d, j);
-                }
-            }
-            // The bracket stays inside [0, 1]: beyond it `image` is clamped, the distance is
-            // flat there, and ties would walk the search away from the minimum.
-            let (mut lo, mut hi) = (
-                ((best.1 as f64 - 1.0) / k as f64).max(0.0),
-                ((best.1 as f64 + 1.0) / k as f64).min(1.0),
-            );
-            // Golden-section search to f64 resolution (the distance is V-shaped where the
-            // curves meet, so a coarse bracket would show up directly as distance).
-            let g = (5f64.sqrt() - 1.0) / 2.0;
-            let (mut m1, mut m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-            let (mut f1, mut f2) = (dist(&image(m1), &x), dist(&image(m2), &x));
-            for _ in 0..90 {
-                if f1 < f2 {
-                    hi = m2;
-                    (m2, f2) = (m1, f1);
-                    m1 = hi - g * (hi - lo);
-                    f1 = dist(&image(m1), &x);
-                } else {
-                    lo = m1;
-                    (m1, f1) = (m2, f2);
-                    m2 = lo + g * (hi - lo);
-                    f2 = dist(&image(m2), &x);
-                }
-            }
-            let best = best.0.min(f1).min(f2);
-            worst = worst.max(best.min(dist(&image((lo + hi) / 2.0), &x)));
-            n += 1;
+            let t = i as f64 / per_segment as f64;
+            worst = worst.max(nearest(&out, &image(t)));
+            worst = worst.max(nearest(&image, &out(t)));
+            n += 2;
         }
     }
     (worst, n)
@@ -192,7 +156,7 @@ pub fn greedy_chord_count(
 mod tests {
     use super::*;
     use crate::curve_on_surface::{Params, examples, float};
-    use crate::spline::BSplineCurve;
+    use crate::spline::{BSplineCurve, BezierCurve};
 
     /// The local searches of [`measure`] agree with brute force (every output sample against
     /// 4001 samples of its piece's exact image, and back) on the Table 2 result, including
@@ -215,9 +179,9 @@ mod tests {
             evidence_samples: 1,
             ..Params::default()
         };
-        let chain = float::run(&bs, &d, &p, &mut |_, _| {}).unwrap_or_else(|_| panic!("run"));
+        let chain = float::run(&bs, None, &d, &p, &mut |_, _| {}).unwrap_or_else(|_| panic!("run"));
         let n = 400;
-        let (measured, samples) = measure(&bs, &chain.segments, n);
+        let (measured, samples) = measure(&s, &chain.segments, n);
         assert_eq!(samples, chain.segments.len() * 2 * (n + 1));
         let mut brute = 0.0f64;
         for seg in &chain.segments {

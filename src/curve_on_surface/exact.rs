@@ -57,6 +57,7 @@ pub(super) fn exact_chain(
             .zip(&segs)
             .map(|(m, x)| ChainSegment {
                 control_points: m.control_points,
+                weights: None,
                 domain: m.domain,
                 bound: (x.k * x.h).next_up(),
                 domain_curve: (params.evidence_samples > 0)

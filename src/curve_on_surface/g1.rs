@@ -68,7 +68,7 @@ pub fn mapped_tangent_with(
 
 /// Tensor-product de Casteljau in f64 without allocation (degrees below 16; larger ones use
 /// the general evaluator).
-fn eval_tensor(s: &BezierSurface<[f64; 3]>, u: f64, v: f64) -> [f64; 3] {
+pub(crate) fn eval_tensor(s: &BezierSurface<[f64; 3]>, u: f64, v: f64) -> [f64; 3] {
     if let Some(x) = super::casteljau::eval_tensor(&s.net, s.p + 1, s.q + 1, u, v) {
         return x;
     }

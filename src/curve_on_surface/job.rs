@@ -140,7 +140,9 @@ pub fn run(
             b.knots.clone(),
             b.degree,
             b.control_points.clone(),
-            vec![1.0; b.control_points.len()],
+            b.weights
+                .clone()
+                .unwrap_or_else(|| vec![1.0; b.control_points.len()]),
         )
         .map_err(|e| JobError::Compute(CosInternal::Curve(e).into()))?;
         let m = crate::model::Model {
@@ -165,10 +167,7 @@ pub fn run(
         let (mut seg, mut bound, mut cert) =
             (vec![-1.0; quads], vec![0.0; quads], vec![0.0; quads]);
         for (k, sg) in r.segments.iter().enumerate() {
-            let bz = crate::spline::BezierCurve {
-                control: sg.control_points.clone(),
-            };
-            let pts: Vec<[f64; 3]> = (0..=16).map(|i| bz.eval(&(i as f64 / 16.0))).collect();
+            let pts: Vec<[f64; 3]> = (0..=16).map(|i| sg.eval(i as f64 / 16.0)).collect();
             pd.add_polyline(&pts);
             seg.push(k as f64);
             bound.push(sg.bound);

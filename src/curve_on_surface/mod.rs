@@ -53,9 +53,19 @@ pub enum CosError {
     )]
     OutOfDomain { t0: f64, t1: f64, at: [f64; 2] },
     #[error(
-        "rational surfaces are not certified: eq. (12) bounds derivatives of polynomial patches only (no derivative bound for NURBS is implemented)"
+        "this method is for polynomial surfaces only (the certified method takes rational ones)"
     )]
     RationalSurface,
+    #[error(
+        "exact arithmetic is implemented for polynomial surfaces only; a rational surface runs the f64 path (its enclosures are proven)"
+    )]
+    RationalExact,
+    #[error(
+        "uncertified: the f64 enclosures could not decide {0}, and the exact rerun is implemented for polynomial surfaces only"
+    )]
+    RationalUndecided(String),
+    #[error("a weight of the surface's Bézier patch on [{}, {}] x [{}, {}] is not proven positive", cell[0], cell[1], cell[2], cell[3])]
+    Weight { cell: [f64; 4] },
     #[error("rational domain curves are not supported (the domain curve must be polynomial)")]
     RationalCurve,
     #[error(
@@ -136,10 +146,44 @@ impl Default for Params {
 pub struct Segment {
     pub degree: usize,
     pub control_points: Vec<[f64; 3]>,
+    /// The weights when the surface is rational (the segment is then a rational Bézier
+    /// curve); absent for a polynomial surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
     /// Chord end points `[[u, v], [u, v]]` in the surface's parameter domain.
     pub domain: [[f64; 2]; 2],
     /// This segment's proven Hausdorff bound `K · h` to its piece of `S(D)`.
     pub bound: f64,
+}
+
+impl Segment {
+    /// The point at `t ∈ [0, 1]` (de Casteljau on the homogeneous points when rational).
+    pub fn eval(&self, t: f64) -> [f64; 3] {
+        eval_segment(&self.control_points, self.weights.as_deref(), t)
+    }
+}
+
+/// A Bézier curve with optional weights at `t` (de Casteljau on homogeneous points).
+pub(crate) fn eval_segment(cps: &[[f64; 3]], weights: Option<&[f64]>, t: f64) -> [f64; 3] {
+    let mut h: Vec<[f64; 4]> = cps
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let w = weights.and_then(|w| w.get(k)).copied().unwrap_or(1.0);
+            [w * p[0], w * p[1], w * p[2], w]
+        })
+        .collect();
+    for r in 1..h.len() {
+        for i in 0..h.len() - r {
+            for c in 0..4 {
+                h[i][c] = (1.0 - t) * h[i][c] + t * h[i + 1][c];
+            }
+        }
+    }
+    match h.first() {
+        Some(x) => [x[0] / x[3], x[1] / x[3], x[2] / x[3]],
+        None => [f64::NAN; 3],
+    }
 }
 
 /// What is proven.
@@ -159,7 +203,8 @@ pub struct Certificate {
     /// Exact distance from the exact output curve to S: 0 by construction (blossoming).
     pub distance_to_surface: f64,
     /// Largest coordinate difference between the printed f64 control points and the exact
-    /// ones (proven upper bound).
+    /// ones (proven upper bound); for a rational surface, a proven bound on the distance
+    /// between the curve the printed points and weights define and the exact one.
     pub control_point_rounding: f64,
     /// The arithmetic that produced the result (and why the exact rerun happened, if it did).
     pub arithmetic: String,
@@ -202,6 +247,8 @@ pub struct Steps {
 #[derive(Clone, Debug)]
 pub struct ChainSegment {
     pub control_points: Vec<[f64; 3]>,
+    /// The weights when the surface is rational.
+    pub weights: Option<Vec<f64>>,
     pub domain: [[f64; 2]; 2],
     pub bound: f64,
     /// The domain curve piece this segment stands for, in f64 — kept only when evidence is
@@ -250,6 +297,10 @@ pub struct BSplineForm {
     pub degree: usize,
     pub knots: Vec<f64>,
     pub control_points: Vec<[f64; 3]>,
+    /// The weights when the surface is rational (each segment's scaled so that joints
+    /// share one weight).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<f64>>,
     /// Whether consecutive exact segments share their end points exactly (C0, proven).
     pub joints_exact: bool,
 }
@@ -278,29 +329,37 @@ pub fn approximate_with_progress(
     {
         return Err(CosError::Tolerance(params.eps_d, params.eps_t_deg));
     }
-    if !surface.is_polynomial() {
-        return Err(CosError::RationalSurface);
-    }
     let (cpts, cw) = curve.points_weights();
     if cw.iter().any(|w| *w != cw[0]) {
         return Err(CosError::RationalCurve);
     }
-    let (spts, _) = surface.points_weights();
+    let rational = !surface.is_polynomial();
     let h = &surface.hom;
+    // A rational surface runs on its homogeneous points `w·P` and its weights.
+    let (net, weights) = if rational {
+        let (n, w): (Vec<[f64; 3]>, Vec<f64>) = h.net.iter().map(|x| (x.wp, x.w)).unzip();
+        (n, Some(w))
+    } else {
+        (surface.points_weights().0, None)
+    };
     let s: BSplineSurface<[f64; 3]> = BSplineSurface {
         ku: h.ku.clone(),
         kv: h.kv.clone(),
-        net: spts,
+        net,
     };
     let d: BSplineCurve<[f64; 2]> = BSplineCurve {
         knots: curve.hom.knots.clone(),
         control: cpts,
     };
     let chain = match params.arithmetic {
+        Arithmetic::Exact if rational => return Err(CosError::RationalExact),
         Arithmetic::Exact => exact_chain(&s, &d, params, progress)?,
-        Arithmetic::Float => match float::run(&s, &d, params, progress) {
+        Arithmetic::Float => match float::run(&s, weights.as_deref(), &d, params, progress) {
             Ok(c) => c,
             Err(float::FloatError::Cos(e)) => return Err(e),
+            Err(float::FloatError::Undecided(why)) if rational => {
+                return Err(CosError::RationalUndecided(why.to_string()));
+            }
             Err(float::FloatError::Undecided(why)) => {
                 progress(&format!("f64 enclosures undecided ({why}): exact rerun"), 0);
                 let mut c = exact_chain(&s, &d, params, progress)?;
@@ -315,11 +374,21 @@ pub fn approximate_with_progress(
     }
     let (pdeg, qdeg) = s.degrees();
     let deg = pdeg + qdeg;
-    // B-spline form: the segments joined at their shared end points.
+    // B-spline form: the segments joined at their shared end points; rational segments'
+    // weights scaled so that each joint has one weight (the scaling leaves a rational Bézier
+    // curve unchanged; its rounding is in the bound of `float::rational`).
     let mut bs_cps: Vec<[f64; 3]> = Vec::new();
+    let mut bs_w: Vec<f64> = Vec::new();
     for (i, m) in chain.segments.iter().enumerate() {
         let skip = usize::from(i > 0);
         bs_cps.extend(m.control_points.iter().skip(skip).cloned());
+        if let Some(w) = &m.weights {
+            let f = match (bs_w.last(), w.first()) {
+                (Some(l), Some(f)) if i > 0 => l / f,
+                _ => 1.0,
+            };
+            bs_w.extend(w.iter().skip(skip).map(|x| x * f));
+        }
     }
     let nseg = chain.segments.len();
     let mut knots = vec![0.0; deg + 1];
@@ -329,7 +398,7 @@ pub fn approximate_with_progress(
     knots.extend(std::iter::repeat_n(nseg as f64, deg + 1));
     let elapsed_ms = start.elapsed().as_secs_f64() * 1e3;
     let ev_start = std::time::Instant::now();
-    let (ev, samples) = evidence::measure(&s, &chain.segments, params.evidence_samples);
+    let (ev, samples) = evidence::measure(surface, &chain.segments, params.evidence_samples);
     let evidence_ms = if params.evidence_samples > 0 {
         ev_start.elapsed().as_secs_f64() * 1e3
     } else {
@@ -350,6 +419,7 @@ pub fn approximate_with_progress(
             .map(|m| Segment {
                 degree: deg,
                 control_points: m.control_points.clone(),
+                weights: m.weights.clone(),
                 domain: m.domain,
                 bound: m.bound,
             })
@@ -359,6 +429,7 @@ pub fn approximate_with_progress(
             degree: deg,
             knots,
             control_points: bs_cps,
+            weights: rational.then_some(bs_w),
             joints_exact: chain.joints_exact,
         },
         certificate: Certificate {

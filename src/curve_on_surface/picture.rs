@@ -5,7 +5,7 @@
 
 use super::CurveOnSurface;
 use crate::io::picture::{BORDER, NOT_PROVEN, PAGE, PROVEN, Rgb, Scene, View, render};
-use crate::spline::{BezierCurve, NurbsSurface};
+use crate::spline::NurbsSurface;
 
 const SURFACE: Rgb = [172, 190, 214];
 const WITHIN: Rgb = PROVEN;
@@ -37,11 +37,8 @@ pub fn picture(
     scene.add_surface(s, GRID, SURFACE, BORDER);
     let (mut within, mut above) = (0, 0);
     for sg in &r.segments {
-        let bz = BezierCurve {
-            control: sg.control_points.clone(),
-        };
         let pts: Vec<[f64; 3]> = (0..=SAMPLES)
-            .map(|i| bz.eval(&(i as f64 / SAMPLES as f64)))
+            .map(|i| sg.eval(i as f64 / SAMPLES as f64))
             .collect();
         let ok = sg.bound <= eps;
         if ok {

@@ -6,7 +6,9 @@
 
 use super::ibez::{I, IP};
 use super::midpatch::{IPatch, MidPatch};
+use super::rational::RationalCell;
 use super::span::bspline_span_bezier_f64_into;
+use crate::curve_on_surface::g1::mapped_tangent_with;
 use crate::spline::{BSplineSurface, BezierSurface};
 use std::cell::OnceCell;
 
@@ -28,8 +30,12 @@ pub struct FCell {
     /// Lower bounds of the span widths.
     pub du_lo: f64,
     pub dv_lo: f64,
-    /// Eq. (12) Lipschitz bound in global parameters, rounded up.
+    /// Eq. (12) Lipschitz bound in global parameters, rounded up (for a rational surface:
+    /// the bound of [`RationalCell::lipschitz`] from eq. (12) of `Q` and `W`).
     pub eq12: f64,
+    /// For a rational surface: the weight patch and the centring (then `patch`, `mpatch`
+    /// and the hodographs are those of the centred numerator `Q`, see [`super::rational`]).
+    pub rational: Option<RationalCell>,
 }
 
 /// The patch grid of S, built lazily.
@@ -40,16 +46,28 @@ pub struct FCells<'a> {
     pub u_breaks: Vec<f64>,
     pub v_breaks: Vec<f64>,
     cells: Vec<OnceCell<FCell>>,
+    /// The weights in coordinate 0 when S is rational (then `s` holds the homogeneous
+    /// points `w·P`).
+    w: Option<Vec<[f64; 3]>>,
 }
 
-/// Why a cell could not be built (an invalid knot vector would be the only cause): its
-/// rectangle `[u0, u1, v0, v1]`.
+/// Why a cell could not be built, with its rectangle `[u0, u1, v0, v1]`.
 #[derive(Debug)]
-pub struct CellError(pub [f64; 4]);
+pub enum CellError {
+    /// An invalid knot vector (the only cause for a polynomial surface).
+    Knots([f64; 4]),
+    /// A weight of the rational patch not proven positive.
+    Weight([f64; 4]),
+}
 
 impl From<CellError> for crate::curve_on_surface::CosError {
     fn from(e: CellError) -> Self {
-        crate::curve_on_surface::CosInternal::CellKnots { cell: e.0 }.into()
+        match e {
+            CellError::Knots(cell) => {
+                crate::curve_on_surface::CosInternal::CellKnots { cell }.into()
+            }
+            CellError::Weight(cell) => crate::curve_on_surface::CosError::Weight { cell },
+        }
     }
 }
 
@@ -65,6 +83,16 @@ impl<'a> FCells<'a> {
             u_breaks,
             v_breaks,
             cells: (0..n).map(|_| OnceCell::new()).collect(),
+            w: None,
+        }
+    }
+
+    /// The cells of a rational surface: `s` holds the homogeneous points `w·P` (as the
+    /// surface stores them) and `weights` the weights, row-major like `s.net`.
+    pub fn rational(s: &'a BSplineSurface<[f64; 3]>, weights: &[f64]) -> FCells<'a> {
+        FCells {
+            w: Some(weights.iter().map(|w| [*w, 0.0, 0.0]).collect()),
+            ..FCells::new(s)
         }
     }
 
@@ -94,17 +122,67 @@ impl<'a> FCells<'a> {
         let (i, j) = (c / self.nv_cells(), c % self.nv_cells());
         let (u0, u1) = (self.u_breaks[i], self.u_breaks[i + 1]);
         let (v0, v1) = (self.v_breaks[j], self.v_breaks[j + 1]);
+        let rect = [u0, u1, v0, v1];
+        let x = self.extract(rect, &self.s.net)?;
+        let (patch, rational) = match &self.w {
+            None => (x, None),
+            Some(w) => {
+                let w = self.extract(rect, w)?;
+                let (q, r) = RationalCell::new(&x, &w).map_err(|_| CellError::Weight(rect))?;
+                (q, Some(r))
+            }
+        };
+        let du_lo = (I::point(u1) - I::point(u0)).lo;
+        let dv_lo = (I::point(v1) - I::point(v0)).lo;
+        let mpatch = MidPatch::new(&patch);
+        let eq12 = eq12_bound(&mpatch, du_lo, dv_lo);
+        let eq12 = match &rational {
+            None => eq12,
+            Some(r) => r.lipschitz(eq12, eq12_bound(&r.w, du_lo, dv_lo)),
+        };
+        let (mhodo_u, mhodo_v) = (mpatch.hodograph(true), mpatch.hodograph(false));
+        // The tangents of the ε_T pass use the hodographs' midpoints (computed in f64 from
+        // the patch's midpoints as `k (P_{i+1} - P_i)`).
+        let bezier_of = |h: &MidPatch| BezierSurface {
+            p: h.p,
+            q: h.q,
+            net: h.m.clone(),
+        };
+        Ok(FCell {
+            u0,
+            u1,
+            v0,
+            v1,
+            hodo_f64: (
+                mhodo_u.as_ref().map(bezier_of),
+                mhodo_v.as_ref().map(bezier_of),
+            ),
+            mhodo_u,
+            mhodo_v,
+            mpatch,
+            patch,
+            du_lo,
+            dv_lo,
+            eq12,
+            rational,
+        })
+    }
+
+    /// The enclosed Bézier patch of the net `net` (the surface's, or its weights in
+    /// coordinate 0) on the cell `rect`.
+    fn extract(&self, rect: [f64; 4], net: &[[f64; 3]]) -> Result<IPatch, CellError> {
+        let [u0, _, v0, _] = rect;
         let (p, q) = self.s.degrees();
         let su = self.s.ku.find_span(&u0);
         let sv = self.s.kv.find_span(&v0);
         let nv = self.s.nv();
-        let err = || CellError([u0, u1, v0, v1]);
+        let err = || CellError::Knots(rect);
         // Rows (fixed u index) → Bézier in v; then columns → Bézier in u (f64 with the
         // error bound of `bspline_span_bezier_f64`, applied twice).
         let mut rows: Vec<[f64; 3]> = Vec::with_capacity((p + 1) * (q + 1));
         let mut e_rows = 0.0f64;
         for r in su - p..=su {
-            let row = &self.s.net[r * nv..(r + 1) * nv];
+            let row = &net[r * nv..(r + 1) * nv];
             let e = bspline_span_bezier_f64_into(&self.kv, q, row, 0.0, sv, &mut rows)
                 .ok_or_else(err)?;
             e_rows = e_rows.max(e);
@@ -135,36 +213,7 @@ impl<'a> FCells<'a> {
                 })
             })
             .collect();
-        let patch = IPatch { p, q, net };
-        let du_lo = (I::point(u1) - I::point(u0)).lo;
-        let dv_lo = (I::point(v1) - I::point(v0)).lo;
-        let mpatch = MidPatch::new(&patch);
-        let eq12 = eq12_bound(&mpatch, du_lo, dv_lo);
-        let (mhodo_u, mhodo_v) = (mpatch.hodograph(true), mpatch.hodograph(false));
-        // The tangents of the ε_T pass use the hodographs' midpoints (computed in f64 from
-        // the patch's midpoints as `k (P_{i+1} - P_i)`).
-        let bezier_of = |h: &MidPatch| BezierSurface {
-            p: h.p,
-            q: h.q,
-            net: h.m.clone(),
-        };
-        Ok(FCell {
-            u0,
-            u1,
-            v0,
-            v1,
-            hodo_f64: (
-                mhodo_u.as_ref().map(bezier_of),
-                mhodo_v.as_ref().map(bezier_of),
-            ),
-            mhodo_u,
-            mhodo_v,
-            mpatch,
-            patch,
-            du_lo,
-            dv_lo,
-            eq12,
-        })
+        Ok(IPatch { p, q, net })
     }
 
     /// The cell whose closed rectangle holds `p` (first match), `None` outside the domain.
@@ -299,12 +348,45 @@ fn eq12_bound(s: &MidPatch, du_lo: f64, dv_lo: f64) -> f64 {
 /// The local bound on the local sub-rectangle `rect = [s0,s1]×[r0,r1]` of a cell:
 /// `sqrt(L_u² + L_v²)` with `L_u`, `L_v` bounded by the hodographs' control points
 /// restricted to `rect` (convex hull property), scaled to global parameters.
+/// For a rational surface, the bound of [`RationalCell::lipschitz`] from the local bounds of
+/// `Q` and `W`.
 fn local_bound(c: &FCell, rect: [f64; 4]) -> f64 {
-    let sup = |h: Option<&MidPatch>| h.map(|h| h.sup_norm_hi(rect)).unwrap_or(0.0);
-    let lu = (sup(c.mhodo_u.as_ref()) / c.du_lo).next_up();
-    let lv = (sup(c.mhodo_v.as_ref()) / c.dv_lo).next_up();
-    ((lu * lu).next_up() + (lv * lv).next_up())
-        .next_up()
-        .sqrt()
-        .next_up()
+    let k = |hu: Option<&MidPatch>, hv: Option<&MidPatch>| {
+        let sup = |h: Option<&MidPatch>| h.map(|h| h.sup_norm_hi(rect)).unwrap_or(0.0);
+        let lu = (sup(hu) / c.du_lo).next_up();
+        let lv = (sup(hv) / c.dv_lo).next_up();
+        ((lu * lu).next_up() + (lv * lv).next_up())
+            .next_up()
+            .sqrt()
+            .next_up()
+    };
+    let kq = k(c.mhodo_u.as_ref(), c.mhodo_v.as_ref());
+    match &c.rational {
+        None => kq,
+        Some(r) => r.lipschitz(kq, k(r.w_hodo_u.as_ref(), r.w_hodo_v.as_ref())),
+    }
+}
+
+impl FCell {
+    /// Start (or end, `at_end`) tangent of the image of the chord `a → b` (global
+    /// parameters, inside the cell), computed in f64 (eq. 20; for a rational surface the
+    /// quotient rule of [`RationalCell::tangent`]).
+    pub fn tangent(&self, a: &[f64; 2], b: &[f64; 2], at_end: bool) -> [f64; 3] {
+        let rect = [self.u0, self.u1, self.v0, self.v1];
+        match &self.rational {
+            None => mapped_tangent_with(&self.hodo_f64, rect, a, b, at_end),
+            Some(r) => {
+                let p = if at_end { b } else { a };
+                let local = [
+                    (p[0] - rect[0]) / (rect[1] - rect[0]),
+                    (p[1] - rect[2]) / (rect[3] - rect[2]),
+                ];
+                let delta = [
+                    (b[0] - a[0]) / (rect[1] - rect[0]),
+                    (b[1] - a[1]) / (rect[3] - rect[2]),
+                ];
+                r.tangent(&self.mpatch, local, delta)
+            }
+        }
+    }
 }

@@ -7,11 +7,14 @@ use super::cells::FCells;
 use super::{FSeg, FloatError, Undecided};
 use crate::curve_on_surface::CosInternal;
 
-/// The printed control points of every segment, and the largest rounding.
-pub type Mapped = (Vec<Vec<[f64; 3]>>, f64);
+/// The printed control points (and weights, for a rational surface) of every segment, and
+/// the largest rounding.
+pub type Mapped = (Vec<(Vec<[f64; 3]>, Option<Vec<f64>>)>, f64);
 
 /// Map every segment; also returns the largest coordinate distance between a printed control
-/// point and the exact one (proven upper bound).
+/// point and the exact one (proven upper bound) — for a rational surface, the bound of
+/// [`super::rational::RationalCell::compose_line`] on the distance between the printed
+/// rational curve and the exact one.
 pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError> {
     let mut out = Vec::with_capacity(segs.len());
     let mut rounding = 0.0f64;
@@ -38,12 +41,26 @@ pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError>
         ) else {
             return Err(FloatError::Undecided(Undecided::ZeroWidthPatch));
         };
-        let (cps, err) = c.mpatch.compose_line([a0, a1], [b0, b1], 3.4e-16 + 1e-30);
-        if !err.is_finite() || cps.iter().flatten().any(|x| !x.is_finite()) {
+        let dt = 3.4e-16 + 1e-30;
+        let (cps, weights, err) = match &c.rational {
+            None => {
+                let (cps, err) = c.mpatch.compose_line([a0, a1], [b0, b1], dt);
+                (cps, None, err)
+            }
+            Some(r) => match r.compose_line(&c.mpatch, [a0, a1], [b0, b1], dt) {
+                Some((cps, w, err)) => (cps, Some(w), err),
+                None => return Err(FloatError::Undecided(Undecided::MappingOverflow)),
+            },
+        };
+        let finite = |x: &f64| x.is_finite();
+        if !err.is_finite()
+            || !cps.iter().flatten().all(finite)
+            || !weights.iter().flatten().all(finite)
+        {
             return Err(FloatError::Undecided(Undecided::MappingOverflow));
         }
         rounding = rounding.max(err);
-        out.push(cps);
+        out.push((cps, weights));
     }
     Ok((out, rounding))
 }

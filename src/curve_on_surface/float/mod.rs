@@ -15,11 +15,12 @@ pub mod distance;
 pub mod ibez;
 pub mod map;
 pub mod midpatch;
+pub mod rational;
 pub mod sides;
 pub mod span;
 pub mod split;
 
-use super::g1::{G1Ops, enforce_g1_with, mapped_tangent_with};
+use super::g1::{G1Ops, enforce_g1_with};
 use super::{Chain, ChainSegment, CosError, Params};
 use crate::spline::{BSplineCurve, BSplineSurface, BezierCurve};
 use ibez::IP;
@@ -88,14 +89,19 @@ pub struct FSeg {
     pub k_own: bool,
 }
 
-/// Run the algorithm in f64 with enclosures.
+/// Run the algorithm in f64 with enclosures. For a rational surface `s` holds the
+/// homogeneous points `w·P` and `weights` the weights ([`rational`]).
 pub fn run(
     s: &BSplineSurface<[f64; 3]>,
+    weights: Option<&[f64]>,
     d: &BSplineCurve<[f64; 2]>,
     params: &Params,
     progress: &mut dyn FnMut(&str, usize),
 ) -> Result<Chain, FloatError> {
-    let cells = cells::FCells::new(s);
+    let cells = match weights {
+        None => cells::FCells::new(s),
+        Some(w) => cells::FCells::rational(s, w),
+    };
     let (pieces, segs) = split::split(d, &cells)?;
     progress("split at knots and knot lines", segs.len());
     let after_split = segs.len();
@@ -117,14 +123,7 @@ pub fn run(
         && segs.first().map(|f| f.a) == segs.last().map(|l| l.b)
         && d.eval(&d.domain().0) == d.eval(&d.domain().1);
     let tangent = |x: &FSeg, at_end: bool| -> Option<[f64; 3]> {
-        let c = cells.get(x.cell).ok()?;
-        Some(mapped_tangent_with(
-            &c.hodo_f64,
-            [c.u0, c.u1, c.v0, c.v1],
-            &x.a,
-            &x.b,
-            at_end,
-        ))
+        Some(cells.get(x.cell).ok()?.tangent(&x.a, &x.b, at_end))
     };
     let (segs, g1s) = enforce_g1_with(
         segs,
@@ -153,8 +152,9 @@ pub fn run(
     let segments = segs
         .iter()
         .zip(mapped)
-        .map(|(x, cps)| ChainSegment {
+        .map(|(x, (cps, weights))| ChainSegment {
             control_points: cps,
+            weights,
             domain: [x.a, x.b],
             bound: (x.k * x.h).next_up(),
             domain_curve: (params.evidence_samples > 0).then(|| BezierCurve {
