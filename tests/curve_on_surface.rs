@@ -221,7 +221,7 @@ fn eq12_scaling_bounds_measured_quotients() {
         kv: sk.hom.kv.clone(),
         net: p,
     };
-    let cells = Cells::new(&bs, 1.0);
+    let cells = Cells::new(&bs, None, 1.0).unwrap();
     let k_scaled = cells.cells[0].lipschitz;
     let mut worst = 0.0f64;
     let mut r = 1u64;
@@ -255,8 +255,10 @@ fn eq12_scaling_bounds_measured_quotients() {
                     net: p,
                 }
             },
+            None,
             1.0,
-        );
+        )
+        .unwrap();
         c1.cells[0].lipschitz
     };
     assert!(
@@ -281,7 +283,7 @@ fn bad_inputs_get_typed_errors() {
         Err(CosError::OutOfDomain { .. })
     ));
     let (_, c) = table2();
-    // Rational surface: the exact path is for polynomial surfaces; the f64 path takes it.
+    // A rational surface: both arithmetics certify it, on the same chords.
     let (pts, mut w) = s.points_weights();
     w[4] = 2.0;
     let k = vec![0., 0., 0., 1., 1., 1.];
@@ -290,13 +292,27 @@ fn bad_inputs_get_typed_errors() {
         arithmetic: vericad::curve_on_surface::Arithmetic::Exact,
         ..Params::default()
     };
-    assert_eq!(
-        approximate(&rs, &c, &exact).unwrap_err(),
-        CosError::RationalExact
+    let (re, rf) = (
+        approximate(&rs, &c, &exact).unwrap(),
+        approximate(&rs, &c, &Params::default()).unwrap(),
     );
-    let r = approximate(&rs, &c, &Params::default()).unwrap();
-    assert!(r.certificate.hausdorff_bound <= Params::default().eps_d);
-    assert!(r.segments.iter().all(|s| s.weights.is_some()));
+    for r in [&re, &rf] {
+        assert!(r.certificate.hausdorff_bound <= Params::default().eps_d);
+        assert!(r.segments.iter().all(|s| s.weights.is_some()));
+    }
+    // The chord ends agree but for the rounding of D's values (the exact path rounds exact
+    // values, the f64 path computes them in f64).
+    assert_eq!(re.domain_polyline.len(), rf.domain_polyline.len());
+    for (a, b) in re.domain_polyline.iter().zip(&rf.domain_polyline) {
+        assert!((a[0] - b[0]).abs() <= 1e-15 && (a[1] - b[1]).abs() <= 1e-15);
+    }
+    for (a, b) in re.segments.iter().zip(&rf.segments) {
+        for t in [0.0, 0.3, 0.7, 1.0] {
+            let (x, y) = (a.eval(t), b.eval(t));
+            let d = ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2) + (x[2] - y[2]).powi(2)).sqrt();
+            assert!(d <= 1e-13, "exact and f64 segments differ by {d:e}");
+        }
+    }
     // Bad tolerances.
     for (e, t) in [
         (0.0, 10.0),

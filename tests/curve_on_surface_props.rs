@@ -139,7 +139,7 @@ fn check(s: &NurbsSurface<f64, 3>, r: &CurveOnSurface, prm: &Params) -> Result<(
         ));
     }
     // Every control point is the exact blossom of S on the chord.
-    let cells = Cells::new(&bs, prm.eps_d);
+    let cells = Cells::new(&bs, None, prm.eps_d).unwrap();
     let round = c.control_point_rounding;
     if round.is_nan() || round >= 1e-12 {
         return Err(format!("rounding bound {round}"));

@@ -16,7 +16,7 @@
 //! Domain curves run next to the pole (where `S_u` vanishes) and along the seam, and the
 //! same sphere with every weight scaled by `1e6` (the same surface) must certify alike.
 
-use vericad::curve_on_surface::{CurveOnSurface, Params, approximate};
+use vericad::curve_on_surface::{Arithmetic, CurveOnSurface, Params, approximate};
 use vericad::spline::{NurbsCurve, NurbsSurface};
 
 const R: f64 = 3.0;
@@ -148,10 +148,18 @@ fn cubic(points: Vec<[f64; 2]>) -> NurbsCurve<f64, 2> {
 
 /// Runs the checks of the module doc; returns (bound, measured Hausdorff).
 fn check(s: &NurbsSurface<f64, 3>, d: &NurbsCurve<f64, 2>, eps: f64) -> (f64, f64) {
-    let params = Params {
-        eps_d: eps,
-        ..Params::default()
-    };
+    check_with(
+        s,
+        d,
+        Params {
+            eps_d: eps,
+            ..Params::default()
+        },
+    )
+}
+
+fn check_with(s: &NurbsSurface<f64, 3>, d: &NurbsCurve<f64, 2>, params: Params) -> (f64, f64) {
+    let eps = params.eps_d;
     let r: CurveOnSurface = approximate(s, d, &params).unwrap();
     eprintln!("{} segments in {:.1} ms", r.num_segments, r.elapsed_ms);
     let c = &r.certificate;
@@ -259,4 +267,18 @@ fn scaled_weights_certify_the_same_surface() {
         (m1 - m2).abs() <= 1e-9,
         "same surface, same curve: {m1:e} vs {m2:e}"
     );
+}
+
+/// The exact arithmetic (BigRational throughout, the reference) certifies rational surfaces
+/// too, under the same closed-form checks.
+#[test]
+fn exact_arithmetic_on_the_sphere() {
+    let curve = cubic(vec![[0.1, 0.3], [0.2, 0.45], [0.3, 0.2], [0.4, 0.6]]);
+    let params = Params {
+        eps_d: 1e-2,
+        arithmetic: Arithmetic::Exact,
+        ..Params::default()
+    };
+    let (b, m) = check_with(&sphere(1.0), &curve, params);
+    eprintln!("exact: bound {b:.3e}, measured {m:.3e}");
 }

@@ -8,9 +8,11 @@
 
 mod affine;
 mod chart;
+mod polynomial;
 pub mod project;
 mod source;
 pub use affine::AffinePatch;
+pub use polynomial::{PcurveOrigin, PolynomialPcurve};
 pub use source::source_pcurve;
 
 use crate::brep::{Brep, Face, LoopKind};

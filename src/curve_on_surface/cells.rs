@@ -1,9 +1,9 @@
 //! Step 1a — split S into Bézier patches by exact knot insertion ("cells": a patch with the
 //! parameter rectangle it covers, its Lipschitz bound and 2D tolerance `d`, eq. 12).
 
-use super::tolerance::{lipschitz_bound, tolerance_2d};
-use crate::geom::lift_point;
-use crate::scalar::lift;
+use super::tolerance::{lipschitz_bound, sqrt_up, tolerance_2d};
+use crate::geom::{Point, lift_point};
+use crate::scalar::{Scalar, lift};
 use crate::spline::{BSplineSurface, BezierSurface};
 use num_rational::BigRational;
 
@@ -27,6 +27,33 @@ pub struct Cell {
     /// Exact hodographs `∂S/∂s`, `∂S/∂r` of the patch in its local coordinates.
     pub hodo_u: Option<BezierSurface<[Q; 3]>>,
     pub hodo_v: Option<BezierSurface<[Q; 3]>>,
+    /// For a rational surface: `patch` and its hodographs are those of the centred
+    /// numerator `Q = X − c W` (see `float::rational` for the argument), and this holds
+    /// the rest.
+    pub rational: Option<ExactRational>,
+}
+
+/// The rational part of an exact cell: `S − c = Q / W` (module `float::rational`).
+#[derive(Clone, Debug)]
+pub struct ExactRational {
+    /// The homogeneous patch `(X, W)` (for the mapping).
+    pub hom: BezierSurface<[Q; 4]>,
+    /// The weight patch in coordinate 0, and its hodographs.
+    pub w: BezierSurface<[Q; 3]>,
+    pub w_hodo_u: Option<BezierSurface<[Q; 3]>>,
+    pub w_hodo_v: Option<BezierSurface<[Q; 3]>>,
+    /// The same, rounded to f64 (for tangents).
+    pub w_f64: BezierSurface<[f64; 3]>,
+    /// Upper bound of `max |P_ij − c|`, lower bound (positive) of `min W_ij`.
+    pub rho: f64,
+    pub w_lo: f64,
+}
+
+impl ExactRational {
+    /// `(K_Q + ρ K_W) / w_lo`, rounded up (`float::rational`).
+    pub fn lipschitz(&self, k_q: f64, k_w: f64) -> f64 {
+        ((k_q + (self.rho * k_w).next_up()).next_up() / self.w_lo).next_up()
+    }
 }
 
 /// The patch grid of S.
@@ -42,13 +69,133 @@ pub struct Cells {
 }
 
 impl Cells {
-    /// Split a polynomial B-spline surface into its Bézier patches, exactly.
-    pub fn new(s: &BSplineSurface<[f64; 3]>, eps_d: f64) -> Cells {
-        let sq: BSplineSurface<[Q; 3]> = s.map(|k| lift(*k), lift_point);
+    /// Split a B-spline surface into its Bézier patches, exactly; for a rational surface
+    /// `s` holds the homogeneous points `w·P` and `weights` the weights. `None` when a
+    /// rational patch has a weight that is not positive: the patch's rectangle.
+    pub fn new(
+        s: &BSplineSurface<[f64; 3]>,
+        weights: Option<&[f64]>,
+        eps_d: f64,
+    ) -> Result<Cells, [f64; 4]> {
         let u_breaks = s.ku.breakpoints();
         let v_breaks = s.kv.breakpoints();
-        let cells = sq
-            .bezier_patches()
+        let cells = match weights {
+            None => Self::polynomial(s, eps_d),
+            Some(w) => Self::rational(s, w, eps_d)?,
+        };
+        let lifted = |b: &[f64]| b.iter().map(|x| lift::<Q>(*x)).collect();
+        Ok(Cells {
+            u_breaks_q: lifted(&u_breaks),
+            v_breaks_q: lifted(&v_breaks),
+            u_breaks,
+            v_breaks,
+            cells,
+        })
+    }
+
+    /// The cells of a rational surface (`Cells::new`).
+    fn rational(
+        s: &BSplineSurface<[f64; 3]>,
+        weights: &[f64],
+        eps_d: f64,
+    ) -> Result<Vec<Cell>, [f64; 4]> {
+        let sq: BSplineSurface<[Q; 3]> = s.map(|k| lift(*k), lift_point);
+        let hom: BSplineSurface<[Q; 4]> = BSplineSurface {
+            ku: sq.ku,
+            kv: sq.kv,
+            net: s
+                .net
+                .iter()
+                .zip(weights)
+                .map(|(p, w)| [lift(p[0]), lift(p[1]), lift(p[2]), lift(*w)])
+                .collect(),
+        };
+        let zero = Q::from_integer(0.into());
+        hom.bezier_patches()
+            .into_iter()
+            .map(|bp| {
+                let h = &bp.patch;
+                let rect = [
+                    bp.u0.to_f64(),
+                    bp.u1.to_f64(),
+                    bp.v0.to_f64(),
+                    bp.v1.to_f64(),
+                ];
+                let w_lo_q = h.net.iter().map(|x| x[3].clone()).min().ok_or(rect)?;
+                if w_lo_q <= zero {
+                    return Err(rect);
+                }
+                let pts: Vec<[Q; 3]> = h
+                    .net
+                    .iter()
+                    .map(|x| std::array::from_fn(|c| x[c].clone() / x[3].clone()))
+                    .collect();
+                let center: [Q; 3] = std::array::from_fn(|c| {
+                    let lo = pts
+                        .iter()
+                        .map(|p| p[c].to_f64())
+                        .fold(f64::INFINITY, f64::min);
+                    let hi = pts
+                        .iter()
+                        .map(|p| p[c].to_f64())
+                        .fold(f64::NEG_INFINITY, f64::max);
+                    lift(0.5 * lo + 0.5 * hi)
+                });
+                let rho = pts
+                    .iter()
+                    .map(|p| sqrt_up(&crate::geom::norm2(&p.sub(&center))))
+                    .fold(0.0, f64::max);
+                let w_lo = {
+                    let f = w_lo_q.to_f64();
+                    if lift::<Q>(f) > w_lo_q {
+                        f.next_down()
+                    } else {
+                        f
+                    }
+                };
+                if !(w_lo > 0.0) {
+                    return Err(rect);
+                }
+                let q = h.map(|x| {
+                    std::array::from_fn(|c| x[c].clone() - center[c].clone() * x[3].clone())
+                });
+                let w = h.map(|x| [x[3].clone(), zero.clone(), zero.clone()]);
+                let r = ExactRational {
+                    w_hodo_u: w.hodograph_u(),
+                    w_hodo_v: w.hodograph_v(),
+                    w_f64: w.map(crate::geom::to_f64_point),
+                    hom: h.clone(),
+                    w,
+                    rho,
+                    w_lo,
+                };
+                let (du, dv) = (
+                    bp.u1.to_f64() - bp.u0.to_f64(),
+                    bp.v1.to_f64() - bp.v0.to_f64(),
+                );
+                let lipschitz =
+                    r.lipschitz(lipschitz_bound(&q, du, dv), lipschitz_bound(&r.w, du, dv));
+                Ok(Cell {
+                    u0: bp.u0.to_f64(),
+                    u1: bp.u1.to_f64(),
+                    v0: bp.v0.to_f64(),
+                    v1: bp.v1.to_f64(),
+                    hodo_u: q.hodograph_u(),
+                    hodo_v: q.hodograph_v(),
+                    patch_f64: q.map(crate::geom::to_f64_point),
+                    patch: q,
+                    lipschitz,
+                    d: tolerance_2d(eps_d, lipschitz),
+                    rational: Some(r),
+                })
+            })
+            .collect()
+    }
+
+    /// The cells of a polynomial surface (`Cells::new`).
+    fn polynomial(s: &BSplineSurface<[f64; 3]>, eps_d: f64) -> Vec<Cell> {
+        let sq: BSplineSurface<[Q; 3]> = s.map(|k| lift(*k), lift_point);
+        sq.bezier_patches()
             .into_iter()
             .map(|bp| {
                 let (u0, u1, v0, v1) = (
@@ -69,17 +216,10 @@ impl Cells {
                     patch: bp.patch,
                     lipschitz,
                     d: tolerance_2d(eps_d, lipschitz),
+                    rational: None,
                 }
             })
-            .collect();
-        let lifted = |b: &[f64]| b.iter().map(|x| lift::<Q>(*x)).collect();
-        Cells {
-            u_breaks_q: lifted(&u_breaks),
-            v_breaks_q: lifted(&v_breaks),
-            u_breaks,
-            v_breaks,
-            cells,
-        }
+            .collect()
     }
 
     /// The cell whose closed rectangle contains `p` (exact comparisons); `None` outside the

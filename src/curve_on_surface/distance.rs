@@ -53,13 +53,21 @@ fn lipschitz(s: &Seg, c: &BezierCurve<[Q; 2]>, cells: &Cells, bound: Bound) -> f
                 local(lo[1], spans[1], false),
                 local(hi[1], spans[1], true),
             ];
+            let (du, dv) = (cell.u1 - cell.u0, cell.v1 - cell.v0);
             let k = local_lipschitz(
                 cell.hodo_u.as_ref(),
                 cell.hodo_v.as_ref(),
-                r,
-                cell.u1 - cell.u0,
-                cell.v1 - cell.v0,
+                r.clone(),
+                du,
+                dv,
             );
+            let k = match &cell.rational {
+                None => k,
+                Some(w) => w.lipschitz(
+                    k,
+                    local_lipschitz(w.w_hodo_u.as_ref(), w.w_hodo_v.as_ref(), r, du, dv),
+                ),
+            };
             k.min(cell.lipschitz)
         }
     }

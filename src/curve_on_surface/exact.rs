@@ -1,6 +1,7 @@
 //! The exact path of the curve-on-surface computation (Yang et al., CAD 2008): steps 1–6 run
 //! in BigRational throughout — Bézier patches and splitting, single-sided pieces, the
-//! distance bound, the ε_T pass and the exact mapping by blossoming — the reference against
+//! distance bound, the ε_T pass and the exact mapping by blossoming (rational surfaces by the
+//! centring of `float::rational`, in exact arithmetic) — the reference against
 //! which the f64 path ([`super::float`]) is checked, and its fallback when an enclosure
 //! cannot decide.
 
@@ -10,11 +11,13 @@ use crate::spline::{BSplineCurve, BSplineSurface};
 /// The steps in exact arithmetic (BigRational throughout).
 pub(super) fn exact_chain(
     s: &BSplineSurface<[f64; 3]>,
+    weights: Option<&[f64]>,
     d: &BSplineCurve<[f64; 2]>,
     params: &Params,
     progress: &mut dyn FnMut(&str, usize),
 ) -> Result<Chain, CosError> {
-    let cells = cells::Cells::new(s, params.eps_d);
+    let cells =
+        cells::Cells::new(s, weights, params.eps_d).map_err(|cell| CosError::Weight { cell })?;
     let (pieces, segs) = split::split(d, &cells)?;
     progress("split at knots and knot lines", segs.len());
     let n_pieces = pieces.len();
@@ -57,7 +60,7 @@ pub(super) fn exact_chain(
             .zip(&segs)
             .map(|(m, x)| ChainSegment {
                 control_points: m.control_points,
-                weights: None,
+                weights: m.weights,
                 domain: m.domain,
                 bound: (x.k * x.h).next_up(),
                 domain_curve: (params.evidence_samples > 0)

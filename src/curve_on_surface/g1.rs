@@ -119,7 +119,37 @@ pub fn angle_deg(t0: &[f64; 3], t1: &[f64; 3]) -> Option<f64> {
 
 fn tangent(cells: &Cells, s: &Seg, at_end: bool) -> [f64; 3] {
     let c = &cells.cells[s.cell];
-    mapped_tangent(&c.patch_f64, [c.u0, c.u1, c.v0, c.v1], &s.a, &s.b, at_end)
+    let rect = [c.u0, c.u1, c.v0, c.v1];
+    match &c.rational {
+        None => mapped_tangent(&c.patch_f64, rect, &s.a, &s.b, at_end),
+        Some(r) => rational_tangent(&c.patch_f64, &r.w_f64, rect, &s.a, &s.b, at_end),
+    }
+}
+
+/// [`mapped_tangent`] on a rational patch `S = c + Q / W` (`q` the centred numerator, `w`
+/// the weights in coordinate 0): by the quotient rule `S_s ∝ Q_s W − Q W_s` (`W > 0` only
+/// scales), combined as in eq. (20).
+pub fn rational_tangent(
+    q: &BezierSurface<[f64; 3]>,
+    w: &BezierSurface<[f64; 3]>,
+    rect: [f64; 4],
+    a: &[f64; 2],
+    b: &[f64; 2],
+    at_end: bool,
+) -> [f64; 3] {
+    let p = if at_end { b } else { a };
+    let (lu, lv) = (
+        (p[0] - rect[0]) / (rect[1] - rect[0]),
+        (p[1] - rect[2]) / (rect[3] - rect[2]),
+    );
+    let at =
+        |s: Option<BezierSurface<[f64; 3]>>| s.map(|s| eval_tensor(&s, lu, lv)).unwrap_or([0.0; 3]);
+    let (qv, wv) = (eval_tensor(q, lu, lv), eval_tensor(w, lu, lv)[0]);
+    let (qu, qr) = (at(q.hodograph_u()), at(q.hodograph_v()));
+    let (wu, wr) = (at(w.hodograph_u())[0], at(w.hodograph_v())[0]);
+    let du = (b[0] - a[0]) / (rect[1] - rect[0]);
+    let dv = (b[1] - a[1]) / (rect[3] - rect[2]);
+    std::array::from_fn(|i| du * (qu[i] * wv - qv[i] * wu) + dv * (qr[i] * wv - qv[i] * wr))
 }
 
 /// Angle in degrees between the end tangent of `x` and the start tangent of `y`.

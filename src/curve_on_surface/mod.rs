@@ -25,6 +25,7 @@ pub mod cells;
 pub mod distance;
 pub mod evidence;
 pub mod examples;
+pub mod face;
 pub mod float;
 pub mod g1;
 pub mod hausdorff;
@@ -56,14 +57,6 @@ pub enum CosError {
         "this method is for polynomial surfaces only (the certified method takes rational ones)"
     )]
     RationalSurface,
-    #[error(
-        "exact arithmetic is implemented for polynomial surfaces only; a rational surface runs the f64 path (its enclosures are proven)"
-    )]
-    RationalExact,
-    #[error(
-        "uncertified: the f64 enclosures could not decide {0}, and the exact rerun is implemented for polynomial surfaces only"
-    )]
-    RationalUndecided(String),
     #[error("a weight of the surface's Bézier patch on [{}, {}] x [{}, {}] is not proven positive", cell[0], cell[1], cell[2], cell[3])]
     Weight { cell: [f64; 4] },
     #[error("rational domain curves are not supported (the domain curve must be polynomial)")]
@@ -352,17 +345,13 @@ pub fn approximate_with_progress(
         control: cpts,
     };
     let chain = match params.arithmetic {
-        Arithmetic::Exact if rational => return Err(CosError::RationalExact),
-        Arithmetic::Exact => exact_chain(&s, &d, params, progress)?,
+        Arithmetic::Exact => exact_chain(&s, weights.as_deref(), &d, params, progress)?,
         Arithmetic::Float => match float::run(&s, weights.as_deref(), &d, params, progress) {
             Ok(c) => c,
             Err(float::FloatError::Cos(e)) => return Err(e),
-            Err(float::FloatError::Undecided(why)) if rational => {
-                return Err(CosError::RationalUndecided(why.to_string()));
-            }
             Err(float::FloatError::Undecided(why)) => {
                 progress(&format!("f64 enclosures undecided ({why}): exact rerun"), 0);
-                let mut c = exact_chain(&s, &d, params, progress)?;
+                let mut c = exact_chain(&s, weights.as_deref(), &d, params, progress)?;
                 c.arithmetic = format!("exact (rerun: the f64 enclosures could not decide {why})");
                 c
             }

@@ -213,6 +213,23 @@ impl<'a> Projector<'a> {
         Some(([one, twin], bound))
     }
 
+    /// A proven bound on the Hausdorff distance between `S ∘ pc` and `arc` (ranges paired
+    /// linearly, [`SurfaceCells::bound`]), halving while above `target`; why not otherwise.
+    pub fn check(
+        &self,
+        pc: &NurbsCurve<f64, 2>,
+        arc: &NurbsCurve<f64, 3>,
+        target: f64,
+    ) -> Result<f64, String> {
+        let cells = self
+            .cells
+            .as_ref()
+            .ok_or("the surface's Bézier cells cannot be enclosed")?;
+        cells
+            .bound(pc, arc, arc.hom.domain(), target)
+            .map_err(|e| e.to_string())
+    }
+
     /// Moves unwrapped samples by whole periods into the domain; `None` where they span more
     /// than it (the edge crosses a seam). Samples outside by up to 1e-6 of the period (a
     /// vertex on the seam projected a little off it) are clamped; the pcurve is checked.

@@ -8,7 +8,7 @@ use super::ibez::{I, IP};
 use super::midpatch::{IPatch, MidPatch};
 use super::rational::RationalCell;
 use super::span::bspline_span_bezier_f64_into;
-use crate::curve_on_surface::g1::mapped_tangent_with;
+use crate::curve_on_surface::g1::{mapped_tangent_with, rational_tangent};
 use crate::spline::{BSplineSurface, BezierSurface};
 use std::cell::OnceCell;
 
@@ -376,16 +376,12 @@ impl FCell {
         match &self.rational {
             None => mapped_tangent_with(&self.hodo_f64, rect, a, b, at_end),
             Some(r) => {
-                let p = if at_end { b } else { a };
-                let local = [
-                    (p[0] - rect[0]) / (rect[1] - rect[0]),
-                    (p[1] - rect[2]) / (rect[3] - rect[2]),
-                ];
-                let delta = [
-                    (b[0] - a[0]) / (rect[1] - rect[0]),
-                    (b[1] - a[1]) / (rect[3] - rect[2]),
-                ];
-                r.tangent(&self.mpatch, local, delta)
+                let q = BezierSurface {
+                    p: self.mpatch.p,
+                    q: self.mpatch.q,
+                    net: self.mpatch.m.clone(),
+                };
+                rational_tangent(&q, &r.w_f64, rect, a, b, at_end)
             }
         }
     }

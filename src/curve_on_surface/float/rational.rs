@@ -23,7 +23,6 @@
 
 use super::ibez::{I, IP, norm_hi};
 use super::midpatch::{IPatch, MidPatch};
-use crate::spline::BezierSurface;
 
 /// The rational part of a cell (see the module doc): the weight patch, the centre `c`, `ρ`
 /// and `w_lo`.
@@ -33,6 +32,8 @@ pub struct RationalCell {
     pub w: MidPatch,
     pub w_hodo_u: Option<MidPatch>,
     pub w_hodo_v: Option<MidPatch>,
+    /// The weight patch's midpoints (for tangents, computed in f64).
+    pub w_f64: crate::spline::BezierSurface<[f64; 3]>,
     pub center: [f64; 3],
     /// Upper bound of `max_ij |P_ij − c|`.
     pub rho: f64,
@@ -87,6 +88,11 @@ impl RationalCell {
             RationalCell {
                 w_hodo_u: wm.hodograph(true),
                 w_hodo_v: wm.hodograph(false),
+                w_f64: crate::spline::BezierSurface {
+                    p: wm.p,
+                    q: wm.q,
+                    net: wm.m.clone(),
+                },
                 w: wm,
                 center,
                 rho,
@@ -99,22 +105,6 @@ impl RationalCell {
     /// region: `(K_Q + ρ K_W) / w_lo`, rounded up.
     pub fn lipschitz(&self, k_q: f64, k_w: f64) -> f64 {
         ((k_q + (self.rho * k_w).next_up()).next_up() / self.w_lo).next_up()
-    }
-
-    /// Tangent direction of S along the local chord `a → b` at local point `at` (computed in
-    /// f64, like the polynomial tangents of the ε_T pass): `S_u ∝ Q_u W − Q W_u` (the
-    /// quotient rule; `W > 0` only scales), combined as `Δs S_s + Δr S_r`.
-    pub fn tangent(&self, q: &MidPatch, at: [f64; 2], delta: [f64; 2]) -> [f64; 3] {
-        let ev = |m: &MidPatch| eval(m, at);
-        let qv = ev(q);
-        let wv = ev(&self.w)[0];
-        let hq_u = q.hodograph(true).map(|h| ev(&h)).unwrap_or([0.0; 3]);
-        let hq_v = q.hodograph(false).map(|h| ev(&h)).unwrap_or([0.0; 3]);
-        let hw_u = self.w_hodo_u.as_ref().map(|h| ev(h)[0]).unwrap_or(0.0);
-        let hw_v = self.w_hodo_v.as_ref().map(|h| ev(h)[0]).unwrap_or(0.0);
-        std::array::from_fn(|c| {
-            delta[0] * (hq_u[c] * wv - qv[c] * hw_u) + delta[1] * (hq_v[c] * wv - qv[c] * hw_v)
-        })
     }
 
     /// The image of the local chord `a → b` (exact local coordinates within `dt` of these):
@@ -173,14 +163,4 @@ impl RationalCell {
 fn div(a: I, b: I) -> I {
     a.checked_div(b)
         .unwrap_or(I::new(f64::NEG_INFINITY, f64::INFINITY))
-}
-
-/// A midpoint patch evaluated in f64 at a local point.
-fn eval(m: &MidPatch, at: [f64; 2]) -> [f64; 3] {
-    let s = BezierSurface {
-        p: m.p,
-        q: m.q,
-        net: m.m.clone(),
-    };
-    crate::curve_on_surface::g1::eval_tensor(&s, at[0], at[1])
 }

@@ -1,0 +1,109 @@
+//! Polynomial pcurves with a proven distance to their edges: the domain curves a face's
+//! boundary gives the certified curves on a surface (`crate::curve_on_surface::face`),
+//! which take polynomial domain curves (Yang et al. treat B-spline `D`).
+
+use super::{AffinePatch, Pcurves, source_pcurve};
+use crate::brep::LoopKind;
+use crate::model::SurfaceKind;
+use crate::spline::NurbsCurve;
+
+/// Where a face's pcurve of an edge came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PcurveOrigin {
+    /// The source's own pcurve (on its B-spline surface), restricted to the edge.
+    Source,
+    /// The edge mapped into a planar patch's parameters (exact, affine).
+    Plane,
+    /// Projected onto the surface ([`super::project`]), where the source gave none, gave a
+    /// rational one, or the edge is a seam (one pcurve per side).
+    Projected,
+}
+
+/// A polynomial pcurve of an edge on a face, from the edge's start vertex to its end vertex,
+/// and the proven bound on the Hausdorff distance between its image and the edge's 3D curve
+/// (`Err`: why none was proven).
+#[derive(Clone, Debug)]
+pub struct PolynomialPcurve {
+    pub curve: NurbsCurve<f64, 2>,
+    pub origin: PcurveOrigin,
+    pub bound: Result<f64, String>,
+}
+
+impl Pcurves<'_> {
+    /// The polynomial pcurve of edge `e` on face `fi` for its `use_index`-th use in the
+    /// face's loops (a seam edge, used twice, takes a different side of the seam on each
+    /// use): the source's or a plane's when polynomial, else a projected one. `None` where
+    /// the edge has no 3D curve, the face no surface, or no pcurve could be made.
+    pub fn polynomial(
+        &mut self,
+        e: usize,
+        fi: usize,
+        use_index: usize,
+    ) -> Option<PolynomialPcurve> {
+        let (b, m) = (self.b, self.m);
+        let face = b.faces.get(fi)?;
+        let surface = m.surfaces.get(face.surface?)?;
+        let arc = &b.edges.get(e)?.curve.as_ref()?.nurbs;
+        let target = self.fit.aim;
+        let uses: usize = face
+            .loops
+            .iter()
+            .map(|l| match &l.kind {
+                LoopKind::Edges(oes) => oes.iter().filter(|o| o.edge == e).count(),
+                LoopKind::Vertex(_) => 0,
+            })
+            .sum();
+        if uses > 1
+            && let Some(sides) = self.seam_sides(e, fi)
+        {
+            let si = face.surface?;
+            let bound = self.seams.get(&(e, si))?.as_ref()?.1;
+            return Some(PolynomialPcurve {
+                curve: sides[use_index.min(1)].clone(),
+                origin: PcurveOrigin::Projected,
+                bound: Ok(bound),
+            });
+        }
+        // Polynomial with control points in the domain (then the curve is in it: convex
+        // hull); a plane's or the source's pcurve reaching past the surface's domain (an
+        // edge within the file's tolerance of the face but off its patch) is projected.
+        let (u0, u1, v0, v1) = surface.nurbs.hom.domain();
+        let polynomial = |c: &NurbsCurve<f64, 2>| {
+            c.hom
+                .control
+                .iter()
+                .all(|h| h.w == 1.0 && (u0..=u1).contains(&h.wp[0]) && (v0..=v1).contains(&h.wp[1]))
+        };
+        let own = if surface.kind == SurfaceKind::BSpline {
+            let off = (100.0 * b.tolerance).max(1e-6 * b.extent());
+            source_pcurve(b, e, face, &surface.nurbs, off).map(|c| (c, PcurveOrigin::Source))
+        } else {
+            None
+        };
+        let own = own.or_else(|| {
+            AffinePatch::new(&surface.nurbs)?
+                .pcurve(arc)
+                .map(|c| (c, PcurveOrigin::Plane))
+        });
+        let fit = self.fit;
+        let projector = self.face_projector(fi)?.1;
+        match own {
+            Some((c, origin)) if polynomial(&c) => Some(PolynomialPcurve {
+                bound: projector.check(&c, arc, target),
+                curve: c,
+                origin,
+            }),
+            _ => {
+                let p = projector.project(arc, None, None, fit)?;
+                Some(PolynomialPcurve {
+                    curve: p.curve,
+                    origin: PcurveOrigin::Projected,
+                    bound: p.bound.ok_or_else(|| {
+                        "the projection's bound is above the model tolerance or unproven".into()
+                    }),
+                })
+            }
+        }
+    }
+}
