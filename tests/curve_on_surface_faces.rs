@@ -141,3 +141,63 @@ fn t20_every_outer_loop_certified_and_measured() {
     );
     assert_eq!((b.faces.len(), rational_faces), (21, 14));
 }
+
+/// The command line: every face of t20, the report as JSON (exit 0: all certified), the
+/// curves as IGES read back with their weights; a face that does not exist is bad input.
+#[test]
+fn t20_faces_from_the_command_line() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/gmsh-t20_data.step");
+    let d = std::env::temp_dir().join(format!("vericad-cos-faces-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let igs = d.join("t20-curves.igs");
+    let run = |face: &str, extra: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
+            .args([
+                "curve-on-surface",
+                "--surface",
+                file.to_str().unwrap(),
+                "--face",
+                face,
+            ])
+            .args(extra)
+            .output()
+            .unwrap();
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stdout).to_string(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let (code, out, err) = run(
+        "all",
+        &["--tol", "5e-3", "--json", "--iges", igs.to_str().unwrap()],
+    );
+    assert_eq!(code, Some(0), "{err}");
+    let r: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(r["faces"].as_array().unwrap().len(), 21);
+    assert_eq!(
+        (r["certified"].as_u64(), r["edges"].as_u64()),
+        (Some(96), Some(96))
+    );
+    let back = vericad::io::read_model(&igs).unwrap();
+    assert_eq!(back.curves.len(), 96);
+    let rational = back
+        .curves
+        .iter()
+        .filter(|c| match &c.geometry {
+            vericad::model::CurveGeometry::Space(n) => {
+                n.points_weights().1.iter().any(|w| *w != 1.0)
+            }
+            _ => false,
+        })
+        .count();
+    assert!(
+        rational > 0,
+        "the curves on rational faces keep their weights"
+    );
+    let (code, _, err) = run("#999999", &[]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("no face with source id"), "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}

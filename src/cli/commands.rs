@@ -49,12 +49,20 @@ pub enum Command {
     /// Approximate the image of a domain curve on a B-spline surface by Bézier curves of degree
     /// p+q lying exactly on it, with a proven Hausdorff bound (Yang et al. 2008).
     CurveOnSurface {
-        /// Surface: model file, optionally `:INDEX` (default 0).
+        /// Surface: model file, optionally `:INDEX` (default 0). With `--face`: the STEP or
+        /// IGES file whose B-rep faces are taken.
         #[arg(long)]
         surface: String,
         /// Domain curve: model file with a 2D curve, optionally `:INDEX` (default 0).
-        #[arg(long)]
-        curve: String,
+        #[arg(long, required_unless_present = "face", conflicts_with = "face")]
+        curve: Option<String>,
+        /// Instead of one domain curve: every edge of every loop of these B-rep faces of the
+        /// `--surface` file — `all`, or a comma-separated list of indices and source ids
+        /// (`#12`) — each edge's pcurve as the domain curve (the source's, a plane's, or one
+        /// projected from the edge), reported with its proven distance to the edge. Exit 0
+        /// when every edge is certified, 3 otherwise.
+        #[arg(long, conflicts_with_all = ["svg", "vtk", "svg_3d"])]
+        face: Option<String>,
         /// Distance tolerance ε_D (model units).
         #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
         tol: f64,

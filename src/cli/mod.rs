@@ -70,6 +70,7 @@ pub fn run(cli: Cli) -> i32 {
         Command::CurveOnSurface {
             surface,
             curve,
+            face,
             tol,
             angle,
             bound,
@@ -113,9 +114,26 @@ pub fn run(cli: Cli) -> i32 {
                 Err(e) => return bad(e),
             };
             memory::watch(&memory, "curve-on-surface");
-            finish(job::run(&surface, &curve, &params, outputs), json, |e| {
-                e.is_bad_input()
-            })
+            match (face, curve) {
+                (Some(face), _) => finish_checked(
+                    crate::curve_on_surface::face_job::run(
+                        &surface,
+                        &face,
+                        &params,
+                        out.as_deref(),
+                        iges.as_deref(),
+                    ),
+                    json,
+                    |r| r.all_certified(),
+                    |e| e.is_bad_input(),
+                ),
+                (None, Some(curve)) => {
+                    finish(job::run(&surface, &curve, &params, outputs), json, |e| {
+                        e.is_bad_input()
+                    })
+                }
+                (None, None) => bad("give --curve or --face"),
+            }
         }
         Command::Ssi {
             file,

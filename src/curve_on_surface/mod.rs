@@ -26,6 +26,7 @@ pub mod distance;
 pub mod evidence;
 pub mod examples;
 pub mod face;
+pub mod face_job;
 pub mod float;
 pub mod g1;
 pub mod hausdorff;
