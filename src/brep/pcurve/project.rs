@@ -100,8 +100,9 @@ impl<'a> Projector<'a> {
         let mut straight = None;
         if flat {
             // On the edge's own range, as the cubic pieces are.
-            let l =
-                NurbsCurve::new(vec![t0, t0, t1, t1], 1, vec![first, last], vec![1.0; 2]).ok()?;
+            let mut ends = [first, last];
+            self.snap_to_lines(&mut ends);
+            let l = NurbsCurve::new(vec![t0, t0, t1, t1], 1, ends.to_vec(), vec![1.0; 2]).ok()?;
             let cert = self
                 .cells
                 .as_ref()
@@ -126,15 +127,26 @@ impl<'a> Projector<'a> {
                 }
             }
         }
-        let mut cuts = self.knot_crossings(arc, &ts, &scan);
-        cuts.extend(arc.hom.knots.interior_breaks());
+        // Cuts at knot-line crossings (with the line: the piece ends are put exactly on it,
+        // so that the curve-on-surface split sees an end on the line, not a near-tangency)
+        // and at the edge's own knots.
+        let mut cuts: Vec<(f64, Option<(usize, f64)>)> = self
+            .knot_crossings(arc, &ts, &scan)
+            .into_iter()
+            .map(|(t, d, k)| (t, Some((d, k))))
+            .collect();
+        cuts.extend(arc.hom.knots.interior_breaks().into_iter().map(|t| (t, None)));
         let tiny = 1e-9 * (t1 - t0);
-        cuts.retain(|t| *t > t0 + tiny && *t < t1 - tiny);
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup_by(|x, y| (*x - *y).abs() <= tiny);
-        let mut bounds = vec![t0];
+        cuts.retain(|t| t.0 > t0 + tiny && t.0 < t1 - tiny);
+        cuts.sort_by(|x, y| x.0.total_cmp(&y.0));
+        cuts.dedup_by(|x, y| (x.0 - y.0).abs() <= tiny);
+        let mut bounds = vec![(t0, None)];
         bounds.extend(cuts);
-        bounds.push(t1);
+        bounds.push((t1, None));
+        let seed = |t: f64| {
+            let i = ts.partition_point(|x| *x < t).min(SCAN - 1);
+            scan[i]
+        };
         let mut x = first;
         let mut out: Option<NurbsCurve<f64, 2>> = None;
         let mut bound = Some(0.0f64);
@@ -145,8 +157,16 @@ impl<'a> Projector<'a> {
             bound: s.1,
         };
         for (i, w) in bounds.windows(2).enumerate() {
-            let e = if i + 1 == pieces { end } else { None };
-            let Some((pc, y, r)) = self.piece(arc, w[0], w[1], x, e, fit) else {
+            let e = if i + 1 == pieces {
+                end
+            } else {
+                w[1].1.map(|(d, k)| {
+                    let mut y = c.foot(arc, w[1].0, seed(w[1].0));
+                    y[d] = k;
+                    y
+                })
+            };
+            let Some((pc, y, r)) = self.piece(arc, w[0].0, w[1].0, x, e, fit) else {
                 return straight.map(as_straight);
             };
             bound = bound.zip(r).map(|(a, b)| a.max(b));
@@ -163,6 +183,24 @@ impl<'a> Projector<'a> {
                 end: x,
                 bound,
             }),
+        }
+    }
+
+    /// Puts every control point coordinate within `1e-12` of the domain's width of one of
+    /// the surface's knot lines (its domain's ends included) exactly on it. Projected samples
+    /// along a knot line or the domain's border come out a few ulps off it, which leaves it
+    /// undecided whether the curve crosses the line or leaves the domain; exactly on it, both
+    /// are decided. (The piece's bound is proven after.)
+    fn snap_to_lines(&self, ctrl: &mut [[f64; 2]]) {
+        let c = &self.chart;
+        let lines = [c.s.hom.ku.breakpoints(), c.s.hom.kv.breakpoints()];
+        for p in ctrl {
+            for d in 0..2 {
+                let near = 1e-12 * (c.hi[d] - c.lo[d]);
+                if let Some(k) = lines[d].iter().find(|k| (p[d] - **k).abs() <= near) {
+                    p[d] = *k;
+                }
+            }
         }
     }
 
@@ -263,7 +301,12 @@ impl<'a> Projector<'a> {
     /// The curve parameters where `arc` crosses a knot line of the surface (inside each knot
     /// span the surface is smooth, so is the pcurve; across one it need not be). `scan`
     /// holds the arc's parameters at `ts` (unwrapped).
-    fn knot_crossings(&self, arc: &NurbsCurve<f64, 3>, ts: &[f64], scan: &[[f64; 2]]) -> Vec<f64> {
+    fn knot_crossings(
+        &self,
+        arc: &NurbsCurve<f64, 3>,
+        ts: &[f64],
+        scan: &[[f64; 2]],
+    ) -> Vec<(f64, usize, f64)> {
         let c = &self.chart;
         let lines = [c.s.hom.ku.interior_breaks(), c.s.hom.kv.interior_breaks()];
         let mut out = Vec::new();
@@ -303,7 +346,7 @@ impl<'a> Projector<'a> {
                             b = mid
                         }
                     }
-                    out.push(0.5 * (a + b));
+                    out.push((0.5 * (a + b), d, kappa));
                 }
             }
         }
@@ -350,11 +393,12 @@ impl<'a> Projector<'a> {
             let interp = interpolate_with_parameters(&fitted, &f, 3).ok()?;
             // Control points outside the domain by rounding (or an overshoot, which both
             // checks then see) are moved onto its border.
-            let ctrl: Vec<[f64; 2]> = interp
+            let mut ctrl: Vec<[f64; 2]> = interp
                 .control
                 .iter()
                 .map(|q| [q[0].clamp(lo[0], hi[0]), q[1].clamp(lo[1], hi[1])])
                 .collect();
+            self.snap_to_lines(&mut ctrl);
             let w = vec![1.0; ctrl.len()];
             // On the arc's own range `[a, b]`: joined, the pieces share the edge's parameter.
             let k = interp.knots.knots();

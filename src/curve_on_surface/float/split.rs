@@ -154,7 +154,22 @@ fn isolate(
 fn crossings(ctrl: &[IP<2>], dim: usize, k: f64, interior: bool) -> Result<Vec<f64>, ()> {
     // A line outside the range of the enclosed control points: the exact curve lies in
     // their convex hull, strictly on one side, so it does not cross.
-    if ctrl.iter().all(|p| p[dim].lo > k) || ctrl.iter().all(|p| p[dim].hi < k) {
+    let one_side =
+        |c: &[IP<2>]| c.iter().all(|p| p[dim].lo > k) || c.iter().all(|p| p[dim].hi < k);
+    if one_side(ctrl) {
+        return Ok(Vec::new());
+    }
+    // A piece along the line (every coefficient exactly on it) needs no cut: it lies in the
+    // closed cells on both sides. A piece with an end exactly on the line and its other
+    // coefficients strictly on one side has `Σ b_i B_i(t)` of one sign on `(0, 1)` (the
+    // Bernstein basis is positive there): no crossing but at that end, already a vertex.
+    let on = |p: &IP<2>| p[dim].lo == k && p[dim].hi == k;
+    let n = ctrl.len() - 1;
+    if ctrl.iter().all(on)
+        || (n >= 1 && on(&ctrl[0]) && on(&ctrl[n]) && n >= 2 && one_side(&ctrl[1..n]))
+        || (n >= 1 && on(&ctrl[0]) && !on(&ctrl[n]) && one_side(&ctrl[1..]))
+        || (n >= 1 && on(&ctrl[n]) && !on(&ctrl[0]) && one_side(&ctrl[..n]))
+    {
         return Ok(Vec::new());
     }
     let b: Vec<IP<1>> = ctrl.iter().map(|p| [p[dim] - I::point(k)]).collect();
@@ -179,12 +194,28 @@ pub fn split(
     let knots = curve.knots.knots();
     let ctrl: Vec<IP<2>> = curve.control.iter().map(ip).collect();
     let dom = cells.domain();
+    // Control points inside the domain (exact comparisons): the curve is inside (convex
+    // hull). A coordinate equal in every control point is that value all along the curve
+    // (a convex combination of equal values): its enclosures are made exact.
+    let all_in = curve
+        .control
+        .iter()
+        .all(|p| dom[0] <= p[0] && p[0] <= dom[1] && dom[2] <= p[1] && p[1] <= dom[3]);
+    let constant: [Option<f64>; 2] = std::array::from_fn(|d| {
+        let x = curve.control.first()?[d];
+        curve.control.iter().all(|p| p[d] == x).then_some(x)
+    });
     let mut pieces = Vec::new();
     let mut segs: Vec<FSeg> = Vec::new();
     for w in curve.knots.breakpoints().windows(2) {
         let s = curve.knots.find_span(&w[0]);
-        let bz = bspline_span_bezier(knots, p, &ctrl, s)
+        let mut bz = bspline_span_bezier(knots, p, &ctrl, s)
             .ok_or(FloatError::Undecided(Undecided::DomainKnots))?;
+        for (d, x) in constant.iter().enumerate() {
+            if let Some(x) = x {
+                bz.iter_mut().for_each(|c| c[d] = I::point(*x));
+            }
+        }
         let mut cuts: Vec<(f64, Snap)> = Vec::new();
         for (dim, breaks) in [(0usize, &cells.u_breaks), (1usize, &cells.v_breaks)] {
             for (bi, &k) in breaks.iter().enumerate() {
@@ -226,11 +257,16 @@ pub fn split(
         let mut cell_of = Vec::with_capacity(ts.len() - 1);
         for k in 0..ts.len() - 1 {
             let (t0, t1) = (ts[k].0, ts[k + 1].0);
-            let m = eval(&bz, I::point(t0 + (t1 - t0) / 2.0));
-            let inside =
-                m[0].lo >= dom[0] && m[0].hi <= dom[1] && m[1].lo >= dom[2] && m[1].hi <= dom[3];
-            let outside =
-                m[0].hi < dom[0] || m[0].lo > dom[1] || m[1].hi < dom[2] || m[1].lo > dom[3];
+            let mut m = eval(&bz, I::point(t0 + (t1 - t0) / 2.0));
+            for (d, x) in constant.iter().enumerate() {
+                if let Some(x) = x {
+                    m[d] = I::point(*x);
+                }
+            }
+            let inside = all_in
+                || (m[0].lo >= dom[0] && m[0].hi <= dom[1] && m[1].lo >= dom[2] && m[1].hi <= dom[3]);
+            let outside = !all_in
+                && (m[0].hi < dom[0] || m[0].lo > dom[1] || m[1].hi < dom[2] || m[1].lo > dom[3]);
             if outside {
                 return Err(FloatError::Cos(CosError::OutOfDomain {
                     t0: global(t0),
@@ -245,7 +281,11 @@ pub fn split(
             }
             // The exact test says inside; a cell the f64 lookup cannot find is left to the
             // exact rerun.
-            match cells.locate(&mid(&m)) {
+            // Inside, so the midpoint clamped to the domain is as good a witness as the
+            // midpoint of its enclosure.
+            let c = mid(&m);
+            let c = [c[0].clamp(dom[0], dom[1]), c[1].clamp(dom[2], dom[3])];
+            match cells.locate(&c) {
                 Some(c) => cell_of.push(c),
                 None => {
                     return Err(FloatError::Undecided(Undecided::Cell {
