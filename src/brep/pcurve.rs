@@ -8,6 +8,7 @@
 
 mod affine;
 mod chart;
+mod cut;
 mod polynomial;
 pub mod project;
 mod source;

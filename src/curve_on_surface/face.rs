@@ -29,9 +29,11 @@ pub struct EdgeOnFace {
     pub pcurve_unproven: Option<String>,
     /// `ε + δ`: proven bound between the output and the edge's 3D curve.
     pub bound_to_edge: Option<f64>,
-    /// The certified curve on the surface.
-    pub result: Option<CurveOnSurface>,
-    /// Why there is none.
+    /// The certified curves on the surface, one per pcurve piece (two or more where the
+    /// edge's projection crosses the surface's seam and was cut there), in the edge's order;
+    /// empty when any piece failed.
+    pub curves: Vec<CurveOnSurface>,
+    /// Why there are none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
 }
@@ -134,7 +136,7 @@ fn edge_on_face(
                 "no pcurve: the edge has no 3D curve, or its projection crosses the surface's seam or strays beyond the model tolerance".into(),
             ),
             bound_to_edge: None,
-            result: None,
+            curves: Vec::new(),
             error: Some("no domain curve".into()),
         };
     };
@@ -142,12 +144,21 @@ fn edge_on_face(
         Ok(d) => (Some(d), None),
         Err(why) => (None, Some(why)),
     };
-    let (result, error) = match approximate(&surface.nurbs, &pc.curve, params) {
-        Ok(r) => (Some(r), None),
-        Err(e) => (None, Some(e.to_string())),
+    let (curves, error) = match pc
+        .pieces
+        .iter()
+        .map(|d| approximate(&surface.nurbs, d, params))
+        .collect::<Result<Vec<_>, _>>()
+    {
+        Ok(r) => (r, None),
+        Err(e) => (Vec::new(), Some(e.to_string())),
     };
-    let bound_to_edge = match (&result, pcurve_bound) {
-        (Some(r), Some(d)) => Some((r.certificate.hausdorff_bound + d).next_up()),
+    let eps = curves
+        .iter()
+        .map(|r| r.certificate.hausdorff_bound)
+        .fold(0.0, f64::max);
+    let bound_to_edge = match (curves.is_empty(), pcurve_bound) {
+        (false, Some(d)) => Some((eps + d).next_up()),
         _ => None,
     };
     EdgeOnFace {
@@ -156,7 +167,7 @@ fn edge_on_face(
         pcurve_bound,
         pcurve_unproven,
         bound_to_edge,
-        result,
+        curves,
         error,
     }
 }

@@ -141,8 +141,11 @@ fn curves(r: &FacesReport) -> Vec<Curve> {
     let mut out = Vec::new();
     for f in &r.faces {
         for l in &f.loops {
-            for e in &l.edges {
-                let Some(c) = &e.result else { continue };
+            for (e, (k, c)) in l
+                .edges
+                .iter()
+                .flat_map(|e| e.curves.iter().enumerate().map(move |x| (e, x)))
+            {
                 let b = &c.bspline;
                 let w = b
                     .weights
@@ -154,8 +157,13 @@ fn curves(r: &FacesReport) -> Vec<Curve> {
                     b.control_points.clone(),
                     w,
                 ) {
+                    let part = if e.curves.len() > 1 {
+                        format!(" part {}", k + 1)
+                    } else {
+                        String::new()
+                    };
                     out.push(Curve {
-                        name: format!("face {} loop {} edge {}", f.face, l.bound, e.edge),
+                        name: format!("face {} loop {} edge {}{part}", f.face, l.bound, e.edge),
                         geometry: CurveGeometry::Space(n),
                     });
                 }
@@ -192,7 +200,7 @@ impl std::fmt::Display for FacesReport {
                 let segs: usize = l
                     .edges
                     .iter()
-                    .filter_map(|e| e.result.as_ref().map(|r| r.num_segments))
+                    .flat_map(|e| e.curves.iter().map(|r| r.num_segments))
                     .sum();
                 writeln!(
                     f,

@@ -21,11 +21,12 @@ pub enum PcurveOrigin {
 }
 
 /// A polynomial pcurve of an edge on a face, from the edge's start vertex to its end vertex,
-/// and the proven bound on the Hausdorff distance between its image and the edge's 3D curve
-/// (`Err`: why none was proven).
+/// in one piece or — where the edge's projection crosses the surface's seam — in pieces cut
+/// there, in order; and the proven bound on the Hausdorff distance between each piece's
+/// image and its part of the edge's 3D curve (the largest; `Err`: why none was proven).
 #[derive(Clone, Debug)]
 pub struct PolynomialPcurve {
-    pub curve: NurbsCurve<f64, 2>,
+    pub pieces: Vec<NurbsCurve<f64, 2>>,
     pub origin: PcurveOrigin,
     pub bound: Result<f64, String>,
 }
@@ -60,7 +61,7 @@ impl Pcurves<'_> {
             let si = face.surface?;
             let bound = self.seams.get(&(e, si))?.as_ref()?.1;
             return Some(PolynomialPcurve {
-                curve: sides[use_index.min(1)].clone(),
+                pieces: vec![sides[use_index.min(1)].clone()],
                 origin: PcurveOrigin::Projected,
                 bound: Ok(bound),
             });
@@ -91,17 +92,22 @@ impl Pcurves<'_> {
         match own {
             Some((c, origin)) if polynomial(&c) => Some(PolynomialPcurve {
                 bound: projector.check(&c, arc, target),
-                curve: c,
+                pieces: vec![c],
                 origin,
             }),
             _ => {
-                let p = projector.project(arc, None, None, fit)?;
-                Some(PolynomialPcurve {
-                    curve: p.curve,
-                    origin: PcurveOrigin::Projected,
-                    bound: p.bound.ok_or_else(|| {
+                let parts = projector.project_cut(arc, fit)?;
+                let bound = parts
+                    .iter()
+                    .map(|(_, p)| p.bound)
+                    .try_fold(0.0f64, |m, b| b.map(|b| m.max(b)))
+                    .ok_or_else(|| {
                         "the projection's bound is above the model tolerance or unproven".into()
-                    }),
+                    });
+                Some(PolynomialPcurve {
+                    pieces: parts.into_iter().map(|(_, p)| p.curve).collect(),
+                    origin: PcurveOrigin::Projected,
+                    bound,
                 })
             }
         }

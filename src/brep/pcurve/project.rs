@@ -135,7 +135,13 @@ impl<'a> Projector<'a> {
             .into_iter()
             .map(|(t, d, k)| (t, Some((d, k))))
             .collect();
-        cuts.extend(arc.hom.knots.interior_breaks().into_iter().map(|t| (t, None)));
+        cuts.extend(
+            arc.hom
+                .knots
+                .interior_breaks()
+                .into_iter()
+                .map(|t| (t, None)),
+        );
         let tiny = 1e-9 * (t1 - t0);
         cuts.retain(|t| t.0 > t0 + tiny && t.0 < t1 - tiny);
         cuts.sort_by(|x, y| x.0.total_cmp(&y.0));

@@ -154,8 +154,7 @@ fn isolate(
 fn crossings(ctrl: &[IP<2>], dim: usize, k: f64, interior: bool) -> Result<Vec<f64>, ()> {
     // A line outside the range of the enclosed control points: the exact curve lies in
     // their convex hull, strictly on one side, so it does not cross.
-    let one_side =
-        |c: &[IP<2>]| c.iter().all(|p| p[dim].lo > k) || c.iter().all(|p| p[dim].hi < k);
+    let one_side = |c: &[IP<2>]| c.iter().all(|p| p[dim].lo > k) || c.iter().all(|p| p[dim].hi < k);
     if one_side(ctrl) {
         return Ok(Vec::new());
     }
@@ -264,7 +263,10 @@ pub fn split(
                 }
             }
             let inside = all_in
-                || (m[0].lo >= dom[0] && m[0].hi <= dom[1] && m[1].lo >= dom[2] && m[1].hi <= dom[3]);
+                || (m[0].lo >= dom[0]
+                    && m[0].hi <= dom[1]
+                    && m[1].lo >= dom[2]
+                    && m[1].hi <= dom[3]);
             let outside = !all_in
                 && (m[0].hi < dom[0] || m[0].lo > dom[1] || m[1].hi < dom[2] || m[1].lo > dom[3]);
             if outside {
