@@ -449,6 +449,52 @@ fn curve_on_surface(
     Ok(to_py(py, &v, None)?.unbind())
 }
 
+/// Certified curves along the loops of B-rep faces: `vericad curve-on-surface --face`.
+#[pyfunction]
+#[pyo3(signature = (file, faces="all", *, tol=1e-3, angle=10.0, bound="local", exact=false,
+    out=None, iges=None))]
+#[allow(clippy::too_many_arguments)]
+fn curve_on_faces(
+    py: Python<'_>,
+    file: String,
+    faces: &str,
+    tol: f64,
+    angle: f64,
+    bound: &str,
+    exact: bool,
+    out: Option<PathBuf>,
+    iges: Option<PathBuf>,
+) -> PyResult<Py<PyAny>> {
+    use vericad::curve_on_surface::{Arithmetic, Bound, Params, face_job};
+    let Some(bound) = Bound::from_name(bound) else {
+        return Err(bad(format!("bound must be `local` or `paper`, not `{bound}`")).into());
+    };
+    let v = detached(py, || {
+        let params = Params {
+            eps_d: tol,
+            eps_t_deg: angle,
+            bound,
+            arithmetic: if exact {
+                Arithmetic::Exact
+            } else {
+                Arithmetic::Float
+            },
+            ..Params::default()
+        };
+        let r = face_job::run(&file, faces, &params, out.as_deref(), iges.as_deref()).map_err(
+            |e| {
+                fault(
+                    &e,
+                    e.is_bad_input(),
+                    matches!(e, vericad::curve_on_surface::job::JobError::Write(..)),
+                )
+            },
+        )?;
+        serialize(&r)
+    })?;
+    Ok(to_py(py, &v, None)?.unbind())
+}
+
 /// Repair a patch set: `vericad repair`. Returns `{"report": ..., "patches": [...]}`.
 #[pyfunction]
 #[pyo3(signature = (input, *, u1=1e-3, u2=1e-3, feature_angle=30.0, features=None, out=None,
@@ -795,6 +841,7 @@ fn _vericad(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ssi, m)?)?;
     m.add_function(wrap_pyfunction!(certify_ssi, m)?)?;
     m.add_function(wrap_pyfunction!(curve_on_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(curve_on_faces, m)?)?;
     m.add_function(wrap_pyfunction!(repair, m)?)?;
     m.add_function(wrap_pyfunction!(reparam, m)?)?;
     m.add_function(wrap_pyfunction!(coons, m)?)?;

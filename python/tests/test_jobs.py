@@ -363,3 +363,20 @@ def test_coons_bad_options(tmp_path, kw):
     (tmp_path / "bad.json").write_text('{"curves": []}')
     with pytest.raises(vericad.BadInputError):
         vericad.coons(BILINEAR, boundary=tmp_path / "bad.json")
+
+
+def test_curve_on_faces_equals_the_cli(cli, tmp_path):
+    step = PUBLIC / "gmsh-t20_data.step"
+    r = vericad.curve_on_faces(step, "#113,#99", tol=5e-3, out=tmp_path / "f.json")
+    assert isinstance(r, vericad.FacesCurvesResult)
+    assert r.all_certified and r.edges == 12
+    ref = cli_json(cli, "curve-on-surface", "--surface", step, "--face", "#113,#99", "--tol", "5e-3")
+    strip = {"elapsed_ms"}
+    assert without(plain(r), strip) == without(ref, strip)
+    rational = [f for f in r.faces if f.rational]
+    assert rational and all(
+        s.weights.shape == (s.control_points.shape[0],)
+        for f in rational for l in f.loops for e in l.edges for c in e.curves for s in c.segments
+    )
+    with pytest.raises(vericad.BadInputError):
+        vericad.curve_on_faces(step, "#999999")

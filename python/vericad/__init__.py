@@ -36,6 +36,7 @@ __all__ = [
     "SsiResult",
     "CertifyReport",
     "CurveOnSurfaceResult",
+    "FacesCurvesResult",
     "RepairResult",
     "ReparamResult",
     "CoonsResult",
@@ -45,6 +46,7 @@ __all__ = [
     "ssi",
     "certify_ssi",
     "curve_on_surface",
+    "curve_on_faces",
     "repair",
     "reparam",
     "coons",
@@ -132,6 +134,17 @@ class CertifyReport(Result):
 class CurveOnSurfaceResult(Result):
     """The result of :func:`curve_on_surface`: ``segments`` (each with ``control_points``),
     ``bspline`` (``degree``, ``knots``, ``control_points``), ``certificate``, ``evidence``."""
+
+
+class FacesCurvesResult(Result):
+    """The result of :func:`curve_on_faces`: ``faces`` (each with ``loops``, each with
+    ``edges``: ``pcurve``, ``pcurve_bound``, ``bound_to_edge`` and ``curves``, results as in
+    :class:`CurveOnSurfaceResult`), ``certified`` and ``edges`` (edge uses)."""
+
+    @property
+    def all_certified(self) -> bool:
+        """Every edge use carries a certified curve (the command's exit code 0)."""
+        return self["certified"] == self["edges"]
 
 
 class RepairResult(Result):
@@ -277,6 +290,36 @@ def curve_on_surface(
         )
     )
 
+
+
+def curve_on_faces(
+    file: PathLike,
+    faces: str = "all",
+    *,
+    tol: float = 1e-3,
+    angle: float = 10.0,
+    bound: str = "local",
+    exact: bool = False,
+    out: Optional[PathLike] = None,
+    iges: Optional[PathLike] = None,
+) -> FacesCurvesResult:
+    """Certified curves on surfaces along every edge of every loop of B-rep faces of a STEP
+    or IGES file (``vericad curve-on-surface --surface FILE --face FACES``): ``faces`` is
+    ``"all"`` or a comma-separated list of indices and source ids (``"#12"``). Each edge's
+    curve lies exactly on its face's surface, within ``tol`` of the image of the edge's
+    pcurve; ``bound_to_edge`` adds the pcurve's proven distance to the edge."""
+    return FacesCurvesResult(
+        _vericad.curve_on_faces(
+            os.fspath(file),
+            faces,
+            tol=tol,
+            angle=angle,
+            bound=bound,
+            exact=exact,
+            out=_p(out),
+            iges=_p(iges),
+        )
+    )
 
 def repair(
     input: PathLike,

@@ -53,6 +53,17 @@ def curve_on_surface(
     svg_3d: Optional[str] = None,
     view: str = "-60,25",
 ) -> Dict[str, Any]: ...
+def curve_on_faces(
+    file: str,
+    faces: str = "all",
+    *,
+    tol: float = 1e-3,
+    angle: float = 10.0,
+    bound: str = "local",
+    exact: bool = False,
+    out: Optional[str] = None,
+    iges: Optional[str] = None,
+) -> Dict[str, Any]: ...
 def repair(
     input: str,
     *,

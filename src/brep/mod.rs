@@ -13,6 +13,7 @@
 
 pub mod check;
 pub mod counts;
+pub mod edge_check;
 pub mod pcurve;
 pub mod place;
 pub mod report;

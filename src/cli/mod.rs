@@ -283,6 +283,7 @@ pub fn run(cli: Cli) -> i32 {
                     let mut info = crate::model::info::summarize(&m);
                     if let Some(b) = &m.brep {
                         info.face_areas = crate::tessellate::face_areas(&m, b);
+                        info.edge_checks = Some(crate::brep::edge_check::check_edges(b, &m));
                     }
                     print(&info, json);
                     0

@@ -65,6 +65,9 @@ pub struct ModelInfo {
     pub assembly: Vec<crate::brep::Occurrence>,
     /// Trimmed area of each B-rep face (filled by callers that triangulate the faces).
     pub face_areas: Vec<FaceArea>,
+    /// Whether each edge lies on the faces that use it (filled by callers that check).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_checks: Option<crate::brep::edge_check::EdgeChecks>,
     /// What the reader did with each geometric entity, by source kind (empty for models not
     /// read from STEP or IGES).
     pub accounts: super::Accounting,
@@ -181,6 +184,7 @@ pub fn summarize(m: &Model) -> ModelInfo {
         topology_report: m.brep.as_ref().map(|b| b.report.clone()),
         assembly: m.brep.as_ref().map_or(vec![], |b| b.occurrences.clone()),
         face_areas: vec![],
+        edge_checks: None,
         accounts: m.accounts.clone(),
     }
 }
@@ -259,6 +263,36 @@ impl std::fmt::Display for ModelInfo {
                     r[2],
                     o.motion.translation,
                     indent = 2 * o.depth
+                )?;
+            }
+        }
+        if let Some(c) = &self.edge_checks {
+            writeln!(
+                f,
+                "  edges on their faces: {} of {} edge-face pairs proven within {:.1e} (largest bound {:.1e}; pcurves' images against the edges), {} measured farther than that from their surfaces (evidence)",
+                c.proven,
+                c.pairs,
+                c.tolerance,
+                c.largest_bound,
+                c.above_tolerance()
+            )?;
+            for x in &c.not_proven {
+                writeln!(
+                    f,
+                    "  face {:<8} edge {:<8} not proven on its face: samples up to {:.2e} from the surface points found{}{}",
+                    x.face,
+                    x.edge,
+                    x.measured,
+                    if x.above_tolerance {
+                        ", above the tolerance"
+                    } else {
+                        ""
+                    },
+                    match (x.bound, &x.unproven) {
+                        (Some(b), _) => format!(" (proven bound {b:.2e})"),
+                        (None, Some(w)) => format!(" ({w})"),
+                        _ => String::new(),
+                    }
                 )?;
             }
         }

@@ -246,8 +246,24 @@ impl SurfaceCells {
             h.w == 1.0 && (d[0]..=d[1]).contains(&h.wp[0]) && (d[2]..=d[3]).contains(&h.wp[1])
         });
         let pc = (pc, inside);
-        let to_t = |f: f64| c0 + (f - f0) * ((c1 - c0) / (f1 - f0));
-        let to_f = |t: f64| f0 + (t - c0) * ((f1 - f0) / (c1 - c0));
+        // On equal ranges (a pcurve on its edge's own parameter) the pairing is the identity,
+        // exactly: rounded, it would put a knot of one curve a few ulps past the same knot of
+        // the other, and the piece between them across a span.
+        let same = f0 == c0 && f1 == c1;
+        let to_t = |f: f64| {
+            if same {
+                f
+            } else {
+                c0 + (f - f0) * ((c1 - c0) / (f1 - f0))
+            }
+        };
+        let to_f = |t: f64| {
+            if same {
+                t
+            } else {
+                f0 + (t - c0) * ((f1 - f0) / (c1 - c0))
+            }
+        };
         // Breakpoints (f, t, f exact, t exact).
         let mut br: Vec<(f64, f64, bool, bool)> = vec![(f0, c0, true, true), (f1, c1, true, true)];
         br.extend(
