@@ -282,3 +282,96 @@ fn exact_arithmetic_on_the_sphere() {
     let (b, m) = check_with(&sphere(1.0), &curve, params);
     eprintln!("exact: bound {b:.3e}, measured {m:.3e}");
 }
+
+/// Step 3 for rational patches: on every Bézier cell of the sphere, the proven Lipschitz
+/// bounds (eq. 12 of `Q` and `W` combined, and the local bound on sub-rectangles) are at least
+/// the difference quotients `|S(x) − S(y)| / |x − y|` measured with the closed-form points.
+#[test]
+fn rational_lipschitz_bounds_hold_against_closed_form_quotients() {
+    use vericad::curve_on_surface::float::cells::FCells;
+    let s = sphere(1.0);
+    let h = &s.hom;
+    let net: Vec<[f64; 3]> = h.net.iter().map(|x| x.wp).collect();
+    let w: Vec<f64> = h.net.iter().map(|x| x.w).collect();
+    let bs = vericad::spline::BSplineSurface {
+        ku: h.ku.clone(),
+        kv: h.kv.clone(),
+        net,
+    };
+    let cells = FCells::rational(&bs, &w);
+    let mut rng = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut worst_ratio, mut checked) = (0.0f64, 0);
+    for (i, u) in cells.u_breaks.windows(2).enumerate() {
+        for (j, v) in cells.v_breaks.windows(2).enumerate() {
+            let c = cells.get(i * (cells.v_breaks.len() - 1) + j).unwrap();
+            for sub in 0..4 {
+                // The whole cell, then sub-rectangles of a quarter, a tenth, a hundredth.
+                let frac = [1.0, 0.25, 0.1, 0.01][sub];
+                let (a, b) = (
+                    u[0] + (u[1] - u[0]) * (1.0 - frac) * next(),
+                    v[0] + (v[1] - v[0]) * (1.0 - frac) * next(),
+                );
+                let r = [a, a + (u[1] - u[0]) * frac, b, b + (v[1] - v[0]) * frac];
+                let k = cells.lipschitz_on(r, true).unwrap();
+                assert!(k <= c.eq12 * (1.0 + 1e-12));
+                for _ in 0..200 {
+                    let x = [r[0] + (r[1] - r[0]) * next(), r[2] + (r[3] - r[2]) * next()];
+                    let y = [r[0] + (r[1] - r[0]) * next(), r[2] + (r[3] - r[2]) * next()];
+                    let d = ((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2)).sqrt();
+                    if d < 1e-9 {
+                        continue;
+                    }
+                    let q = dist(&true_point(x[0], x[1]), &true_point(y[0], y[1])) / d;
+                    assert!(q <= k, "quotient {q} above the bound {k} on {r:?}");
+                    worst_ratio = worst_ratio.max(q / k);
+                    checked += 1;
+                }
+            }
+        }
+    }
+    eprintln!("{checked} quotients, largest quotient / bound {worst_ratio:.3}");
+    assert!(
+        worst_ratio > 0.2,
+        "the bounds are not absurdly loose: {worst_ratio}"
+    );
+}
+
+/// The B-spline form (segments joined, weights rescaled at the joints) is the same curve:
+/// on the sphere within the stated rounding at every segment, evaluated piece by piece here.
+#[test]
+fn bspline_form_keeps_the_rational_curve() {
+    let curve = cubic(vec![[0.05, 0.2], [0.3, 0.7], [0.6, 0.4], [0.9, 0.85]]);
+    let r = approximate(
+        &sphere(1.0),
+        &curve,
+        &Params {
+            eps_d: 1e-4,
+            ..Params::default()
+        },
+    )
+    .unwrap();
+    let b = &r.bspline;
+    let w = b.weights.as_ref().expect("rational");
+    let p = b.degree;
+    assert_eq!(b.control_points.len(), r.num_segments * p + 1);
+    for k in 0..r.num_segments {
+        let cps = &b.control_points[k * p..=k * p + p];
+        let ws = &w[k * p..=k * p + p];
+        for i in 0..=10 {
+            let x = segment_point(cps, ws, i as f64 / 10.0);
+            let y = r.segments[k].eval(i as f64 / 10.0);
+            assert!(dist(&x, &y) <= 1e-12, "segment {k}: {x:?} vs {y:?}");
+            let off = (dist(&x, &CENTRE) - R).abs();
+            assert!(
+                off <= r.certificate.control_point_rounding + 1e-13,
+                "{off:e}"
+            );
+        }
+    }
+}

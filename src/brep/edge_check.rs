@@ -3,9 +3,9 @@
 //! a plane's, or one projected from the edge) and a proven bound on the Hausdorff distance
 //! between its image and the edge (`spline::pcurve_bound`). Where no bound within the model
 //! tolerance is proven, the edge is measured against the surface — the distance from samples
-//! of the edge to the nearest surface points found (`spline::project`), each an upper bound
-//! of that sample's distance to the surface, evidence for the edge — and reported with the
-//! face's and edge's ids. A measurement above the tolerance says the edge was not found on its
+//! of the edge to the nearest surface points found (`spline::project`, in f64: about an upper
+//! bound of each sample's distance to the surface; evidence for the edge) — and reported with
+//! the face's and edge's ids. An edge without a 3D curve is listed as not proven. A measurement above the tolerance says the edge was not found on its
 //! face; it does not prove the edge off it (the search may miss the nearest point).
 
 use super::pcurve::{PcurveOrigin, Pcurves};
@@ -29,8 +29,8 @@ pub struct EdgeOffFace {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unproven: Option<String>,
     /// Largest distance from the edge's samples to the nearest surface points found
-    /// (measured, evidence).
-    pub measured: f64,
+    /// (measured, evidence); `None` for an edge without a 3D curve.
+    pub measured: Option<f64>,
     /// Whether the measured distance is above the tolerance.
     pub above_tolerance: bool,
 }
@@ -80,10 +80,19 @@ pub fn check_edges(b: &Brep, m: &Model) -> EdgeChecks {
                 let Some(edge) = b.edges.get(oe.edge) else {
                     continue;
                 };
+                out.pairs += 1;
                 let Some(arc) = edge.curve.as_ref().map(|c| &c.nurbs) else {
+                    out.not_proven.push(EdgeOffFace {
+                        face: face.source.clone(),
+                        edge: edge.source.clone(),
+                        pcurve: None,
+                        bound: None,
+                        unproven: Some("the edge has no 3D curve".into()),
+                        measured: None,
+                        above_tolerance: false,
+                    });
                     continue;
                 };
-                out.pairs += 1;
                 let pc = pcs.polynomial(oe.edge, fi, 0);
                 let (bound, unproven) = match pc.as_ref().map(|p| &p.bound) {
                     Some(Ok(d)) => (Some(*d), None),
@@ -109,7 +118,7 @@ pub fn check_edges(b: &Brep, m: &Model) -> EdgeChecks {
                     pcurve: pc.map(|p| p.origin),
                     bound,
                     unproven,
-                    measured,
+                    measured: Some(measured),
                     above_tolerance: measured > tolerance,
                 });
             }

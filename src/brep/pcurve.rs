@@ -8,6 +8,7 @@
 
 mod affine;
 mod chart;
+mod check;
 mod cut;
 mod polynomial;
 pub mod project;

@@ -52,7 +52,7 @@ pub struct ExactRational {
 impl ExactRational {
     /// `(K_Q + ρ K_W) / w_lo`, rounded up (`float::rational`).
     pub fn lipschitz(&self, k_q: f64, k_w: f64) -> f64 {
-        ((k_q + (self.rho * k_w).next_up()).next_up() / self.w_lo).next_up()
+        super::tolerance::rational_lipschitz(k_q, k_w, self.rho, self.w_lo)
     }
 }
 

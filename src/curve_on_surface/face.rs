@@ -4,10 +4,12 @@
 //! The domain curve `D` of an edge is its pcurve on the face, polynomial
 //! ([`crate::brep::pcurve::PolynomialPcurve`]: the source's, a plane's, or one projected from
 //! the edge's 3D curve), with a proven bound `δ` on the Hausdorff distance between `S(D)` and
-//! the edge. The algorithm ([`super::approximate`]) proves `ε` between its output and
-//! `S(D)`; by the triangle inequality for the Hausdorff distance the output is within
-//! `ε + δ` of the edge, and that sum is reported as `bound_to_edge` — only when both are
-//! proven.
+//! the edge. The algorithm ([`super::approximate`]) proves `ε` between its printed output
+//! and `S(D)` (its certified bound plus the output's rounding); by the triangle inequality
+//! for the Hausdorff distance the output is within `ε + δ` of the edge, and that sum is
+//! reported as `bound_to_edge` — only when both are proven. An edge cut at a seam into parts
+//! has `δ` proven for each part's pcurve against the edge over that part's range; the union
+//! of the parts' outputs is then within the largest `ε + δ` of the union of the parts.
 
 use super::{CurveOnSurface, Params, approximate};
 use crate::brep::pcurve::{PcurveOrigin, Pcurves};
@@ -27,7 +29,9 @@ pub struct EdgeOnFace {
     /// Why `δ` (or the pcurve) is missing.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pcurve_unproven: Option<String>,
-    /// `ε + δ`: proven bound between the output and the edge's 3D curve.
+    /// `ε + δ`: proven bound on the Hausdorff distance between the output (the printed
+    /// segments: `ε` includes their rounding, [`CurveOnSurface::printed_bound`]) and the
+    /// edge's 3D curve.
     pub bound_to_edge: Option<f64>,
     /// The certified curves on the surface, one per pcurve piece (two or more where the
     /// edge's projection crosses the surface's seam and was cut there), in the edge's order;
@@ -133,7 +137,7 @@ fn edge_on_face(
             pcurve: None,
             pcurve_bound: None,
             pcurve_unproven: Some(
-                "no pcurve: the edge has no 3D curve, or its projection crosses the surface's seam or strays beyond the model tolerance".into(),
+                "no pcurve: the edge has no 3D curve, or its projection strays beyond the model tolerance".into(),
             ),
             bound_to_edge: None,
             curves: Vec::new(),
@@ -153,9 +157,10 @@ fn edge_on_face(
         Ok(r) => (r, None),
         Err(e) => (Vec::new(), Some(e.to_string())),
     };
+    // The printed curves' bound (the certified one plus their rounding).
     let eps = curves
         .iter()
-        .map(|r| r.certificate.hausdorff_bound)
+        .map(CurveOnSurface::printed_bound)
         .fold(0.0, f64::max);
     let bound_to_edge = match (curves.is_empty(), pcurve_bound) {
         (false, Some(d)) => Some((eps + d).next_up()),

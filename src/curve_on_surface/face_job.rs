@@ -123,7 +123,7 @@ pub fn run(
     }
     if let Some(p) = iges {
         let out = Model {
-            curves: curves(&report),
+            curves: curves(&report)?,
             unit: m.unit.clone(),
             ..Default::default()
         };
@@ -136,8 +136,11 @@ pub fn run(
     Ok(report)
 }
 
-/// The certified curves as model curves named `face #F loop #L edge #E`.
-fn curves(r: &FacesReport) -> Vec<Curve> {
+/// The certified curves as model curves named `face #F loop #L edge #E` (`part K` where an
+/// edge was cut at a seam): the B-spline forms, their weights kept. Held as homogeneous points
+/// `w·P` and written back as `P`, a rational curve's points may differ from the printed ones
+/// by an ulp or two of their coordinates (not in the bound).
+fn curves(r: &FacesReport) -> Result<Vec<Curve>, JobError> {
     let mut out = Vec::new();
     for f in &r.faces {
         for l in &f.loops {
@@ -151,26 +154,26 @@ fn curves(r: &FacesReport) -> Vec<Curve> {
                     .weights
                     .clone()
                     .unwrap_or_else(|| vec![1.0; b.control_points.len()]);
-                if let Ok(n) = crate::spline::NurbsCurve::new(
+                let n = crate::spline::NurbsCurve::new(
                     b.knots.clone(),
                     b.degree,
                     b.control_points.clone(),
                     w,
-                ) {
-                    let part = if e.curves.len() > 1 {
-                        format!(" part {}", k + 1)
-                    } else {
-                        String::new()
-                    };
-                    out.push(Curve {
-                        name: format!("face {} loop {} edge {}{part}", f.face, l.bound, e.edge),
-                        geometry: CurveGeometry::Space(n),
-                    });
-                }
+                )
+                .map_err(|e| JobError::Compute(super::CosInternal::Curve(e).into()))?;
+                let part = if e.curves.len() > 1 {
+                    format!(" part {}", k + 1)
+                } else {
+                    String::new()
+                };
+                out.push(Curve {
+                    name: format!("face {} loop {} edge {}{part}", f.face, l.bound, e.edge),
+                    geometry: CurveGeometry::Space(n),
+                });
             }
         }
     }
-    out
+    Ok(out)
 }
 
 impl std::fmt::Display for FacesReport {

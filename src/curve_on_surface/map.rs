@@ -99,15 +99,9 @@ fn rational_rounding(pts: &[[Q; 3]], w: &[Q], wf: &[f64], delta: f64) -> f64 {
         let rel = ((crate::scalar::lift::<Q>(*r) - e.clone()) / e.clone()).abs();
         eps = eps.max(rel.to_f64().next_up());
     }
-    let eps = ((eps + 4.5e-16) * (1.0 + 1e-15)).next_up();
-    if !(eps < 0.5) {
-        return f64::INFINITY;
-    }
     let reach = pts
         .iter()
         .map(|p| super::tolerance::sqrt_up(&crate::geom::norm2(&p.sub(&pts[0]))))
         .fold(0.0, f64::max);
-    ((3f64.sqrt() * 1.000001 * delta).next_up()
-        + ((2.0 * eps / (1.0 - eps)).next_up() * reach).next_up())
-    .next_up()
+    super::tolerance::rational_rounding(delta, eps, reach)
 }

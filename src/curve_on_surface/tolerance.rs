@@ -107,3 +107,24 @@ pub fn local_lipschitz(
     let lv = (sup(hodo_v) / dv.next_down()).next_up();
     (lu * lu + lv * lv).next_up().sqrt().next_up()
 }
+
+/// The Lipschitz bound of a rational patch `S = c + Q / W` from bounds `k_q` of `Q` and `k_w`
+/// of `W` on one convex region: `(K_Q + ρ K_W) / w_lo` (`float::rational`), rounded up.
+pub fn rational_lipschitz(k_q: f64, k_w: f64, rho: f64, w_lo: f64) -> f64 {
+    ((k_q + (rho * k_w).next_up()).next_up() / w_lo).next_up()
+}
+
+/// The distance between a rational Bézier curve given by printed points (within `delta` of
+/// the exact ones in every coordinate) and printed weights (within a relative `eps` of the
+/// exact ones) and the exact curve: `√3 δ + 2ε / (1 − ε) · reach`, `reach` bounding
+/// `|P_k − c|` for some point `c` (`float::rational`'s `compose_line` has the argument);
+/// `2u` is added to `eps` for the B-spline form's joint rescaling. Infinite when `ε ≥ 1/2`.
+pub fn rational_rounding(delta: f64, eps: f64, reach: f64) -> f64 {
+    let eps = ((eps + 4.5e-16) * (1.0 + 1e-15)).next_up();
+    if !(eps < 0.5) {
+        return f64::INFINITY;
+    }
+    ((3f64.sqrt() * 1.000001 * delta).next_up()
+        + ((2.0 * eps / (1.0 - eps)).next_up() * reach).next_up())
+    .next_up()
+}

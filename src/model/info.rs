@@ -279,10 +279,12 @@ impl std::fmt::Display for ModelInfo {
             for x in &c.not_proven {
                 writeln!(
                     f,
-                    "  face {:<8} edge {:<8} not proven on its face: samples up to {:.2e} from the surface points found{}{}",
+                    "  face {:<8} edge {:<8} not proven on its face{}{}{}",
                     x.face,
                     x.edge,
-                    x.measured,
+                    x.measured
+                        .map(|m| format!(": samples up to {m:.2e} from the surface points found"))
+                        .unwrap_or_default(),
                     if x.above_tolerance {
                         ", above the tolerance"
                     } else {

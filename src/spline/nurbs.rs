@@ -191,11 +191,17 @@ impl<S: Scalar, const D: usize> NurbsCurve<S, D> {
         let k1 = self.hom.knots.knots();
         let k2 = next.hom.knots.knots();
         let mut knots: Vec<S> = k1[..k1.len() - 1].to_vec();
-        knots.extend(
-            k2[p + 1..]
-                .iter()
-                .map(|t| t.clone() - s2.clone() + e1.clone()),
-        );
+        // Shifted onto `self`'s end; not at all when `next` starts there (so its knots stay
+        // exactly as they are).
+        if s2 == e1 {
+            knots.extend(k2[p + 1..].iter().cloned());
+        } else {
+            knots.extend(
+                k2[p + 1..]
+                    .iter()
+                    .map(|t| t.clone() - s2.clone() + e1.clone()),
+            );
+        }
         let mut control = self.hom.control.clone();
         control.extend(next.hom.control[1..].iter().map(|h| h.scale(&scale)));
         Ok(NurbsCurve {

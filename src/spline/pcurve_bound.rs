@@ -246,24 +246,17 @@ impl SurfaceCells {
             h.w == 1.0 && (d[0]..=d[1]).contains(&h.wp[0]) && (d[2]..=d[3]).contains(&h.wp[1])
         });
         let pc = (pc, inside);
-        // On equal ranges (a pcurve on its edge's own parameter) the pairing is the identity,
-        // exactly: rounded, it would put a knot of one curve a few ulps past the same knot of
-        // the other, and the piece between them across a span.
+        // Equal ranges (a pcurve on its edge's parameter) pair by the identity, exactly.
         let same = f0 == c0 && f1 == c1;
-        let to_t = |f: f64| {
+        let map = |x: f64, (a0, a1): (f64, f64), (b0, b1): (f64, f64)| {
             if same {
-                f
+                x
             } else {
-                c0 + (f - f0) * ((c1 - c0) / (f1 - f0))
+                b0 + (x - a0) * ((b1 - b0) / (a1 - a0))
             }
         };
-        let to_f = |t: f64| {
-            if same {
-                t
-            } else {
-                f0 + (t - c0) * ((f1 - f0) / (c1 - c0))
-            }
-        };
+        let to_t = |f: f64| map(f, (f0, f1), (c0, c1));
+        let to_f = |t: f64| map(t, (c0, c1), (f0, f1));
         // Breakpoints (f, t, f exact, t exact).
         let mut br: Vec<(f64, f64, bool, bool)> = vec![(f0, c0, true, true), (f1, c1, true, true)];
         br.extend(

@@ -49,7 +49,7 @@ pub(crate) struct Projected {
 /// One surface, ready to take pcurves of many edges.
 pub(crate) struct Projector<'a> {
     pub chart: Chart<'a>,
-    cells: Option<SurfaceCells>,
+    pub(super) cells: Option<SurfaceCells>,
 }
 
 impl<'a> Projector<'a> {
@@ -154,6 +154,7 @@ impl<'a> Projector<'a> {
             scan[i]
         };
         let mut x = first;
+        let mut exact_join = true;
         let mut out: Option<NurbsCurve<f64, 2>> = None;
         let mut bound = Some(0.0f64);
         let pieces = bounds.len() - 1;
@@ -178,35 +179,35 @@ impl<'a> Projector<'a> {
             bound = bound.zip(r).map(|(a, b)| a.max(b));
             out = Some(match out {
                 None => pc,
-                Some(c) => c.joined(&pc).ok()?,
+                Some(c) => {
+                    // Joining keeps `c`'s end point for `pc`'s start: the pieces' bounds hold
+                    // for the joined curve when the two are the same point (they are: both
+                    // are the same sample, clamped and snapped alike) and the knots are not
+                    // shifted (`pc` starts where `c` ends); otherwise the joined curve is
+                    // proven again below.
+                    exact_join &= c.hom.control.last() == pc.hom.control.first()
+                        && c.hom.domain().1 == pc.hom.domain().0;
+                    c.joined(&pc).ok()?
+                }
             });
             x = y;
         }
         match straight {
             Some(s) if s.1.is_some_and(|r| bound.is_none_or(|b| r <= b)) => Some(as_straight(s)),
-            _ => out.map(|curve| Projected {
-                curve,
-                end: x,
-                bound,
-            }),
-        }
-    }
-
-    /// Puts every control point coordinate within `1e-12` of the domain's width of one of
-    /// the surface's knot lines (its domain's ends included) exactly on it. Projected samples
-    /// along a knot line or the domain's border come out a few ulps off it, which leaves it
-    /// undecided whether the curve crosses the line or leaves the domain; exactly on it, both
-    /// are decided. (The piece's bound is proven after.)
-    fn snap_to_lines(&self, ctrl: &mut [[f64; 2]]) {
-        let c = &self.chart;
-        let lines = [c.s.hom.ku.breakpoints(), c.s.hom.kv.breakpoints()];
-        for p in ctrl {
-            for d in 0..2 {
-                let near = 1e-12 * (c.hi[d] - c.lo[d]);
-                if let Some(k) = lines[d].iter().find(|k| (p[d] - **k).abs() <= near) {
-                    p[d] = *k;
+            _ => out.map(|curve| {
+                let bound = if exact_join {
+                    bound
+                } else {
+                    self.check(&curve, arc, fit.aim)
+                        .ok()
+                        .filter(|r| *r <= fit.off)
+                };
+                Projected {
+                    curve,
+                    end: x,
+                    bound,
                 }
-            }
+            }),
         }
     }
 
@@ -255,23 +256,6 @@ impl<'a> Projector<'a> {
         };
         let bound = bound(&one)?.max(bound(&twin)?);
         Some(([one, twin], bound))
-    }
-
-    /// A proven bound on the Hausdorff distance between `S ∘ pc` and `arc` (ranges paired
-    /// linearly, [`SurfaceCells::bound`]), halving while above `target`; why not otherwise.
-    pub fn check(
-        &self,
-        pc: &NurbsCurve<f64, 2>,
-        arc: &NurbsCurve<f64, 3>,
-        target: f64,
-    ) -> Result<f64, String> {
-        let cells = self
-            .cells
-            .as_ref()
-            .ok_or("the surface's Bézier cells cannot be enclosed")?;
-        cells
-            .bound(pc, arc, arc.hom.domain(), target)
-            .map_err(|e| e.to_string())
     }
 
     /// Moves unwrapped samples by whole periods into the domain; `None` where they span more

@@ -151,7 +151,7 @@ fn region(c: &SubCurve, s: &FSeg, dom: [f64; 4]) -> [f64; 4] {
 fn lipschitz(r: [f64; 4], cells: &FCells, bound: Bound) -> Result<f64, FloatError> {
     cells
         .lipschitz_on(r, bound == Bound::Local)
-        .map_err(|e| FloatError::Cos(e.into()))
+        .map_err(FloatError::from)
 }
 
 /// Whether rectangle `inner` lies in `outer`.

@@ -19,7 +19,7 @@ pub fn map_segments(segs: &[FSeg], cells: &FCells) -> Result<Mapped, FloatError>
     let mut out = Vec::with_capacity(segs.len());
     let mut rounding = 0.0f64;
     for s in segs {
-        let c = cells.get(s.cell).map_err(|e| FloatError::Cos(e.into()))?;
+        let c = cells.get(s.cell).map_err(FloatError::from)?;
         let inside = |p: &[f64; 2]| c.u0 <= p[0] && p[0] <= c.u1 && c.v0 <= p[1] && p[1] <= c.v1;
         if !inside(&s.a) || !inside(&s.b) {
             return Err(FloatError::Cos(

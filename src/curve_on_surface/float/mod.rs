@@ -52,8 +52,22 @@ pub enum Undecided {
     Cell { t: f64 },
     #[error("a patch of (nearly) zero width")]
     ZeroWidthPatch,
-    #[error("overflow in the mapping")]
+    #[error("overflow in the mapping, or a mapped weight not proven positive")]
     MappingOverflow,
+    /// A weight of the rational patch on `cell` not proven positive by the enclosures.
+    #[error("whether the weights of the patch on [{}, {}] x [{}, {}] are positive", cell[0], cell[1], cell[2], cell[3])]
+    Weight { cell: [f64; 4] },
+}
+
+impl From<cells::CellError> for FloatError {
+    /// A weight the enclosures cannot prove positive is undecided (the exact path decides);
+    /// a bad knot vector is a refusal.
+    fn from(e: cells::CellError) -> Self {
+        match e {
+            cells::CellError::Weight(cell) => FloatError::Undecided(Undecided::Weight { cell }),
+            e => FloatError::Cos(e.into()),
+        }
+    }
 }
 
 /// A Bézier piece of D: enclosed control points, their midpoints, its global parameter range.

@@ -49,6 +49,9 @@ impl RationalCell {
     /// From the enclosed homogeneous patch `x` and weight patch `w` (coordinate 0): the
     /// centred numerator `Q = X − c W` (enclosed) and the rational part.
     pub fn new(x: &IPatch, w: &IPatch) -> Result<(IPatch, RationalCell), NonPositiveWeight> {
+        if w.net.iter().chain(&x.net).flatten().any(|c| !c.is_finite()) {
+            return Err(NonPositiveWeight);
+        }
         let w_lo = w.net.iter().map(|c| c[0].lo).fold(f64::INFINITY, f64::min);
         if !(w_lo > 0.0 && w_lo.is_finite()) {
             return Err(NonPositiveWeight);
@@ -104,7 +107,7 @@ impl RationalCell {
     /// The Lipschitz bound of S from bounds `k_q` of `Q` and `k_w` of `W` on the same convex
     /// region: `(K_Q + ρ K_W) / w_lo`, rounded up.
     pub fn lipschitz(&self, k_q: f64, k_w: f64) -> f64 {
-        ((k_q + (self.rho * k_w).next_up()).next_up() / self.w_lo).next_up()
+        crate::curve_on_surface::tolerance::rational_lipschitz(k_q, k_w, self.rho, self.w_lo)
     }
 
     /// The image of the local chord `a → b` (exact local coordinates within `dt` of these):
@@ -148,13 +151,10 @@ impl RationalCell {
             pts.push(m);
             ws.push(w[0]);
         }
-        let eps = ((eps + 4.5e-16) * (1.0 + 1e-15)).next_up();
-        if !(eps < 0.5) {
+        let bound = crate::curve_on_surface::tolerance::rational_rounding(delta, eps, reach);
+        if !bound.is_finite() {
             return None;
         }
-        let bound = ((3f64.sqrt() * 1.000001 * delta).next_up()
-            + ((2.0 * eps / (1.0 - eps)).next_up() * reach).next_up())
-        .next_up();
         Some((pts, ws, bound))
     }
 }

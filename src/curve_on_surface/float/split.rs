@@ -165,7 +165,7 @@ fn crossings(ctrl: &[IP<2>], dim: usize, k: f64, interior: bool) -> Result<Vec<f
     let on = |p: &IP<2>| p[dim].lo == k && p[dim].hi == k;
     let n = ctrl.len() - 1;
     if ctrl.iter().all(on)
-        || (n >= 1 && on(&ctrl[0]) && on(&ctrl[n]) && n >= 2 && one_side(&ctrl[1..n]))
+        || (n >= 2 && on(&ctrl[0]) && on(&ctrl[n]) && one_side(&ctrl[1..n]))
         || (n >= 1 && on(&ctrl[0]) && !on(&ctrl[n]) && one_side(&ctrl[1..]))
         || (n >= 1 && on(&ctrl[n]) && !on(&ctrl[0]) && one_side(&ctrl[..n]))
     {
@@ -238,7 +238,18 @@ pub fn split(
         ts.push((1.0, Snap::None));
         ts.dedup_by(|x, y| x.0 == y.0);
         let global = |t: f64| w[0] + (w[1] - w[0]) * t;
-        let encl: Vec<IP<2>> = ts.iter().map(|(t, _)| eval(&bz, I::point(*t))).collect();
+        let encl: Vec<IP<2>> = ts
+            .iter()
+            .map(|(t, _)| {
+                let mut e = eval(&bz, I::point(*t));
+                for (d, x) in constant.iter().enumerate() {
+                    if let Some(x) = x {
+                        e[d] = I::point(*x);
+                    }
+                }
+                e
+            })
+            .collect();
         let mut verts: Vec<[f64; 2]> = ts
             .iter()
             .zip(&encl)
