@@ -83,7 +83,10 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
     let (u0, u1, v0, v1) = s.hom.domain();
     let d = [u0, u1, v0, v1];
     let n = 16;
-    let mut starts: Vec<(f64, [f64; 2])> = Vec::with_capacity((n + 1) * (n + 1));
+    // The four nearest grid points at distinct distances (a pole row is one point many
+    // times), the first in grid order among equal ones: kept in order as the grid is scanned
+    // (the same four a stable sort of the whole grid would give first).
+    let mut chosen: Vec<(f64, [f64; 2])> = Vec::with_capacity(5);
     for i in 0..=n {
         for j in 0..=n {
             let uv = [
@@ -91,18 +94,15 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
                 d[2] + (d[3] - d[2]) * j as f64 / n as f64,
             ];
             let p = s.eval(&uv[0], &uv[1]);
-            starts.push((dot(&sub(&p, x), &sub(&p, x)), uv));
-        }
-    }
-    starts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Four starts at distinct points (a pole row is one point many times).
-    let mut chosen: Vec<(f64, [f64; 2])> = Vec::with_capacity(4);
-    for st in &starts {
-        if chosen.len() == 4 {
-            break;
-        }
-        if chosen.iter().all(|c| c.0 != st.0) {
-            chosen.push(*st);
+            let st = (dot(&sub(&p, x), &sub(&p, x)), uv);
+            if chosen.iter().any(|c| c.0 == st.0) {
+                continue;
+            }
+            let at = chosen.partition_point(|c| c.0.total_cmp(&st.0).is_le());
+            if at < 4 {
+                chosen.insert(at, st);
+                chosen.truncate(4);
+            }
         }
     }
     let Some(mut best) = chosen

@@ -282,12 +282,8 @@ impl<'a> Lexer<'a> {
                 {
                     return Ok(Value::Int(i));
                 }
-                let fixed = if t.ends_with('.') {
-                    format!("{t}0")
-                } else {
-                    t.replace(".E", ".0E").replace(".e", ".0e")
-                };
-                match fixed.parse::<f64>() {
+                // Rust's float syntax takes the Part 21 forms `1.` and `1.E5` as they are.
+                match t.parse::<f64>() {
                     Ok(x) if x.is_finite() => Ok(Value::Real(x)),
                     _ => self.err(format!("malformed number '{t}'")),
                 }
