@@ -16,6 +16,8 @@
 //! Domain curves run next to the pole (where `S_u` vanishes) and along the seam, and the
 //! same sphere with every weight scaled by `1e6` (the same surface) must certify alike.
 
+mod common;
+use common::curves::{dist, project, segment_point};
 use vericad::curve_on_surface::{Arithmetic, CurveOnSurface, Params, approximate};
 use vericad::spline::{NurbsCurve, NurbsSurface};
 
@@ -94,48 +96,6 @@ fn true_point(u: f64, v: f64) -> [f64; 3] {
     place([theta.cos() * phi.cos(), theta.sin() * phi.cos(), phi.sin()])
 }
 
-/// A rational Bézier segment at `t` (de Casteljau on homogeneous points, written here).
-fn segment_point(cps: &[[f64; 3]], w: &[f64], t: f64) -> [f64; 3] {
-    let mut h: Vec<[f64; 4]> = cps
-        .iter()
-        .zip(w)
-        .map(|(p, w)| [w * p[0], w * p[1], w * p[2], *w])
-        .collect();
-    let n = h.len();
-    for r in 1..n {
-        for i in 0..n - r {
-            for c in 0..4 {
-                h[i][c] = (1.0 - t) * h[i][c] + t * h[i + 1][c];
-            }
-        }
-    }
-    [h[0][0] / h[0][3], h[0][1] / h[0][3], h[0][2] / h[0][3]]
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// Distance from `x` to the curve `f` on `[lo, hi]`: nearest of `k + 1` samples, then a
-/// golden-section search on the bracket around it.
-fn project(f: &dyn Fn(f64) -> [f64; 3], x: &[f64; 3], lo: f64, hi: f64, k: usize) -> f64 {
-    let at = |i: usize| lo + (hi - lo) * i as f64 / k as f64;
-    let best = (0..=k)
-        .min_by(|&i, &j| dist(&f(at(i)), x).total_cmp(&dist(&f(at(j)), x)))
-        .unwrap();
-    let (mut a, mut b) = (at(best.saturating_sub(1)), at((best + 1).min(k)));
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..80 {
-        let (m1, m2) = (b - g * (b - a), a + g * (b - a));
-        if dist(&f(m1), x) < dist(&f(m2), x) {
-            b = m2;
-        } else {
-            a = m1;
-        }
-    }
-    dist(&f(at(best)), x).min(dist(&f(0.5 * (a + b)), x))
-}
-
 fn cubic(points: Vec<[f64; 2]>) -> NurbsCurve<f64, 2> {
     let n = points.len();
     let mut knots = vec![0.0; 4];
@@ -189,7 +149,7 @@ fn check_with(s: &NurbsSurface<f64, 3>, d: &NurbsCurve<f64, 2>, params: Params) 
     // On the sphere: |C(t) − centre| = R up to the stated rounding.
     for (p, w) in &curves {
         for i in 0..=40 {
-            let x = segment_point(p, w, i as f64 / 40.0);
+            let x = segment_point(p, Some(w), i as f64 / 40.0);
             let off = (dist(&x, &CENTRE) - R).abs();
             assert!(
                 off <= c.control_point_rounding + 1e-13,
@@ -219,13 +179,13 @@ fn check_with(s: &NurbsSurface<f64, 3>, d: &NurbsCurve<f64, 2>, params: Params) 
             .iter()
             .enumerate()
             .filter(|(k, _)| to_first[*k] - reach[*k] <= upper)
-            .map(|(_, (p, w))| project(&|t| segment_point(p, w, t), &x, 0.0, 1.0, 8))
+            .map(|(_, (p, w))| project(&|t| segment_point(p, Some(w), t), &x, 0.0, 1.0, 8))
             .fold(f64::INFINITY, f64::min);
         measured = measured.max(near);
     }
     for (p, w) in &curves {
         for i in 0..=8 {
-            let x = segment_point(p, w, i as f64 / 8.0);
+            let x = segment_point(p, Some(w), i as f64 / 8.0);
             measured = measured.max(project(&img, &x, t0, t1, 400));
         }
     }
@@ -364,7 +324,7 @@ fn bspline_form_keeps_the_rational_curve() {
         let cps = &b.control_points[k * p..=k * p + p];
         let ws = &w[k * p..=k * p + p];
         for i in 0..=10 {
-            let x = segment_point(cps, ws, i as f64 / 10.0);
+            let x = segment_point(cps, Some(ws), i as f64 / 10.0);
             let y = r.segments[k].eval(i as f64 / 10.0);
             assert!(dist(&x, &y) <= 1e-12, "segment {k}: {x:?} vs {y:?}");
             let off = (dist(&x, &CENTRE) - R).abs();

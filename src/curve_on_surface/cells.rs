@@ -153,7 +153,7 @@ impl Cells {
                         f
                     }
                 };
-                if !(w_lo > 0.0) {
+                if w_lo.is_nan() || w_lo <= 0.0 {
                     return Err(rect);
                 }
                 let q = h.map(|x| {

@@ -43,7 +43,8 @@ fn nearest(f: &dyn Fn(f64) -> [f64; 3], x: &[f64; 3]) -> f64 {
 }
 
 /// Max sampled distance and number of samples (`per_segment == 0`: none measured): each
-/// sample of either curve to the nearest point of the other ([`nearest`]).
+/// sample of either curve to the nearest point of the other (nearest sample, then a
+/// golden-section search).
 pub fn measure(
     surface: &NurbsSurface<f64, 3>,
     segments: &[super::ChainSegment],

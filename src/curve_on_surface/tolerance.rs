@@ -121,7 +121,7 @@ pub fn rational_lipschitz(k_q: f64, k_w: f64, rho: f64, w_lo: f64) -> f64 {
 /// `2u` is added to `eps` for the B-spline form's joint rescaling. Infinite when `ε ≥ 1/2`.
 pub fn rational_rounding(delta: f64, eps: f64, reach: f64) -> f64 {
     let eps = ((eps + 4.5e-16) * (1.0 + 1e-15)).next_up();
-    if !(eps < 0.5) {
+    if eps.is_nan() || eps >= 0.5 {
         return f64::INFINITY;
     }
     ((3f64.sqrt() * 1.000001 * delta).next_up()

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod coons;
+pub mod curves;
 pub mod reparam;
 pub mod scan;
 pub mod shapes;

@@ -370,7 +370,7 @@ fn local_bound(c: &FCell, rect: [f64; 4]) -> f64 {
 impl FCell {
     /// Start (or end, `at_end`) tangent of the image of the chord `a → b` (global
     /// parameters, inside the cell), computed in f64 (eq. 20; for a rational surface the
-    /// quotient rule of [`RationalCell::tangent`]).
+    /// quotient rule of [`crate::curve_on_surface::g1::rational_tangent`]).
     pub fn tangent(&self, a: &[f64; 2], b: &[f64; 2], at_end: bool) -> [f64; 3] {
         let rect = [self.u0, self.u1, self.v0, self.v1];
         match &self.rational {

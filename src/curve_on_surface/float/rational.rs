@@ -135,7 +135,7 @@ impl RationalCell {
         let mut ws = Vec::with_capacity(xq.len());
         for (x, w) in xq.iter().zip(&xw) {
             let wi = I::new((w[0] - ew).next_down(), (w[0] + ew).next_up());
-            if !(wi.lo > 0.0) {
+            if wi.lo.is_nan() || wi.lo <= 0.0 {
                 return None;
             }
             let rel: IP<3> = std::array::from_fn(|c| {
