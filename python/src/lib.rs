@@ -292,11 +292,7 @@ fn set_skip_invalid(on: bool) {
 fn info(py: Python<'_>, path: PathBuf) -> PyResult<Py<PyAny>> {
     let v = detached(py, || {
         let m = read(&path)?;
-        let mut info = vericad::model::info::summarize(&m);
-        if let Some(b) = &m.brep {
-            info.face_areas = vericad::tessellate::face_areas(&m, b);
-        }
-        serialize(&info)
+        serialize(&vericad::tessellate::model_info(&m))
     })?;
     Ok(to_py(py, &v, None)?.unbind())
 }

@@ -280,12 +280,7 @@ pub fn run(cli: Cli) -> i32 {
             }
             match crate::io::read_model(&file) {
                 Ok(m) => {
-                    let mut info = crate::model::info::summarize(&m);
-                    if let Some(b) = &m.brep {
-                        info.face_areas = crate::tessellate::face_areas(&m, b);
-                        info.edge_checks = Some(crate::brep::edge_check::check_edges(b, &m));
-                    }
-                    print(&info, json);
+                    print(&crate::tessellate::model_info(&m), json);
                     0
                 }
                 Err(e) => bad(e),

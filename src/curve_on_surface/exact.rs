@@ -16,6 +16,16 @@ pub(super) fn exact_chain(
     params: &Params,
     progress: &mut dyn FnMut(&str, usize),
 ) -> Result<Chain, CosError> {
+    if let Some(w) = weights.filter(|w| w.len() != s.net.len()) {
+        return Err(
+            super::CosInternal::Curve(crate::spline::SplineError::NetSize {
+                got: w.len(),
+                expected: s.net.len(),
+                what: "weights",
+            })
+            .into(),
+        );
+    }
     let cells =
         cells::Cells::new(s, weights, params.eps_d).map_err(|cell| CosError::Weight { cell })?;
     let (pieces, segs) = split::split(d, &cells)?;

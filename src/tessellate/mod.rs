@@ -308,3 +308,15 @@ pub fn face_areas(model: &Model, brep: &Brep) -> Vec<crate::model::info::FaceAre
         })
         .collect()
 }
+
+/// The summary `vericad info` prints: [`crate::model::info::summarize`], and for a B-rep the
+/// trimmed area of each face ([`face_areas`]) and whether each edge lies on its faces
+/// ([`crate::brep::edge_check::check_edges`]).
+pub fn model_info(model: &Model) -> crate::model::info::ModelInfo {
+    let mut info = crate::model::info::summarize(model);
+    if let Some(b) = &model.brep {
+        info.face_areas = face_areas(model, b);
+        info.edge_checks = Some(crate::brep::edge_check::check_edges(b, model));
+    }
+    info
+}

@@ -21,7 +21,7 @@ pub mod span;
 pub mod split;
 
 use super::g1::{G1Ops, enforce_g1_with};
-use super::{Chain, ChainSegment, CosError, Params};
+use super::{Chain, ChainSegment, CosError, CosInternal, Params};
 use crate::spline::{BSplineCurve, BSplineSurface, BezierCurve};
 use ibez::IP;
 
@@ -114,7 +114,17 @@ pub fn run(
 ) -> Result<Chain, FloatError> {
     let cells = match weights {
         None => cells::FCells::new(s),
-        Some(w) => cells::FCells::rational(s, w),
+        Some(w) if w.len() == s.net.len() => cells::FCells::rational(s, w),
+        Some(w) => {
+            return Err(FloatError::Cos(
+                CosInternal::Curve(crate::spline::SplineError::NetSize {
+                    got: w.len(),
+                    expected: s.net.len(),
+                    what: "weights",
+                })
+                .into(),
+            ));
+        }
     };
     let (pieces, segs) = split::split(d, &cells)?;
     progress("split at knots and knot lines", segs.len());
