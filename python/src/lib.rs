@@ -412,24 +412,13 @@ fn curve_on_surface(
     svg_3d: Option<PathBuf>,
     view: String,
 ) -> PyResult<Py<PyAny>> {
-    use vericad::curve_on_surface::{Arithmetic, Bound, Params, job};
+    use vericad::curve_on_surface::{Bound, Params, job};
     let Some(bound) = Bound::from_name(bound) else {
         return Err(bad(format!("bound must be `local` or `paper`, not `{bound}`")).into());
     };
     let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
     let v = detached(py, || {
-        let params = Params {
-            eps_d: tol,
-            eps_t_deg: angle,
-            bound,
-            arithmetic: if exact {
-                Arithmetic::Exact
-            } else {
-                Arithmetic::Float
-            },
-            evidence_samples: evidence,
-            ..Params::default()
-        };
+        let params = Params::from_options(tol, angle, bound, exact, evidence);
         let outputs = job::Outputs {
             json: out.as_deref(),
             svg: svg.as_deref(),
@@ -461,22 +450,12 @@ fn curve_on_faces(
     out: Option<PathBuf>,
     iges: Option<PathBuf>,
 ) -> PyResult<Py<PyAny>> {
-    use vericad::curve_on_surface::{Arithmetic, Bound, Params, face_job};
+    use vericad::curve_on_surface::{Bound, Params, face_job};
     let Some(bound) = Bound::from_name(bound) else {
         return Err(bad(format!("bound must be `local` or `paper`, not `{bound}`")).into());
     };
     let v = detached(py, || {
-        let params = Params {
-            eps_d: tol,
-            eps_t_deg: angle,
-            bound,
-            arithmetic: if exact {
-                Arithmetic::Exact
-            } else {
-                Arithmetic::Float
-            },
-            ..Params::default()
-        };
+        let params = Params::from_options(tol, angle, bound, exact, 0);
         let r = face_job::run(&file, faces, &params, out.as_deref(), iges.as_deref()).map_err(
             |e| {
                 fault(

@@ -85,22 +85,11 @@ pub fn run(cli: Cli) -> i32 {
             max_memory,
             json,
         } => {
-            use crate::curve_on_surface::{Arithmetic, Bound, Params, job};
+            use crate::curve_on_surface::{Bound, Params, job};
             let Some(bound) = Bound::from_name(&bound) else {
                 return bad(format!("--bound must be `local` or `paper`, not `{bound}`"));
             };
-            let params = Params {
-                eps_d: tol,
-                eps_t_deg: angle,
-                bound,
-                arithmetic: if exact {
-                    Arithmetic::Exact
-                } else {
-                    Arithmetic::Float
-                },
-                evidence_samples: evidence.unwrap_or(0),
-                ..Params::default()
-            };
+            let params = Params::from_options(tol, angle, bound, exact, evidence.unwrap_or(0));
             let outputs = job::Outputs {
                 json: out.as_deref(),
                 svg: svg.as_deref(),

@@ -46,11 +46,7 @@ pub fn mapped_tangent_with(
     b: &[f64; 2],
     at_end: bool,
 ) -> [f64; 3] {
-    let p = if at_end { b } else { a };
-    let (lu, lv) = (
-        (p[0] - rect[0]) / (rect[1] - rect[0]),
-        (p[1] - rect[2]) / (rect[3] - rect[2]),
-    );
+    let ([lu, lv], [du, dv]) = chord_local(rect, a, b, at_end);
     let su = hodographs
         .0
         .as_ref()
@@ -61,9 +57,18 @@ pub fn mapped_tangent_with(
         .as_ref()
         .map(|h| eval_tensor(h, lu, lv))
         .unwrap_or([0.0; 3]);
-    let du = (b[0] - a[0]) / (rect[1] - rect[0]);
-    let dv = (b[1] - a[1]) / (rect[3] - rect[2]);
     std::array::from_fn(|i| du * su[i] + dv * sv[i])
+}
+
+/// The chord `a → b`'s start (or end, `at_end`) and its step in the local coordinates of the
+/// patch over `rect`.
+fn chord_local(rect: [f64; 4], a: &[f64; 2], b: &[f64; 2], at_end: bool) -> ([f64; 2], [f64; 2]) {
+    let p = if at_end { b } else { a };
+    let (wu, wv) = (rect[1] - rect[0], rect[3] - rect[2]);
+    (
+        [(p[0] - rect[0]) / wu, (p[1] - rect[2]) / wv],
+        [(b[0] - a[0]) / wu, (b[1] - a[1]) / wv],
+    )
 }
 
 /// Tensor-product de Casteljau in f64 without allocation (degrees below 16; larger ones use
@@ -137,18 +142,12 @@ pub fn rational_tangent(
     b: &[f64; 2],
     at_end: bool,
 ) -> [f64; 3] {
-    let p = if at_end { b } else { a };
-    let (lu, lv) = (
-        (p[0] - rect[0]) / (rect[1] - rect[0]),
-        (p[1] - rect[2]) / (rect[3] - rect[2]),
-    );
+    let ([lu, lv], [du, dv]) = chord_local(rect, a, b, at_end);
     let at =
         |s: Option<BezierSurface<[f64; 3]>>| s.map(|s| eval_tensor(&s, lu, lv)).unwrap_or([0.0; 3]);
     let (qv, wv) = (eval_tensor(q, lu, lv), eval_tensor(w, lu, lv)[0]);
     let (qu, qr) = (at(q.hodograph_u()), at(q.hodograph_v()));
     let (wu, wr) = (at(w.hodograph_u())[0], at(w.hodograph_v())[0]);
-    let du = (b[0] - a[0]) / (rect[1] - rect[0]);
-    let dv = (b[1] - a[1]) / (rect[3] - rect[2]);
     std::array::from_fn(|i| du * (qu[i] * wv - qv[i] * wu) + dv * (qr[i] * wv - qv[i] * wr))
 }
 

@@ -124,6 +124,31 @@ pub struct Params {
     pub bound: Bound,
 }
 
+impl Params {
+    /// The parameters from the command line's options: tolerances, bound, `--exact`, and the
+    /// evidence samples per segment (0: none).
+    pub fn from_options(
+        tol: f64,
+        angle: f64,
+        bound: Bound,
+        exact: bool,
+        evidence: usize,
+    ) -> Params {
+        Params {
+            eps_d: tol,
+            eps_t_deg: angle,
+            bound,
+            arithmetic: if exact {
+                Arithmetic::Exact
+            } else {
+                Arithmetic::Float
+            },
+            evidence_samples: evidence,
+            ..Params::default()
+        }
+    }
+}
+
 impl Default for Params {
     fn default() -> Self {
         Params {
