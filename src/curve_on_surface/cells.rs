@@ -1,6 +1,7 @@
 //! Step 1a — split S into Bézier patches by exact knot insertion ("cells": a patch with the
 //! parameter rectangle it covers, its Lipschitz bound and 2D tolerance `d`, eq. 12).
 
+use super::g1::F64Patch;
 use super::tolerance::{lipschitz_bound, sqrt_up, tolerance_2d};
 use crate::geom::{Point, lift_point};
 use crate::scalar::{Scalar, lift};
@@ -42,8 +43,9 @@ pub struct ExactRational {
     pub w: BezierSurface<[Q; 3]>,
     pub w_hodo_u: Option<BezierSurface<[Q; 3]>>,
     pub w_hodo_v: Option<BezierSurface<[Q; 3]>>,
-    /// The same, rounded to f64 (for tangents).
-    pub w_f64: BezierSurface<[f64; 3]>,
+    /// `Q` and the weights rounded to f64, with their hodographs (for tangents).
+    pub q_f64: F64Patch,
+    pub w_f64: F64Patch,
     /// Upper bound of `max |P_ij − c|`, lower bound (positive) of `min W_ij`.
     pub rho: f64,
     pub w_lo: f64,
@@ -163,7 +165,8 @@ impl Cells {
                 let r = ExactRational {
                     w_hodo_u: w.hodograph_u(),
                     w_hodo_v: w.hodograph_v(),
-                    w_f64: w.map(crate::geom::to_f64_point),
+                    q_f64: F64Patch::new(q.map(crate::geom::to_f64_point)),
+                    w_f64: F64Patch::new(w.map(crate::geom::to_f64_point)),
                     hom: h.clone(),
                     w,
                     rho,

@@ -127,7 +127,23 @@ fn tangent(cells: &Cells, s: &Seg, at_end: bool) -> [f64; 3] {
     let rect = [c.u0, c.u1, c.v0, c.v1];
     match &c.rational {
         None => mapped_tangent(&c.patch_f64, rect, &s.a, &s.b, at_end),
-        Some(r) => rational_tangent(&c.patch_f64, &r.w_f64, rect, &s.a, &s.b, at_end),
+        Some(r) => rational_tangent(&r.q_f64, &r.w_f64, rect, &s.a, &s.b, at_end),
+    }
+}
+
+/// A patch in f64 with its hodographs, made once per cell for the tangents of the ε_T pass.
+#[derive(Clone, Debug)]
+pub struct F64Patch {
+    pub patch: BezierSurface<[f64; 3]>,
+    pub hodographs: Hodographs,
+}
+
+impl F64Patch {
+    pub fn new(patch: BezierSurface<[f64; 3]>) -> F64Patch {
+        F64Patch {
+            hodographs: (patch.hodograph_u(), patch.hodograph_v()),
+            patch,
+        }
     }
 }
 
@@ -135,19 +151,25 @@ fn tangent(cells: &Cells, s: &Seg, at_end: bool) -> [f64; 3] {
 /// the weights in coordinate 0): by the quotient rule `S_s ∝ Q_s W − Q W_s` (`W > 0` only
 /// scales), combined as in eq. (20).
 pub fn rational_tangent(
-    q: &BezierSurface<[f64; 3]>,
-    w: &BezierSurface<[f64; 3]>,
+    q: &F64Patch,
+    w: &F64Patch,
     rect: [f64; 4],
     a: &[f64; 2],
     b: &[f64; 2],
     at_end: bool,
 ) -> [f64; 3] {
     let ([lu, lv], [du, dv]) = chord_local(rect, a, b, at_end);
-    let at =
-        |s: Option<BezierSurface<[f64; 3]>>| s.map(|s| eval_tensor(&s, lu, lv)).unwrap_or([0.0; 3]);
-    let (qv, wv) = (eval_tensor(q, lu, lv), eval_tensor(w, lu, lv)[0]);
-    let (qu, qr) = (at(q.hodograph_u()), at(q.hodograph_v()));
-    let (wu, wr) = (at(w.hodograph_u())[0], at(w.hodograph_v())[0]);
+    let at = |s: &Option<BezierSurface<[f64; 3]>>| {
+        s.as_ref()
+            .map(|s| eval_tensor(s, lu, lv))
+            .unwrap_or([0.0; 3])
+    };
+    let (qv, wv) = (
+        eval_tensor(&q.patch, lu, lv),
+        eval_tensor(&w.patch, lu, lv)[0],
+    );
+    let (qu, qr) = (at(&q.hodographs.0), at(&q.hodographs.1));
+    let (wu, wr) = (at(&w.hodographs.0)[0], at(&w.hodographs.1)[0]);
     std::array::from_fn(|i| du * (qu[i] * wv - qv[i] * wu) + dv * (qr[i] * wv - qv[i] * wr))
 }
 

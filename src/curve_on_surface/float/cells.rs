@@ -375,14 +375,7 @@ impl FCell {
         let rect = [self.u0, self.u1, self.v0, self.v1];
         match &self.rational {
             None => mapped_tangent_with(&self.hodo_f64, rect, a, b, at_end),
-            Some(r) => {
-                let q = BezierSurface {
-                    p: self.mpatch.p,
-                    q: self.mpatch.q,
-                    net: self.mpatch.m.clone(),
-                };
-                rational_tangent(&q, &r.w_f64, rect, a, b, at_end)
-            }
+            Some(r) => rational_tangent(&r.q_f64, &r.w_f64, rect, a, b, at_end),
         }
     }
 }

@@ -23,6 +23,7 @@
 
 use super::ibez::{I, IP, norm_hi};
 use super::midpatch::{IPatch, MidPatch};
+use crate::curve_on_surface::g1::F64Patch;
 
 /// The rational part of a cell (see the module doc): the weight patch, the centre `c`, `ρ`
 /// and `w_lo`.
@@ -32,8 +33,10 @@ pub struct RationalCell {
     pub w: MidPatch,
     pub w_hodo_u: Option<MidPatch>,
     pub w_hodo_v: Option<MidPatch>,
-    /// The weight patch's midpoints (for tangents, computed in f64).
-    pub w_f64: crate::spline::BezierSurface<[f64; 3]>,
+    /// The midpoints of `Q` and of the weights, with their hodographs (for tangents,
+    /// computed in f64).
+    pub q_f64: F64Patch,
+    pub w_f64: F64Patch,
     pub center: [f64; 3],
     /// Upper bound of `max_ij |P_ij − c|`.
     pub rho: f64,
@@ -86,16 +89,14 @@ impl RationalCell {
                 .collect(),
         };
         let wm = MidPatch::new(w);
+        let q_f64 = f64_patch(&MidPatch::new(&q));
         Ok((
             q,
             RationalCell {
                 w_hodo_u: wm.hodograph(true),
                 w_hodo_v: wm.hodograph(false),
-                w_f64: crate::spline::BezierSurface {
-                    p: wm.p,
-                    q: wm.q,
-                    net: wm.m.clone(),
-                },
+                q_f64,
+                w_f64: f64_patch(&wm),
                 w: wm,
                 center,
                 rho,
@@ -157,6 +158,15 @@ impl RationalCell {
         }
         Some((pts, ws, bound))
     }
+}
+
+/// A midpoint patch as an f64 patch with its hodographs.
+fn f64_patch(m: &MidPatch) -> F64Patch {
+    F64Patch::new(crate::spline::BezierSurface {
+        p: m.p,
+        q: m.q,
+        net: m.m.clone(),
+    })
 }
 
 /// `a / b`, or the whole line when `b` may be zero (never here: both callers check `b > 0`).
