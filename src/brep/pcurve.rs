@@ -27,14 +27,26 @@ use std::collections::BTreeMap;
 /// source or a plane, running from the edge's start vertex to its end vertex (see the module
 /// comment); [`Pcurves`] adds projected ones.
 pub fn for_face(b: &Brep, e: usize, face: &Face, surface: &Surface) -> Option<NurbsCurve<f64, 2>> {
+    own_pcurve(b, e, face, surface).map(|x| x.0)
+}
+
+/// [`for_face`] with where the pcurve came from.
+fn own_pcurve(
+    b: &Brep,
+    e: usize,
+    face: &Face,
+    surface: &Surface,
+) -> Option<(NurbsCurve<f64, 2>, PcurveOrigin)> {
     let c = &b.edges.get(e)?.curve.as_ref()?.nurbs;
     if surface.kind == SurfaceKind::BSpline {
         let off = (100.0 * b.tolerance).max(1e-6 * b.extent());
         if let Some(pc) = source_pcurve(b, e, face, &surface.nurbs, off) {
-            return Some(pc);
+            return Some((pc, PcurveOrigin::Source));
         }
     }
-    AffinePatch::new(&surface.nurbs)?.pcurve(c)
+    AffinePatch::new(&surface.nurbs)?
+        .pcurve(c)
+        .map(|pc| (pc, PcurveOrigin::Plane))
 }
 
 /// The pcurves one writer gives a B-rep's edges, projected ones included, with what the

@@ -2,9 +2,8 @@
 //! boundary gives the certified curves on a surface (`crate::curve_on_surface::face`),
 //! which take polynomial domain curves (Yang et al. treat B-spline `D`).
 
-use super::{AffinePatch, Pcurves, source_pcurve};
+use super::Pcurves;
 use crate::brep::LoopKind;
-use crate::model::SurfaceKind;
 use crate::spline::NurbsCurve;
 
 /// Where a face's pcurve of an edge came from.
@@ -76,17 +75,7 @@ impl Pcurves<'_> {
                 .iter()
                 .all(|h| h.w == 1.0 && (u0..=u1).contains(&h.wp[0]) && (v0..=v1).contains(&h.wp[1]))
         };
-        let own = if surface.kind == SurfaceKind::BSpline {
-            let off = (100.0 * b.tolerance).max(1e-6 * b.extent());
-            source_pcurve(b, e, face, &surface.nurbs, off).map(|c| (c, PcurveOrigin::Source))
-        } else {
-            None
-        };
-        let own = own.or_else(|| {
-            AffinePatch::new(&surface.nurbs)?
-                .pcurve(arc)
-                .map(|c| (c, PcurveOrigin::Plane))
-        });
+        let own = super::own_pcurve(b, e, face, surface);
         let fit = self.fit;
         let projector = self.face_projector(fi)?.1;
         match own {
