@@ -22,3 +22,44 @@ fn parses_simple_complex_and_faults() {
     assert!(parse("no data").is_err());
     assert_eq!(parse("DATA;\n#1=A(1e999);\nENDSEC;").unwrap_err().line, 2);
 }
+
+/// Ids out of file order, a duplicate met only after the order broke (both lines named),
+/// lower-case names, escaped quotes and strings spanning lines (line numbers after them).
+#[test]
+fn ids_out_of_order_duplicates_names_and_lines() {
+    let t = "DATA;\n#5=point('x',(1.,2.,3.));\n#2=POINT('it''s\nmulti',(0,0,0));\n#9=Point($,.t.);\nENDSEC;";
+    let p = parse(t).unwrap();
+    assert_eq!(
+        p.entities.keys().copied().collect::<Vec<_>>(),
+        vec![2, 5, 9]
+    );
+    for id in [2, 5, 9] {
+        assert_eq!(p.entities[&id].name(), "POINT");
+    }
+    assert_eq!(
+        p.entities[&2].part("POINT").unwrap()[0],
+        Value::Str("it's\nmulti".into())
+    );
+    assert_eq!(
+        p.entities[&9].part("POINT").unwrap()[1].enumeration(),
+        Some("T")
+    );
+    // #5 first on line 2, again on line 5 after #2 (line 3, its string ending on line 4).
+    let dup = "DATA;\n#5=A(1);\n#2=B('a\nb');\n#5=C(2);\nENDSEC;";
+    let e = parse(dup).unwrap_err();
+    assert_eq!(e.line, 5, "{e}");
+    assert!(
+        e.reason.contains("#5 is defined twice (first on line 2)"),
+        "{e}"
+    );
+    // In order, the duplicate still named with both lines.
+    let e = parse("DATA;\n#1=A(1);\n#1=A(2);\nENDSEC;").unwrap_err();
+    assert_eq!(
+        (e.line, e.reason.contains("first on line 2")),
+        (3, true),
+        "{e}"
+    );
+    // Too many digits in a reference: a typed fault, not a wrap-around.
+    assert!(parse("DATA;\n#1=A(#99999999999999999999999);\nENDSEC;").is_err());
+    assert!(parse("DATA;\n#1=A('open);\nENDSEC;").is_err());
+}

@@ -70,7 +70,7 @@ fn vertex_tolerance(p: &part21::Part21) -> f64 {
     for e in p.entities.values() {
         if let Some(a) = e.part("UNCERTAINTY_MEASURE_WITH_UNIT")
             && let Some(part21::Value::Typed(t, v)) = a.first()
-            && t == "LENGTH_MEASURE"
+            && &**t == "LENGTH_MEASURE"
             && let Some(x) = v.first().and_then(|x| x.num())
             && x.is_finite()
         {
@@ -271,14 +271,10 @@ pub fn from_str_with(
     model.warnings.extend(degenerate);
     for e in p.entities.values() {
         let name = match e {
-            Entity::Simple(n, _) => n.clone(),
+            Entity::Simple(n, _) => n.to_string(),
             Entity::Complex(parts) => format!(
                 "({})",
-                parts
-                    .iter()
-                    .map(|x| x.0.as_str())
-                    .collect::<Vec<_>>()
-                    .join(" ")
+                parts.iter().map(|x| &*x.0).collect::<Vec<_>>().join(" ")
             ),
         };
         *model.source_entities.entry(name).or_insert(0) += 1;

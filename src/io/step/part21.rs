@@ -3,7 +3,13 @@
 //! Comments `/* … */`, multi-line instances, strings with `''`, enumerations, typed
 //! parameters and `$`/`*` are handled; any syntax fault is a typed error with its line.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
+use std::sync::Arc;
+
+/// An entity, partial entity, typed-parameter or enumeration name: upper case, shared by every
+/// instance that uses it (one allocation per distinct name in a file).
+pub type Name = Arc<str>;
 
 /// A parameter value.
 #[derive(Clone, Debug, PartialEq)]
@@ -11,11 +17,11 @@ pub enum Value {
     Int(i64),
     Real(f64),
     Str(String),
-    Enum(String),
+    Enum(Name),
     Ref(u64),
     List(Vec<Value>),
     /// A typed parameter such as `LENGTH_MEASURE(1.0)`.
-    Typed(String, Vec<Value>),
+    Typed(Name, Vec<Value>),
     /// `$` (unset) or `*` (derived).
     Unset,
 }
@@ -67,9 +73,9 @@ impl Value {
 /// One entity instance.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Entity {
-    Simple(String, Vec<Value>),
+    Simple(Name, Vec<Value>),
     /// A complex instance: its partial entities by name, in file order.
-    Complex(Vec<(String, Vec<Value>)>),
+    Complex(Vec<(Name, Vec<Value>)>),
 }
 
 impl Entity {
@@ -77,14 +83,14 @@ impl Entity {
     pub fn name(&self) -> &str {
         match self {
             Entity::Simple(n, _) => n,
-            Entity::Complex(p) => p.first().map(|x| x.0.as_str()).unwrap_or(""),
+            Entity::Complex(p) => p.first().map(|x| &*x.0).unwrap_or(""),
         }
     }
     /// Arguments of the (partial) entity called `name`.
     pub fn part(&self, name: &str) -> Option<&[Value]> {
         match self {
-            Entity::Simple(n, a) if n == name => Some(a),
-            Entity::Complex(p) => p.iter().find(|x| x.0 == name).map(|x| x.1.as_slice()),
+            Entity::Simple(n, a) if **n == *name => Some(a),
+            Entity::Complex(p) => p.iter().find(|x| *x.0 == *name).map(|x| x.1.as_slice()),
             _ => None,
         }
     }
@@ -120,10 +126,35 @@ pub struct SyntaxError {
     pub reason: String,
 }
 
+/// FNV-1a: names are short and come from the file itself; the default SipHash would cost more
+/// than the parse of the instance around them.
+#[derive(Default)]
+struct Fnv(u64);
+
+impl Hasher for Fnv {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        let mut h = if self.0 == 0 {
+            0xcbf2_9ce4_8422_2325
+        } else {
+            self.0
+        };
+        for &b in bytes {
+            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+        self.0 = h;
+    }
+}
+
 struct Lexer<'a> {
+    text: &'a str,
     s: &'a [u8],
     i: usize,
     line: usize,
+    /// Names met so far, by their spelling in the file.
+    names: HashMap<&'a [u8], Name, BuildHasherDefault<Fnv>>,
 }
 
 impl<'a> Lexer<'a> {
@@ -135,8 +166,10 @@ impl<'a> Lexer<'a> {
     }
     fn skip_ws(&mut self) {
         loop {
-            while self.i < self.s.len() && (self.s[self.i] as char).is_ascii_whitespace() {
-                if self.s[self.i] == b'\n' {
+            while let Some(&c) = self.s.get(self.i)
+                && c.is_ascii_whitespace()
+            {
+                if c == b'\n' {
                     self.line += 1;
                 }
                 self.i += 1;
@@ -171,17 +204,59 @@ impl<'a> Lexer<'a> {
             None => self.err(format!("expected '{}', found end of file", c as char)),
         }
     }
-    fn keyword(&mut self) -> String {
+    /// A keyword (letters, digits, `_`, `!`), upper-cased and interned; empty if none.
+    fn keyword(&mut self) -> Name {
         self.skip_ws();
         let st = self.i;
-        while self.i < self.s.len()
-            && (self.s[self.i].is_ascii_alphanumeric()
-                || self.s[self.i] == b'_'
-                || self.s[self.i] == b'!')
+        while let Some(&c) = self.s.get(self.i)
+            && (c.is_ascii_alphanumeric() || c == b'_' || c == b'!')
         {
             self.i += 1;
         }
-        String::from_utf8_lossy(&self.s[st..self.i]).to_ascii_uppercase()
+        let raw = &self.s[st..self.i];
+        if let Some(n) = self.names.get(raw) {
+            return n.clone();
+        }
+        // ASCII only, so the slice is on character boundaries.
+        let n: Name = self.text[st..self.i].to_ascii_uppercase().into();
+        self.names.insert(raw, n.clone());
+        n
+    }
+    /// The digits at the cursor as an id or reference; `None` if there are none or too many.
+    fn digits(&mut self) -> Option<u64> {
+        let st = self.i;
+        let mut v: u64 = 0;
+        while let Some(&c) = self.s.get(self.i)
+            && c.is_ascii_digit()
+        {
+            v = v.checked_mul(10)?.checked_add(u64::from(c - b'0'))?;
+            self.i += 1;
+        }
+        (self.i > st).then_some(v)
+    }
+    /// A quoted string (`'` doubled inside), the cursor after the opening quote.
+    fn string(&mut self) -> Result<String, SyntaxError> {
+        let st = self.i;
+        let mut escaped = false;
+        loop {
+            let Some(p) = self.s[self.i..].iter().position(|&c| c == b'\'') else {
+                return self.err("unterminated string");
+            };
+            self.i += p + 1;
+            if self.s.get(self.i) == Some(&b'\'') {
+                escaped = true;
+                self.i += 1;
+            } else {
+                break;
+            }
+        }
+        let body = &self.text[st..self.i - 1];
+        self.line += body.bytes().filter(|&c| c == b'\n').count();
+        Ok(if escaped {
+            body.replace("''", "'")
+        } else {
+            body.to_owned()
+        })
     }
     fn value(&mut self, depth: usize) -> Result<Value, SyntaxError> {
         if depth > 64 {
@@ -209,42 +284,14 @@ impl<'a> Lexer<'a> {
             }
             Some(b'#') => {
                 self.i += 1;
-                let st = self.i;
-                while self.i < self.s.len() && self.s[self.i].is_ascii_digit() {
-                    self.i += 1;
-                }
-                match std::str::from_utf8(&self.s[st..self.i])
-                    .ok()
-                    .and_then(|t| t.parse().ok())
-                {
+                match self.digits() {
                     Some(r) => Ok(Value::Ref(r)),
                     None => self.err("malformed reference"),
                 }
             }
             Some(b'\'') => {
                 self.i += 1;
-                let mut out = Vec::new();
-                loop {
-                    match self.s.get(self.i) {
-                        None => return self.err("unterminated string"),
-                        Some(b'\'') if self.s.get(self.i + 1) == Some(&b'\'') => {
-                            out.push(b'\'');
-                            self.i += 2;
-                        }
-                        Some(b'\'') => {
-                            self.i += 1;
-                            break;
-                        }
-                        Some(&c) => {
-                            if c == b'\n' {
-                                self.line += 1;
-                            }
-                            out.push(c);
-                            self.i += 1;
-                        }
-                    }
-                }
-                Ok(Value::Str(String::from_utf8_lossy(&out).into_owned()))
+                Ok(Value::Str(self.string()?))
             }
             Some(b'.') => {
                 self.i += 1;
@@ -263,23 +310,24 @@ impl<'a> Lexer<'a> {
                 while self.i < self.s.len() && self.s[self.i] != b'"' {
                     self.i += 1;
                 }
-                let v = String::from_utf8_lossy(&self.s[st..self.i]).into_owned();
+                let v = self.text[st..self.i].to_owned();
                 self.eat(b'"')?;
                 Ok(Value::Str(v))
             }
             Some(c) if c == b'-' || c == b'+' || c.is_ascii_digit() => {
                 let st = self.i;
                 self.i += 1;
-                while self.i < self.s.len()
-                    && (self.s[self.i].is_ascii_digit()
-                        || matches!(self.s[self.i], b'.' | b'E' | b'e' | b'-' | b'+'))
-                {
+                let mut real = false;
+                while let Some(&c) = self.s.get(self.i) {
+                    match c {
+                        b'0'..=b'9' | b'-' | b'+' => {}
+                        b'.' | b'E' | b'e' => real = true,
+                        _ => break,
+                    }
                     self.i += 1;
                 }
-                let t = std::str::from_utf8(&self.s[st..self.i]).unwrap_or("");
-                if !t.contains(['.', 'E', 'e'])
-                    && let Ok(i) = t.parse::<i64>()
-                {
+                let t = &self.text[st..self.i];
+                if !real && let Ok(i) = t.parse::<i64>() {
                     return Ok(Value::Int(i));
                 }
                 // Rust's float syntax takes the Part 21 forms `1.` and `1.E5` as they are.
@@ -307,14 +355,40 @@ impl<'a> Lexer<'a> {
             _ => self.err("expected an argument list"),
         }
     }
+    /// One instance after its `#id=`: simple `NAME(args)` or complex `(NAME(args) …)`, and `;`.
+    fn instance(&mut self, id: u64) -> Result<Entity, SyntaxError> {
+        let e = if self.peek() == Some(b'(') {
+            self.i += 1;
+            let mut parts = Vec::new();
+            while self.peek() != Some(b')') {
+                let k = self.keyword();
+                if k.is_empty() {
+                    return self.err(format!("#{id}: expected a partial entity name"));
+                }
+                parts.push((k, self.args()?));
+            }
+            self.i += 1;
+            Entity::Complex(parts)
+        } else {
+            let k = self.keyword();
+            if k.is_empty() {
+                return self.err(format!("#{id}: expected an entity name"));
+            }
+            Entity::Simple(k, self.args()?)
+        };
+        self.eat(b';')?;
+        Ok(e)
+    }
 }
 
 /// Parse a whole STEP file.
 pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
     let mut lx = Lexer {
+        text,
         s: text.as_bytes(),
         i: 0,
         line: 1,
+        names: HashMap::default(),
     };
     let mut out = Part21::default();
     // Header: find FILE_SCHEMA's strings, then DATA;
@@ -336,57 +410,45 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
     };
     lx.line += text[..d].matches('\n').count();
     lx.i = d + 5;
-    // Line of each instance, to name both places when an id is defined twice.
-    let mut defined: BTreeMap<u64, usize> = BTreeMap::new();
+    // Instances with their lines, in file order; ids usually ascend, and only once they do not
+    // is a map of every id's line built, to name both places when an id is defined twice.
+    let mut found: Vec<(u64, Entity)> = Vec::new();
+    let mut lines: Vec<usize> = Vec::new();
+    let mut defined: Option<HashMap<u64, usize>> = None;
     loop {
         match lx.peek() {
             None => return lx.err("missing ENDSEC"),
             Some(b'#') => {
                 lx.i += 1;
-                let st = lx.i;
-                while lx.i < lx.s.len() && lx.s[lx.i].is_ascii_digit() {
-                    lx.i += 1;
-                }
-                let id: u64 = match std::str::from_utf8(&lx.s[st..lx.i])
-                    .ok()
-                    .and_then(|t| t.parse().ok())
-                {
-                    Some(v) => v,
-                    None => return lx.err("malformed instance id"),
+                let Some(id) = lx.digits() else {
+                    return lx.err("malformed instance id");
                 };
-                if let Some(first) = defined.insert(id, lx.line) {
-                    // A second `#N=` would silently replace the first instance and every
-                    // reference to it: the file is ambiguous.
-                    return lx.err(format!(
-                        "#{id} is defined twice (first on line {first}); instance ids must be unique"
-                    ));
+                let ascending = defined.is_none() && found.last().is_none_or(|l| l.0 < id);
+                if !ascending {
+                    let map = defined.get_or_insert_with(|| {
+                        found
+                            .iter()
+                            .map(|x| x.0)
+                            .zip(lines.iter().copied())
+                            .collect()
+                    });
+                    if let Some(first) = map.insert(id, lx.line) {
+                        // A second `#N=` would silently replace the first instance and every
+                        // reference to it: the file is ambiguous.
+                        return lx.err(format!(
+                            "#{id} is defined twice (first on line {first}); instance ids must be unique"
+                        ));
+                    }
                 }
+                lines.push(lx.line);
                 lx.eat(b'=')?;
-                let e = if lx.peek() == Some(b'(') {
-                    lx.i += 1;
-                    let mut parts = Vec::new();
-                    while lx.peek() != Some(b')') {
-                        let k = lx.keyword();
-                        if k.is_empty() {
-                            return lx.err(format!("#{id}: expected a partial entity name"));
-                        }
-                        parts.push((k, lx.args()?));
-                    }
-                    lx.i += 1;
-                    Entity::Complex(parts)
-                } else {
-                    let k = lx.keyword();
-                    if k.is_empty() {
-                        return lx.err(format!("#{id}: expected an entity name"));
-                    }
-                    Entity::Simple(k, lx.args()?)
-                };
-                lx.eat(b';')?;
-                out.entities.insert(id, e);
+                let e = lx.instance(id)?;
+                found.push((id, e));
             }
             Some(_) => {
                 let k = lx.keyword();
-                if k == "ENDSEC" {
+                if &*k == "ENDSEC" {
+                    out.entities = found.into_iter().collect();
                     return Ok(out);
                 }
                 return lx.err(format!("unexpected '{k}' in DATA section"));
