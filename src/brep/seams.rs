@@ -20,7 +20,7 @@ use crate::geom::Point;
 use crate::geom::dist;
 use crate::model::Model;
 use crate::spline::closure::Closure;
-use crate::spline::project::{descend, project};
+use crate::spline::project::{SurfaceFoot, descend};
 use crate::spline::{BSplineSurface, NurbsSurface};
 use std::collections::BTreeMap;
 
@@ -47,6 +47,8 @@ pub fn place_seams(m: &mut Model) -> Vec<usize> {
             continue;
         }
         let closure = Closure::of(&surf.nurbs);
+        // Distance under which a boundary point counts as on the surface.
+        let near = 1e-9 * box_diagonal(&pts);
         let mut s = surf.nurbs.clone();
         let mut moved = false;
         for d in 0..2 {
@@ -60,7 +62,21 @@ pub fn place_seams(m: &mut Model) -> Vec<usize> {
             }
             let (u0, u1, v0, v1) = s.hom.domain();
             let (lo, hi) = if d == 0 { (u0, u1) } else { (v0, v1) };
-            let params: Vec<f64> = pts.iter().map(|x| parameter(&s, x, d)).collect();
+            let mut foot = SurfaceFoot::new(&s);
+            let mut params = Vec::with_capacity(pts.len());
+            for edge in pts.chunks(EDGE_SAMPLES) {
+                let mut warm = None;
+                for x in edge {
+                    params.push(parameter(
+                        &mut foot,
+                        &s,
+                        x,
+                        d,
+                        &mut warm,
+                        (near, closure.degenerate),
+                    ));
+                }
+            }
             if let Some(t) = new_seam(params, lo, hi)
                 && let Some(r) = reseamed(&s, d, t)
             {
@@ -95,7 +111,21 @@ pub fn warn(m: &mut Model) {
     }
 }
 
-/// Points along the edges of face `fi`'s loops, 65 per edge, ends included.
+/// Samples per edge of a face's boundary, ends included.
+const EDGE_SAMPLES: usize = 65;
+
+fn box_diagonal(pts: &[[f64; 3]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in pts {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    dist(&lo, &hi)
+}
+
+/// Points along the edges of face `fi`'s loops, [`EDGE_SAMPLES`] per edge, ends included.
 fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
     let mut out = Vec::new();
     for l in &b.faces[fi].loops {
@@ -105,7 +135,10 @@ fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
                     continue;
                 };
                 let (t0, t1) = c.nurbs.hom.domain();
-                out.extend((0..=64).map(|k| c.nurbs.eval(&(t0 + (t1 - t0) * k as f64 / 64.0))));
+                let n = (EDGE_SAMPLES - 1) as f64;
+                out.extend(
+                    (0..EDGE_SAMPLES).map(|k| c.nurbs.eval(&(t0 + (t1 - t0) * k as f64 / n))),
+                );
             }
         }
     }
@@ -114,11 +147,34 @@ fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
 
 /// Parameter `d` of the foot of `x` on `s`, closed in `d`: a local search stopped at one end
 /// of the domain (the other side of the seam is the same curve) is tried again from the other.
-fn parameter(s: &NurbsSurface<f64, 3>, x: &[f64; 3], d: usize) -> f64 {
+///
+/// `warm` holds the previous sample's foot along the same edge. A descent from it is taken
+/// when it ends within `near` of `x`, strictly inside the domain in direction `d` (away from
+/// the seam) and not on or next to a collapsed border (a pole, where every parameter `d` gives
+/// the same point; next to it, parameter `d` moves the point very little): there a surface of revolution is one-to-one, and the foot is the one the grid search
+/// finds too. Otherwise the grid search decides.
+fn parameter(
+    foot: &mut SurfaceFoot,
+    s: &NurbsSurface<f64, 3>,
+    x: &[f64; 3],
+    d: usize,
+    warm: &mut Option<[f64; 2]>,
+    (near, degenerate): (f64, [bool; 4]),
+) -> f64 {
     let (u0, u1, v0, v1) = s.hom.domain();
     let dom = [u0, u1, v0, v1];
     let (lo, hi) = (dom[2 * d], dom[2 * d + 1]);
-    let q = project(s, x);
+    let inside = |q: &[f64; 2]| {
+        let pole = (0..4).any(|k| {
+            degenerate[k] && (q[k / 2] - dom[k]).abs() <= 1e-6 * (dom[k | 1] - dom[k & 2])
+        });
+        lo < q[d] && q[d] < hi && !pole
+    };
+    let q = match warm.map(|w| descend(s, x, w, &dom)) {
+        Some((q, e2)) if e2.sqrt() <= near && inside(&q) => q,
+        _ => foot.closest(x),
+    };
+    *warm = Some(q);
     let e = dist(&s.eval(&q[0], &q[1]), x);
     let w = 1e-9 * (hi - lo);
     let other = if (q[d] - lo).abs() <= w {

@@ -74,27 +74,61 @@ pub fn descend(
     (uv, e)
 }
 
-/// Parameters of (a local) closest point of `s` to `x`: the best of four grid starts at
-/// distinct distances from `x` (so not four copies of one pole), each refined by damped
-/// Gauss–Newton; on a closed surface, a result on the seam is refined again from the other
-/// end of that parameter's domain (the grid's start there is the same point, dropped as a
-/// copy, and a descent stops at the domain's border).
+/// Grid steps per parameter of a surface's closest-point starts.
+const GRID: usize = 16;
+
+/// Parameters of (a local) closest point of `s` to `x`: [`SurfaceFoot::closest`] with the
+/// grid made for this one query.
 pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
-    let (u0, u1, v0, v1) = s.hom.domain();
-    let d = [u0, u1, v0, v1];
-    let n = 16;
-    // The four nearest grid points at distinct distances (a pole row is one point many
-    // times), the first in grid order among equal ones: kept in order as the grid is scanned
-    // (the same four a stable sort of the whole grid would give first).
-    let mut chosen: Vec<(f64, [f64; 2])> = Vec::with_capacity(5);
-    for i in 0..=n {
-        for j in 0..=n {
-            let uv = [
-                d[0] + (d[1] - d[0]) * i as f64 / n as f64,
-                d[2] + (d[3] - d[2]) * j as f64 / n as f64,
-            ];
-            let p = s.eval(&uv[0], &uv[1]);
-            let st = (dot(&sub(&p, x), &sub(&p, x)), uv);
+    SurfaceFoot::new(s).closest(x)
+}
+
+/// Closest points on one surface to many points: the 17 × 17 grid of starts (16 equal steps
+/// per parameter) is evaluated once, and the seam test once.
+pub struct SurfaceFoot<'a> {
+    s: &'a NurbsSurface<f64, 3>,
+    d: [f64; 4],
+    /// Grid points in row order (`u` outer), with their parameters.
+    grid: Vec<([f64; 2], [f64; 3])>,
+    closure: Option<Closure>,
+}
+
+impl<'a> SurfaceFoot<'a> {
+    pub fn new(s: &'a NurbsSurface<f64, 3>) -> Self {
+        let (u0, u1, v0, v1) = s.hom.domain();
+        let d = [u0, u1, v0, v1];
+        let n = GRID as f64;
+        let mut grid = Vec::with_capacity((GRID + 1) * (GRID + 1));
+        for i in 0..=GRID {
+            for j in 0..=GRID {
+                let uv = [
+                    d[0] + (d[1] - d[0]) * i as f64 / n,
+                    d[2] + (d[3] - d[2]) * j as f64 / n,
+                ];
+                grid.push((uv, s.eval(&uv[0], &uv[1])));
+            }
+        }
+        SurfaceFoot {
+            s,
+            d,
+            grid,
+            closure: None,
+        }
+    }
+
+    /// Parameters of (a local) closest point of the surface to `x`: the best of four grid
+    /// starts at distinct distances from `x` (so not four copies of one pole), each refined by
+    /// damped Gauss–Newton; on a closed surface, a result on the seam is refined again from
+    /// the other end of that parameter's domain (the grid's start there is the same point,
+    /// dropped as a copy, and a descent stops at the domain's border).
+    pub fn closest(&mut self, x: &[f64; 3]) -> [f64; 2] {
+        let (s, d) = (self.s, self.d);
+        // The four nearest grid points at distinct distances (a pole row is one point many
+        // times), the first in grid order among equal ones: kept in order as the grid is
+        // scanned (the same four a stable sort of the whole grid would give first).
+        let mut chosen: Vec<(f64, [f64; 2])> = Vec::with_capacity(5);
+        for (uv, p) in &self.grid {
+            let st = (dot(&sub(p, x), &sub(p, x)), *uv);
             if chosen.iter().any(|c| c.0 == st.0) {
                 continue;
             }
@@ -104,33 +138,33 @@ pub fn project(s: &NurbsSurface<f64, 3>, x: &[f64; 3]) -> [f64; 2] {
                 chosen.truncate(4);
             }
         }
-    }
-    let Some(mut best) = chosen
-        .iter()
-        .map(|(_, uv)| descend(s, x, *uv, &d))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-    else {
-        return [d[0], d[2]];
-    };
-    // On a closed surface a descent that stopped on the seam may want to go on past it:
-    // start again from the same point at the other end of that parameter's domain.
-    let on_border = |uv: &[f64; 2], k: usize| uv[k] == d[2 * k] || uv[k] == d[2 * k + 1];
-    if !(on_border(&best.0, 0) || on_border(&best.0, 1)) {
-        return best.0;
-    }
-    let c = Closure::of(s);
-    for (k, closed) in [(0, c.seam_u), (1, c.seam_v)] {
-        let (lo, hi) = (d[2 * k], d[2 * k + 1]);
-        if closed && on_border(&best.0, k) {
-            let mut uv = best.0;
-            uv[k] = if best.0[k] == lo { hi } else { lo };
-            let other = descend(s, x, uv, &d);
-            if other.1 < best.1 {
-                best = other;
+        let Some(mut best) = chosen
+            .iter()
+            .map(|(_, uv)| descend(s, x, *uv, &d))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+        else {
+            return [d[0], d[2]];
+        };
+        // On a closed surface a descent that stopped on the seam may want to go on past it:
+        // start again from the same point at the other end of that parameter's domain.
+        let on_border = |uv: &[f64; 2], k: usize| uv[k] == d[2 * k] || uv[k] == d[2 * k + 1];
+        if !(on_border(&best.0, 0) || on_border(&best.0, 1)) {
+            return best.0;
+        }
+        let c = *self.closure.get_or_insert_with(|| Closure::of(s));
+        for (k, closed) in [(0, c.seam_u), (1, c.seam_v)] {
+            let (lo, hi) = (d[2 * k], d[2 * k + 1]);
+            if closed && on_border(&best.0, k) {
+                let mut uv = best.0;
+                uv[k] = if best.0[k] == lo { hi } else { lo };
+                let other = descend(s, x, uv, &d);
+                if other.1 < best.1 {
+                    best = other;
+                }
             }
         }
+        best.0
     }
-    best.0
 }
 
 /// Samples per closest-point search (plus one): the curve's domain in 32 equal steps.
