@@ -105,10 +105,11 @@ pub fn check_edges(b: &Brep, m: &Model) -> EdgeChecks {
                     continue;
                 }
                 let (t0, t1) = arc.hom.domain();
+                let mut foot = crate::spline::project::SurfaceFoot::new(&surface.nurbs);
                 let measured = (0..=SAMPLES)
                     .map(|i| {
                         let x = arc.eval(&(t0 + (t1 - t0) * i as f64 / SAMPLES as f64));
-                        let uv = crate::spline::project::project(&surface.nurbs, &x);
+                        let uv = foot.closest(&x);
                         crate::geom::dist(&surface.nurbs.eval(&uv[0], &uv[1]), &x)
                     })
                     .fold(0.0, f64::max);
