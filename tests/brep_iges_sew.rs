@@ -120,9 +120,9 @@ fn t20_written_as_trimmed_faces_is_sewn_back_into_its_solids_topology() {
 }
 
 #[test]
-fn a_face_without_model_space_curves_keeps_its_trims_and_gets_no_b_rep() {
-    // occt-bad_header.igs: one 144 face whose 142 has a model-space curve: sewn alone, four
-    // free edges, an open shell.
+fn a_face_without_model_space_curves_is_built_from_its_parameter_space_curve() {
+    // occt-bad_header.igs: one 144 face whose 142 prefers its parameter-space curve: sewn
+    // alone, four free edges, an open shell.
     let m = model("tests/data/public/occt-bad_header.igs");
     let b = m.brep.as_ref().unwrap();
     assert_eq!(b.faces.len(), 1);
@@ -157,13 +157,39 @@ fn a_face_without_model_space_curves_keeps_its_trims_and_gets_no_b_rep() {
         })
         .collect();
     let m = vericad::io::iges::from_str(&lines.join("\n"), "no-cptr.igs").unwrap();
+    // The parameter-space curve alone: the boundary is built on the surface from it.
+    let b = m
+        .brep
+        .as_ref()
+        .expect("a B-rep from the parameter-space curve");
+    assert_eq!((b.faces.len(), b.edges.len()), (1, 4));
+    assert!(
+        m.warnings.iter().any(|w| w.contains("gives alone")),
+        "{:?}",
+        m.warnings
+    );
+    assert_eq!(m.surfaces[0].trim_loops.len(), 1);
+    // With a parameter-space curve that cannot be mapped (here: none, BPTR 0) and no
+    // model-space curve either: no B-rep, a warning says why, the trims stay.
+    let none: Vec<String> = lines
+        .iter()
+        .map(|l| {
+            if l.get(72..73) == Some("P") && l[64..72].trim() == de_142.to_string() {
+                let mut f: Vec<String> = l[..64].trim_end().split(',').map(String::from).collect();
+                f[3] = "0".into();
+                format!("{:<64}{}", f.join(","), &l[64..])
+            } else {
+                l.clone()
+            }
+        })
+        .collect();
+    let m = vericad::io::iges::from_str(&none.join("\n"), "no-curves.igs").unwrap();
     assert!(m.brep.is_none());
     assert!(
         m.warnings.iter().any(|w| w.contains("no B-rep")),
         "{:?}",
         m.warnings
     );
-    assert_eq!(m.surfaces[0].trim_loops.len(), 1);
 }
 
 #[test]

@@ -157,7 +157,7 @@ impl Reader<'_> {
                 _ if face == de => vec![],
                 510 => self.face_points(face),
                 143 | 144 => self
-                    .space_loops(face)?
+                    .space_loops(face, None, &mut Default::default())?
                     .into_iter()
                     .flatten()
                     .flat_map(|l| l.curves)

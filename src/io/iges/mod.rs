@@ -12,6 +12,7 @@ mod account;
 mod analytic;
 mod geometry;
 pub mod parse;
+mod preferred;
 mod topology;
 mod trims;
 pub mod write;
@@ -324,7 +325,23 @@ pub fn from_str_with(
     {
         // Trimmed and bounded faces only: sewn into a B-rep by their model-space boundaries.
         let sew_tol = tolerance.max(1e-7 * size);
-        if let Some((b, st)) = sewn(&r, &surface_of, sew_tol)? {
+        let mut notes = trims::PreferredNotes::default();
+        let got = sewn(&r, (&surface_of, &model.surfaces), sew_tol, &mut notes)?;
+        if !notes.mapped.is_empty() {
+            warnings.push(format!(
+                "{} trim boundar(ies) built on their surface from the parameter-space curve, which the file prefers (142 PREF = 1) or gives alone: {}",
+                notes.mapped.len(),
+                crate::model::list_ids(notes.mapped)
+            ));
+        }
+        if !notes.kept.is_empty() {
+            warnings.push(format!(
+                "{} trim boundar(ies) prefer their parameter-space curve (142 PREF = 1) but could not be mapped onto the surface: {}",
+                notes.kept.len(),
+                notes.kept.join("; ")
+            ));
+        }
+        if let Some((b, st)) = got {
             warnings.push(format!(
                 "B-rep sewn from the {} faces' boundary curves (tolerance {sew_tol:e}): {} edge(s) shared by two faces, {} free, {} used more than twice, {} degenerate piece(s) left out",
                 b.faces.len(),
@@ -360,12 +377,18 @@ pub fn from_str_with(
 /// boundary curves; `None` when a face's boundary has none.
 fn sewn(
     r: &Reader,
-    surface_of: &BTreeMap<usize, usize>,
+    (surface_of, surfaces): (&BTreeMap<usize, usize>, &[crate::model::Surface]),
     tol: f64,
+    notes: &mut trims::PreferredNotes,
 ) -> R<Option<(crate::brep::Brep, crate::brep::sew::SewStats)>> {
     let mut faces = Vec::with_capacity(surface_of.len());
     for (f, si) in surface_of {
-        let Some(loops) = r.space_loops(*f)? else {
+        // Faces with parameter-space trims have their surface in the trims' parametrization.
+        let surface = surfaces
+            .get(*si)
+            .filter(|s| !s.trim_loops.is_empty())
+            .map(|s| &s.nurbs);
+        let Some(loops) = r.space_loops(*f, surface, notes)? else {
             return Ok(None);
         };
         let s = r.ptr(*f, if r.e[f].etype == 143 { 2 } else { 1 })?;

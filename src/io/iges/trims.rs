@@ -6,7 +6,7 @@
 use super::{R, Reader};
 use crate::brep::sew::BoundaryLoop;
 use crate::model::TrimLoop;
-use crate::spline::NurbsCurve;
+use crate::spline::{NurbsCurve, NurbsSurface};
 
 impl Reader<'_> {
     /// A parameter-space loop from a curve entity (x, y are u, v).
@@ -139,6 +139,14 @@ impl Reader<'_> {
 /// A model-space curve with its source id.
 type Named = (String, NurbsCurve<f64, 3>);
 
+/// Boundaries (142 ids) built from their parameter-space curve, and those whose parameter-space
+/// curve is preferred but could not be mapped (with the reason).
+#[derive(Default)]
+pub(super) struct PreferredNotes {
+    pub mapped: Vec<String>,
+    pub kept: Vec<String>,
+}
+
 impl Reader<'_> {
     /// A model-space curve entity as `(source, curve)` segments, reversed when `reverse`;
     /// `None` when a member is not converted.
@@ -162,8 +170,15 @@ impl Reader<'_> {
 
     /// The loops of a trimmed (144) or bounded (143) face as model-space curves (142 CPTR,
     /// 141 CRVPT with its SENSE); `None` when a boundary has no model-space curve or one
-    /// that is not converted.
-    pub(super) fn space_loops(&self, face: usize) -> R<Option<Vec<BoundaryLoop>>> {
+    /// that is not converted. A 142 whose parameter-space curve is preferred (PREF = 1) or
+    /// the only one given is mapped onto `surface` instead, when given (the face's surface in
+    /// the parametrization of its trims; see `preferred.rs`); what was done is noted in `notes`.
+    pub(super) fn space_loops(
+        &self,
+        face: usize,
+        surface: Option<&NurbsSurface<f64, 3>>,
+        notes: &mut PreferredNotes,
+    ) -> R<Option<Vec<BoundaryLoop>>> {
         let mut out = Vec::new();
         match self.e[&face].etype {
             144 => {
@@ -178,11 +193,39 @@ impl Reader<'_> {
                 }
                 for (b, outer) in bounds {
                     let cp = self.nums(b, 4, 1)?[0];
-                    if !(cp >= 1.0 && self.e.contains_key(&(cp as usize))) {
-                        return Ok(None);
+                    let has_copy = cp >= 1.0 && self.e.contains_key(&(cp as usize));
+                    let pref = self.nums(b, 5, 1).map_or(0.0, |v| v[0]);
+                    let bp = self.nums(b, 3, 1)?[0];
+                    let mut image = None;
+                    if (pref == 1.0 || !has_copy)
+                        && bp >= 1.0
+                        && self.e.contains_key(&(bp as usize))
+                    {
+                        let why = match surface {
+                            Some(s) => match self.image_curves(bp as usize, s)? {
+                                Ok(c) => {
+                                    image = Some(c);
+                                    None
+                                }
+                                Err(why) => Some(why),
+                            },
+                            None => Some("its surface is not in the trims' parametrization".into()),
+                        };
+                        match why {
+                            None => notes.mapped.push(format!("DE {b}")),
+                            Some(why) if has_copy => notes
+                                .kept
+                                .push(format!("DE {b} (model-space copy kept: {why})")),
+                            Some(_) => {}
+                        }
                     }
-                    let Some(curves) = self.space_curves(cp as usize, false)? else {
-                        return Ok(None);
+                    let curves = match image {
+                        Some(c) => c,
+                        None if has_copy => match self.space_curves(cp as usize, false)? {
+                            Some(c) => c,
+                            None => return Ok(None),
+                        },
+                        None => return Ok(None),
                     };
                     out.push(BoundaryLoop {
                         outer,
