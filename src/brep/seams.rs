@@ -51,6 +51,8 @@ pub fn place_seams(m: &mut Model) -> Vec<usize> {
         let near = 1e-9 * box_diagonal(&pts);
         let mut s = surf.nurbs.clone();
         let mut moved = false;
+        // Feet of the boundary samples on `s`, made again only after `s` is re-parametrized.
+        let mut feet: Option<Vec<[f64; 2]>> = None;
         for d in 0..2 {
             let closed = if d == 0 {
                 closure.seam_u
@@ -62,26 +64,18 @@ pub fn place_seams(m: &mut Model) -> Vec<usize> {
             }
             let (u0, u1, v0, v1) = s.hom.domain();
             let (lo, hi) = if d == 0 { (u0, u1) } else { (v0, v1) };
-            let mut foot = SurfaceFoot::new(&s);
-            let mut params = Vec::with_capacity(pts.len());
-            for edge in pts.chunks(EDGE_SAMPLES) {
-                let mut warm = None;
-                for x in edge {
-                    params.push(parameter(
-                        &mut foot,
-                        &s,
-                        x,
-                        d,
-                        &mut warm,
-                        (near, closure.degenerate),
-                    ));
-                }
-            }
+            let f = feet.get_or_insert_with(|| feet_of(&s, &pts, near, &closure));
+            let params: Vec<f64> = pts
+                .iter()
+                .zip(f.iter())
+                .map(|(x, q)| parameter(&s, x, *q, d))
+                .collect();
             if let Some(t) = new_seam(params, lo, hi)
                 && let Some(r) = reseamed(&s, d, t)
             {
                 s = r;
                 moved = true;
+                feet = None;
             }
         }
         if moved {
@@ -145,37 +139,54 @@ fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
     out
 }
 
-/// Parameter `d` of the foot of `x` on `s`, closed in `d`: a local search stopped at one end
-/// of the domain (the other side of the seam is the same curve) is tried again from the other.
+/// Feet (parameters) of the boundary samples `pts` (edge after edge,
+/// [`EDGE_SAMPLES`] each) on `s`, by a local search.
 ///
-/// `warm` holds the previous sample's foot along the same edge. A descent from it is taken
-/// when it ends within `near` of `x`, strictly inside the domain in direction `d` (away from
-/// the seam) and not on or next to a collapsed border (a pole, where every parameter `d` gives
-/// the same point; next to it, parameter `d` moves the point very little): there a surface of revolution is one-to-one, and the foot is the one the grid search
-/// finds too. Otherwise the grid search decides.
-fn parameter(
-    foot: &mut SurfaceFoot,
+/// Each sample after an edge's first starts from the previous sample's foot. That descent is
+/// taken when it ends within `near` of the sample, strictly inside the domain in every closed
+/// direction (away from the seams) and not on or next to a collapsed border (a pole, where a
+/// parameter gives the same point whatever its value; next to it, it moves the point very
+/// little): there a surface of revolution is one-to-one, and the foot is the one the grid
+/// search finds too. Otherwise the grid search decides.
+fn feet_of(
     s: &NurbsSurface<f64, 3>,
-    x: &[f64; 3],
-    d: usize,
-    warm: &mut Option<[f64; 2]>,
-    (near, degenerate): (f64, [bool; 4]),
-) -> f64 {
+    pts: &[[f64; 3]],
+    near: f64,
+    closure: &Closure,
+) -> Vec<[f64; 2]> {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    let dom = [u0, u1, v0, v1];
+    let closed = [closure.seam_u, closure.seam_v];
+    let inside = |q: &[f64; 2]| {
+        let pole = (0..4).any(|k| {
+            closure.degenerate[k] && (q[k / 2] - dom[k]).abs() <= 1e-6 * (dom[k | 1] - dom[k & 2])
+        });
+        let off_seams = (0..2).all(|d| !closed[d] || (dom[2 * d] < q[d] && q[d] < dom[2 * d + 1]));
+        off_seams && !pole
+    };
+    let mut foot = SurfaceFoot::new(s);
+    let mut out = Vec::with_capacity(pts.len());
+    for edge in pts.chunks(EDGE_SAMPLES) {
+        let mut warm: Option<[f64; 2]> = None;
+        for x in edge {
+            let q = match warm.map(|w| descend(s, x, w, &dom)) {
+                Some((q, e2)) if e2.sqrt() <= near && inside(&q) => q,
+                _ => foot.closest(x),
+            };
+            warm = Some(q);
+            out.push(q);
+        }
+    }
+    out
+}
+
+/// Parameter `d` of the foot `q` of `x` on `s`, closed in `d`: a local search stopped at one
+/// end of the domain (the other side of the seam is the same curve) is tried again from the
+/// other.
+fn parameter(s: &NurbsSurface<f64, 3>, x: &[f64; 3], q: [f64; 2], d: usize) -> f64 {
     let (u0, u1, v0, v1) = s.hom.domain();
     let dom = [u0, u1, v0, v1];
     let (lo, hi) = (dom[2 * d], dom[2 * d + 1]);
-    let inside = |q: &[f64; 2]| {
-        let pole = (0..4).any(|k| {
-            degenerate[k] && (q[k / 2] - dom[k]).abs() <= 1e-6 * (dom[k | 1] - dom[k & 2])
-        });
-        lo < q[d] && q[d] < hi && !pole
-    };
-    let q = match warm.map(|w| descend(s, x, w, &dom)) {
-        Some((q, e2)) if e2.sqrt() <= near && inside(&q) => q,
-        _ => foot.closest(x),
-    };
-    *warm = Some(q);
-    let e = dist(&s.eval(&q[0], &q[1]), x);
     let w = 1e-9 * (hi - lo);
     let other = if (q[d] - lo).abs() <= w {
         hi
@@ -184,6 +195,7 @@ fn parameter(
     } else {
         return q[d];
     };
+    let e = dist(&s.eval(&q[0], &q[1]), x);
     let mut start = q;
     start[d] = other;
     let (r, e2) = descend(s, x, start, &dom);
