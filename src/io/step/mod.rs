@@ -69,9 +69,9 @@ fn vertex_tolerance(p: &part21::Part21) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for e in p.entities.values() {
         if let Some(a) = e.part("UNCERTAINTY_MEASURE_WITH_UNIT")
-            && let Some(part21::Value::Typed(t, v)) = a.first()
-            && &**t == "LENGTH_MEASURE"
-            && let Some(x) = v.first().and_then(|x| x.num())
+            && let Some(part21::Value::Typed(t)) = a.first()
+            && &*t.0 == "LENGTH_MEASURE"
+            && let Some(x) = t.1.first().and_then(|x| x.num())
             && x.is_finite()
         {
             unc = unc.max(x);
