@@ -216,6 +216,19 @@ mod tests {
     use super::*;
     use crate::spline::construct::{Frame, cylinder};
 
+    /// The cylinder of radius 2 about the z axis from z = 0 to 3, with its Bézier patches.
+    fn cylinder_patches() -> (NurbsSurface<f64, 3>, Vec<BezierPatch<Hom<f64, 3>>>) {
+        let f = Frame {
+            o: [0.0; 3],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 1.0, 0.0],
+            z: [0.0, 0.0, 1.0],
+        };
+        let s = cylinder(&f, 2.0, 0.0, 3.0).unwrap();
+        let patches = s.hom.bezier_patches();
+        (s, patches)
+    }
+
     fn bernstein3(c: &[[f64; 2]; 4], t: f64) -> [f64; 2] {
         let s = 1.0 - t;
         let b = [s * s * s, 3.0 * s * s * t, 3.0 * s * t * t, t * t * t];
@@ -227,14 +240,7 @@ mod tests {
     /// (z linear in v over [0, 1] → [0, 3]); checked at 41 parameters from the closed form.
     #[test]
     fn a_cubic_in_one_cell_maps_onto_the_cylinder() {
-        let f = Frame {
-            o: [0.0; 3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        };
-        let s = cylinder(&f, 2.0, 0.0, 3.0).unwrap();
-        let patches = s.hom.bezier_patches();
+        let (s, patches) = cylinder_patches();
         let q = &patches[0];
         let (du, dv) = (q.u1 - q.u0, q.v1 - q.v0);
         let c = [[0.1, 0.2], [0.5, 0.9], [0.3, 0.1], [0.9, 0.7]]
@@ -259,14 +265,7 @@ mod tests {
     /// A cubic whose control points straddle a knot line is refused with the reason, not cut.
     #[test]
     fn a_cubic_across_a_knot_line_is_refused() {
-        let f = Frame {
-            o: [0.0; 3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        };
-        let s = cylinder(&f, 2.0, 0.0, 3.0).unwrap();
-        let patches = s.hom.bezier_patches();
+        let (_, patches) = cylinder_patches();
         let u = patches[0].u1;
         let b = BezierCurve {
             control: vec![
