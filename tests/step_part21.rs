@@ -63,3 +63,27 @@ fn ids_out_of_order_duplicates_names_and_lines() {
     assert!(parse("DATA;\n#1=A(#99999999999999999999999);\nENDSEC;").is_err());
     assert!(parse("DATA;\n#1=A('open);\nENDSEC;").is_err());
 }
+
+/// More distinct names than the parser keeps for sharing: every instance still has its own
+/// name, upper-cased, and the later ones equal by value.
+#[test]
+fn many_distinct_names_are_all_read() {
+    let mut t = String::from("DATA;\n");
+    for i in 0..6000 {
+        t.push_str(&format!(
+            "#{}=name_{i}(.e{i}.);\n#{}=NAME_{i}(1);\n",
+            2 * i + 1,
+            2 * i + 2
+        ));
+    }
+    t.push_str("ENDSEC;");
+    let p = parse(&t).unwrap();
+    assert_eq!(p.entities.len(), 12000);
+    for i in [0, 4095, 4096, 5999] {
+        let want = format!("NAME_{i}");
+        assert_eq!(p.entities[&(2 * i + 1)].name(), want);
+        assert_eq!(p.entities[&(2 * i + 2)].name(), want);
+        let e = p.entities[&(2 * i + 1)].part(&want).unwrap()[0].enumeration();
+        assert_eq!(e, Some(format!("E{i}").as_str()));
+    }
+}

@@ -141,14 +141,14 @@ fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
     out
 }
 
-/// Feet (parameters) of the boundary samples `pts` (edge after edge,
-/// [`EDGE_SAMPLES`] each) on `s`, by a local search.
+/// Feet (parameters) on `s` of the boundary samples `pts`, edge after edge, [`EDGE_SAMPLES`]
+/// each, by local searches.
 ///
-/// Each sample after an edge's first starts from the previous sample's foot ([`newton`]).
-/// That search is taken when it ends within `near` of the sample, strictly inside the domain in every closed
-/// direction (away from the seams) and not on or next to a collapsed border (a pole, where a
-/// parameter gives the same point whatever its value; next to it, it moves the point very
-/// little): there a surface of revolution is one-to-one, a sample that close to it has one
+/// Each sample after an edge's first starts from the previous sample's foot ([`newton`]). That
+/// search is taken when it ends within `near` of the sample, strictly inside the domain in every
+/// closed direction (away from the seams) and not on or next to a collapsed border (a pole,
+/// where a parameter gives the same point whatever its value; next to it, it moves the point
+/// very little): there a surface of revolution is one-to-one, a sample that close to it has one
 /// foot nearby, and both searches converge to it (to rounding; outputs were identical on every
 /// file in `tests/data`). Otherwise the grid search decides.
 fn feet_of(

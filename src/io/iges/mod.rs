@@ -338,7 +338,12 @@ pub fn from_str_with(
             warnings.push(format!(
                 "{} trim boundar(ies) prefer their parameter-space curve (142 PREF = 1) but could not be mapped onto the surface: {}",
                 notes.kept.len(),
-                notes.kept.join("; ")
+                notes.kept.iter().take(5).cloned().collect::<Vec<_>>().join("; ")
+                    + &if notes.kept.len() > 5 {
+                        format!("; and {} more", notes.kept.len() - 5)
+                    } else {
+                        String::new()
+                    }
             ));
         }
         if let Some((b, st)) = got {

@@ -128,6 +128,9 @@ pub struct SyntaxError {
     pub reason: String,
 }
 
+/// Distinct names kept for sharing (see [`Lexer::keyword`]).
+const MAX_INTERNED: usize = 4096;
+
 /// FNV-1a: names are short and come from the file itself; the default SipHash would cost more
 /// than the parse of the instance around them.
 #[derive(Default)]
@@ -221,7 +224,11 @@ impl<'a> Lexer<'a> {
         }
         // ASCII only, so the slice is on character boundaries.
         let n: Name = self.text[st..self.i].to_ascii_uppercase().into();
-        self.names.insert(raw, n.clone());
+        // Real schemas use a few hundred names; past the cap new names are not kept, so a file
+        // made of many names whose hashes collide cannot make the table's probing quadratic.
+        if self.names.len() < MAX_INTERNED {
+            self.names.insert(raw, n.clone());
+        }
         n
     }
     /// The digits at the cursor as an id or reference; `None` if there are none or too many.
