@@ -291,7 +291,6 @@ def curve_on_surface(
     )
 
 
-
 def curve_on_faces(
     file: PathLike,
     faces: str = "all",
@@ -320,6 +319,7 @@ def curve_on_faces(
             iges=_p(iges),
         )
     )
+
 
 def repair(
     input: PathLike,

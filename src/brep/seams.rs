@@ -49,8 +49,8 @@ pub fn place_seams(m: &mut Model) -> Vec<usize> {
         }
         let closure = Closure::of(&surf.nurbs);
         // Distance under which a boundary point counts as on the surface: the model's
-        // tolerance, at least 1e-9 of the boundary's size.
-        let near = (1e-9 * box_diagonal(&pts)).max(b.tolerance);
+        // tolerance (the readers make it at least 1e-9 of the model's size).
+        let near = b.tolerance;
         let mut s = surf.nurbs.clone();
         let mut moved = false;
         // Feet of the boundary samples on `s`, made again only after `s` is re-parametrized.
@@ -109,17 +109,6 @@ pub fn warn(m: &mut Model) {
 
 /// Samples per edge of a face's boundary, ends included.
 const EDGE_SAMPLES: usize = 65;
-
-fn box_diagonal(pts: &[[f64; 3]]) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in pts {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    dist(&lo, &hi)
-}
 
 /// Points along the edges of face `fi`'s loops, [`EDGE_SAMPLES`] per edge, ends included.
 fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {

@@ -40,6 +40,14 @@ impl<P: Point> BSplineCurve<P> {
             control: b.control.clone(),
         })
     }
+    /// The Bézier curve as a B-spline on `[t0, t1]` (knots `t0` and `t1`, each `degree + 1`
+    /// times): the same points, the parameter mapped affinely.
+    pub fn from_bezier_on(b: &BezierCurve<P>, t0: P::S, t1: P::S) -> Result<Self, SplineError> {
+        let d = b.degree();
+        let mut knots = vec![t0; d + 1];
+        knots.extend(std::iter::repeat_n(t1, d + 1));
+        Self::new(knots, d, b.control.clone())
+    }
     pub fn degree(&self) -> usize {
         self.knots.degree()
     }

@@ -62,31 +62,42 @@ fn image_of_line(
     for w in cuts.windows(2) {
         let (pa, pb) = (at(w[0]), at(w[1]));
         let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-        let Some(bp) = patches
-            .iter()
-            .find(|q| q.u0 <= mid[0] && mid[0] <= q.u1 && q.v0 <= mid[1] && mid[1] <= q.v1)
-        else {
+        let Some(bp) = cell(patches, (mid, mid), (0.0, 0.0)) else {
             return Err(format!(
                 "the point ({}, {}) of the parameter-space curve lies outside the surface's domain",
                 mid[0], mid[1]
             ));
         };
-        let local = |p: [f64; 2]| {
-            [
-                (p[0] - bp.u0) / (bp.u1 - bp.u0),
-                (p[1] - bp.v0) / (bp.v1 - bp.v0),
-            ]
-        };
-        let c = compose_line(&bp.patch, &local(pa), &local(pb));
+        let c = compose_line(&bp.patch, &local(bp, pa), &local(bp, pb));
         let (ta, tb) = (t0 + w[0] * (t1 - t0), t0 + w[1] * (t1 - t0));
-        let d = c.control.len() - 1;
-        let knots: Vec<f64> = (0..2 * (d + 1))
-            .map(|i| if i <= d { ta } else { tb })
-            .collect();
-        let hom = BSplineCurve::new(knots, d, c.control).map_err(|e| e.to_string())?;
-        out.push(NurbsCurve { hom });
+        out.push(nurbs_on(&c, ta, tb)?);
     }
     Ok(out)
+}
+
+/// The Bézier patch whose knot rectangle, grown by `(su, sv)`, holds the box `[lo, hi]`.
+fn cell(
+    patches: &[BezierPatch<Hom<f64, 3>>],
+    (lo, hi): ([f64; 2], [f64; 2]),
+    (su, sv): (f64, f64),
+) -> Option<&BezierPatch<Hom<f64, 3>>> {
+    patches.iter().find(|q| {
+        q.u0 - su <= lo[0] && hi[0] <= q.u1 + su && q.v0 - sv <= lo[1] && hi[1] <= q.v1 + sv
+    })
+}
+
+/// `p` in the patch's own coordinates (its knot rectangle mapped onto `[0, 1]²`).
+fn local(bp: &BezierPatch<Hom<f64, 3>>, p: [f64; 2]) -> [f64; 2] {
+    [
+        (p[0] - bp.u0) / (bp.u1 - bp.u0),
+        (p[1] - bp.v0) / (bp.v1 - bp.v0),
+    ]
+}
+
+/// A homogeneous Bézier image as a rational curve on `[t0, t1]`.
+fn nurbs_on(c: &BezierCurve<Hom<f64, 3>>, t0: f64, t1: f64) -> Result<NurbsCurve<f64, 3>, String> {
+    let hom = BSplineCurve::from_bezier_on(c, t0, t1).map_err(|e| e.to_string())?;
+    Ok(NurbsCurve { hom })
 }
 
 /// `S(B(t))` for one polynomial Bézier piece `B` of degree `d > 1` on `[t0, t1]` whose
@@ -107,9 +118,7 @@ fn image_in_one_cell(
             hi[k] = hi[k].max(p[k]);
         }
     }
-    let Some(bp) = patches.iter().find(|q| {
-        q.u0 - su <= lo[0] && hi[0] <= q.u1 + su && q.v0 - sv <= lo[1] && hi[1] <= q.v1 + sv
-    }) else {
+    let Some(bp) = cell(patches, (lo, hi), (su, sv)) else {
         return Err(format!(
             "a piece of degree {} spans a knot line of the surface ([{}, {}] x [{}, {}])",
             b.degree(),
@@ -119,25 +128,10 @@ fn image_in_one_cell(
             hi[1]
         ));
     };
-    let local = BezierCurve {
-        control: b
-            .control
-            .iter()
-            .map(|p| {
-                [
-                    (p[0] - bp.u0) / (bp.u1 - bp.u0),
-                    (p[1] - bp.v0) / (bp.v1 - bp.v0),
-                ]
-            })
-            .collect(),
+    let in_cell = BezierCurve {
+        control: b.control.iter().map(|p| local(bp, *p)).collect(),
     };
-    let c = compose(&bp.patch, &local);
-    let d = c.control.len() - 1;
-    let knots: Vec<f64> = (0..2 * (d + 1))
-        .map(|i| if i <= d { t0 } else { t1 })
-        .collect();
-    let hom = BSplineCurve::new(knots, d, c.control).map_err(|e| e.to_string())?;
-    Ok(vec![NurbsCurve { hom }])
+    Ok(vec![nurbs_on(&compose(&bp.patch, &in_cell), t0, t1)?])
 }
 
 impl Reader<'_> {
