@@ -222,7 +222,7 @@ pub fn intersect_models(
         if meshes {
             "every point lies within the stated distance of both triangulations (rigorous bound on the constructed crossing point)".to_string()
         } else {
-            "every point's distance to each surface at its own parameters is bounded rigorously (basis functions in outward-rounded intervals, the homogeneous sum in f64 with a forward error bound or in intervals, exact rational fallback): dist_a_max, dist_b_max, dist_max".to_string()
+            "every point's distance to each surface at its own parameters is bounded rigorously (basis functions in f64 with a relative error bound or in outward-rounded intervals, the homogeneous sum in f64 with a forward error bound or in intervals, exact rational fallback): dist_a_max, dist_b_max, dist_max".to_string()
         },
         if meshes {
             "distance to the curve (mesh mode): the same bound, to the exact crossing of the triangulations".to_string()

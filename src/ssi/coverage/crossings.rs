@@ -6,7 +6,7 @@
 
 use super::crossing_newton::{Crossings, PatchJet, crossings, patch_jet};
 use super::near::Near;
-use super::patch::{Box3, ICurve, IPatch, V, box_of, diagonal, disjoint, meet, separated_along};
+use super::patch::{Box3, ICurve, IPatch, V, apart, box_of, diagonal, disjoint, meet, range_along};
 use std::cell::OnceCell;
 use std::rc::Rc;
 
@@ -24,9 +24,34 @@ pub(crate) struct CrossingSearch {
     pub open: Option<Box3>,
 }
 
-/// A piece of the surface with its enclosed Cartesian control points, and its enclosures for
-/// the crossing test (made when first asked for).
-type Piece = (IPatch, Option<Vec<V>>, OnceCell<Option<PatchJet>>);
+/// A piece of the surface with what every part of the curve is tested against: its enclosed
+/// Cartesian control points and their box, its rough normal with the control points'
+/// projection onto it, and its enclosures for the crossing test (made when first asked for).
+struct Piece {
+    s: IPatch,
+    pts: Option<(Vec<V>, Box3)>,
+    normal: [f64; 3],
+    range: Option<(f64, f64)>,
+    jet: OnceCell<Option<PatchJet>>,
+}
+
+impl Piece {
+    fn new(s: IPatch) -> Rc<Piece> {
+        let pts = s.cartesian().map(|p| {
+            let b = box_of(&p);
+            (p, b)
+        });
+        let normal = s.rough_normal();
+        let range = pts.as_ref().and_then(|(p, _)| range_along(p, &normal));
+        Rc::new(Piece {
+            s,
+            pts,
+            normal,
+            range,
+            jet: OnceCell::new(),
+        })
+    }
+}
 
 /// Search `curve` against `patch`: subdivide both until every part is empty, within `d` of
 /// the output `near` or inside a tube (within its reach of its polyline); stop at `max_depth`
@@ -40,36 +65,40 @@ pub(crate) fn search(
     max_boxes: usize,
 ) -> CrossingSearch {
     let mut out = CrossingSearch::default();
-    // A piece with its enclosed Cartesian control points, shared while only the curve splits.
-    let piece = |s: IPatch| {
-        let pts = s.cartesian();
-        Rc::new((s, pts, OnceCell::new()))
-    };
-    let mut stack: Vec<(ICurve, Rc<Piece>, u32)> = vec![(curve.clone(), piece(patch.clone()), 0)];
+    // Pieces are shared while only the curve splits.
+    let mut stack: Vec<(ICurve, Rc<Piece>, u32)> =
+        vec![(curve.clone(), Piece::new(patch.clone()), 0)];
     // Consecutive parts of the curve are usually near the same output chord.
     let hint = super::near::Hint::default();
     while let Some((c, sp, depth)) = stack.pop() {
         out.boxes += 1;
-        let s = &sp.0;
-        let (pc, ps) = match (c.cartesian(), sp.1.as_deref()) {
+        let s = &sp.s;
+        let (pc, (ps, hs)) = match (c.cartesian(), sp.pts.as_ref()) {
             (Some(a), Some(b)) => (a, b),
             // No enclosure (weights not positive, overflow): cannot be excluded.
             (a, b) => {
                 out.open = Some(
                     a.as_deref()
-                        .or(b)
                         .map(box_of)
+                        .or(b.map(|b| b.1))
                         .unwrap_or(([f64::NEG_INFINITY; 3], [f64::INFINITY; 3])),
                 );
                 return out;
             }
         };
-        let (hc, hs) = (box_of(&pc), box_of(ps));
-        if disjoint(&hc, &hs) || separated_along(&pc, ps, &s.rough_normal()) {
+        let hc = box_of(&pc);
+        if disjoint(&hc, hs)
+            || sp
+                .range
+                .zip(range_along(&pc, &sp.normal))
+                .is_some_and(|(a, b)| apart(a, b))
+        {
             continue;
         }
-        let m = meet(&hc, &hs);
-        if near.net_within_hinted(&pc, d, &hint) || near.box_within(&m, d) {
+        let m = meet(&hc, hs);
+        // The box test is skipped where the common part is the curve part's whole box: that
+        // box holds the hull the net test has just failed on (skipping a test never decides).
+        if near.net_within_hinted(&pc, d, &hint) || (m != hc && near.box_within(&m, d)) {
             out.near_output += 1;
             continue;
         }
@@ -81,7 +110,7 @@ pub(crate) fn search(
             continue;
         }
         // Krawczyk's enclosure of every crossing of these two parts (`crossing_newton`).
-        let jet = sp.2.get_or_init(|| patch_jet(s));
+        let jet = sp.jet.get_or_init(|| patch_jet(s));
         match jet
             .as_ref()
             .map_or(Crossings::Undecided, |j| crossings(&c, s, j, d / 16.0))
@@ -107,7 +136,7 @@ pub(crate) fn search(
         // splitting: a crossing away from the output is likely there.
         if depth >= max_depth
             || out.boxes >= max_boxes
-            || diagonal(&hc).max(diagonal(&hs)) < 0.125 * d
+            || diagonal(&hc).max(diagonal(hs)) < 0.125 * d
         {
             out.open = Some(m);
             return out;
@@ -118,15 +147,15 @@ pub(crate) fn search(
         // split: its halves lie in the same slab, so separation along the normal gains
         // nothing, and a curve lying in the plane along the output is decided by its own
         // control points (a scheduling choice: any order of splits is sound).
-        let planar = thickness(ps, &s.rough_normal()) <= 1e-10 * diagonal(&hs);
-        if 2.0 * diagonal(&hc) >= diagonal(&hs) || planar {
+        let planar = thickness(ps, &sp.normal) <= 1e-10 * diagonal(hs);
+        if 2.0 * diagonal(&hc) >= diagonal(hs) || planar {
             let (l, r) = c.halve();
             stack.push((l, sp.clone(), depth + 1));
             stack.push((r, sp, depth + 1));
         } else {
             let (l, r) = s.halve(s.longer_in_u());
-            stack.push((c.clone(), piece(l), depth + 1));
-            stack.push((c, piece(r), depth + 1));
+            stack.push((c.clone(), Piece::new(l), depth + 1));
+            stack.push((c, Piece::new(r), depth + 1));
         }
     }
     out

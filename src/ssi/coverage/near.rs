@@ -4,8 +4,11 @@
 //! Distance to one segment is a convex function, so its largest value over a box is taken at
 //! a corner: a box lies within `d` of a segment when all eight corners do. For a corner `c`,
 //! any point `s(t)` of the segment bounds the distance from above; `t` is chosen by rounded
-//! projection and `‖c − s(t)‖` is enclosed in interval arithmetic, so the test never says
-//! "near" wrongly.
+//! projection and `‖c − s(t)‖` is bounded with a forward error bound ([`dist_upper`]), so the
+//! test never says "near" wrongly. A control-point hull is decided the same way over its
+//! points' boxes, each taken inside a ball: the distance is 1-Lipschitz, so every point of
+//! the ball lies within `dist(centre) + radius` (one distance per control point instead of
+//! eight, for boxes a few ulps wide).
 //!
 //! **Chords** ([`Near::with_chords`]). Let `p_i, …, p_j` be consecutive vertices of an output
 //! polyline and `δ ≥ max_m dist(p_m, line p_i p_j)`. Every point `x` of the chord `[p_i, p_j]`
@@ -20,7 +23,6 @@
 //! vertex is otherwise never within `d` of *one* segment, whatever its size).
 
 use super::patch::{Box3, V};
-use crate::scalar::Interval;
 
 /// Segments of the output with a bounding-volume tree over their boxes.
 /// The entry that decided the last query of a run of queries ([`Near::net_within_hinted`]).
@@ -49,6 +51,26 @@ struct Node {
     ext: [f64; 3],
     kids: Option<(u32, u32)>,
     range: (u32, u32),
+}
+
+/// A ball: centre and radius (every point of it within the radius of the centre).
+type Ball = ([f64; 3], f64);
+
+/// A ball holding the box `p`: its rounded midpoint, and a radius rounded up from the larger
+/// distance to the box's ends per axis (a point box gives radius 0).
+fn ball(p: &V) -> Ball {
+    let c: [f64; 3] = std::array::from_fn(|k| 0.5 * p[k].lo + 0.5 * p[k].hi);
+    let h: [f64; 3] = std::array::from_fn(|k| {
+        let e = (p[k].hi - c[k]).max(c[k] - p[k].lo);
+        if e > 0.0 { e.next_up() } else { 0.0 }
+    });
+    let r2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    let r = if r2 > 0.0 {
+        r2.next_up().sqrt().next_up()
+    } else {
+        0.0
+    };
+    (c, r)
 }
 
 fn seg_box(s: &([f64; 3], [f64; 3])) -> Box3 {
@@ -243,16 +265,19 @@ impl Near {
     /// Whether every point of box `b` is proven within `d` of the output (of one output
     /// segment, or of one chord with its slack).
     pub fn box_within(&self, b: &Box3, d: f64) -> bool {
-        let corners: Vec<[f64; 3]> = (0..8)
-            .map(|m| std::array::from_fn(|k| if m >> k & 1 == 0 { b.0[k] } else { b.1[k] }))
+        let corners: Vec<Ball> = (0..8)
+            .map(|m| {
+                let c = std::array::from_fn(|k| if m >> k & 1 == 0 { b.0[k] } else { b.1[k] });
+                (c, 0.0)
+            })
             .collect();
         self.hull_within(&corners, b, d, &Hint::default())
     }
     /// Whether the convex hull of enclosed control points (each an interval box, given as
     /// Cartesian enclosures) is proven within `d` of the output (one segment, or one chord with
-    /// its slack). A piece with
-    /// positive weights lies in that hull, and the distance to a segment is convex, so its
-    /// largest value over the hull is taken at a corner of one of the boxes.
+    /// its slack). A piece with positive weights lies in that hull, and the distance to a
+    /// segment is convex, so its largest value over the hull is taken at a point of one of the
+    /// boxes; each box is taken within a ball around its midpoint.
     pub fn net_within(&self, pts: &[V], d: f64) -> bool {
         self.net_within_hinted(pts, d, &Hint::default())
     }
@@ -263,37 +288,33 @@ impl Near {
     pub fn net_within_hinted(&self, pts: &[V], d: f64, hint: &Hint) -> bool {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
-        let mut corners = Vec::with_capacity(pts.len());
+        let mut balls = Vec::with_capacity(pts.len());
         for p in pts {
             for k in 0..3 {
                 lo[k] = lo[k].min(p[k].lo);
                 hi[k] = hi[k].max(p[k].hi);
             }
-            let n = [p[0], p[1], p[2]].map(|i| if i.lo == i.hi { 1 } else { 2 });
-            for a in 0..n[0] {
-                for b in 0..n[1] {
-                    for c in 0..n[2] {
-                        let pick = |i: Interval, s: usize| if s == 0 { i.lo } else { i.hi };
-                        corners.push([pick(p[0], a), pick(p[1], b), pick(p[2], c)]);
-                    }
-                }
-            }
+            balls.push(ball(p));
         }
-        self.hull_within(&corners, &(lo, hi), d, hint)
+        self.hull_within(&balls, &(lo, hi), d, hint)
     }
-    /// Whether every corner is proven within `d` of entry `s` (a segment, or a chord with its
-    /// slack).
-    fn entry_holds(&self, s: u32, corners: &[[f64; 3]], d: f64) -> bool {
+    /// Whether every ball (centre, radius) is proven within `d` of entry `s` (a segment, or
+    /// a chord with its slack): the distance to a segment is 1-Lipschitz, so a point of the
+    /// ball is within `dist(centre) + radius`; the sum with the slack is rounded up.
+    fn entry_holds(&self, s: u32, balls: &[Ball], d: f64) -> bool {
         let (p, q) = &self.segs[s as usize];
-        let slack = Interval::point(self.slack[s as usize]);
-        corners
-            .iter()
-            .all(|c| (Interval::point(dist_upper(c, p, q)) + slack).hi <= d)
+        let slack = self.slack[s as usize];
+        balls.iter().all(|(c, r)| {
+            let far = ((dist_upper(c, p, q) + r).next_up() + slack).next_up();
+            far <= d
+        })
     }
-    fn hull_within(&self, corners: &[[f64; 3]], b: &Box3, d: f64, hint: &Hint) -> bool {
+    fn hull_within(&self, balls: &[Ball], b: &Box3, d: f64, hint: &Hint) -> bool {
         if self.nodes.is_empty()
-            || corners.is_empty()
-            || !corners.iter().flatten().all(|x| x.is_finite())
+            || balls.is_empty()
+            || !balls
+                .iter()
+                .all(|(c, r)| r.is_finite() && c.iter().all(|x| x.is_finite()))
         {
             return false;
         }
@@ -301,7 +322,7 @@ impl Near {
         // usually under the next segment or chord of the same run).
         if let Some(s) = hint.0.get() {
             for t in [s, s.wrapping_add(1), s.wrapping_sub(1)] {
-                if (t as usize) < self.segs.len() && self.entry_holds(t, corners, d) {
+                if (t as usize) < self.segs.len() && self.entry_holds(t, balls, d) {
                     hint.0.set(Some(t));
                     return true;
                 }
@@ -328,7 +349,7 @@ impl Near {
                 }
                 None => {
                     for &s in &self.order[n.range.0 as usize..n.range.1 as usize] {
-                        if self.entry_holds(s, corners, d) {
+                        if self.entry_holds(s, balls, d) {
                             hint.0.set(Some(s));
                             return true;
                         }

@@ -111,19 +111,31 @@ pub fn box_of(pts: &[V]) -> Box3 {
 /// direction `n` (any direction: the projections of the hulls are the hulls of the
 /// projections).
 pub fn separated_along(a: &[V], b: &[V], n: &[f64; 3]) -> bool {
+    match (range_along(a, n), range_along(b, n)) {
+        (Some(ra), Some(rb)) => apart(ra, rb),
+        _ => false,
+    }
+}
+
+/// Enclosure of the projections of the points onto `n` (`None` for a direction that is zero
+/// or not finite: no separation is claimed along it).
+pub fn range_along(pts: &[V], n: &[f64; 3]) -> Option<(f64, f64)> {
     if !n.iter().all(|x| x.is_finite()) || n.iter().all(|x| *x == 0.0) {
-        return false;
+        return None;
     }
     let nn = n.map(Interval::point);
-    let range = |pts: &[V]| {
+    Some(
         pts.iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
                 let t = p[0] * nn[0] + p[1] * nn[1] + p[2] * nn[2];
                 (lo.min(t.lo), hi.max(t.hi))
-            })
-    };
-    let (ra, rb) = (range(a), range(b));
-    ra.1 < rb.0 || rb.1 < ra.0
+            }),
+    )
+}
+
+/// Whether two enclosed ranges are disjoint (a strict gap).
+pub fn apart(a: (f64, f64), b: (f64, f64)) -> bool {
+    a.1 < b.0 || b.1 < a.0
 }
 
 /// Whether two boxes are disjoint (a strict gap on some axis).
