@@ -301,10 +301,15 @@ pub fn refine_branch(
         if check(c * 1024, total) {
             return None;
         }
-        // Runs of consecutive points share one Jacobian enclosure ([`JetCache`]); not near
-        // tangency, where the wider enclosure widens the boxes and the test is run twice.
+        // Runs of consecutive points share one Jacobian enclosure ([`JetCache`]) and, where it
+        // settles them, one Krawczyk matrix ([`RunCertifier`]). Near tangency the shared
+        // enclosure is wider than a point's own: there the shared test is only tried, kept
+        // while it gives radii within tol · 1e-4 (the one-by-one test's order there), and the
+        // points it does not settle are certified alone without the cache, as before.
         per_point.par_extend(chunk.par_chunks_mut(JET_RUN).flat_map_iter(|run| {
-            let cache = (prm.curve_certificates && !small_angle(g, &run[0]))
+            let narrow = small_angle(g, &run[0]);
+            let cache = prm
+                .curve_certificates
                 .then(|| JetCache::over(g.sa, g.sb, run.iter().map(|r| (r.uv_a, r.uv_b))))
                 .flatten();
             // One plane direction, preconditioner and Krawczyk matrix for the whole run
@@ -313,20 +318,30 @@ pub fn refine_branch(
                 let m = &run[run.len() / 2];
                 RunCertifier::new(g.sa, g.sb, c, (&m.uv_a, &m.uv_b))
             });
+            let keep = if narrow {
+                prm.tol * 1e-4
+            } else {
+                prm.tol / 8.0
+            };
+            let own_cache = if narrow { None } else { cache.as_ref() };
+            let mut tried = shared.is_some();
             run.iter_mut()
                 .map(|r| {
                     // Kept when the radius, measured from the point moved to the
                     // certificate's centre (a point left up to tol/8 off the curve by the
-                    // refinement lands on it), is within tol/8.
+                    // refinement lands on it), is within `keep`.
                     let fast = shared
                         .as_ref()
+                        .filter(|_| tried)
                         .and_then(|s| s.certify(&r.xyz, &r.uv_a, &r.uv_b))
                         .map(|c| adopt_centre(g, r, c))
-                        .filter(|c| c.0 <= prm.tol / 8.0);
+                        .filter(|c| c.0 <= keep);
+                    // Near tangency one miss ends the shared test for the run.
+                    tried &= fast.is_some() || !narrow;
                     let c = if let Some(c) = fast {
                         Ok(c)
                     } else if prm.curve_certificates {
-                        onto_curve(g, r, prm.tol, cache.as_ref()).map(|c| adopt_centre(g, r, c))
+                        onto_curve(g, r, prm.tol, own_cache).map(|c| adopt_centre(g, r, c))
                     } else {
                         Err(Uncertified::NotRequested)
                     };

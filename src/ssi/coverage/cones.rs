@@ -248,8 +248,15 @@ mod tests {
             }
             claimed += 1;
             for corner in 0..8 {
-                let e: Vec<f64> =
-                    (0..3).map(|i| if corner >> i & 1 == 0 { v[i].lo } else { v[i].hi }).collect();
+                let e: Vec<f64> = (0..3)
+                    .map(|i| {
+                        if corner >> i & 1 == 0 {
+                            v[i].lo
+                        } else {
+                            v[i].hi
+                        }
+                    })
+                    .collect();
                 let dot: BigRational = (0..3).map(|i| q(m[i]) * q(e[i])).sum();
                 assert!(dot > q(0.0), "{m:?} {v:?}: corner {corner} gives {dot}");
             }
