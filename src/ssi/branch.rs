@@ -3,15 +3,11 @@
 //! every point (distance to each surface, [`super::certify`]; distance to the intersection
 //! curve, [`super::krawczyk`]), classify the ends, fit splines.
 
-use super::certify::{ExactSurface, distance_upper};
+use super::certify::ExactSurface;
 use super::fit::fit_branch;
-use super::insert::{Inserter, newton_onto_curve, onto_curve, seams, small_angle};
-use super::jet_cache::JetCache;
-use super::krawczyk::RunCertifier;
-
-/// Consecutive points sharing one Jacobian enclosure in the per-point certificates.
-const JET_RUN: usize = 16;
+use super::insert::{Inserter, newton_onto_curve, seams, small_angle};
 use super::krawczyk::Uncertified;
+use super::point_certs::{JET_RUN, certify_run};
 use super::refine::{
     RefineParams, RefineStatus, Refined, auxiliary_plane, barycentric_uv, domain, refine_on_border,
 };
@@ -100,39 +96,6 @@ pub enum BranchResult {
     /// the two faces share ([`PairGeometry::shared`]): the curve is where the faces meet by
     /// construction. Its points (not refined further, nor certified) are counted to the edges.
     OnSharedEdges(Vec<[f64; 3]>),
-}
-
-/// The certified point moved to the centre of its root box: `p' = (S_A(y_uv) + S_B(y_st)) / 2`
-/// at the Newton solution `y`, which lies on the curve to `f64` accuracy. Kept when `y` lies in
-/// both closed domains and the radius measured from `p'` to the enclosed true point is not
-/// larger than from `p`; then `r` takes `p'` and `y` as its parameters, and its distances to
-/// each surface are bounded from the certificate's enclosures at `y` (no second evaluation).
-/// Returns the radius, and the two distances when moved.
-fn adopt_centre(
-    g: &PairGeometry,
-    r: &mut Refined,
-    c: super::krawczyk::CurveCertificate,
-) -> (f64, Option<(f64, f64)>) {
-    let y = c.centre;
-    let (da, db) = (domain(g.sa), domain(g.sb));
-    let inside = (0..2).all(|k| y[k] >= da[2 * k] && y[k] <= da[2 * k + 1])
-        && (0..2).all(|k| y[k + 2] >= db[2 * k] && y[k + 2] <= db[2 * k + 1]);
-    if !inside {
-        return (c.radius, None);
-    }
-    let [a, b] = c.at_centre;
-    let p: [f64; 3] = std::array::from_fn(|k| 0.5 * (a[k].mid() + b[k].mid()));
-    let up = |box3: &[crate::scalar::Interval; 3]| distance_upper(&p, box3);
-    match (up(&c.point), up(&a), up(&b)) {
-        (Some(radius), Some(dist_a), Some(dist_b)) if radius <= c.radius => {
-            r.gap = dist(&a.map(|x| x.mid()), &b.map(|x| x.mid()));
-            r.xyz = p;
-            r.uv_a = [y[0], y[1]];
-            r.uv_b = [y[2], y[3]];
-            (radius, Some((dist_a, dist_b)))
-        }
-        _ => (c.radius, None),
-    }
 }
 
 fn on_border(uv: &[f64; 2], d: &[f64; 4]) -> bool {
@@ -301,64 +264,11 @@ pub fn refine_branch(
         if check(c * 1024, total) {
             return None;
         }
-        // Runs of consecutive points share one Jacobian enclosure ([`JetCache`]) and, where it
-        // settles them, one Krawczyk matrix ([`RunCertifier`]). Near tangency the shared
-        // enclosure is wider than a point's own: there the shared test is only tried, kept
-        // while it gives radii within tol · 1e-4 (the one-by-one test's order there), and the
-        // points it does not settle are certified alone without the cache, as before.
-        per_point.par_extend(chunk.par_chunks_mut(JET_RUN).flat_map_iter(|run| {
-            let narrow = small_angle(g, &run[0]);
-            let cache = prm
-                .curve_certificates
-                .then(|| JetCache::over(g.sa, g.sb, run.iter().map(|r| (r.uv_a, r.uv_b))))
-                .flatten();
-            // One plane direction, preconditioner and Krawczyk matrix for the whole run
-            // where they settle a point within tol/8; other points on their own.
-            let shared = cache.as_ref().and_then(|c| {
-                let m = &run[run.len() / 2];
-                RunCertifier::new(g.sa, g.sb, c, (&m.uv_a, &m.uv_b))
-            });
-            let keep = if narrow {
-                prm.tol * 1e-4
-            } else {
-                prm.tol / 8.0
-            };
-            let own_cache = if narrow { None } else { cache.as_ref() };
-            let mut tried = shared.is_some();
-            run.iter_mut()
-                .map(|r| {
-                    // Kept when the radius, measured from the point moved to the
-                    // certificate's centre (a point left up to tol/8 off the curve by the
-                    // refinement lands on it), is within `keep`.
-                    let fast = shared
-                        .as_ref()
-                        .filter(|_| tried)
-                        .and_then(|s| s.certify(&r.xyz, &r.uv_a, &r.uv_b))
-                        .map(|c| adopt_centre(g, r, c))
-                        .filter(|c| c.0 <= keep);
-                    // Near tangency one miss ends the shared test for the run.
-                    tried &= fast.is_some() || !narrow;
-                    let c = if let Some(c) = fast {
-                        Ok(c)
-                    } else if prm.curve_certificates {
-                        onto_curve(g, r, prm.tol, own_cache).map(|c| adopt_centre(g, r, c))
-                    } else {
-                        Err(Uncertified::NotRequested)
-                    };
-                    let radius = c.as_ref().map(|c| c.0).map_err(|u| *u);
-                    let (da, db) = match c {
-                        Ok((_, Some(d))) => d,
-                        _ => (
-                            g.ea.distance_bound(&r.xyz, &r.uv_a)
-                                .unwrap_or(f64::INFINITY),
-                            g.eb.distance_bound(&r.xyz, &r.uv_b)
-                                .unwrap_or(f64::INFINITY),
-                        ),
-                    };
-                    (radius, da, db)
-                })
-                .collect::<Vec<_>>()
-        }));
+        per_point.par_extend(
+            chunk
+                .par_chunks_mut(JET_RUN)
+                .flat_map_iter(|run| certify_run(g, prm, run)),
+        );
     }
     let da_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.1));
     let db_max = per_point.iter().fold(0.0f64, |m, p| m.max(p.2));

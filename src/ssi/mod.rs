@@ -30,6 +30,7 @@ pub mod coincide;
 pub mod control;
 pub mod coverage;
 pub mod driver;
+mod point_certs;
 /// The box enclosures live in the kernel ([`crate::spline::enclose`]); re-exported here for
 /// the certificate and the Krawczyk test.
 pub use crate::spline::enclose;
