@@ -5,15 +5,19 @@
 //! of the domain maps onto a rational Bézier curve of degree `p + q` in every knot rectangle
 //! it crosses (Yang et al. §4, "mapping segments onto the surface"; the blossom formula of
 //! `spline::compose::compose_line` on the homogeneous patch), the pieces joined C0 at the knot
-//! lines. A Bézier piece of `B` of higher degree `d` whose control points lie in one knot
-//! rectangle maps onto a rational Bézier curve of degree `(p + q) d` there (functional
-//! composition by blossoming, DeRose et al. 1993, `spline::compose::compose`). The curve's
-//! parameter is `B`'s own, so `S(B(t))` and the built curve agree at every `t` up to the
-//! rounding of the control points.
+//! lines. A Bézier piece of `B` of higher degree `d` is first cut where it crosses a knot line
+//! of the surface (the roots of `u(t) − u_k` and `v(t) − v_k`, isolated on their Bernstein
+//! coefficients by subdivision to 1e-13 of the piece), and each part, whose control points
+//! then lie in one knot rectangle, maps onto a rational Bézier curve of degree `(p + q) d`
+//! there (functional composition by blossoming, DeRose et al. 1993,
+//! `spline::compose::compose`). The curve's parameter is `B`'s own, so `S(B(t))` and the
+//! built curve agree at every `t` up to the rounding of the control points (a cut a rounding
+//! error off the knot line leaves the part that much outside its rectangle, where the
+//! patch's polynomial extends).
 //!
 //! Parameter-space curves that are rational, that leave the surface's domain, or whose
-//! non-linear pieces span a knot line of the surface are not mapped: the caller keeps the
-//! model-space copy and says so.
+//! non-linear pieces cannot be cut into parts within one knot rectangle each are not mapped:
+//! the caller keeps the model-space copy and says so.
 
 use super::{R, Reader};
 use crate::geom::Hom;
@@ -100,17 +104,116 @@ fn nurbs_on(c: &BezierCurve<Hom<f64, 3>>, t0: f64, t1: f64) -> Result<NurbsCurve
     Ok(NurbsCurve { hom })
 }
 
-/// `S(B(t))` for one polynomial Bézier piece `B` of degree `d > 1` on `[t0, t1]` whose
-/// control points lie in one knot rectangle of `S` (within the slack `(su, sv)`): by the
-/// convex hull property so does the piece, and its image on that patch is a rational Bézier
-/// curve of degree `(p + q) d` (`spline::compose::compose`, DeRose et al.). A piece whose
-/// control points span a knot line is not cut (that needs the roots of a polynomial): `Err`.
+/// Parameters in `(0, 1)` where the Bernstein polynomial with coefficients `c` changes sign
+/// or touches zero: subdivision at 1/2 until the coefficients have one strict sign (no root)
+/// or the interval is below 1e-13 (its midpoint); roots closer than 1e-9 are merged. `None`
+/// for more than `limit` roots or a polynomial that vanishes everywhere (a curve along the
+/// knot line: no cut is needed there, and the caller cuts nowhere).
+fn bernstein_roots(c: &[f64], limit: usize) -> Option<Vec<f64>> {
+    let scale = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if scale == 0.0 {
+        return None;
+    }
+    let mut out = Vec::new();
+    let mut stack = vec![(c.to_vec(), 0.0f64, 1.0f64)];
+    while let Some((b, a, e)) = stack.pop() {
+        if b.iter().all(|x| *x > 0.0) || b.iter().all(|x| *x < 0.0) {
+            continue;
+        }
+        if e - a < 1e-13 || b.iter().all(|x| x.abs() <= 1e-15 * scale) {
+            let m = 0.5 * (a + e);
+            if out.last().is_none_or(|l: &f64| (m - l).abs() > 1e-9) {
+                out.push(m);
+            }
+            if out.len() > limit {
+                return None;
+            }
+            continue;
+        }
+        // de Casteljau at 1/2 on the coefficients.
+        let n = b.len();
+        let (mut l, mut r, mut w) = (Vec::with_capacity(n), Vec::with_capacity(n), b);
+        l.push(w[0]);
+        r.push(w[n - 1]);
+        for level in 1..n {
+            for i in 0..n - level {
+                w[i] = 0.5 * (w[i] + w[i + 1]);
+            }
+            l.push(w[0]);
+            r.push(w[n - 1 - level]);
+        }
+        r.reverse();
+        let m = 0.5 * (a + e);
+        // Right half first on the stack: the left half is popped first, so roots come in order.
+        stack.push((r, m, e));
+        stack.push((l, a, m));
+    }
+    Some(out)
+}
+
+/// The parameters in `(0, 1)` where the 2D Bézier curve `b` crosses one of the interior knot
+/// lines `breaks` (`[u breakpoints, v breakpoints]`), sorted, at least 1e-9 from the ends.
+fn knot_crossings(b: &BezierCurve<[f64; 2]>, breaks: [&[f64]; 2]) -> Vec<f64> {
+    let mut cuts = Vec::new();
+    for (k, br) in breaks.iter().enumerate() {
+        let lo = b.control.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+        let hi = b
+            .control
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        for &x in br.iter().filter(|x| lo < **x && **x < hi) {
+            let c: Vec<f64> = b.control.iter().map(|p| p[k] - x).collect();
+            cuts.extend(bernstein_roots(&c, 2 * c.len()).unwrap_or_default());
+        }
+    }
+    cuts.retain(|t| *t > 1e-9 && *t < 1.0 - 1e-9);
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
+    cuts
+}
+
+/// `S(B(t))` for one polynomial Bézier piece `B` of degree `d > 1` on `[t0, t1]`: cut at its
+/// crossings of the surface's knot lines ([`knot_crossings`]), each part's image on the patch
+/// whose knot rectangle (within the slack `(su, sv)`) holds its control points — and so, by
+/// the convex hull property, the part — a rational Bézier curve of degree `(p + q) d`
+/// (`spline::compose::compose`, DeRose et al.). `Err` when a part still spans a knot line.
+fn image_of_piece(
+    patches: &[BezierPatch<Hom<f64, 3>>],
+    breaks: [&[f64]; 2],
+    b: &BezierCurve<[f64; 2]>,
+    (su, sv): (f64, f64),
+    (t0, t1): (f64, f64),
+) -> Result<Vec<NurbsCurve<f64, 3>>, String> {
+    let cuts = knot_crossings(b, breaks);
+    let mut out = Vec::with_capacity(cuts.len() + 1);
+    let (mut rest, mut from) = (b.clone(), 0.0);
+    for &c in cuts.iter().chain(std::iter::once(&1.0)) {
+        let part = if c < 1.0 {
+            let (l, r) = rest.subdivide(&((c - from) / (1.0 - from)));
+            rest = r;
+            l
+        } else {
+            rest.clone()
+        };
+        let (a, e) = (
+            t0 + (t1 - t0) * from,
+            if c < 1.0 { t0 + (t1 - t0) * c } else { t1 },
+        );
+        out.push(image_in_one_cell(patches, &part, (su, sv), (a, e))?);
+        from = c;
+    }
+    Ok(out)
+}
+
+/// The image of a part whose control points lie in one knot rectangle (see
+/// [`image_of_piece`]).
 fn image_in_one_cell(
     patches: &[BezierPatch<Hom<f64, 3>>],
     b: &BezierCurve<[f64; 2]>,
     (su, sv): (f64, f64),
     (t0, t1): (f64, f64),
-) -> Result<Vec<NurbsCurve<f64, 3>>, String> {
+) -> Result<NurbsCurve<f64, 3>, String> {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in &b.control {
         for k in 0..2 {
@@ -131,7 +234,7 @@ fn image_in_one_cell(
     let in_cell = BezierCurve {
         control: b.control.iter().map(|p| local(bp, *p)).collect(),
     };
-    Ok(vec![nurbs_on(&compose(&bp.patch, &in_cell), t0, t1)?])
+    nurbs_on(&compose(&bp.patch, &in_cell), t0, t1)
 }
 
 impl Reader<'_> {
@@ -182,7 +285,13 @@ impl Reader<'_> {
                         (piece.t0, piece.t1),
                     )
                 } else {
-                    image_in_one_cell(&patches, &piece.curve, (su, sv), (piece.t0, piece.t1))
+                    image_of_piece(
+                        &patches,
+                        [&u_breaks, &v_breaks],
+                        &piece.curve,
+                        (su, sv),
+                        (piece.t0, piece.t1),
+                    )
                 };
                 match got {
                     Ok(p) => pieces.extend(p),
@@ -242,8 +351,7 @@ mod tests {
         let b = BezierCurve {
             control: c.to_vec(),
         };
-        let got = image_in_one_cell(&patches, &b, (0.0, 0.0), (2.0, 5.0)).unwrap();
-        let img = &got[0];
+        let img = image_in_one_cell(&patches, &b, (0.0, 0.0), (2.0, 5.0)).unwrap();
         assert_eq!(img.hom.degree(), 3 * (q.patch.p + q.patch.q));
         for i in 0..=40 {
             let t = i as f64 / 40.0;
@@ -256,20 +364,81 @@ mod tests {
         }
     }
 
-    /// A cubic whose control points straddle a knot line is refused with the reason, not cut.
+    /// A cubic crossing the knot line between two quarters of the cylinder is cut there: two
+    /// rational pieces, joined, every point on the cylinder at the height its `v` gives, and
+    /// the cut where `u(t)` meets the knot (checked from the closed form of the cubic).
     #[test]
-    fn a_cubic_across_a_knot_line_is_refused() {
-        let (_, patches) = cylinder_patches();
+    fn a_cubic_across_a_knot_line_is_cut() {
+        let (s, patches) = cylinder_patches();
         let u = patches[0].u1;
+        let c = [
+            [u - 0.2, 0.1],
+            [u - 0.1, 0.9],
+            [u + 0.05, 0.2],
+            [u + 0.2, 0.6],
+        ];
         let b = BezierCurve {
-            control: vec![
-                [u - 0.01, 0.1],
-                [u - 0.005, 0.2],
-                [u + 0.005, 0.3],
-                [u + 0.01, 0.4],
-            ],
+            control: c.to_vec(),
         };
-        let e = image_in_one_cell(&patches, &b, (0.0, 0.0), (0.0, 1.0)).unwrap_err();
-        assert!(e.contains("spans a knot line"), "{e}");
+        let breaks = [s.hom.ku.breakpoints(), s.hom.kv.breakpoints()];
+        let got = image_of_piece(
+            &patches,
+            [&breaks[0], &breaks[1]],
+            &b,
+            (1e-9, 1e-9),
+            (1.0, 3.0),
+        )
+        .unwrap();
+        assert_eq!(got.len(), 2);
+        // The cut: where u(t) = u, found here by bisection on the closed form.
+        let (mut a, mut e) = (0.0, 1.0);
+        for _ in 0..80 {
+            let m = 0.5 * (a + e);
+            if bernstein3(&c, m)[0] < u {
+                a = m;
+            } else {
+                e = m;
+            }
+        }
+        let (_, t_end) = got[0].hom.knots.domain();
+        assert!(
+            (t_end - (1.0 + 2.0 * a)).abs() <= 1e-12,
+            "{t_end} vs {}",
+            1.0 + 2.0 * a
+        );
+        let joined = got[0].joined(&got[1]).unwrap();
+        let (s0, s1) = s.hom.kv.domain();
+        for i in 0..=60 {
+            let t = i as f64 / 60.0;
+            let x = joined.eval(&(1.0 + 2.0 * t));
+            let z = 3.0 * (bernstein3(&c, t)[1] - s0) / (s1 - s0);
+            assert!((x[0].hypot(x[1]) - 2.0).abs() <= 1e-13, "{t}: {x:?}");
+            assert!((x[2] - z).abs() <= 1e-13, "{t}: {x:?} vs z {z}");
+        }
+    }
+
+    /// Roots of `(t − 0.2)(t − 0.5)(t − 0.9)` from its Bernstein coefficients; none for a
+    /// polynomial of one sign; `None` for the zero polynomial.
+    #[test]
+    fn bernstein_roots_of_a_cubic() {
+        // Power basis → Bernstein: f(t) = t³ − 1.6 t² + 0.73 t − 0.09.
+        let (a0, a1, a2, a3) = (-0.09, 0.73, -1.6, 1.0);
+        let b = [
+            a0,
+            a0 + a1 / 3.0,
+            a0 + 2.0 * a1 / 3.0 + a2 / 3.0,
+            a0 + a1 + a2 + a3,
+        ];
+        let r = bernstein_roots(&b, 6).unwrap();
+        assert_eq!(r.len(), 3, "{r:?}");
+        for (x, want) in r.iter().zip([0.2, 0.5, 0.9]) {
+            assert!((x - want).abs() <= 1e-12, "{r:?}");
+        }
+        assert!(
+            bernstein_roots(&[1.0, 0.2, 0.5, 3.0], 6)
+                .unwrap()
+                .is_empty()
+        );
+        assert!(bernstein_roots(&[0.0; 4], 6).is_none());
     }
 }
