@@ -109,10 +109,10 @@ pub fn normal_box(h: &IPatch, polynomial: bool) -> Option<V> {
 /// is `Σ_k m_k e_k` with `e_k` the end of `v_k` on the side of `−sign(m_k)` (the terms are
 /// independent); its rounded sum `t` of rounded products is within `γ_3 Σ |m_k e_k|` of it
 /// (Higham §3.1, an inner product of length 3), plus `3 · 2⁻¹⁰⁷⁵` for products below the
-/// normal range. With `S` the rounded sum of the `|fl(m_k e_k)|`, `γ_3 Σ |m_k e_k| < 3.01 u S
-/// + 2⁻¹⁰⁷²`, so `t > 3.02 u S` (the right side's own roundings inside the margin) together
-/// with `t > 10⁻³⁰⁰` (then `0.01 u S ≥ 0.0099 u t` exceeds the underflow term) proves the
-/// least value positive. Not finite: not proven.
+/// normal range. With `S` the rounded sum of the `|fl(m_k e_k)|`, the bound is below
+/// `3.01 u S + 2⁻¹⁰⁷²`, so `t > 3.02 u S` (the right side's own roundings inside the margin)
+/// together with `t > 10⁻³⁰⁰` (then `0.01 u S ≥ 0.0099 u t` exceeds the underflow term)
+/// proves the least value positive. Not finite: not proven.
 fn positive(m: &[f64; 3], v: &V) -> bool {
     let e = |k: usize| if m[k] >= 0.0 { v[k].lo } else { v[k].hi };
     let p = [m[0] * e(0), m[1] * e(1), m[2] * e(2)];
