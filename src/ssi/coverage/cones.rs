@@ -218,13 +218,8 @@ mod tests {
     fn positive_is_proven() {
         use num_rational::BigRational;
         let q = |x: f64| BigRational::from_float(x).unwrap();
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut r = crate::spline::test_params::rng(0x9e37_79b9_7f4a_7c15);
+        let mut next = || r() - 0.5;
         let mut claimed = 0;
         for k in 0..20_000 {
             let scale = 10f64.powi((k % 63) * 10 - 320);
