@@ -12,8 +12,7 @@ use crate::geom::dist;
 /// Consecutive points sharing one Jacobian enclosure in the per-point certificates.
 pub(super) const JET_RUN: usize = 16;
 
-/// Shortest run split further when its points' parameters are too far apart for one shared
-/// enclosure ([`JetCache::over`]).
+/// Runs shorter than twice this are not halved further (see [`certify_run`]).
 const MIN_RUN: usize = 4;
 
 /// Per point of the run: its curve radius (or why there is none) and its distances to each
@@ -26,9 +25,9 @@ pub(super) type PointCert = (Result<f64, Uncertified>, f64, f64);
 /// at its first point, is halved, down to [`MIN_RUN`] points. The shared test stops for a run
 /// after two misses in a row; the points it does not settle are certified alone. Near
 /// tangency the shared enclosure is wider than a point's own: there the shared test is kept
-/// only while it gives radii within tol · 1e-5, stops at
-/// its first miss, and the points it leaves are certified without the cache. Which test runs
-/// first is a choice: either is the same theorem.
+/// only while it gives radii within tol · 1e-5, stops at its first miss, and the points it
+/// leaves are certified without the cache. Which test runs first is a choice: either is the
+/// same theorem.
 pub(super) fn certify_run(
     g: &PairGeometry,
     prm: &RefineParams,
@@ -46,12 +45,11 @@ pub(super) fn certify_run(
         RunCertifier::new(g.sa, g.sb, c, (&m.uv_a, &m.uv_b))
     });
     // Halved where the points spread too far for one enclosure, or for one Krawczyk matrix
-    // to contract at the first point.
-    let spread = prm.curve_certificates
-        && shared.as_ref().is_none_or(|s| {
-            let r = &run[0];
-            s.certify(&r.xyz, &r.uv_a, &r.uv_b).is_none()
-        });
+    // to contract at the first point (whose certificate, if any, is used below).
+    let mut first = shared
+        .as_ref()
+        .and_then(|s| s.certify(&run[0].xyz, &run[0].uv_a, &run[0].uv_b));
+    let spread = prm.curve_certificates && first.is_none();
     if spread && run.len() >= 2 * MIN_RUN {
         let (l, r) = run.split_at_mut(run.len() / 2);
         let mut out = certify_run(g, prm, l);
@@ -68,14 +66,20 @@ pub(super) fn certify_run(
     let limit = if narrow { 1 } else { 2 };
     let mut misses = 0;
     run.iter_mut()
-        .map(|r| {
+        .enumerate()
+        .map(|(i, r)| {
             // Kept when the radius, measured from the point moved to the certificate's centre
             // (a point left up to tol/8 off the curve by the refinement lands on it), is
             // within `keep`.
-            let fast = shared
-                .as_ref()
-                .filter(|_| misses < limit)
-                .and_then(|s| s.certify(&r.xyz, &r.uv_a, &r.uv_b))
+            let attempt = if i == 0 {
+                first.take()
+            } else {
+                shared
+                    .as_ref()
+                    .filter(|_| misses < limit)
+                    .and_then(|s| s.certify(&r.xyz, &r.uv_a, &r.uv_b))
+            };
+            let fast = attempt
                 .map(|c| adopt_centre(g, r, c))
                 .filter(|c| c.0 <= keep);
             misses = if fast.is_some() { 0 } else { misses + 1 };
