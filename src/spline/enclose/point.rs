@@ -47,9 +47,9 @@
 //! factors' convex combination). So each level adds at most 5 and `N̂_i = N_i (1 + θ_{5p})`,
 //! `|N_i − N̂_i| ≤ N̂_i γ_{5p} / (1 − γ_{5p}) ≤ 5.05 p u N̂_i` (for `5pu < 10⁻³`; `p < 16`).
 //! The value is `N̂_i`, its radius that bound rounded up. The model needs every rounding to be
-//! relative: the run is refused (the interval recurrence is used instead) when a quotient or product of non-zero numbers falls below
-//! `2⁻¹⁰⁰⁰` (near or into the subnormal range), when a difference is negative (the parameter
-//! is not in the span) or when a value is not finite.
+//! relative: the run is refused (the interval recurrence is used instead) when a quotient or
+//! product of non-zero numbers falls below `2⁻¹⁰⁰⁰` (near or into the subnormal range), when
+//! a difference is negative (the parameter is not in the span) or when a value is not finite.
 
 use super::{MAX_ORDER, basis_d1};
 use crate::scalar::Interval;

@@ -56,19 +56,20 @@ struct Node {
 /// A ball: centre and radius (every point of it within the radius of the centre).
 type Ball = ([f64; 3], f64);
 
-/// A ball holding the box `p`: its rounded midpoint, and a radius rounded up from the larger
-/// distance to the box's ends per axis (a point box gives radius 0).
+/// A ball holding the box `p`: its rounded midpoint, and as radius the sum over the axes of
+/// the larger distance to the box's ends, rounded up (a point box gives radius 0).
 fn ball(p: &V) -> Ball {
     let c: [f64; 3] = std::array::from_fn(|k| 0.5 * p[k].lo + 0.5 * p[k].hi);
     let h: [f64; 3] = std::array::from_fn(|k| {
         let e = (p[k].hi - c[k]).max(c[k] - p[k].lo);
         if e > 0.0 { e.next_up() } else { 0.0 }
     });
-    let r2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-    let r = if r2 > 0.0 {
-        r2.next_up().sqrt().next_up()
-    } else {
+    // The sum of the half-widths bounds the Euclidean length (no squares: nothing to
+    // underflow); each sum rounded up.
+    let r = if h.iter().all(|x| *x == 0.0) {
         0.0
+    } else {
+        ((h[0] + h[1]).next_up() + h[2]).next_up()
     };
     (c, r)
 }
@@ -364,6 +365,7 @@ impl Near {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scalar::Interval;
 
     #[test]
     fn box_near_a_polyline() {
@@ -378,6 +380,42 @@ mod tests {
         assert!(!n.box_within(&([10.5, 2.0, 0.0], [10.6, 2.1, 0.0]), 1.0));
         assert!(!Near::new(Vec::new()).box_within(&([0.0; 3], [0.0; 3]), 1.0));
         assert!(n.box_within(&([0.0; 3], [0.0; 3]), 1e-300));
+    }
+
+    /// Every corner of a box lies within the ball's radius of its centre (exact rationals), for
+    /// boxes a few ulps wide and wide ones, at magnitudes 1e-300 … 1e300, subnormal widths
+    /// included; a point box is a ball of radius 0.
+    #[test]
+    fn ball_holds_its_box() {
+        use num_rational::BigRational;
+        let q = |x: f64| BigRational::from_float(x).unwrap();
+        let mut r = crate::spline::test_params::rng(0xba11);
+        for k in 0..3000 {
+            let scale = 10f64.powi((k % 61) * 10 - 300);
+            let p: V = std::array::from_fn(|_| {
+                let lo = (r() - 0.5) * scale;
+                let hi = match k % 3 {
+                    0 => lo.next_up().next_up(),
+                    1 => lo + r() * scale,
+                    _ => lo + f64::from_bits(1 + (r() * 8.0) as u64),
+                };
+                Interval::new(lo, hi.max(lo))
+            });
+            let (c, rad) = ball(&p);
+            let r2 = q(rad) * q(rad);
+            for m in 0..8 {
+                let d2: BigRational = (0..3)
+                    .map(|i| {
+                        let e = if m >> i & 1 == 0 { p[i].lo } else { p[i].hi };
+                        let v = q(e) - q(c[i]);
+                        &v * &v
+                    })
+                    .sum();
+                assert!(d2 <= r2, "{p:?}: corner {m} outside radius {rad} of {c:?}");
+            }
+        }
+        let x = [Interval::point(1.5); 3];
+        assert_eq!(ball(&x), ([1.5; 3], 0.0));
     }
 
     /// Against the exact distance to the segment (rationals: the exact foot, clamped): the
