@@ -119,6 +119,24 @@ fn t20_written_as_trimmed_faces_is_sewn_back_into_its_solids_topology() {
     }
 }
 
+/// The IGES lines with field `k` of the parameter line of the 142 at directory entry `de`
+/// ("142,CRTN,SPTR,BPTR,CPTR,PREF;") set to 0.
+fn with_142_field<'a>(lines: impl Iterator<Item = &'a str>, de: usize, k: usize) -> Vec<String> {
+    lines
+        .map(|l| {
+            if l.get(72..73) == Some("P") && l[64..72].trim() == de.to_string() {
+                let mut f: Vec<String> = l[..64].trim_end().split(',').map(String::from).collect();
+                if f[0] == "142" && f.len() >= 6 {
+                    f[k] = "0".into();
+                }
+                format!("{:<64}{}", f.join(","), &l[64..])
+            } else {
+                l.to_string()
+            }
+        })
+        .collect()
+}
+
 #[test]
 fn a_face_without_model_space_curves_is_built_from_its_parameter_space_curve() {
     // occt-bad_header.igs: one 144 face whose 142 prefers its parameter-space curve: sewn
@@ -141,21 +159,7 @@ fn a_face_without_model_space_curves_is_built_from_its_parameter_space_curve() {
         .map(|l| l[73..80].trim().parse::<usize>().unwrap())
         .unwrap();
     // The 142's parameter line: "142,CRTN,SPTR,BPTR,CPTR,PREF;" — set CPTR to 0.
-    let lines: Vec<String> = text
-        .lines()
-        .map(|l| {
-            if l.get(72..73) == Some("P") && l[64..72].trim() == de_142.to_string() {
-                let body = &l[..64];
-                let mut f: Vec<String> = body.trim_end().split(',').map(String::from).collect();
-                if f[0] == "142" && f.len() >= 6 {
-                    f[4] = "0".into();
-                }
-                format!("{:<64}{}", f.join(","), &l[64..])
-            } else {
-                l.to_string()
-            }
-        })
-        .collect();
+    let lines = with_142_field(text.lines(), de_142, 4);
     let m = vericad::io::iges::from_str(&lines.join("\n"), "no-cptr.igs").unwrap();
     // The parameter-space curve alone: the boundary is built on the surface from it.
     let b = m
@@ -171,18 +175,7 @@ fn a_face_without_model_space_curves_is_built_from_its_parameter_space_curve() {
     assert_eq!(m.surfaces[0].trim_loops.len(), 1);
     // With a parameter-space curve that cannot be mapped (here: none, BPTR 0) and no
     // model-space curve either: no B-rep, a warning says why, the trims stay.
-    let none: Vec<String> = lines
-        .iter()
-        .map(|l| {
-            if l.get(72..73) == Some("P") && l[64..72].trim() == de_142.to_string() {
-                let mut f: Vec<String> = l[..64].trim_end().split(',').map(String::from).collect();
-                f[3] = "0".into();
-                format!("{:<64}{}", f.join(","), &l[64..])
-            } else {
-                l.clone()
-            }
-        })
-        .collect();
+    let none = with_142_field(lines.iter().map(String::as_str), de_142, 3);
     let m = vericad::io::iges::from_str(&none.join("\n"), "no-curves.igs").unwrap();
     assert!(m.brep.is_none());
     assert!(
