@@ -135,10 +135,16 @@ const TANGENT_SIN: f64 = 1e-12;
 const NEWTON_STEPS: usize = 12;
 const TRIES: usize = 8;
 
-/// Newton in `f64` towards the zero of `sys` from `z0`: the last iterate, the Jacobian there,
-/// and whether the last step was at the level of the domain's rounding; `None` where the
-/// Jacobian became singular.
-fn newton(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Option<([f64; 4], M4, bool)> {
+/// Newton in `f64` towards the zero of `sys` from `z0`: the last iterate, the Jacobian there
+/// (`Some` when `want_j`), and whether the last step was at the level of the domain's
+/// rounding; `None` where the Jacobian became singular. Without `want_j` a converged step
+/// is not followed by an evaluation at the new iterate (the iterates are the same either way).
+fn newton(
+    sys: &System,
+    z0: [f64; 4],
+    at_z0: Option<(Eval, Eval)>,
+    want_j: bool,
+) -> Option<([f64; 4], Option<M4>, bool)> {
     let mut y = z0;
     let (mut f, mut j) = match at_z0 {
         Some((ea, eb)) => sys.assemble(&y, ea, eb),
@@ -156,15 +162,19 @@ fn newton(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Option<([f
         if let Fourth::Hold { k, c } = sys.e {
             y[k] = c;
         }
-        (f, j) = sys.eval_f64(&y);
         // Converged when the step was at the level of the domain's rounding (1e-12 of its
         // size): the next one would be below the box radius anyway.
-        if (0..4).all(|i| d[i].abs() <= 1e-12 * (sys.hi[i] - sys.lo[i] + y[i].abs())) {
+        let done = (0..4).all(|i| d[i].abs() <= 1e-12 * (sys.hi[i] - sys.lo[i] + y[i].abs()));
+        if done && !want_j {
+            return Some((y, None, true));
+        }
+        (f, j) = sys.eval_f64(&y);
+        if done {
             converged = true;
             break;
         }
     }
-    Some((y, j, converged))
+    Some((y, Some(j), converged))
 }
 
 /// Enclosure of the common point `q = S_A(z*_uv) = S_B(z*_st)` for a zero `z*` in the box `z`:
@@ -195,7 +205,7 @@ fn common_point(
 
 fn attempt(sys: &System, z0: [f64; 4], at_z0: Option<(Eval, Eval)>) -> Attempt {
     // Newton in f64 towards the zero (any centre is sound; a good one keeps the box small).
-    let Some((y, j, _)) = newton(sys, z0, at_z0) else {
+    let Some((y, Some(j), _)) = newton(sys, z0, at_z0, true) else {
         return Attempt::Fail(Uncertified::Singular);
     };
     // Newton ran far off the faces: no isolated zero near p (tangency, or no curve there).
@@ -346,7 +356,7 @@ pub fn newton_on_curve(
     uv_b: &[f64; 2],
 ) -> Option<[f64; 4]> {
     let (sys, z0, at_z0, _) = plane_system(sa, sb, p, uv_a, uv_b, None).ok()?;
-    let (y, _, converged) = newton(&sys, z0, Some(at_z0))?;
+    let (y, _, converged) = newton(&sys, z0, Some(at_z0), false)?;
     (converged && (0..4).all(|i| y[i] >= sys.lo[i] && y[i] <= sys.hi[i])).then_some(y)
 }
 

@@ -134,7 +134,7 @@ impl<'a> RunCertifier<'a> {
             lo: self.lo,
             hi: self.hi,
         };
-        let (z0, _, converged) = newton(&sys, start, None)?;
+        let (z0, _, converged) = newton(&sys, start, None, false)?;
         if !converged || !(0..4).all(|i| z0[i] >= self.lo[i] && z0[i] <= self.hi[i]) {
             return None;
         }
