@@ -5,9 +5,9 @@
 //! homogeneous form of the net: `wp_ij = w_ij P_ij` and `w_ij` as stored, taken as the exact
 //! values they are) is a rational number computed exactly here:
 //!
-//! * the `p + 1` non-zero basis functions at `u` (Cox–de Boor, A2.2) in exact rationals, then
-//!   brought to one common denominator `D_u`: `N_i(u) = a_i / D_u` with integers `a_i`; the
-//!   same in `v`;
+//! * the `p + 1` non-zero basis functions at `u` (Cox–de Boor, A2.2) over one common
+//!   denominator `D_u`, computed fraction-free in integers: `N_i(u) = a_i / D_u` with
+//!   integers `a_i` (see `basis_numerators`); the same in `v`;
 //! * the net's values as integers on one power of two: `wp_ijk = M_ijk · 2^{e_p}`,
 //!   `w_ij = m_ij · 2^{e_w}` (`e_p`, `e_w` the smallest exponents present);
 //! * `X_k = Σ a_i b_j M_ijk` and `W = Σ a_i b_j m_ij` in integers, so that
@@ -19,12 +19,10 @@
 //! ([`ExactPoint::minus_enclosed`]): its width is a few ulps *of the difference*, however
 //! much cancels.
 
-use super::basis::basis_funs;
 use super::knots::KnotVector;
 use super::nurbs::NurbsSurface;
-use crate::scalar::{Interval, lift};
+use crate::scalar::Interval;
 use num_bigint::{BigInt, Sign};
-use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
@@ -50,37 +48,71 @@ pub fn decode(x: f64) -> (i64, i64) {
     (sign * m, e)
 }
 
-/// Evaluator of one surface: the knots lifted to rationals once.
+/// Evaluator of one surface.
 #[derive(Clone, Debug)]
 pub struct ExactEvaluator {
     f: NurbsSurface<f64, 3>,
-    ku: KnotVector<BigRational>,
-    kv: KnotVector<BigRational>,
 }
 
-/// The `p + 1` basis functions at `t` over one common denominator (its numerators).
-fn basis_numerators(kq: &KnotVector<BigRational>, span: usize, t: f64) -> Vec<BigInt> {
-    let n = basis_funs(kq, span, &lift::<BigRational>(t));
-    let den = n.iter().fold(BigInt::one(), |l, q| l.lcm(q.denom()));
-    n.iter().map(|q| q.numer() * (&den / q.denom())).collect()
+/// The `p + 1` basis functions of span `span` at `t` over one common denominator: their
+/// numerators, fraction-free.
+///
+/// The recurrence is A2.2's (The NURBS Book), `N_r ← saved + right_{r+1} · N_r / d_r`,
+/// `saved ← left_{j−r} · N_r / d_r` with `d_r = right_{r+1} + left_{j−r}` (a knot difference,
+/// positive inside a non-empty span), in integers: every knot and `t` is `m · 2^e`, so on the
+/// smallest exponent `e0` present they are integers and so are `left`, `right` and `d_r`
+/// (the common factor `2^e0` cancels in `right · N / d`). Level `j` keeps its values over
+/// `D_j = D_{j−1} · Π_r d_r` and multiplies `N_r` by `Π_{s≠r} d_s` instead of dividing by
+/// `d_r`: no fraction is formed or reduced. The numerators' ratios are the basis values'.
+fn basis_numerators(knots: &[f64], p: usize, span: usize, t: f64) -> Vec<BigInt> {
+    let used = || {
+        knots[span + 1 - p..=span + p]
+            .iter()
+            .chain(std::iter::once(&t))
+    };
+    let e0 = used()
+        .map(|x| decode(*x))
+        .filter(|(m, _)| *m != 0)
+        .map(|(_, e)| e)
+        .min()
+        .unwrap_or(0);
+    let int = |x: f64| {
+        let (m, e) = decode(x);
+        BigInt::from(m) << ((e - e0).max(0) as usize)
+    };
+    let ti = int(t);
+    let mut left = vec![BigInt::zero(); p + 1];
+    let mut right = vec![BigInt::zero(); p + 1];
+    for j in 1..=p {
+        left[j] = &ti - int(knots[span + 1 - j]);
+        right[j] = int(knots[span + j]) - &ti;
+    }
+    let mut n = vec![BigInt::one()];
+    for j in 1..=p {
+        let d: Vec<BigInt> = (0..j).map(|r| &right[r + 1] + &left[j - r]).collect();
+        // `Π_{s≠r} d_s` from prefix and suffix products.
+        let mut suffix = vec![BigInt::one(); j + 1];
+        for r in (0..j).rev() {
+            suffix[r] = &suffix[r + 1] * &d[r];
+        }
+        let mut prefix = BigInt::one();
+        let mut saved = BigInt::zero();
+        for r in 0..j {
+            let temp = &n[r] * (&prefix * &suffix[r + 1]);
+            n[r] = saved + &right[r + 1] * &temp;
+            saved = &left[j - r] * temp;
+            prefix *= &d[r];
+        }
+        n.push(saved);
+    }
+    n
 }
 
 impl ExactEvaluator {
     /// `None` when a knot is not finite.
     pub fn new(s: &NurbsSurface<f64, 3>) -> Option<ExactEvaluator> {
-        let lift_kv = |k: &KnotVector<f64>| {
-            let q: Option<Vec<BigRational>> = k
-                .knots()
-                .iter()
-                .map(|x| BigRational::from_float(*x))
-                .collect();
-            KnotVector::new(q?, k.degree(), k.n_ctrl()).ok()
-        };
-        Some(ExactEvaluator {
-            ku: lift_kv(&s.hom.ku)?,
-            kv: lift_kv(&s.hom.kv)?,
-            f: s.clone(),
-        })
+        let finite = |k: &KnotVector<f64>| k.knots().iter().all(|x| x.is_finite());
+        (finite(&s.hom.ku) && finite(&s.hom.kv)).then(|| ExactEvaluator { f: s.clone() })
     }
 
     /// `S(u, v)` exactly; `None` for parameters not finite or outside the domain, or a weight
@@ -93,8 +125,8 @@ impl ExactEvaluator {
         let (p, q) = (h.ku.degree(), h.kv.degree());
         // The spans of the exact values equal those of the f64 values (same comparisons).
         let (su, sv) = (h.ku.find_span(&u), h.kv.find_span(&v));
-        let a = basis_numerators(&self.ku, su, u);
-        let b = basis_numerators(&self.kv, sv, v);
+        let a = basis_numerators(h.ku.knots(), p, su, u);
+        let b = basis_numerators(h.kv.knots(), q, sv, v);
         let nv = h.kv.n_ctrl();
         let idx = |i: usize, j: usize| (su - p + i) * nv + sv - q + j;
         let (mut ep, mut ew) = (i64::MAX, i64::MAX);
