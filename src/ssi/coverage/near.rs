@@ -43,6 +43,9 @@ pub struct Near {
     /// Tree nodes: box, and either two children or a range of `order`.
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// Per entry: the previous and the next entry of the same kind along the output (output
+    /// segments; chords of one length), `u32::MAX` for none — tried after a hinted entry.
+    along: Vec<[u32; 2]>,
 }
 
 struct Node {
@@ -147,7 +150,10 @@ impl Near {
             .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
             .collect();
         let slack = vec![0.0; segs.len()];
-        Near::build_all(segs, slack)
+        let along = (0..segs.len() as u32)
+            .map(|i| [i.wrapping_sub(1), i + 1])
+            .collect();
+        Near::build_all(segs, slack, along)
     }
     /// The output segments `segs` and chords over runs of 2, 4, …, 64 consecutive segments
     /// (`segs[k].1 == segs[k + 1].0` exactly) whose slack `δ` is at most `d / 2` (see the
@@ -158,8 +164,8 @@ impl Near {
             .into_iter()
             .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
             .collect();
-        let mut slack = vec![0.0; segs.len()];
-        let mut chords = Vec::new();
+        // Chords with the index of the segment they start at.
+        let mut chords: Vec<(usize, u32, ([f64; 3], [f64; 3]), f64)> = Vec::new();
         let mut start = 0;
         while start < segs.len() {
             let mut end = start + 1;
@@ -194,7 +200,7 @@ impl Near {
                             }
                         }
                         if delta <= 0.5 * d {
-                            chords.push(((p, q), delta));
+                            chords.push((start + i, len.trailing_zeros(), (p, q), delta));
                             now[i] = true;
                             any = true;
                         }
@@ -209,16 +215,41 @@ impl Near {
             }
             start = end;
         }
-        let mut segs = segs;
-        for (c, delta) in chords {
-            segs.push(c);
-            slack.push(delta);
+        // Every segment followed by the chords that start at it (shortest first), so that
+        // consecutive entries lie close together along the output (see [`Near::build`]).
+        chords.sort_by_key(|c| c.0);
+        let n = segs.len() + chords.len();
+        let (mut all, mut slack) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        let mut along = vec![[u32::MAX; 2]; n];
+        // The last entry placed per kind (0: segments, k: chords of 2^k segments).
+        let mut last = [u32::MAX; 8];
+        let mut place = |kind: u32, all_len: usize| {
+            let (pos, k) = (all_len as u32, kind as usize);
+            if let Some(prev) = last.get(k).copied().filter(|&p| p != u32::MAX) {
+                along[prev as usize][1] = pos;
+                along[pos as usize][0] = prev;
+            }
+            if let Some(l) = last.get_mut(k) {
+                *l = pos;
+            }
+        };
+        let mut next = chords.into_iter().peekable();
+        for (k, s) in segs.into_iter().enumerate() {
+            place(0, all.len());
+            all.push(s);
+            slack.push(0.0);
+            while let Some((_, kind, c, delta)) = next.next_if(|c| c.0 == k) {
+                place(kind, all.len());
+                all.push(c);
+                slack.push(delta);
+            }
         }
-        Near::build_all(segs, slack)
+        Near::build_all(all, slack, along)
     }
-    fn build_all(segs: Vec<([f64; 3], [f64; 3])>, slack: Vec<f64>) -> Near {
+    fn build_all(segs: Vec<([f64; 3], [f64; 3])>, slack: Vec<f64>, along: Vec<[u32; 2]>) -> Near {
         let mut n = Near {
             order: (0..segs.len() as u32).collect(),
+            along,
             segs,
             slack,
             nodes: Vec::new(),
@@ -228,39 +259,45 @@ impl Near {
         }
         n
     }
+    /// The tree over `order[lo..hi]` in the order given: consecutive entries of a polyline
+    /// (and its chords) lie close together, so halves of a range make compact boxes without a
+    /// sort; a node's box and extents are its children's merged. The tree only orders and
+    /// prunes the search (see [`Near::hull_within`]).
     fn build(&mut self, lo: usize, hi: usize) -> u32 {
-        let mut b: Box3 = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        let mut ext = [0.0f64; 3];
-        for &i in &self.order[lo..hi] {
-            let s = seg_box(&self.segs[i as usize]);
-            for k in 0..3 {
-                b.0[k] = b.0[k].min(s.0[k]);
-                b.1[k] = b.1[k].max(s.1[k]);
-                ext[k] = ext[k].max(s.1[k] - s.0[k]);
-            }
-        }
         let id = self.nodes.len() as u32;
         self.nodes.push(Node {
-            b,
-            ext,
+            b: ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+            ext: [0.0; 3],
             kids: None,
             range: (lo as u32, hi as u32),
         });
+        let mut b: Box3 = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        let mut ext = [0.0f64; 3];
+        let mut merge = |c: &Box3, e: &[f64; 3]| {
+            for k in 0..3 {
+                b.0[k] = b.0[k].min(c.0[k]);
+                b.1[k] = b.1[k].max(c.1[k]);
+                ext[k] = ext[k].max(e[k]);
+            }
+        };
         if hi - lo > 4 {
-            let axis = (0..3)
-                .max_by(|&x, &y| (b.1[x] - b.0[x]).total_cmp(&(b.1[y] - b.0[y])))
-                .unwrap_or(0);
             let mid = (lo + hi) / 2;
-            let segs = &self.segs;
-            let key = |i: &u32| {
-                let s = &segs[*i as usize];
-                s.0[axis] + s.1[axis]
-            };
-            self.order[lo..hi].select_nth_unstable_by(mid - lo, |a, b| key(a).total_cmp(&key(b)));
             let l = self.build(lo, mid);
             let r = self.build(mid, hi);
+            for c in [l, r] {
+                let n = &self.nodes[c as usize];
+                merge(&n.b, &n.ext);
+            }
             self.nodes[id as usize].kids = Some((l, r));
+        } else {
+            for &i in &self.order[lo..hi] {
+                let s = seg_box(&self.segs[i as usize]);
+                merge(&s, &std::array::from_fn(|k| s.1[k] - s.0[k]));
+            }
         }
+        let n = &mut self.nodes[id as usize];
+        n.b = b;
+        n.ext = ext;
         id
     }
     /// Whether every point of box `b` is proven within `d` of the output (of one output
@@ -322,7 +359,8 @@ impl Near {
         // The hinted entry, then its neighbours in the list (the next part along a curve is
         // usually under the next segment or chord of the same run).
         if let Some(s) = hint.0.get() {
-            for t in [s, s.wrapping_add(1), s.wrapping_sub(1)] {
+            let [prev, next] = self.along.get(s as usize).copied().unwrap_or([u32::MAX; 2]);
+            for t in [s, next, prev] {
                 if (t as usize) < self.segs.len() && self.entry_holds(t, balls, d) {
                     hint.0.set(Some(t));
                     return true;
@@ -363,125 +401,4 @@ impl Near {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scalar::Interval;
-
-    #[test]
-    fn box_near_a_polyline() {
-        let segs: Vec<_> = (0..100)
-            .map(|i| ([i as f64, 0.0, 0.0], [i as f64 + 1.0, 0.0, 0.0]))
-            .collect();
-        let n = Near::new(segs);
-        assert!(n.box_within(&([10.2, -0.1, -0.1], [10.4, 0.1, 0.1]), 0.15));
-        // Corner distance is sqrt(0.02) = 0.1414..: refused just below it.
-        assert!(!n.box_within(&([10.2, -0.1, -0.1], [10.4, 0.1, 0.1]), 0.141));
-        // A box spanning a vertex of the polyline: within d of one segment only if it fits.
-        assert!(!n.box_within(&([10.5, 2.0, 0.0], [10.6, 2.1, 0.0]), 1.0));
-        assert!(!Near::new(Vec::new()).box_within(&([0.0; 3], [0.0; 3]), 1.0));
-        assert!(n.box_within(&([0.0; 3], [0.0; 3]), 1e-300));
-    }
-
-    /// Every corner of a box lies within the ball's radius of its centre (exact rationals), for
-    /// boxes a few ulps wide and wide ones, at magnitudes 1e-300 … 1e300, subnormal widths
-    /// included; a point box is a ball of radius 0.
-    #[test]
-    fn ball_holds_its_box() {
-        use num_rational::BigRational;
-        let q = |x: f64| BigRational::from_float(x).unwrap();
-        let mut r = crate::spline::test_params::rng(0xba11);
-        for k in 0..3000 {
-            let scale = 10f64.powi((k % 61) * 10 - 300);
-            let p: V = std::array::from_fn(|_| {
-                let lo = (r() - 0.5) * scale;
-                let hi = match k % 3 {
-                    0 => lo.next_up().next_up(),
-                    1 => lo + r() * scale,
-                    _ => lo + f64::from_bits(1 + (r() * 8.0) as u64),
-                };
-                Interval::new(lo, hi.max(lo))
-            });
-            let (c, rad) = ball(&p);
-            let r2 = q(rad) * q(rad);
-            for m in 0..8 {
-                let d2: BigRational = (0..3)
-                    .map(|i| {
-                        let e = if m >> i & 1 == 0 { p[i].lo } else { p[i].hi };
-                        let v = q(e) - q(c[i]);
-                        &v * &v
-                    })
-                    .sum();
-                assert!(d2 <= r2, "{p:?}: corner {m} outside radius {rad} of {c:?}");
-            }
-        }
-        let x = [Interval::point(1.5); 3];
-        assert_eq!(ball(&x), ([1.5; 3], 0.0));
-    }
-
-    /// Against the exact distance to the segment (rationals: the exact foot, clamped): the
-    /// bound is never below it, at magnitudes 1e-300 … 1e300, points on, near and far from the
-    /// segment, degenerate segments included; and it is tight (within 1e-12 relative plus
-    /// 1e-14 of the coordinates' magnitude).
-    #[test]
-    fn dist_upper_is_an_upper_bound() {
-        use num_rational::BigRational;
-        use num_traits::{One, ToPrimitive, Zero};
-        let r = |x: f64| BigRational::from_float(x).unwrap();
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
-        for k in 0..3000 {
-            let scale = 10f64.powi((k % 61) * 10 - 300);
-            let p = [next() * scale, next() * scale, next() * scale];
-            let q = if k % 17 == 0 {
-                p
-            } else {
-                [next() * scale, next() * scale, next() * scale]
-            };
-            let t = next() + 0.5;
-            let off = [0.0, 1e-12, 1e-6, 1.0][k as usize % 4] * scale;
-            let c: [f64; 3] = std::array::from_fn(|i| p[i] + t * (q[i] - p[i]) + off * next());
-            let u = dist_upper(&c, &p, &q);
-            if u.is_infinite() {
-                // Only where the squares overflow (no claim).
-                assert!(scale > 1e150, "{c:?} {p:?} {q:?}");
-                continue;
-            }
-            let (pr, qr, cr) = (p.map(r), q.map(r), c.map(r));
-            let d: Vec<BigRational> = (0..3).map(|i| &qr[i] - &pr[i]).collect();
-            let e: Vec<BigRational> = (0..3).map(|i| &cr[i] - &pr[i]).collect();
-            let dd: BigRational = d.iter().map(|v| v * v).sum();
-            let ed: BigRational = (0..3).map(|i| &e[i] * &d[i]).sum();
-            let tt = if dd.is_zero() {
-                BigRational::zero()
-            } else {
-                (ed / dd).max(BigRational::zero()).min(BigRational::one())
-            };
-            let dist2: BigRational = (0..3)
-                .map(|i| {
-                    let v = &e[i] - &tt * &d[i];
-                    &v * &v
-                })
-                .sum();
-            let ur = r(u);
-            assert!(
-                dist2 <= &ur * &ur,
-                "{c:?} {p:?} {q:?}: bound {u} below the distance"
-            );
-            let exact = dist2.to_f64().unwrap().sqrt();
-            let m = c
-                .iter()
-                .chain(&p)
-                .chain(&q)
-                .fold(0.0f64, |m, v| m.max(v.abs()));
-            assert!(
-                u <= exact * (1.0 + 1e-12) + 1e-14 * m + 1e-159,
-                "{u} vs {exact}"
-            );
-        }
-    }
-}
+mod tests;
