@@ -40,9 +40,8 @@ pub struct Near {
     segs: Vec<([f64; 3], [f64; 3])>,
     /// Per entry of `segs`: `δ` (0 for an output segment, the chord bound for a chord).
     slack: Vec<f64>,
-    /// Tree nodes: box, and either two children or a range of `order`.
+    /// Tree nodes: box, and either two children or a range of entries.
     nodes: Vec<Node>,
-    order: Vec<u32>,
     /// Per entry: the previous and the next entry of the same kind along the output (output
     /// segments; chords of one length), `u32::MAX` for none — tried after a hinted entry.
     along: Vec<[u32; 2]>,
@@ -248,7 +247,6 @@ impl Near {
     }
     fn build_all(segs: Vec<([f64; 3], [f64; 3])>, slack: Vec<f64>, along: Vec<[u32; 2]>) -> Near {
         let mut n = Near {
-            order: (0..segs.len() as u32).collect(),
             along,
             segs,
             slack,
@@ -259,7 +257,7 @@ impl Near {
         }
         n
     }
-    /// The tree over `order[lo..hi]` in the order given: consecutive entries of a polyline
+    /// The tree over the entries `lo..hi` in their order: consecutive entries of a polyline
     /// (and its chords) lie close together, so halves of a range make compact boxes without a
     /// sort; a node's box and extents are its children's merged. The tree only orders and
     /// prunes the search (see [`Near::hull_within`]).
@@ -290,8 +288,8 @@ impl Near {
             }
             self.nodes[id as usize].kids = Some((l, r));
         } else {
-            for &i in &self.order[lo..hi] {
-                let s = seg_box(&self.segs[i as usize]);
+            for seg in &self.segs[lo..hi] {
+                let s = seg_box(seg);
                 merge(&s, &std::array::from_fn(|k| s.1[k] - s.0[k]));
             }
         }
@@ -387,7 +385,7 @@ impl Near {
                     stack.push(r);
                 }
                 None => {
-                    for &s in &self.order[n.range.0 as usize..n.range.1 as usize] {
+                    for s in n.range.0..n.range.1 {
                         if self.entry_holds(s, balls, d) {
                             hint.0.set(Some(s));
                             return true;
