@@ -12,8 +12,9 @@ fn parses_simple_complex_and_faults() {
             "CARTESIAN_POINT".into(),
             vec![
                 Value::Str("a'b".into()),
-                Value::List(vec![Value::Real(0.0), Value::Real(15.0), Value::Int(-2)])
+                Value::List(vec![Value::Real(0.0), Value::Real(15.0), Value::Int(-2)].into())
             ]
+            .into()
         )
     );
     assert!(p.entities[&2].is("B_SPLINE_SURFACE"));

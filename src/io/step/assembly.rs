@@ -70,8 +70,8 @@ fn str_at(a: &[Value], i: usize) -> Option<&str> {
 /// as its second attribute).
 fn rep_items(e: &Entity) -> Option<&[Value]> {
     let parts: Vec<(&str, &[Value])> = match e {
-        Entity::Simple(n, a) => vec![(&**n, a.as_slice())],
-        Entity::Complex(p) => p.iter().map(|(n, a)| (&**n, a.as_slice())).collect(),
+        Entity::Simple(n, a) => vec![(&**n, &**a)],
+        Entity::Complex(p) => p.iter().map(|(n, a)| (&**n, &**a)).collect(),
     };
     parts
         .into_iter()

@@ -16,13 +16,13 @@ pub type Name = Arc<str>;
 pub enum Value {
     Int(i64),
     Real(f64),
-    Str(String),
+    Str(Box<str>),
     Enum(Name),
     Ref(u64),
-    List(Vec<Value>),
+    List(Box<[Value]>),
     /// A typed parameter such as `LENGTH_MEASURE(1.0)`: its name and arguments, boxed (they are
-    /// rare, and inline they would make every value 40 bytes instead of 32).
-    Typed(Box<(Name, Vec<Value>)>),
+    /// rare, and inline they would make every value larger).
+    Typed(Box<(Name, Box<[Value]>)>),
     /// `$` (unset) or `*` (derived).
     Unset,
 }
@@ -75,9 +75,9 @@ impl Value {
 /// One entity instance.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Entity {
-    Simple(Name, Vec<Value>),
+    Simple(Name, Box<[Value]>),
     /// A complex instance: its partial entities by name, in file order.
-    Complex(Vec<(Name, Vec<Value>)>),
+    Complex(Box<[(Name, Box<[Value]>)]>),
 }
 
 impl Entity {
@@ -92,7 +92,7 @@ impl Entity {
     pub fn part(&self, name: &str) -> Option<&[Value]> {
         match self {
             Entity::Simple(n, a) if **n == *name => Some(a),
-            Entity::Complex(p) => p.iter().find(|x| *x.0 == *name).map(|x| x.1.as_slice()),
+            Entity::Complex(p) => p.iter().find(|x| *x.0 == *name).map(|x| &*x.1),
             _ => None,
         }
     }
@@ -160,6 +160,8 @@ struct Lexer<'a> {
     line: usize,
     /// Names met so far, by their spelling in the file.
     names: HashMap<&'a [u8], Name, BuildHasherDefault<Fnv>>,
+    /// Items of the lists being read (see [`Lexer::value`]).
+    stack: Vec<Value>,
 }
 
 impl<'a> Lexer<'a> {
@@ -274,23 +276,34 @@ impl<'a> Lexer<'a> {
         match self.peek() {
             Some(b'(') => {
                 self.i += 1;
-                let mut v = Vec::new();
                 if self.peek() == Some(b')') {
                     self.i += 1;
-                    return Ok(Value::List(v));
+                    return Ok(Value::List(Box::default()));
                 }
+                // The items go on one stack shared by every open list, and a closed list takes
+                // its own items off it in one allocation of their exact number (no growing
+                // vector per list: most lists are short and kept for the whole read).
+                let base = self.stack.len();
                 loop {
-                    v.push(self.value(depth + 1)?);
+                    let v = self.value(depth + 1);
+                    match v {
+                        Ok(v) => self.stack.push(v),
+                        Err(e) => {
+                            self.stack.truncate(base);
+                            return Err(e);
+                        }
+                    }
                     match self.peek() {
                         Some(b',') => self.i += 1,
                         Some(b')') => {
                             self.i += 1;
-                            // Lists grow by doubling; most are short and kept for the whole
-                            // read (a point's 3 coordinates would hold room for 4).
-                            v.shrink_to_fit();
-                            return Ok(Value::List(v));
+                            let items: Vec<Value> = self.stack.drain(base..).collect();
+                            return Ok(Value::List(items.into_boxed_slice()));
                         }
-                        _ => return self.err("expected ',' or ')' in a list"),
+                        _ => {
+                            self.stack.truncate(base);
+                            return self.err("expected ',' or ')' in a list");
+                        }
                     }
                 }
             }
@@ -303,7 +316,7 @@ impl<'a> Lexer<'a> {
             }
             Some(b'\'') => {
                 self.i += 1;
-                Ok(Value::Str(self.string()?))
+                Ok(Value::Str(self.string()?.into_boxed_str()))
             }
             Some(b'.') => {
                 self.i += 1;
@@ -322,7 +335,7 @@ impl<'a> Lexer<'a> {
                 while self.i < self.s.len() && self.s[self.i] != b'"' {
                     self.i += 1;
                 }
-                let v = self.text[st..self.i].to_owned();
+                let v: Box<str> = self.text[st..self.i].into();
                 self.eat(b'"')?;
                 Ok(Value::Str(v))
             }
@@ -361,7 +374,7 @@ impl<'a> Lexer<'a> {
             None => self.err("unexpected end of file"),
         }
     }
-    fn args(&mut self) -> Result<Vec<Value>, SyntaxError> {
+    fn args(&mut self) -> Result<Box<[Value]>, SyntaxError> {
         match self.value(0)? {
             Value::List(v) => Ok(v),
             _ => self.err("expected an argument list"),
@@ -380,7 +393,7 @@ impl<'a> Lexer<'a> {
                 parts.push((k, self.args()?));
             }
             self.i += 1;
-            Entity::Complex(parts)
+            Entity::Complex(parts.into_boxed_slice())
         } else {
             let k = self.keyword();
             if k.is_empty() {
@@ -401,6 +414,7 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
         i: 0,
         line: 1,
         names: HashMap::default(),
+        stack: Vec::new(),
     };
     let mut out = Part21::default();
     // Header: find FILE_SCHEMA's strings, then DATA;
