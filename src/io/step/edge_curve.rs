@@ -305,11 +305,7 @@ fn bspline_range(
 /// A 2D point or direction: the first two coordinates of `CARTESIAN_POINT` / `DIRECTION`.
 fn coords2(r: &Reader, id: u64, ty: &str) -> R<[f64; 2]> {
     let e = r.get(id).map_err(|x| step(x, id, ty))?;
-    let c: Option<Vec<f64>> = e
-        .part(ty)
-        .and_then(|a| a.get(1))
-        .and_then(Value::list)
-        .and_then(|l| l.iter().map(Value::num).collect());
+    let c: Option<Vec<f64>> = e.part(ty).and_then(|a| a.get(1)).and_then(Value::numbers);
     match c {
         Some(c) if c.len() == 2 && c.iter().all(|x| x.is_finite()) => Ok([c[0], c[1]]),
         _ => Err(invalid(id, ty, "not a 2D entity with two finite numbers")),

@@ -18,7 +18,7 @@ pub(super) struct Reader<'a> {
 type R<T> = Result<T, StepError>;
 
 fn nums(v: &Value) -> Option<Vec<f64>> {
-    v.list()?.iter().map(|x| x.num()).collect()
+    v.numbers()
 }
 
 impl Reader<'_> {

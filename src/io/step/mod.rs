@@ -77,11 +77,11 @@ fn vertex_tolerance(p: &part21::Part21) -> f64 {
             unc = unc.max(x);
         }
         if let Some(a) = e.part("CARTESIAN_POINT")
-            && let Some(c) = a.get(1).and_then(|v| v.list())
+            && let Some(c) = a.get(1).and_then(|v| v.list_numbers())
             && c.len() == 3
         {
-            for (i, x) in c.iter().enumerate() {
-                if let Some(x) = x.num() {
+            for (i, x) in c.into_iter().enumerate() {
+                if let Some(x) = x {
                     lo[i] = lo[i].min(x);
                     hi[i] = hi[i].max(x);
                 }
@@ -106,12 +106,25 @@ pub fn from_str_with(
     file: &str,
     opt: crate::io::ReadOptions,
 ) -> Result<Model, StepError> {
-    let p = part21::parse(text).map_err(|e| StepError {
+    from_part21(&parse_text(text, file)?, file, opt)
+}
+
+/// The Part 21 table of STEP text; a syntax fault names its line.
+fn parse_text(text: &str, file: &str) -> Result<part21::Part21, StepError> {
+    part21::parse(text).map_err(|e| StepError {
         file: file.into(),
         location: format!("line {}", e.line),
         reason: e.reason,
-    })?;
-    let (unit, angle_scale) = unit(&p);
+    })
+}
+
+/// The model of a parsed STEP file.
+fn from_part21(
+    p: &part21::Part21,
+    file: &str,
+    opt: crate::io::ReadOptions,
+) -> Result<Model, StepError> {
+    let (unit, angle_scale) = unit(p);
     let r = Reader {
         p: &p,
         file,
@@ -290,5 +303,8 @@ pub fn read(path: &std::path::Path) -> Result<Model, StepError> {
         location: "(file)".into(),
         reason: e.to_string(),
     })?;
-    from_str(&String::from_utf8_lossy(&bytes), &name)
+    // The text is dropped once parsed: the table holds its own copies of every string.
+    let p = parse_text(&String::from_utf8_lossy(&bytes), &name)?;
+    drop(bytes);
+    from_part21(&p, &name, crate::io::ReadOptions::current())
 }

@@ -20,6 +20,10 @@ pub enum Value {
     Enum(Name),
     Ref(u64),
     List(Box<[Value]>),
+    /// A nested list whose items are all reals (coordinates, weights, knots), stored as
+    /// numbers: a third of the size of [`Value::List`]'s values. Argument lists and a typed
+    /// parameter's arguments are always [`Value::List`].
+    Reals(Box<[f64]>),
     /// A typed parameter such as `LENGTH_MEASURE(1.0)`: its name and arguments, boxed (they are
     /// rare, and inline they would make every value larger).
     Typed(Box<(Name, Box<[Value]>)>),
@@ -49,6 +53,25 @@ impl Value {
             _ => None,
         }
     }
+    /// The numbers of a list of numbers ([`Value::Reals`], or a [`Value::List`] of
+    /// numbers: integers widen to reals); `None` for anything else.
+    pub fn numbers(&self) -> Option<Vec<f64>> {
+        match self {
+            Value::Reals(v) => Some(v.to_vec()),
+            Value::List(v) => v.iter().map(Value::num).collect(),
+            _ => None,
+        }
+    }
+    /// Per item of a list, its number if it is one ([`Value::num`]); `None` for a value that
+    /// is not a list.
+    pub fn list_numbers(&self) -> Option<Vec<Option<f64>>> {
+        match self {
+            Value::Reals(v) => Some(v.iter().map(|x| Some(*x)).collect()),
+            Value::List(v) => Some(v.iter().map(Value::num).collect()),
+            _ => None,
+        }
+    }
+    /// The items of a list that is not a [`Value::Reals`] (see [`Value::numbers`]).
     pub fn list(&self) -> Option<&[Value]> {
         match self {
             Value::List(v) => Some(v),
@@ -297,6 +320,18 @@ impl<'a> Lexer<'a> {
                         Some(b',') => self.i += 1,
                         Some(b')') => {
                             self.i += 1;
+                            let items = &self.stack[base..];
+                            if depth > 0 && items.iter().all(|v| matches!(v, Value::Real(_))) {
+                                let r: Vec<f64> = items
+                                    .iter()
+                                    .filter_map(|v| match v {
+                                        Value::Real(x) => Some(*x),
+                                        _ => None,
+                                    })
+                                    .collect();
+                                self.stack.truncate(base);
+                                return Ok(Value::Reals(r.into_boxed_slice()));
+                            }
                             let items: Vec<Value> = self.stack.drain(base..).collect();
                             return Ok(Value::List(items.into_boxed_slice()));
                         }
@@ -367,6 +402,10 @@ impl<'a> Lexer<'a> {
                 self.i -= 1;
                 match self.value(depth + 1)? {
                     Value::List(v) => Ok(Value::Typed(Box::new((k, v)))),
+                    Value::Reals(v) => Ok(Value::Typed(Box::new((
+                        k,
+                        v.iter().map(|x| Value::Real(*x)).collect(),
+                    )))),
                     _ => self.err("expected arguments"),
                 }
             }
