@@ -178,12 +178,7 @@ fn analytic_conversions_match_their_closed_forms() {
             let loc = &p.entities[&pl.part("AXIS2_PLACEMENT_3D").unwrap()[1]
                 .reference()
                 .unwrap()];
-            let c: Vec<f64> = loc.part("CARTESIAN_POINT").unwrap()[1]
-                .list()
-                .unwrap()
-                .iter()
-                .map(|v| v.num().unwrap())
-                .collect();
+            let c: Vec<f64> = loc.part("CARTESIAN_POINT").unwrap()[1].numbers().unwrap();
             [c[0], c[1], c[2]]
         };
         let samples = |f: &dyn Fn([f64; 3]) -> f64| {

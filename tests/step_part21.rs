@@ -88,3 +88,48 @@ fn many_distinct_names_are_all_read() {
         assert_eq!(e, Some(format!("E{i}").as_str()));
     }
 }
+
+/// Nested lists of reals are kept as numbers and read back through `numbers` exactly as
+/// written; a list mixing an integer, a nested empty list, an argument list of reals and a
+/// typed parameter of reals stay lists of values; `list` refuses a list of reals (its items
+/// are not values) and `numbers` refuses a list holding a non-number.
+#[test]
+fn lists_of_reals_are_kept_as_numbers() {
+    let t = "ISO-10303-21;\nHEADER;ENDSEC;\nDATA;\n\
+             #1=CARTESIAN_POINT('',(0.1,-2.5E-300,1.7976931348623157E308));\n\
+             #2=X((1.,2),(),((0.5,0.25),(1.0)));\n\
+             #3=Y(1.5,2.5);\n\
+             #4=Z(PLANE_ANGLE_MEASURE(0.5,0.25),('a',1.));\n\
+             ENDSEC;END-ISO-10303-21;";
+    let p = parse(t).unwrap();
+    let c = &p.entities[&1].part("CARTESIAN_POINT").unwrap()[1];
+    assert!(matches!(c, Value::Reals(_)), "{c:?}");
+    assert_eq!(c.numbers(), Some(vec![0.1, -2.5e-300, f64::MAX]));
+    assert_eq!(
+        c.list_numbers(),
+        Some(vec![Some(0.1), Some(-2.5e-300), Some(f64::MAX)])
+    );
+    assert!(c.list().is_none());
+    let x = p.entities[&2].part("X").unwrap();
+    assert!(matches!(&x[0], Value::List(v) if v.len() == 2));
+    assert_eq!(x[0].numbers(), Some(vec![1.0, 2.0]));
+    assert!(matches!(&x[1], Value::List(v) if v.is_empty()));
+    let rows = x[2].list().unwrap();
+    assert_eq!(rows[0].numbers(), Some(vec![0.5, 0.25]));
+    assert_eq!(rows[1].numbers(), Some(vec![1.0]));
+    // Argument lists are lists of values, whatever they hold.
+    let y = p.entities[&3].part("Y").unwrap();
+    assert_eq!(y.len(), 2);
+    assert_eq!(y[1].num(), Some(2.5));
+    let z = p.entities[&4].part("Z").unwrap();
+    match &z[0] {
+        Value::Typed(t) => {
+            assert_eq!(&*t.0, "PLANE_ANGLE_MEASURE");
+            assert_eq!(t.1.len(), 2);
+            assert_eq!(t.1[1].num(), Some(0.25));
+        }
+        v => panic!("expected a typed parameter, got {v:?}"),
+    }
+    assert_eq!(z[1].numbers(), None);
+    assert_eq!(z[1].list_numbers(), Some(vec![None, Some(1.0)]));
+}
