@@ -1,0 +1,128 @@
+//! The values and instances of a Part 21 table (see the parent module).
+
+use super::Name;
+
+/// A parameter value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Int(i64),
+    Real(f64),
+    Str(Box<str>),
+    Enum(Name),
+    Ref(u64),
+    List(Box<[Value]>),
+    /// A nested list whose items are all reals (coordinates, weights, knots), stored as
+    /// numbers: a third of the size of [`Value::List`]'s values. Argument lists and a typed
+    /// parameter's arguments are always [`Value::List`].
+    Reals(Box<[f64]>),
+    /// A typed parameter such as `LENGTH_MEASURE(1.0)`: its name and arguments, boxed (they are
+    /// rare, and inline they would make every value larger).
+    Typed(Box<(Name, Box<[Value]>)>),
+    /// `$` (unset) or `*` (derived).
+    Unset,
+}
+
+impl Value {
+    /// A number (integers widen to reals).
+    pub fn num(&self) -> Option<f64> {
+        match self {
+            Value::Real(x) => Some(*x),
+            Value::Int(i) => Some(*i as f64),
+            Value::Typed(t) if t.1.len() == 1 => t.1[0].num(),
+            _ => None,
+        }
+    }
+    pub fn int(&self) -> Option<i64> {
+        match self {
+            Value::Int(i) => Some(*i),
+            _ => None,
+        }
+    }
+    pub fn reference(&self) -> Option<u64> {
+        match self {
+            Value::Ref(r) => Some(*r),
+            _ => None,
+        }
+    }
+    /// The numbers of a list of numbers ([`Value::Reals`], or a [`Value::List`] of
+    /// numbers: integers widen to reals); `None` for anything else.
+    pub fn numbers(&self) -> Option<Vec<f64>> {
+        match self {
+            Value::Reals(v) => Some(v.to_vec()),
+            Value::List(v) => v.iter().map(Value::num).collect(),
+            _ => None,
+        }
+    }
+    /// Per item of a list, its number if it is one ([`Value::num`]); `None` for a value that
+    /// is not a list.
+    pub fn list_numbers(&self) -> Option<Vec<Option<f64>>> {
+        match self {
+            Value::Reals(v) => Some(v.iter().map(|x| Some(*x)).collect()),
+            Value::List(v) => Some(v.iter().map(Value::num).collect()),
+            _ => None,
+        }
+    }
+    /// The items of a list that is not a [`Value::Reals`] (see [`Value::numbers`]).
+    pub fn list(&self) -> Option<&[Value]> {
+        match self {
+            Value::List(v) => Some(v),
+            _ => None,
+        }
+    }
+    pub fn enumeration(&self) -> Option<&str> {
+        match self {
+            Value::Enum(e) => Some(e),
+            _ => None,
+        }
+    }
+    /// Every reference inside this value (recursively).
+    pub fn refs(&self, out: &mut Vec<u64>) {
+        match self {
+            Value::Ref(r) => out.push(*r),
+            Value::List(v) => v.iter().for_each(|x| x.refs(out)),
+            Value::Typed(t) => t.1.iter().for_each(|x| x.refs(out)),
+            _ => {}
+        }
+    }
+}
+
+/// One entity instance.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Entity {
+    Simple(Name, Box<[Value]>),
+    /// A complex instance: its partial entities by name, in file order.
+    Complex(Box<[(Name, Box<[Value]>)]>),
+}
+
+impl Entity {
+    /// The entity's type name (the first partial entity's for complex instances).
+    pub fn name(&self) -> &str {
+        match self {
+            Entity::Simple(n, _) => n,
+            Entity::Complex(p) => p.first().map(|x| &*x.0).unwrap_or(""),
+        }
+    }
+    /// Arguments of the (partial) entity called `name`.
+    pub fn part(&self, name: &str) -> Option<&[Value]> {
+        match self {
+            Entity::Simple(n, a) if **n == *name => Some(a),
+            Entity::Complex(p) => p.iter().find(|x| *x.0 == *name).map(|x| &*x.1),
+            _ => None,
+        }
+    }
+    /// Whether the instance is, or contains, `name`.
+    pub fn is(&self, name: &str) -> bool {
+        self.part(name).is_some()
+    }
+    /// Every reference in the instance.
+    pub fn refs(&self) -> Vec<u64> {
+        let mut out = Vec::new();
+        match self {
+            Entity::Simple(_, a) => a.iter().for_each(|v| v.refs(&mut out)),
+            Entity::Complex(p) => p
+                .iter()
+                .for_each(|(_, a)| a.iter().for_each(|v| v.refs(&mut out))),
+        }
+        out
+    }
+}
