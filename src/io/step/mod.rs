@@ -126,7 +126,7 @@ fn from_part21(
 ) -> Result<Model, StepError> {
     let (unit, angle_scale) = unit(p);
     let r = Reader {
-        p: &p,
+        p,
         file,
         angle_scale,
     };
@@ -234,7 +234,7 @@ fn from_part21(
     }
     if !faces.is_empty() {
         let brep =
-            topology::TopologyReader::new(&r, vertex_tolerance(&p)).read(&surface_of, &no_surface);
+            topology::TopologyReader::new(&r, vertex_tolerance(p)).read(&surface_of, &no_surface);
         model.warnings.extend(brep.report.warning_lines());
         model.brep = Some(brep);
         crate::brep::seams::warn(&mut model);
@@ -279,7 +279,7 @@ fn from_part21(
             .warnings
             .push(format!("invalid B-spline curve skipped: {b}"));
     }
-    model.accounts = account::account(&p, &outcomes, model.brep.as_ref().map(|b| &b.report));
+    model.accounts = account::account(p, &outcomes, model.brep.as_ref().map(|b| &b.report));
     let degenerate = model.degeneracy_warnings();
     model.warnings.extend(degenerate);
     for e in p.entities.values() {

@@ -55,6 +55,9 @@ struct Node {
     range: (u32, u32),
 }
 
+/// A segment (a point as a zero-length one).
+type Segment = ([f64; 3], [f64; 3]);
+
 /// A ball: centre and radius (every point of it within the radius of the centre).
 type Ball = ([f64; 3], f64);
 
@@ -163,8 +166,9 @@ impl Near {
             .into_iter()
             .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
             .collect();
-        // Chords with the index of the segment they start at.
-        let mut chords: Vec<(usize, u32, ([f64; 3], [f64; 3]), f64)> = Vec::new();
+        // Chords with the index of the segment they start at and their kind (2^kind
+        // segments).
+        let mut chords: Vec<(usize, u32, Segment, f64)> = Vec::new();
         let mut start = 0;
         while start < segs.len() {
             let mut end = start + 1;
