@@ -25,3 +25,18 @@ pub fn rng(seed: u64) -> impl FnMut() -> f64 {
         (x >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// A clamped knot vector of degree `p` for basis-function tests: `inner` interior knots drawn
+/// from `r` (for `p ≥ 2`, with probability 0.4 the first two made equal or 1e-12 apart), ends
+/// `0` and `1` repeated `p + 1` times, all shifted by `−0.3` and scaled by `scale`.
+pub fn clamped_knots(r: &mut impl FnMut() -> f64, p: usize, inner: usize, scale: f64) -> Vec<f64> {
+    let mut k: Vec<f64> = (0..inner).map(|_| r()).collect();
+    if inner >= 2 && p >= 2 && r() < 0.4 {
+        k[1] = k[0] + if r() < 0.5 { 0.0 } else { 1e-12 };
+    }
+    k.sort_by(f64::total_cmp);
+    let mut knots = vec![0.0; p + 1];
+    knots.extend(k);
+    knots.extend(vec![1.0; p + 1]);
+    knots.iter().map(|x| (x - 0.3) * scale).collect()
+}

@@ -207,15 +207,7 @@ fn basis_numerators_are_the_basis_over_one_denominator() {
         let p = case % 8;
         let scale = 10f64.powi((case as i32 % 61) * 10 - 300);
         let inner = 1 + (r() * 5.0) as usize;
-        let mut k: Vec<f64> = (0..inner).map(|_| r()).collect();
-        if inner >= 2 && p >= 2 && r() < 0.4 {
-            k[1] = k[0] + if r() < 0.5 { 0.0 } else { 1e-12 };
-        }
-        k.sort_by(f64::total_cmp);
-        let mut knots = vec![0.0; p + 1];
-        knots.extend(k);
-        knots.extend(vec![1.0; p + 1]);
-        let knots: Vec<f64> = knots.iter().map(|x| (x - 0.3) * scale).collect();
+        let knots = crate::spline::test_params::clamped_knots(&mut r, p, inner, scale);
         let Ok(kv) = KnotVector::new(knots.clone(), p, knots.len() - p - 1) else {
             continue;
         };
