@@ -17,10 +17,6 @@ pub(super) struct Reader<'a> {
 
 type R<T> = Result<T, StepError>;
 
-fn nums(v: &Value) -> Option<Vec<f64>> {
-    v.numbers()
-}
-
 impl Reader<'_> {
     pub(super) fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
         Err(StepError {
@@ -76,7 +72,7 @@ impl Reader<'_> {
                 location: format!("#{id}"),
                 reason: "expected a CARTESIAN_POINT".into(),
             })?;
-        match self.arg(id, a, 1).map(nums)? {
+        match self.arg(id, a, 1).map(Value::numbers)? {
             Some(c) if c.len() == 3 && c.iter().all(|x| x.is_finite()) => Ok([c[0], c[1], c[2]]),
             Some(c) if c.len() == 2 => Ok([c[0], c[1], 0.0]),
             _ => self.err(id, "point coordinates are not 2 or 3 finite numbers"),
@@ -88,7 +84,7 @@ impl Reader<'_> {
             location: format!("#{id}"),
             reason: "expected a DIRECTION".into(),
         })?;
-        match self.arg(id, a, 1).map(nums)? {
+        match self.arg(id, a, 1).map(Value::numbers)? {
             Some(c) if c.len() == 3 => {
                 let l = crate::geom::norm(&[c[0], c[1], c[2]]);
                 if l > 0.0 && l.is_finite() {
@@ -137,7 +133,7 @@ impl Reader<'_> {
         })
     }
     fn knots(&self, id: u64, mults: &Value, knots: &Value) -> R<Vec<f64>> {
-        let (Some(m), Some(k)) = (mults.list(), nums(knots)) else {
+        let (Some(m), Some(k)) = (mults.list(), knots.numbers()) else {
             return self.err(id, "knot multiplicities or knots malformed");
         };
         if m.len() != k.len() {
@@ -206,7 +202,7 @@ impl Reader<'_> {
                 };
                 let mut w = Vec::with_capacity(nu * nv);
                 for r in wr {
-                    match nums(r) {
+                    match r.numbers() {
                         Some(x) if x.len() == nv => w.extend(x),
                         _ => return self.err(id, "weight row malformed"),
                     }
@@ -248,7 +244,7 @@ impl Reader<'_> {
             .collect::<R<Vec<_>>>()?;
         let knots = self.knots(id, self.arg(id, k, 0)?, self.arg(id, k, 1)?)?;
         let w = match e.part("RATIONAL_B_SPLINE_CURVE") {
-            Some(rw) => match rw.first().and_then(nums) {
+            Some(rw) => match rw.first().and_then(Value::numbers) {
                 Some(w) => w,
                 None => return self.err(id, "weights malformed"),
             },

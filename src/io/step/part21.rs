@@ -184,40 +184,35 @@ impl<'a> Lexer<'a> {
                 }
                 // The items go on one stack shared by every open list, and a closed list takes
                 // its own items off it in one allocation of their exact number (no growing
-                // vector per list: most lists are short and kept for the whole read).
+                // vector per list: most lists are short and kept for the whole read). A fault
+                // ends the parse, so items left on the stack then are never read.
                 let base = self.stack.len();
                 loop {
-                    let v = self.value(depth + 1);
-                    match v {
-                        Ok(v) => self.stack.push(v),
-                        Err(e) => {
-                            self.stack.truncate(base);
-                            return Err(e);
-                        }
-                    }
+                    let v = self.value(depth + 1)?;
+                    self.stack.push(v);
                     match self.peek() {
                         Some(b',') => self.i += 1,
                         Some(b')') => {
                             self.i += 1;
-                            let items = &self.stack[base..];
-                            if depth > 0 && items.iter().all(|v| matches!(v, Value::Real(_))) {
-                                let r: Vec<f64> = items
-                                    .iter()
-                                    .filter_map(|v| match v {
-                                        Value::Real(x) => Some(*x),
-                                        _ => None,
-                                    })
-                                    .collect();
+                            let reals: Option<Vec<f64>> = (depth > 0)
+                                .then(|| {
+                                    self.stack[base..]
+                                        .iter()
+                                        .map(|v| match v {
+                                            Value::Real(x) => Some(*x),
+                                            _ => None,
+                                        })
+                                        .collect()
+                                })
+                                .flatten();
+                            if let Some(r) = reals {
                                 self.stack.truncate(base);
                                 return Ok(Value::Reals(r.into_boxed_slice()));
                             }
                             let items: Vec<Value> = self.stack.drain(base..).collect();
                             return Ok(Value::List(items.into_boxed_slice()));
                         }
-                        _ => {
-                            self.stack.truncate(base);
-                            return self.err("expected ',' or ')' in a list");
-                        }
+                        _ => return self.err("expected ',' or ')' in a list"),
                     }
                 }
             }

@@ -24,7 +24,6 @@
 
 use super::patch::{Box3, V};
 
-/// Segments of the output with a bounding-volume tree over their boxes.
 /// The entry that decided the last query of a run of queries ([`Near::net_within_hinted`]).
 #[derive(Debug, Default)]
 pub struct Hint(std::cell::Cell<Option<u32>>);
@@ -36,8 +35,9 @@ impl Hint {
     }
 }
 
+/// Segments of the output (and chords over them) with a bounding-volume tree over their boxes.
 pub struct Near {
-    segs: Vec<([f64; 3], [f64; 3])>,
+    segs: Vec<Segment>,
     /// Per entry of `segs`: `δ` (0 for an output segment, the chord bound for a chord).
     slack: Vec<f64>,
     /// Tree nodes: box, and either two children or a range of entries.
@@ -56,7 +56,7 @@ struct Node {
 }
 
 /// A segment (a point as a zero-length one).
-type Segment = ([f64; 3], [f64; 3]);
+pub type Segment = ([f64; 3], [f64; 3]);
 
 /// A ball: centre and radius (every point of it within the radius of the centre).
 type Ball = ([f64; 3], f64);
@@ -79,7 +79,7 @@ fn ball(p: &V) -> Ball {
     (c, r)
 }
 
-fn seg_box(s: &([f64; 3], [f64; 3])) -> Box3 {
+fn seg_box(s: &Segment) -> Box3 {
     (
         std::array::from_fn(|k| s.0[k].min(s.1[k])),
         std::array::from_fn(|k| s.0[k].max(s.1[k])),
@@ -146,7 +146,7 @@ pub fn dist_upper(c: &[f64; 3], p: &[f64; 3], q: &[f64; 3]) -> f64 {
 }
 
 impl Near {
-    pub fn new(segs: Vec<([f64; 3], [f64; 3])>) -> Near {
+    pub fn new(segs: Vec<Segment>) -> Near {
         let segs: Vec<_> = segs
             .into_iter()
             .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
@@ -161,7 +161,7 @@ impl Near {
     /// (`segs[k].1 == segs[k + 1].0` exactly) whose slack `δ` is at most `d / 2` (see the
     /// module comment). A chord of `L` segments starts every `L / 2` segments, so any part of
     /// the polyline at most `L / 2` segments long lies under one chord.
-    pub fn with_chords(segs: Vec<([f64; 3], [f64; 3])>, d: f64) -> Near {
+    pub fn with_chords(segs: Vec<Segment>, d: f64) -> Near {
         let segs: Vec<_> = segs
             .into_iter()
             .filter(|s| s.0.iter().chain(&s.1).all(|x| x.is_finite()))
@@ -249,7 +249,7 @@ impl Near {
         }
         Near::build_all(all, slack, along)
     }
-    fn build_all(segs: Vec<([f64; 3], [f64; 3])>, slack: Vec<f64>, along: Vec<[u32; 2]>) -> Near {
+    fn build_all(segs: Vec<Segment>, slack: Vec<f64>, along: Vec<[u32; 2]>) -> Near {
         let mut n = Near {
             along,
             segs,
