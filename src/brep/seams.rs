@@ -21,7 +21,7 @@ use crate::geom::dist;
 use crate::geom::dot;
 use crate::model::Model;
 use crate::spline::closure::Closure;
-use crate::spline::project::{SurfaceFoot, descend, point_d1};
+use crate::spline::project::{SurfaceFoot, point_d1};
 use crate::spline::{BSplineSurface, NurbsSurface};
 use std::collections::BTreeMap;
 
@@ -133,13 +133,16 @@ fn boundary(b: &Brep, fi: usize) -> Vec<[f64; 3]> {
 /// Feet (parameters) on `s` of the boundary samples `pts`, edge after edge, [`EDGE_SAMPLES`]
 /// each, by local searches.
 ///
-/// Each sample after an edge's first starts from the previous sample's foot ([`newton`]). That
-/// search is taken when it ends within `near` of the sample, strictly inside the domain in every
-/// closed direction (away from the seams) and not on or next to a collapsed border (a pole,
-/// where a parameter gives the same point whatever its value; next to it, it moves the point
-/// very little): there a surface of revolution is one-to-one, a sample that close to it has one
-/// foot nearby, and both searches converge to it (to rounding; outputs were identical on every
-/// file in `tests/data`). Otherwise the grid search decides.
+/// Each sample starts from a neighbour's foot ([`newton`]): the previous sample's along the
+/// edge; an edge's first sample from the foot of whichever end of the previous edge lies
+/// nearest to it (the loop's edges meet there). That search is taken when it ends within
+/// `near` of the sample and not on or next to a collapsed border (a pole, where a parameter
+/// gives the same point whatever its value; next to it, it moves the point very little):
+/// there a surface of revolution is one-to-one, a sample that close to it has one foot
+/// nearby, and both searches converge to it (to rounding). A foot on a seam is taken too: the
+/// sample is then the seam's point, which both ends of the closed parameter give, and
+/// [`parameter`] looks across the seam for either search's result alike. Otherwise the grid
+/// search decides.
 fn feet_of(
     s: &NurbsSurface<f64, 3>,
     pts: &[[f64; 3]],
@@ -148,21 +151,27 @@ fn feet_of(
 ) -> Vec<[f64; 2]> {
     let (u0, u1, v0, v1) = s.hom.domain();
     let dom = [u0, u1, v0, v1];
-    let closed = [closure.seam_u, closure.seam_v];
-    let inside = |q: &[f64; 2]| {
-        let pole = (0..4).any(|k| {
+    let pole = |q: &[f64; 2]| {
+        (0..4).any(|k| {
             closure.degenerate[k] && (q[k / 2] - dom[k]).abs() <= 1e-6 * (dom[k | 1] - dom[k & 2])
-        });
-        let off_seams = (0..2).all(|d| !closed[d] || (dom[2 * d] < q[d] && q[d] < dom[2 * d + 1]));
-        off_seams && !pole
+        })
     };
     let mut foot = SurfaceFoot::new(s);
-    let mut out = Vec::with_capacity(pts.len());
-    for edge in pts.chunks(EDGE_SAMPLES) {
-        let mut warm: Option<[f64; 2]> = None;
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(pts.len());
+    for (e, edge) in pts.chunks(EDGE_SAMPLES).enumerate() {
+        // The previous edge's end (first or last sample) nearest to this edge's first sample.
+        let mut warm = (e > 0).then(|| {
+            let (a, b) = ((e - 1) * EDGE_SAMPLES, e * EDGE_SAMPLES - 1);
+            let x = &edge[0];
+            if dist(&pts[b], x) <= dist(&pts[a], x) {
+                out[b]
+            } else {
+                out[a]
+            }
+        });
         for x in edge {
             let q = match warm.and_then(|w| newton(s, x, w, &dom)) {
-                Some((q, e)) if e <= near && inside(&q) => q,
+                Some((q, e)) if e <= near && !pole(&q) => q,
                 _ => foot.closest(x),
             };
             warm = Some(q);
@@ -207,7 +216,7 @@ fn newton(
 
 /// Parameter `d` of the foot `q` of `x` on `s`, closed in `d`: a local search stopped at one
 /// end of the domain (the other side of the seam is the same curve) is tried again from the
-/// other.
+/// other ([`newton`]), and its result taken where it lies nearer to `x`.
 fn parameter(s: &NurbsSurface<f64, 3>, x: &[f64; 3], q: [f64; 2], d: usize) -> f64 {
     let (u0, u1, v0, v1) = s.hom.domain();
     let dom = [u0, u1, v0, v1];
@@ -223,8 +232,10 @@ fn parameter(s: &NurbsSurface<f64, 3>, x: &[f64; 3], q: [f64; 2], d: usize) -> f
     let e = dist(&s.eval(&q[0], &q[1]), x);
     let mut start = q;
     start[d] = other;
-    let (r, e2) = descend(s, x, start, &dom);
-    if e2.sqrt() < e { r[d] } else { q[d] }
+    match newton(s, x, start, &dom) {
+        Some((r, e2)) if e2 < e => r[d],
+        _ => q[d],
+    }
 }
 
 /// The parameter to start at, when the boundary's parameters `params` (in `[lo, hi]`) come
