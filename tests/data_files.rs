@@ -169,15 +169,25 @@ fn analytic_conversions_match_their_closed_forms() {
     let mut checked = 0;
     for s in &m.surfaces {
         let face: u64 = s.source.as_ref().unwrap()[1..].parse().unwrap();
-        let sid = p.entities[&face].part("ADVANCED_FACE").unwrap()[2]
+        let sid = p
+            .entities
+            .get(&face)
+            .unwrap()
+            .part("ADVANCED_FACE")
+            .unwrap()[2]
             .reference()
             .unwrap();
-        let e = &p.entities[&sid];
+        let e = p.entities.get(&sid).unwrap();
         let origin = |a: &[step::part21::Value]| {
-            let pl = &p.entities[&a[1].reference().unwrap()];
-            let loc = &p.entities[&pl.part("AXIS2_PLACEMENT_3D").unwrap()[1]
-                .reference()
-                .unwrap()];
+            let pl = p.entities.get(&a[1].reference().unwrap()).unwrap();
+            let loc = p
+                .entities
+                .get(
+                    &pl.part("AXIS2_PLACEMENT_3D").unwrap()[1]
+                        .reference()
+                        .unwrap(),
+                )
+                .unwrap();
             let c: Vec<f64> = loc.part("CARTESIAN_POINT").unwrap()[1].numbers().unwrap();
             [c[0], c[1], c[2]]
         };

@@ -7,7 +7,7 @@ fn parses_simple_complex_and_faults() {
     let p = parse(t).unwrap();
     assert_eq!(p.schema, vec!["CONFIG_CONTROL_DESIGN"]);
     assert_eq!(
-        p.entities[&1],
+        *p.entities.get(&1).unwrap(),
         Entity::Simple(
             "CARTESIAN_POINT".into(),
             vec![
@@ -17,8 +17,11 @@ fn parses_simple_complex_and_faults() {
             .into()
         )
     );
-    assert!(p.entities[&2].is("B_SPLINE_SURFACE"));
-    assert_eq!(p.entities[&3].part("X").unwrap()[0].num(), Some(1.0));
+    assert!(p.entities.get(&2).unwrap().is("B_SPLINE_SURFACE"));
+    assert_eq!(
+        p.entities.get(&3).unwrap().part("X").unwrap()[0].num(),
+        Some(1.0)
+    );
     assert!(parse("DATA;\n#1=A((1,2);\nENDSEC;").is_err());
     assert!(parse("no data").is_err());
     assert_eq!(parse("DATA;\n#1=A(1e999);\nENDSEC;").unwrap_err().line, 2);
@@ -35,14 +38,14 @@ fn ids_out_of_order_duplicates_names_and_lines() {
         vec![2, 5, 9]
     );
     for id in [2, 5, 9] {
-        assert_eq!(p.entities[&id].name(), "POINT");
+        assert_eq!(p.entities.get(&id).unwrap().name(), "POINT");
     }
     assert_eq!(
-        p.entities[&2].part("POINT").unwrap()[0],
+        p.entities.get(&2).unwrap().part("POINT").unwrap()[0],
         Value::Str("it's\nmulti".into())
     );
     assert_eq!(
-        p.entities[&9].part("POINT").unwrap()[1].enumeration(),
+        p.entities.get(&9).unwrap().part("POINT").unwrap()[1].enumeration(),
         Some("T")
     );
     // #5 first on line 2, again on line 5 after #2 (line 3, its string ending on line 4).
@@ -82,9 +85,9 @@ fn many_distinct_names_are_all_read() {
     assert_eq!(p.entities.len(), 12000);
     for i in [0, 4095, 4096, 5999] {
         let want = format!("NAME_{i}");
-        assert_eq!(p.entities[&(2 * i + 1)].name(), want);
-        assert_eq!(p.entities[&(2 * i + 2)].name(), want);
-        let e = p.entities[&(2 * i + 1)].part(&want).unwrap()[0].enumeration();
+        assert_eq!(p.entities.get(&(2 * i + 1)).unwrap().name(), want);
+        assert_eq!(p.entities.get(&(2 * i + 2)).unwrap().name(), want);
+        let e = p.entities.get(&(2 * i + 1)).unwrap().part(&want).unwrap()[0].enumeration();
         assert_eq!(e, Some(format!("E{i}").as_str()));
     }
 }
@@ -102,7 +105,7 @@ fn lists_of_reals_are_kept_as_numbers() {
              #4=Z(PLANE_ANGLE_MEASURE(0.5,0.25),('a',1.));\n\
              ENDSEC;END-ISO-10303-21;";
     let p = parse(t).unwrap();
-    let c = &p.entities[&1].part("CARTESIAN_POINT").unwrap()[1];
+    let c = &p.entities.get(&1).unwrap().part("CARTESIAN_POINT").unwrap()[1];
     assert!(matches!(c, Value::Reals(_)), "{c:?}");
     assert_eq!(c.numbers(), Some(vec![0.1, -2.5e-300, f64::MAX]));
     assert_eq!(
@@ -110,7 +113,7 @@ fn lists_of_reals_are_kept_as_numbers() {
         Some(vec![Some(0.1), Some(-2.5e-300), Some(f64::MAX)])
     );
     assert!(c.list().is_none());
-    let x = p.entities[&2].part("X").unwrap();
+    let x = p.entities.get(&2).unwrap().part("X").unwrap();
     assert!(matches!(&x[0], Value::List(v) if v.len() == 2));
     assert_eq!(x[0].numbers(), Some(vec![1.0, 2.0]));
     assert!(matches!(&x[1], Value::List(v) if v.is_empty()));
@@ -118,10 +121,10 @@ fn lists_of_reals_are_kept_as_numbers() {
     assert_eq!(rows[0].numbers(), Some(vec![0.5, 0.25]));
     assert_eq!(rows[1].numbers(), Some(vec![1.0]));
     // Argument lists are lists of values, whatever they hold.
-    let y = p.entities[&3].part("Y").unwrap();
+    let y = p.entities.get(&3).unwrap().part("Y").unwrap();
     assert_eq!(y.len(), 2);
     assert_eq!(y[1].num(), Some(2.5));
-    let z = p.entities[&4].part("Z").unwrap();
+    let z = p.entities.get(&4).unwrap().part("Z").unwrap();
     match &z[0] {
         Value::Typed(t) => {
             assert_eq!(&*t.0, "PLANE_ANGLE_MEASURE");
@@ -132,4 +135,45 @@ fn lists_of_reals_are_kept_as_numbers() {
     }
     assert_eq!(z[1].numbers(), None);
     assert_eq!(z[1].list_numbers(), Some(vec![None, Some(1.0)]));
+}
+
+#[test]
+fn lists_of_references_are_kept_as_ids() {
+    let t = "ISO-10303-21;\nHEADER;ENDSEC;\nDATA;\n\
+             #1=EDGE_LOOP('',(#10,#11,#12));\n\
+             #2=NET('',((#1,#2),(#3,#4)),(#5,$),(),(#6,1.5));\n\
+             #3=T(ITEMS(#7,#8),#9);\n\
+             ENDSEC;END-ISO-10303-21;";
+    let p = parse(t).unwrap();
+    let refs = |v: &Value| v.list_refs().map(|l| l.collect::<Vec<_>>());
+    let l = &p.entities.get(&1).unwrap().part("EDGE_LOOP").unwrap()[1];
+    assert!(matches!(l, Value::Refs(_)), "{l:?}");
+    assert_eq!(refs(l), Some(vec![Some(10), Some(11), Some(12)]));
+    assert_eq!(l.list_refs().unwrap().len(), 3);
+    assert!(l.list().is_none() && l.numbers().is_none());
+    let mut all = Vec::new();
+    l.refs(&mut all);
+    assert_eq!(all, vec![10, 11, 12]);
+    let n = p.entities.get(&2).unwrap().part("NET").unwrap();
+    // A list of lists of references: rows kept as ids, the outer list a list of values.
+    let rows = n[1].list().unwrap();
+    assert_eq!(refs(&rows[0]), Some(vec![Some(1), Some(2)]));
+    assert_eq!(refs(&rows[1]), Some(vec![Some(3), Some(4)]));
+    // Not all references: a list of values, read item by item.
+    assert!(matches!(&n[2], Value::List(_)));
+    assert_eq!(refs(&n[2]), Some(vec![Some(5), None]));
+    assert_eq!(refs(&n[3]), Some(vec![]));
+    assert_eq!(refs(&n[4]), Some(vec![Some(6), None]));
+    assert_eq!(refs(&Value::Ref(1)), None);
+    assert_eq!(p.entities.get(&2).unwrap().refs(), vec![1, 2, 3, 4, 5, 6]);
+    // A typed parameter's arguments stay values; the argument list of an instance too.
+    let a = p.entities.get(&3).unwrap().part("T").unwrap();
+    match &a[0] {
+        Value::Typed(t) => assert_eq!(
+            t.1.iter().map(|v| v.reference()).collect::<Vec<_>>(),
+            vec![Some(7), Some(8)]
+        ),
+        v => panic!("expected a typed parameter, got {v:?}"),
+    }
+    assert_eq!(a[1].reference(), Some(9));
 }

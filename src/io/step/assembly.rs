@@ -16,7 +16,7 @@
 //! (STEP ids) its product's shape holds, and the warnings for what could not be placed.
 
 use super::entities::Reader;
-use super::part21::{Entity, Value};
+use super::part21::{Entity, ListRefs, Value};
 use crate::brep::place::Motion;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -68,15 +68,16 @@ fn str_at(a: &[Value], i: usize) -> Option<&str> {
 
 /// The `items` of a representation instance (any `*REPRESENTATION` partial entity with a list
 /// as its second attribute).
-fn rep_items(e: &Entity) -> Option<&[Value]> {
+fn rep_items(e: &Entity) -> Option<ListRefs<'_>> {
     let parts: Vec<(&str, &[Value])> = match e {
         Entity::Simple(n, a) => vec![(&**n, &**a)],
         Entity::Complex(p) => p.iter().map(|(n, a)| (&**n, &**a)).collect(),
     };
-    parts
-        .into_iter()
-        .find(|(n, a)| n.ends_with("REPRESENTATION") && a.get(1).and_then(Value::list).is_some())
-        .and_then(|(_, a)| a.get(1)?.list())
+    parts.into_iter().find_map(|(n, a)| {
+        n.ends_with("REPRESENTATION")
+            .then(|| a.get(1)?.list_refs())
+            .flatten()
+    })
 }
 
 /// Read the product structure, or `None` when the file has no NAUO and no mapped item.
@@ -231,15 +232,15 @@ impl Walker<'_> {
                 let Some(items) = p.entities.get(&rid).and_then(rep_items) else {
                     continue;
                 };
-                for id in items.iter().filter_map(Value::reference) {
+                for id in items.flatten() {
                     let Some(e) = p.entities.get(&id) else {
                         continue;
                     };
                     if e.is("MANIFOLD_SOLID_BREP") || e.is("BREP_WITH_VOIDS") {
                         solids.push(id);
                     } else if let Some(a) = e.part("SHELL_BASED_SURFACE_MODEL") {
-                        let list = a.get(1).and_then(Value::list).unwrap_or(&[]);
-                        shells.extend(list.iter().filter_map(Value::reference));
+                        let list = a.get(1).and_then(Value::list_refs).unwrap_or_default();
+                        shells.extend(list.flatten());
                     } else if let Some(a) = e.part("MAPPED_ITEM") {
                         self.mapped(id, a, m, depth, out);
                     }

@@ -81,8 +81,8 @@ pub(super) fn edge_curve(
                 "SURFACE_CURVE"
             };
             found.types.push((id, ty.to_string()));
-            if let Some(list) = a.get(2).and_then(Value::list) {
-                for g in list.iter().filter_map(Value::reference) {
+            if let Some(list) = a.get(2).and_then(Value::list_refs) {
+                for g in list.flatten() {
                     match pcurve(r, g) {
                         Ok(Some(pc)) => {
                             found.types.push((g, "PCURVE".into()));
@@ -326,7 +326,7 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
         .map_err(s)?
         .part("DEFINITIONAL_REPRESENTATION")
         .and_then(|d| d.get(1))
-        .and_then(Value::list)
+        .and_then(Value::list_refs)
         .ok_or_else(|| {
             invalid(
                 rep,
@@ -334,7 +334,7 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
                 "expected a DEFINITIONAL_REPRESENTATION with a list of items",
             )
         })?;
-    let Some(cid) = items.iter().find_map(Value::reference) else {
+    let Some(cid) = items.flatten().next() else {
         return Err(invalid(rep, "DEFINITIONAL_REPRESENTATION", "no curve item"));
     };
     let ce = r.get(cid).map_err(s)?;

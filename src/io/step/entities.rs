@@ -177,17 +177,20 @@ impl Reader<'_> {
             reason: "control points are not a list".into(),
         })?;
         let nu = rows.len();
-        let nv = rows.first().and_then(|r| r.list()).map_or(0, |r| r.len());
+        let nv = rows
+            .first()
+            .and_then(Value::list_refs)
+            .map_or(0, |r| r.len());
         let mut pts = Vec::with_capacity(nu * nv);
         for r in rows {
-            let Some(r) = r.list() else {
+            let Some(r) = r.list_refs() else {
                 return self.err(id, "control point row is not a list");
             };
             if r.len() != nv {
                 return self.err(id, "control net is not rectangular");
             }
             for c in r {
-                match c.reference() {
+                match c {
                     Some(pid) => pts.push(self.point(pid)?),
                     None => return self.err(id, "control point is not a reference"),
                 }
@@ -230,13 +233,12 @@ impl Reader<'_> {
             },
         };
         let p = self.degree(id, base, 0)?;
-        let Some(cl) = self.arg(id, base, 1)?.list() else {
+        let Some(cl) = self.arg(id, base, 1)?.list_refs() else {
             return self.err(id, "control points are not a list");
         };
         let pts = cl
-            .iter()
             .map(|c| {
-                c.reference().map_or_else(
+                c.map_or_else(
                     || self.err(id, "control point is not a reference"),
                     |r| self.point(r),
                 )

@@ -3,7 +3,7 @@
 //! Comments `/* … */`, multi-line instances, strings with `''`, enumerations, typed
 //! parameters and `$`/`*` are handled; any syntax fault is a typed error with its line.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::sync::Arc;
 
@@ -11,15 +11,17 @@ use std::sync::Arc;
 /// instance that uses it (one allocation per distinct name in a file).
 pub type Name = Arc<str>;
 
+mod table;
 mod values;
 
-pub use values::{Entity, Value};
+pub use table::Table;
+pub use values::{Entity, ListRefs, Value};
 
 /// A parsed STEP file.
 #[derive(Clone, Debug, Default)]
 pub struct Part21 {
     pub schema: Vec<String>,
-    pub entities: BTreeMap<u64, Entity>,
+    pub entities: Table,
 }
 
 /// A syntax fault.
@@ -194,20 +196,27 @@ impl<'a> Lexer<'a> {
                         Some(b',') => self.i += 1,
                         Some(b')') => {
                             self.i += 1;
-                            let reals: Option<Vec<f64>> = (depth > 0)
-                                .then(|| {
-                                    self.stack[base..]
-                                        .iter()
-                                        .map(|v| match v {
-                                            Value::Real(x) => Some(*x),
-                                            _ => None,
-                                        })
-                                        .collect()
-                                })
-                                .flatten();
-                            if let Some(r) = reals {
-                                self.stack.truncate(base);
-                                return Ok(Value::Reals(r.into_boxed_slice()));
+                            // Nested lists of reals or of references are kept as plain
+                            // numbers (argument lists stay lists of values).
+                            if depth > 0 {
+                                let items = &self.stack[base..];
+                                let reals: Option<Vec<f64>> = items
+                                    .iter()
+                                    .map(|v| match v {
+                                        Value::Real(x) => Some(*x),
+                                        _ => None,
+                                    })
+                                    .collect();
+                                if let Some(r) = reals {
+                                    self.stack.truncate(base);
+                                    return Ok(Value::Reals(r.into_boxed_slice()));
+                                }
+                                let refs: Option<Vec<u64>> =
+                                    items.iter().map(Value::reference).collect();
+                                if let Some(r) = refs {
+                                    self.stack.truncate(base);
+                                    return Ok(Value::Refs(r.into_boxed_slice()));
+                                }
                             }
                             let items: Vec<Value> = self.stack.drain(base..).collect();
                             return Ok(Value::List(items.into_boxed_slice()));
@@ -279,6 +288,10 @@ impl<'a> Lexer<'a> {
                     Value::Reals(v) => Ok(Value::Typed(Box::new((
                         k,
                         v.iter().map(|x| Value::Real(*x)).collect(),
+                    )))),
+                    Value::Refs(v) => Ok(Value::Typed(Box::new((
+                        k,
+                        v.iter().map(|x| Value::Ref(*x)).collect(),
                     )))),
                     _ => self.err("expected arguments"),
                 }
@@ -387,7 +400,7 @@ pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
             Some(_) => {
                 let k = lx.keyword();
                 if &*k == "ENDSEC" {
-                    out.entities = found.into_iter().collect();
+                    out.entities = Table::new(found);
                     return Ok(out);
                 }
                 return lx.err(format!("unexpected '{k}' in DATA section"));

@@ -15,7 +15,11 @@ impl TopologyReader<'_> {
         self.shells.insert(id, None);
         let e = self.r.p.entities.get(&id)?;
         let ty = type_of(e, &["CLOSED_SHELL", "OPEN_SHELL"]);
-        let Some(list) = e.part(&ty).and_then(|a| a.get(1)).and_then(Value::list) else {
+        let Some(list) = e
+            .part(&ty)
+            .and_then(|a| a.get(1))
+            .and_then(Value::list_refs)
+        else {
             self.invalid(
                 id,
                 &ty,
@@ -26,7 +30,7 @@ impl TopologyReader<'_> {
         };
         let mut faces = Vec::with_capacity(list.len());
         for v in list {
-            let Some(fid) = v.reference() else {
+            let Some(fid) = v else {
                 self.invalid(
                     id,
                     &ty,
@@ -128,8 +132,11 @@ impl TopologyReader<'_> {
             return;
         };
         let mut voids = Vec::new();
-        if let Some(list) = e.part("BREP_WITH_VOIDS").and_then(|a| a.last()?.list()) {
-            for v in list.iter().filter_map(Value::reference) {
+        if let Some(list) = e
+            .part("BREP_WITH_VOIDS")
+            .and_then(|a| a.last()?.list_refs())
+        {
+            for v in list.flatten() {
                 let Some((ve, _)) =
                     self.referenced((id, &ty), v, "void", &["ORIENTED_CLOSED_SHELL"], None)
                 else {

@@ -164,8 +164,8 @@ impl<'a> TopologyReader<'a> {
                 // A set of shells, each read above.
                 let ok = a
                     .get(1)
-                    .and_then(Value::list)
-                    .is_some_and(|l| l.iter().all(|v| v.reference().is_some()));
+                    .and_then(Value::list_refs)
+                    .is_some_and(|mut l| l.all(|v| v.is_some()));
                 if ok {
                     self.converted(*id, "SHELL_BASED_SURFACE_MODEL");
                 } else {
@@ -209,7 +209,7 @@ impl<'a> TopologyReader<'a> {
         let ty = type_of(e, &["ADVANCED_FACE", "FACE_SURFACE"]);
         let a = e.part(&ty).unwrap_or(&[]);
         let (Some(bounds), Some(sid)) = (
-            a.get(1).and_then(Value::list),
+            a.get(1).and_then(Value::list_refs),
             a.get(2).and_then(Value::reference),
         ) else {
             self.invalid(
@@ -227,7 +227,7 @@ impl<'a> TopologyReader<'a> {
         }
         let mut loops = Vec::new();
         for b in bounds {
-            let Some(bid) = b.reference() else {
+            let Some(bid) = b else {
                 self.invalid(
                     id,
                     &ty,
@@ -296,11 +296,11 @@ impl<'a> TopologyReader<'a> {
                 let list = le
                     .part("EDGE_LOOP")
                     .and_then(|a| a.get(1))
-                    .and_then(Value::list)
-                    .unwrap_or(&[]);
+                    .and_then(Value::list_refs)
+                    .unwrap_or_default();
                 let mut es = Vec::with_capacity(list.len());
                 for v in list {
-                    let oe = v.reference().and_then(|o| self.oriented_edge(lid, o, face));
+                    let oe = v.and_then(|o| self.oriented_edge(lid, o, face));
                     match oe {
                         Some(oe) => es.push(oe),
                         None => {

@@ -15,6 +15,10 @@ pub enum Value {
     /// numbers: a third of the size of [`Value::List`]'s values. Argument lists and a typed
     /// parameter's arguments are always [`Value::List`].
     Reals(Box<[f64]>),
+    /// A nested list whose items are all references (control points, a loop's edges, a
+    /// shell's faces), stored as ids: a third of the size of [`Value::List`]'s values. Read
+    /// through [`Value::list_refs`].
+    Refs(Box<[u64]>),
     /// A typed parameter such as `LENGTH_MEASURE(1.0)`: its name and arguments, boxed (they are
     /// rare, and inline they would make every value larger).
     Typed(Box<(Name, Box<[Value]>)>),
@@ -62,7 +66,17 @@ impl Value {
             _ => None,
         }
     }
-    /// The items of a list that is not a [`Value::Reals`] (see [`Value::numbers`]).
+    /// Per item of a list, its reference if it is one ([`Value::Refs`], or a [`Value::List`]:
+    /// `None` for an item that is not a reference); `None` for a value that is not a list.
+    pub fn list_refs(&self) -> Option<ListRefs<'_>> {
+        match self {
+            Value::Refs(v) => Some(ListRefs::Ids(v.iter())),
+            Value::List(v) => Some(ListRefs::Values(v.iter())),
+            _ => None,
+        }
+    }
+    /// The items of a list that is not a [`Value::Reals`] or [`Value::Refs`] (see
+    /// [`Value::numbers`] and [`Value::list_refs`]).
     pub fn list(&self) -> Option<&[Value]> {
         match self {
             Value::List(v) => Some(v),
@@ -79,10 +93,43 @@ impl Value {
     pub fn refs(&self, out: &mut Vec<u64>) {
         match self {
             Value::Ref(r) => out.push(*r),
+            Value::Refs(v) => out.extend_from_slice(v),
             Value::List(v) => v.iter().for_each(|x| x.refs(out)),
             Value::Typed(t) => t.1.iter().for_each(|x| x.refs(out)),
             _ => {}
         }
+    }
+}
+
+/// The items of a list as references ([`Value::list_refs`]).
+#[derive(Clone, Debug)]
+pub enum ListRefs<'a> {
+    Ids(std::slice::Iter<'a, u64>),
+    Values(std::slice::Iter<'a, Value>),
+}
+
+impl Iterator for ListRefs<'_> {
+    type Item = Option<u64>;
+    fn next(&mut self) -> Option<Option<u64>> {
+        match self {
+            ListRefs::Ids(i) => i.next().map(|r| Some(*r)),
+            ListRefs::Values(i) => i.next().map(Value::reference),
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        match self {
+            ListRefs::Ids(i) => i.size_hint(),
+            ListRefs::Values(i) => i.size_hint(),
+        }
+    }
+}
+
+impl ExactSizeIterator for ListRefs<'_> {}
+
+impl Default for ListRefs<'_> {
+    /// No items.
+    fn default() -> Self {
+        ListRefs::Ids([].iter())
     }
 }
 
