@@ -377,12 +377,16 @@ fn convert_and_curve_on_surface_from_iges_and_step() {
         d.join("m.dwg").to_str().unwrap(),
     ]);
     assert_eq!(code, 2);
-    let (code, _, _) = vericad(&[
-        "convert",
-        m.to_str().unwrap(),
-        d.join("m.stl").to_str().unwrap(),
-    ]);
-    assert_eq!(code, 2, "no triangulation to write");
+    // Surfaces without a B-rep to STL: each surface triangulated whole.
+    let stl = d.join("m.stl");
+    let (code, _, stderr) = vericad(&["convert", m.to_str().unwrap(), stl.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = std::fs::read_to_string(&stl).unwrap();
+    assert!(
+        text.matches("facet normal").count() >= 2 * 16 * 16,
+        "{}",
+        text.len()
+    );
 }
 
 #[test]

@@ -43,6 +43,12 @@ pub enum Command {
         /// (186/514/510/508/504/502); `iges-faces` writes trimmed surfaces (144/142) instead.
         #[arg(long)]
         format: Option<String>,
+        /// For STL, OBJ and VTP output of a B-rep: triangulate finer until the measured
+        /// chordal deviation (surface to triangles, edge curves to segments, sampled at seven
+        /// points per triangle and at edge midpoints: evidence, not a bound) is at most this
+        /// (model units). Exit 3 when it is not reached.
+        #[arg(long)]
+        chordal: Option<f64>,
         #[command(flatten)]
         memory: memory::MemoryArg,
     },

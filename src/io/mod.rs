@@ -205,8 +205,18 @@ pub fn write_model(
 fn trimmed_mesh_model(
     m: &crate::model::Model,
     b: &crate::brep::Brep,
-) -> (crate::model::Model, Vec<String>) {
-    let mesh = crate::tessellate::mesh_brep(m, b, &crate::tessellate::MeshParams::default());
+    chordal: Option<f64>,
+) -> (crate::model::Model, Vec<String>, Option<Chordal>) {
+    let (mesh, reached) = match chordal {
+        Some(tol) => {
+            let (mesh, c) = crate::tessellate::chordal::mesh_within(m, b, tol);
+            (mesh, Some(c))
+        }
+        None => (
+            crate::tessellate::mesh_brep(m, b, &crate::tessellate::MeshParams::default()),
+            None,
+        ),
+    };
     let mut notes = mesh.issues(b);
     let ok = mesh.faces.iter().filter(|f| f.is_ok()).count();
     if ok < b.faces.len() {
@@ -224,8 +234,10 @@ fn trimmed_mesh_model(
         warnings: m.warnings.clone(),
         ..Default::default()
     };
-    (out, notes)
+    (out, notes, reached)
 }
+
+pub use crate::tessellate::chordal::Chordal;
 
 /// Format names accepted by `--format`.
 pub const FORMAT_NAMES: &str = "json, step, iges, iges-faces, stl, stl-binary, vtp, obj";
@@ -238,6 +250,21 @@ pub fn write_model_as(
     m: &crate::model::Model,
     format: Option<&str>,
 ) -> Result<Vec<String>, WriteError> {
+    Ok(write_model_chordal(path, m, format, None)?.0)
+}
+
+/// [`write_model_as`], a B-rep written to a mesh format (STL, OBJ, VTP) triangulated until
+/// its measured chordal deviation is at most `chordal` when given
+/// ([`crate::tessellate::chordal`]); with what that refinement reached (`None` when nothing
+/// was triangulated). A model of surfaces without a B-rep is triangulated surface by surface
+/// (untrimmed, [`crate::tessellate::surfaces`]) for STL, and for OBJ and VTP when `chordal`
+/// is given.
+pub fn write_model_chordal(
+    path: &std::path::Path,
+    m: &crate::model::Model,
+    format: Option<&str>,
+    chordal: Option<f64>,
+) -> Result<(Vec<String>, Option<Chordal>), WriteError> {
     let mut warnings = Vec::new();
     let ext = match format {
         Some(f) => f.to_ascii_lowercase(),
@@ -255,11 +282,11 @@ pub fn write_model_as(
     if let Some(b) = &m.brep {
         if matches!(ext.as_str(), "stl" | "stl-binary" | "vtp" | "obj") {
             // Mesh formats get the faces triangulated inside their trims.
-            let (meshed, mut notes) = trimmed_mesh_model(m, b);
+            let (meshed, mut notes, reached) = trimmed_mesh_model(m, b, chordal);
             warnings.append(&mut notes);
             let mut rest = write_model_as(path, &meshed, Some(&ext))?;
             warnings.append(&mut rest);
-            return Ok(warnings);
+            return Ok((warnings, reached));
         }
         if !matches!(
             format_of(std::path::Path::new(&format!("x.{ext}"))),
@@ -270,6 +297,34 @@ pub fn write_model_as(
                 b.faces.len()
             ));
         }
+    } else if !m.surfaces.is_empty()
+        && (matches!(ext.as_str(), "stl" | "stl-binary")
+            || (chordal.is_some() && matches!(ext.as_str(), "vtp" | "obj")))
+    {
+        // Surfaces without a B-rep, to a mesh format that holds triangles only (or a chordal
+        // tolerance asked for): each surface triangulated whole.
+        let (mesh, reached) = crate::tessellate::surfaces::mesh_surfaces(m, chordal);
+        let trimmed = m
+            .surfaces
+            .iter()
+            .filter(|s| !s.trim_loops.is_empty())
+            .count();
+        if trimmed > 0 {
+            warnings.push(format!(
+                "{trimmed} surface(s) have trim loops, which this triangulation does not follow: written untrimmed"
+            ));
+        }
+        let mut triangulations = vec![mesh];
+        triangulations.extend(m.triangulations.iter().cloned());
+        let meshed = crate::model::Model {
+            unit: m.unit.clone(),
+            triangulations,
+            warnings: m.warnings.clone(),
+            ..Default::default()
+        };
+        let mut rest = write_model_as(path, &meshed, Some(&ext))?;
+        warnings.append(&mut rest);
+        return Ok((warnings, reached));
     }
     let name0 = path.display().to_string();
     if ext == "stl-binary" {
@@ -280,7 +335,7 @@ pub fn write_model_as(
         let bytes = stl::to_binary(t)
             .map_err(|(k, x)| WriteError::NotRepresentable(name0.clone(), k, x))?;
         write_atomic(path, bytes).map_err(|e| WriteError::Io(name0, e))?;
-        return Ok(warnings);
+        return Ok((warnings, None));
     }
     let for_format = std::path::PathBuf::from(format!("x.{ext}"));
     let path_fmt = for_format.as_path();
@@ -370,5 +425,5 @@ pub fn write_model_as(
         },
     };
     write_atomic(path, text).map_err(|e| WriteError::Io(name, e))?;
-    Ok(warnings)
+    Ok((warnings, None))
 }

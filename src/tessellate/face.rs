@@ -11,6 +11,8 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 /// The triangles of one face and its area.
 pub struct FaceMesh {
     pub triangles: Vec<[usize; 3]>,
+    /// The parameter points of each triangle's corners, in the order of `triangles`.
+    pub uv: Vec<[[f64; 2]; 3]>,
     /// `∫∫ |S_u × S_v| du dv` over the parameter triangles (3-point rule per triangle).
     pub area: f64,
 }
@@ -353,6 +355,7 @@ fn triangulate(
         }
     }
     let mut triangles = Vec::new();
+    let mut corners = Vec::new();
     let mut area = 0.0;
     for f in cdt.inner_faces() {
         if inside[f.fix().index()] != Some(true) {
@@ -375,16 +378,22 @@ fn triangulate(
         if va == vb || vb == vc || va == vc {
             continue;
         }
-        triangles.push(if same_sense {
-            [va, vb, vc]
+        if same_sense {
+            triangles.push([va, vb, vc]);
+            corners.push([pa, pb, pc]);
         } else {
-            [va, vc, vb]
-        });
+            triangles.push([va, vc, vb]);
+            corners.push([pa, pc, pb]);
+        }
     }
     if triangles.is_empty() {
         return Err(FaceError::Empty);
     }
-    Ok(FaceMesh { triangles, area })
+    Ok(FaceMesh {
+        triangles,
+        uv: corners,
+        area,
+    })
 }
 
 /// `|S_u × S_v|` at a parameter point (periodic parameters reduced, others clamped).

@@ -7,21 +7,26 @@
 //! an approximation for viewing and meshing, not a certified quantity: its chordal error is
 //! what the sampling gives (edge length `h`, at most π/12 of turn per segment).
 
+pub mod chordal;
 pub mod domain;
 pub mod face;
 pub mod region;
+pub mod surfaces;
 
 use crate::brep::{Brep, LoopKind};
+use crate::geom::dist;
 use crate::model::{Model, Triangulation};
 use domain::FaceSurface;
 
 /// Sampling parameters.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshParams {
     /// Target edge length as a fraction of the model's bounding-box diagonal.
     pub relative_edge: f64,
     /// Largest turn of a curve or iso-curve over one segment (radians).
     pub max_turn: f64,
+    /// Measure the mesh's chordal deviation ([`BrepMesh::deviation`], [`chordal`]).
+    pub measure: bool,
 }
 
 impl Default for MeshParams {
@@ -29,6 +34,7 @@ impl Default for MeshParams {
         MeshParams {
             relative_edge: 1.0 / 40.0,
             max_turn: std::f64::consts::PI / 12.0,
+            measure: false,
         }
     }
 }
@@ -40,6 +46,7 @@ impl MeshParams {
         MeshParams {
             relative_edge: 1.0 / 150.0,
             max_turn: std::f64::consts::PI / 60.0,
+            measure: false,
         }
     }
 }
@@ -51,6 +58,14 @@ pub struct BrepMesh {
     /// Per B-rep face: its triangles (a range of `triangulation.triangles`) and trimmed area,
     /// or why it has none.
     pub faces: Vec<Result<(std::ops::Range<usize>, f64), String>>,
+    /// The largest measured chordal deviation of the triangles from their faces and of the
+    /// edge segments from their curves (evidence: sampled, see [`chordal`]), when
+    /// [`MeshParams::measure`] asked for it.
+    pub deviation: Option<f64>,
+    /// The largest distance of an edge's mesh point from a face's surface (at the point's
+    /// projected parameters), when measured: edges that lie off their faces' surfaces (within
+    /// the file's tolerance) put this floor under [`BrepMesh::deviation`].
+    pub floor: Option<f64>,
 }
 
 impl BrepMesh {
@@ -204,6 +219,17 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         triangles: vec![],
     };
     let es = sample_edges(brep, h, params.max_turn, &mut t);
+    let mut deviation = params.measure.then(|| {
+        es.samples
+            .iter()
+            .zip(&es.halves)
+            .filter_map(|(s, hv)| {
+                let pts: Vec<[f64; 3]> = s.as_ref()?.iter().map(|x| x.1).collect();
+                Some(chordal::edge_deviation(&pts, hv))
+            })
+            .fold(0.0, f64::max)
+    });
+    let mut floor = params.measure.then_some(0.0);
     // Faces a shell uses reversed: their triangles turn the other way (the region is the
     // face's own).
     let reversed = reversed_in_shell(brep);
@@ -221,6 +247,13 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
                 continue;
             }
         };
+        if let Some(f) = floor.as_mut() {
+            // Edge samples off the face's surface (at their projected parameters): the mesh
+            // follows the edges, so no finer sampling brings the deviation below this.
+            for p in rings.iter().flat_map(|r| &r.points) {
+                *f = chordal::worst(*f, dist(&fs.eval(&p.uv), &t.vertices[p.vertex]));
+            }
+        }
         let first = t.triangles.len();
         let mut add = |p: [f64; 3]| {
             t.vertices.push(p);
@@ -236,6 +269,12 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
             &mut add,
         ) {
             Ok(m) => {
+                if let Some(d) = deviation.as_mut() {
+                    let v = &t.vertices;
+                    let corners = m.triangles.iter().map(|x| x.map(|i| v[i]));
+                    let e = chordal::face_deviation(corners, &m.uv, |q| fs.eval(q));
+                    *d = d.max(e);
+                }
                 let flip = reversed[fi];
                 t.triangles.extend(m.triangles.iter().map(|x| {
                     let x = x.map(|i| i as u32);
@@ -249,6 +288,8 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
     BrepMesh {
         triangulation: t,
         faces,
+        deviation,
+        floor,
     }
 }
 

@@ -1,0 +1,185 @@
+//! Whole (untrimmed) surfaces of a model without a B-rep, triangulated for mesh formats: each
+//! surface a grid whose lines include every knot (creases at knots stay grid lines), each
+//! knot span cut into equal cells (about [`FIRST_CELLS`] a direction, at least one a span),
+//! two triangles a cell, its vertices on the surface. With a chordal tolerance the cells of
+//! each surface are halved until its measured deviation
+//! ([`super::chordal::face_deviation`]: seven points per triangle, evidence) is at most the
+//! tolerance, while a direction keeps at most [`MAX_CELLS`] cells.
+
+use super::chordal::{Chordal, face_deviation};
+use super::{MeshParams, chordal::worst};
+use crate::model::{Model, Triangulation};
+
+/// Cells per direction of the first grid (as the OBJ and VTP writers sample surfaces).
+pub const FIRST_CELLS: usize = 16;
+/// Cells per direction at most.
+pub const MAX_CELLS: usize = 1024;
+
+/// Parameters of a grid along one direction: every distinct knot of the domain (so creases at
+/// knots of full multiplicity are grid lines), each span cut into `m` equal cells.
+fn lines(k: &[f64], lo: f64, hi: f64, m: usize) -> Vec<f64> {
+    let mut breaks: Vec<f64> = k.iter().copied().filter(|x| *x > lo && *x < hi).collect();
+    breaks.dedup();
+    breaks.insert(0, lo);
+    breaks.push(hi);
+    let mut out = vec![lo];
+    for w in breaks.windows(2) {
+        out.extend((1..=m).map(|i| w[0] + (w[1] - w[0]) * i as f64 / m as f64));
+    }
+    out
+}
+
+/// One surface's grid (cells per knot span `m`, see [`lines`]): its points appended to `t`,
+/// its triangles and the triangles' parameter corners.
+fn grid(
+    s: &crate::spline::NurbsSurface<f64, 3>,
+    m: [usize; 2],
+    t: &mut Triangulation,
+) -> (Vec<[u32; 3]>, Vec<[[f64; 2]; 3]>) {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    let us = lines(s.hom.ku.knots(), u0, u1, m[0]);
+    let vs = lines(s.hom.kv.knots(), v0, v1, m[1]);
+    let uv = |i: usize, j: usize| [us[i], vs[j]];
+    let base = t.vertices.len();
+    for &u in &us {
+        for &v in &vs {
+            t.vertices.push(s.eval(&u, &v));
+        }
+    }
+    let nv = vs.len();
+    let id = |i: usize, j: usize| (base + i * nv + j) as u32;
+    let (mut tris, mut corners) = (Vec::new(), Vec::new());
+    for i in 0..us.len() - 1 {
+        for j in 0..nv - 1 {
+            for c in [
+                [(i, j), (i + 1, j), (i + 1, j + 1)],
+                [(i, j), (i + 1, j + 1), (i, j + 1)],
+            ] {
+                let x = c.map(|(a, b)| id(a, b));
+                let p = x.map(|k| t.vertices[k as usize]);
+                // A cell at a pole (a collapsed border) has two corners at one point.
+                if p[0] == p[1] || p[1] == p[2] || p[0] == p[2] {
+                    continue;
+                }
+                tris.push(x);
+                corners.push(c.map(|(a, b)| uv(a, b)));
+            }
+        }
+    }
+    (tris, corners)
+}
+
+/// Knot spans of the domain in each direction.
+fn spans(s: &crate::spline::NurbsSurface<f64, 3>) -> [usize; 2] {
+    let (u0, u1, v0, v1) = s.hom.domain();
+    [
+        lines(s.hom.ku.knots(), u0, u1, 1).len() - 1,
+        lines(s.hom.kv.knots(), v0, v1, 1).len() - 1,
+    ]
+}
+
+/// Every surface of `model` triangulated (see the module comment); with `tol`, each surface's
+/// grid refined until its measured deviation is at most `tol`, and what was reached.
+pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<Chordal>) {
+    let mut t = Triangulation {
+        name: "surfaces".into(),
+        vertices: vec![],
+        triangles: vec![],
+    };
+    let (mut measured, mut finest, mut unmet) = (0.0_f64, FIRST_CELLS, None);
+    for surf in &model.surfaces {
+        let s = &surf.nurbs;
+        // About FIRST_CELLS cells a direction to start with, at least one per knot span.
+        let k = spans(s);
+        let mut m = k.map(|x| FIRST_CELLS.div_ceil(x).max(1));
+        loop {
+            let mark = t.vertices.len();
+            let (tris, corners) = grid(s, m, &mut t);
+            let Some(tol) = tol else {
+                t.triangles.extend(tris);
+                break;
+            };
+            let v = &t.vertices;
+            let d = face_deviation(
+                tris.iter().map(|x| x.map(|i| v[i as usize])),
+                &corners,
+                |q| s.eval(&q[0], &q[1]),
+            );
+            // The next grid would have twice the cells a direction.
+            let most = (0..2).any(|i| 2 * m[i] * k[i] > MAX_CELLS);
+            if d <= tol || most || d.is_infinite() {
+                if d > tol && unmet.is_none() {
+                    unmet = Some(if d.is_infinite() {
+                        format!("surface {}: a point is not finite", surf.name)
+                    } else {
+                        format!(
+                            "surface {}: {} × {} cells per knot span (the most) leave {d:.3e}",
+                            surf.name, m[0], m[1]
+                        )
+                    });
+                }
+                measured = worst(measured, d);
+                finest = finest.max(m[0] * k[0]).max(m[1] * k[1]);
+                t.triangles.extend(tris);
+                break;
+            }
+            t.vertices.truncate(mark);
+            m = m.map(|x| 2 * x);
+        }
+    }
+    let chordal = tol.map(|tol| Chordal {
+        tol,
+        measured,
+        rounds: (finest / FIRST_CELLS).max(1).ilog2() as usize + 1,
+        params: MeshParams {
+            measure: true,
+            ..MeshParams::default()
+        },
+        unmet,
+    });
+    (t, chordal)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::{Frame, sphere};
+
+    /// A unit sphere's grid, refined to 1e-4: every triangle point within 1.25e-4 of the sphere
+    /// (measured here at 66 barycentric points a triangle, by the distance from the centre).
+    #[test]
+    fn a_sphere_is_meshed_within_the_tolerance() {
+        let f = Frame {
+            o: [0.5, -1.0, 2.0],
+            x: [0.0, 1.0, 0.0],
+            y: [0.0, 0.0, 1.0],
+            z: [1.0, 0.0, 0.0],
+        };
+        let m = Model {
+            surfaces: vec![crate::model::Surface::new("s", sphere(&f, 1.0).unwrap())],
+            ..Model::default()
+        };
+        let (coarse, none) = mesh_surfaces(&m, None);
+        assert!(none.is_none());
+        let (t, c) = mesh_surfaces(&m, Some(1e-4));
+        let c = c.unwrap();
+        assert!(
+            c.unmet.is_none() && c.measured <= 1e-4 && c.rounds > 1,
+            "{c:?}"
+        );
+        assert!(t.triangles.len() > coarse.triangles.len());
+        let mut worst: f64 = 0.0;
+        for tri in &t.triangles {
+            let [a, b, d] = tri.map(|i| t.vertices[i as usize]);
+            for i in 0..=10 {
+                for j in 0..=10 - i {
+                    let (s, u) = (i as f64 / 10.0, j as f64 / 10.0);
+                    let p: [f64; 3] =
+                        std::array::from_fn(|k| (1.0 - s - u) * a[k] + s * b[k] + u * d[k]);
+                    worst = worst.max((crate::geom::dist(&p, &f.o) - 1.0).abs());
+                }
+            }
+        }
+        assert!(worst <= 1.25e-4, "{worst:e}");
+    }
+}

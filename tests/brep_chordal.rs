@@ -1,0 +1,162 @@
+//! `convert --chordal`: a B-rep triangulated until its measured chordal deviation is under a
+//! tolerance. The oracle is the construction: the face of
+//! `tests/data/constructed/cylinder-face-across-seam.step` lies on the cylinder of radius 2
+//! about the axis through (0.3, −0.2, 0.1) along the file's direction #2 (written so by
+//! `scripts/make_seam_faces.py`), so a mesh point's distance from the surface is its distance
+//! from the axis minus 2, computed here from the mesh alone.
+
+use std::path::Path;
+use std::process::Command;
+use vericad::tessellate::chordal::mesh_within;
+use vericad::tessellate::{MeshParams, mesh_brep};
+
+const FILE: &str = "tests/data/constructed/cylinder-face-across-seam.step";
+const ORIGIN: [f64; 3] = [0.3, -0.2, 0.1];
+const AXIS: [f64; 3] = [0.9496340890022226, -0.2692146190387181, 0.1603701527740016];
+const RADIUS: f64 = 2.0;
+
+fn path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(FILE)
+}
+
+/// `|distance from the axis − radius|` of a point.
+fn off_cylinder(p: &[f64; 3]) -> f64 {
+    let d = [p[0] - ORIGIN[0], p[1] - ORIGIN[1], p[2] - ORIGIN[2]];
+    let n2 = AXIS.iter().map(|a| a * a).sum::<f64>();
+    let along = (d[0] * AXIS[0] + d[1] * AXIS[1] + d[2] * AXIS[2]) / n2;
+    let r = [
+        d[0] - along * AXIS[0],
+        d[1] - along * AXIS[1],
+        d[2] - along * AXIS[2],
+    ];
+    ((r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() - RADIUS).abs()
+}
+
+/// Largest distance from the cylinder over every triangle, at 66 barycentric points each
+/// (a grid of step 1/10), corners included.
+fn dense_deviation(t: &vericad::model::Triangulation) -> f64 {
+    let mut worst: f64 = 0.0;
+    for tri in &t.triangles {
+        let [a, b, c] = tri.map(|i| t.vertices[i as usize]);
+        for i in 0..=10 {
+            for j in 0..=10 - i {
+                let (s, u) = (i as f64 / 10.0, j as f64 / 10.0);
+                let w = 1.0 - s - u;
+                let p: [f64; 3] = std::array::from_fn(|k| w * a[k] + s * b[k] + u * c[k]);
+                worst = worst.max(off_cylinder(&p));
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn refined_meshes_stay_within_the_chordal_tolerance_of_the_true_cylinder() {
+    let m = vericad::io::read_model(&path()).unwrap();
+    let b = m.brep.as_ref().unwrap();
+    // The default mesh is far coarser than the tolerances below: refinement has work to do.
+    let coarse = mesh_brep(
+        &m,
+        b,
+        &MeshParams {
+            measure: true,
+            ..MeshParams::default()
+        },
+    );
+    let d0 = dense_deviation(&coarse.triangulation);
+    assert!(d0 > 3e-4, "default mesh already within {d0:e}");
+    let mut triangles = coarse.triangulation.triangles.len();
+    for tol in [3e-4, 1e-4, 1e-5] {
+        let (mesh, c) = mesh_within(&m, b, tol);
+        assert!(c.unmet.is_none(), "{tol:e}: {:?}", c.unmet);
+        assert!(c.measured <= tol && c.rounds > 1, "{tol:e}: {c:?}");
+        assert!(mesh.faces.iter().all(|f| f.is_ok()));
+        let t = &mesh.triangulation;
+        assert!(t.triangles.len() > triangles, "{tol:e}: no finer");
+        triangles = t.triangles.len();
+        // Every vertex on the cylinder (edge samples and interior points alike).
+        let on = t.vertices.iter().map(off_cylinder).fold(0.0, f64::max);
+        assert!(on <= 1e-9, "{tol:e}: a vertex {on:e} off the cylinder");
+        // The independent measure over the whole triangles: the sampled figure is evidence,
+        // and on this surface it is close to the truth (inscribed triangles: the farthest
+        // point lies near the sampled ones).
+        let dense = dense_deviation(t);
+        assert!(
+            dense <= 1.25 * tol,
+            "{tol:e}: dense {dense:e}, measured {:e}",
+            c.measured
+        );
+        // Surface to mesh (measured) and mesh to surface (here) nearly agree on such
+        // triangles: the seven samples catch most of the deviation.
+        assert!(
+            c.measured >= 0.8 * dense,
+            "{tol:e}: measured {:e}, dense {dense:e}",
+            c.measured
+        );
+    }
+}
+
+fn vericad(args: &[&str]) -> (i32, String, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_vericad"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn convert_chordal_exit_codes() {
+    let dir = std::env::temp_dir().join(format!("vericad-chordal-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = path();
+    let input = input.to_str().unwrap();
+    let stl = dir.join("out.stl");
+    let stl = stl.to_str().unwrap();
+    let (code, out, err) = vericad(&["convert", input, stl, "--chordal", "1e-4"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("chordal deviation measured"), "{out}");
+    // The STL written holds the refined mesh: checked against the cylinder from its text.
+    let text = std::fs::read_to_string(stl).unwrap();
+    let verts: Vec<[f64; 3]> = text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("vertex "))
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    assert!(verts.len() >= 3 && verts.len() % 3 == 0);
+    let tri = vericad::model::Triangulation {
+        name: String::new(),
+        vertices: verts.clone(),
+        triangles: (0..verts.len() as u32 / 3)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect(),
+    };
+    let dense = dense_deviation(&tri);
+    assert!(dense <= 1.25e-4, "written STL {dense:e} off the cylinder");
+    // Not a positive finite length, or not a mesh format: bad input.
+    for bad in [["--chordal", "0"], ["--chordal", "nan"]] {
+        let (code, _, err) = vericad(&["convert", input, stl, bad[0], bad[1]]);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+    }
+    let step = dir.join("out.step");
+    let (code, _, err) = vericad(&[
+        "convert",
+        input,
+        step.to_str().unwrap(),
+        "--chordal",
+        "1e-4",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(!step.exists());
+    // A tolerance the sampling cannot reach: written, with exit 3 and the reason.
+    let (code, _, err) = vericad(&["convert", input, stl, "--chordal", "1e-13"]);
+    assert_eq!(code, 3, "{err}");
+    assert!(err.contains("not reached"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
