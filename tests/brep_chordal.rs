@@ -5,8 +5,10 @@
 //! `scripts/make_seam_faces.py`), so a mesh point's distance from the surface is its distance
 //! from the axis minus 2, computed here from the mesh alone.
 
+mod common;
+
+use common::mesh::{dense_max, vericad};
 use std::path::Path;
-use std::process::Command;
 use vericad::tessellate::chordal::mesh_within;
 use vericad::tessellate::{MeshParams, mesh_brep};
 
@@ -32,22 +34,9 @@ fn off_cylinder(p: &[f64; 3]) -> f64 {
     ((r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt() - RADIUS).abs()
 }
 
-/// Largest distance from the cylinder over every triangle, at 66 barycentric points each
-/// (a grid of step 1/10), corners included.
+/// Largest distance from the cylinder over every triangle ([`dense_max`]).
 fn dense_deviation(t: &vericad::model::Triangulation) -> f64 {
-    let mut worst: f64 = 0.0;
-    for tri in &t.triangles {
-        let [a, b, c] = tri.map(|i| t.vertices[i as usize]);
-        for i in 0..=10 {
-            for j in 0..=10 - i {
-                let (s, u) = (i as f64 / 10.0, j as f64 / 10.0);
-                let w = 1.0 - s - u;
-                let p: [f64; 3] = std::array::from_fn(|k| w * a[k] + s * b[k] + u * c[k]);
-                worst = worst.max(off_cylinder(&p));
-            }
-        }
-    }
-    worst
+    dense_max(t, off_cylinder)
 }
 
 #[test]
@@ -94,18 +83,6 @@ fn refined_meshes_stay_within_the_chordal_tolerance_of_the_true_cylinder() {
             c.measured
         );
     }
-}
-
-fn vericad(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_vericad"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
 }
 
 #[test]
@@ -159,4 +136,35 @@ fn convert_chordal_exit_codes() {
     assert_eq!(code, 3, "{err}");
     assert!(err.contains("not reached"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A model of surfaces without a B-rep: a unit sphere in a rotated frame, its grid refined to
+/// 1e-4 — every triangle within 1.25e-4 of the sphere (by the distance from the centre).
+#[test]
+fn a_sphere_without_a_brep_is_meshed_within_the_tolerance() {
+    use vericad::spline::construct::{Frame, sphere};
+    use vericad::tessellate::surfaces::mesh_surfaces;
+    let f = Frame {
+        o: [0.5, -1.0, 2.0],
+        x: [0.0, 1.0, 0.0],
+        y: [0.0, 0.0, 1.0],
+        z: [1.0, 0.0, 0.0],
+    };
+    let m = vericad::model::Model {
+        surfaces: vec![vericad::model::Surface::new("s", sphere(&f, 1.0).unwrap())],
+        ..Default::default()
+    };
+    let (coarse, none) = mesh_surfaces(&m, None);
+    assert!(none.is_none());
+    let on_sphere = |p: &[f64; 3]| (vericad::geom::dist(p, &f.o) - 1.0).abs();
+    assert!(dense_max(&coarse, on_sphere) > 1e-3);
+    let (t, c) = mesh_surfaces(&m, Some(1e-4));
+    let c = c.unwrap();
+    assert!(
+        c.unmet.is_none() && c.measured <= 1e-4 && c.rounds > 1,
+        "{c:?}"
+    );
+    assert!(t.triangles.len() > coarse.triangles.len());
+    let worst = dense_max(&t, on_sphere);
+    assert!(worst <= 1.25e-4, "{worst:e}");
 }

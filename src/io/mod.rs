@@ -226,15 +226,20 @@ fn trimmed_mesh_model(
             b.faces.len()
         ));
     }
-    let mut triangulations = vec![mesh.triangulation];
+    (with_mesh(m, mesh.triangulation), notes, reached)
+}
+
+/// The model a mesh format gets: `mesh`, then the model's own triangulations; its unit and
+/// warnings, no surfaces.
+fn with_mesh(m: &crate::model::Model, mesh: crate::model::Triangulation) -> crate::model::Model {
+    let mut triangulations = vec![mesh];
     triangulations.extend(m.triangulations.iter().cloned());
-    let out = crate::model::Model {
+    crate::model::Model {
         unit: m.unit.clone(),
         triangulations,
         warnings: m.warnings.clone(),
         ..Default::default()
-    };
-    (out, notes, reached)
+    }
 }
 
 pub use crate::tessellate::chordal::Chordal;
@@ -314,15 +319,7 @@ pub fn write_model_chordal(
                 "{trimmed} surface(s) have trim loops, which this triangulation does not follow: written untrimmed"
             ));
         }
-        let mut triangulations = vec![mesh];
-        triangulations.extend(m.triangulations.iter().cloned());
-        let meshed = crate::model::Model {
-            unit: m.unit.clone(),
-            triangulations,
-            warnings: m.warnings.clone(),
-            ..Default::default()
-        };
-        let mut rest = write_model_as(path, &meshed, Some(&ext))?;
+        let mut rest = write_model_as(path, &with_mesh(m, mesh), Some(&ext))?;
         warnings.append(&mut rest);
         return Ok((warnings, reached));
     }

@@ -4,6 +4,7 @@
 
 pub mod coons;
 pub mod curves;
+pub mod mesh;
 pub mod reparam;
 pub mod scan;
 pub mod shapes;
