@@ -106,7 +106,7 @@ fn convert_chordal_exit_codes() {
             [v[0], v[1], v[2]]
         })
         .collect();
-    assert!(verts.len() >= 3 && verts.len() % 3 == 0);
+    assert!(verts.len() >= 3 && verts.len().is_multiple_of(3));
     let tri = vericad::model::Triangulation {
         name: String::new(),
         vertices: verts.clone(),

@@ -5,7 +5,8 @@
 //! The loops' parameter points come from projecting the edge samples onto the face's surface
 //! (the files at hand carry no pcurves); seams and poles are handled in [`domain`]. This is
 //! an approximation for viewing and meshing, not a certified quantity: its chordal error is
-//! what the sampling gives (edge length `h`, at most π/12 of turn per segment).
+//! what the sampling gives (edge length `h`, at most π/12 of turn per segment), measured on
+//! request ([`MeshParams::measure`]) and brought under a tolerance by [`chordal::mesh_within`].
 
 pub mod chordal;
 pub mod domain;
