@@ -16,17 +16,8 @@ pub(super) fn run(
     if let Err(e) = memory.watch("convert") {
         return bad(e);
     }
-    let ext = format
-        .map(str::to_string)
-        .unwrap_or_else(|| {
-            output
-                .extension()
-                .and_then(|e| e.to_str())
-                .unwrap_or("")
-                .to_string()
-        })
-        .to_ascii_lowercase();
-    let mesh_format = matches!(ext.as_str(), "stl" | "stl-binary" | "vtp" | "obj");
+    let ext = crate::io::output_format(output, format);
+    let mesh_format = crate::io::is_mesh_format(&ext);
     if let Some(tol) = chordal {
         if !(tol > 0.0 && tol.is_finite()) {
             eprintln!("error: --chordal {tol}: the tolerance must be a positive finite length");

@@ -258,6 +258,20 @@ pub fn write_model_as(
     Ok(write_model_chordal(path, m, format, None)?.0)
 }
 
+/// The output format a write takes: `format` when given, else the path's extension; lower
+/// case (see [`FORMAT_NAMES`]).
+pub fn output_format(path: &std::path::Path, format: Option<&str>) -> String {
+    format
+        .or_else(|| path.extension().and_then(|e| e.to_str()))
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// Whether an output format ([`output_format`]) holds triangles only: STL, OBJ, VTP.
+pub fn is_mesh_format(ext: &str) -> bool {
+    matches!(ext, "stl" | "stl-binary" | "vtp" | "obj")
+}
+
 /// [`write_model_as`], a B-rep written to a mesh format (STL, OBJ, VTP) triangulated until
 /// its measured chordal deviation is at most `chordal` when given
 /// ([`crate::tessellate::chordal`]); with what that refinement reached (`None` when nothing
@@ -271,21 +285,14 @@ pub fn write_model_chordal(
     chordal: Option<f64>,
 ) -> Result<(Vec<String>, Option<Chordal>), WriteError> {
     let mut warnings = Vec::new();
-    let ext = match format {
-        Some(f) => f.to_ascii_lowercase(),
-        None => path
-            .extension()
-            .and_then(|e| e.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase(),
-    };
+    let ext = output_format(path, format);
     // `iges-faces`: IGES with a B-rep as trimmed surfaces rather than its B-rep entities.
     let (ext, brep_form) = match ext.as_str() {
         "iges-faces" => ("igs".to_string(), iges::write::BrepForm::TrimmedSurfaces),
         _ => (ext, iges::write::BrepForm::default()),
     };
     if let Some(b) = &m.brep {
-        if matches!(ext.as_str(), "stl" | "stl-binary" | "vtp" | "obj") {
+        if is_mesh_format(&ext) {
             // Mesh formats get the faces triangulated inside their trims.
             let (meshed, mut notes, reached) = trimmed_mesh_model(m, b, chordal);
             warnings.append(&mut notes);

@@ -23,7 +23,7 @@
 use super::{BrepMesh, MeshParams, mesh_brep};
 use crate::brep::Brep;
 use crate::geom::triangle::closest_point;
-use crate::geom::{Point, dist, dot};
+use crate::geom::{dist, dist_to_segment};
 use crate::model::Model;
 
 /// Rounds of refinement at most.
@@ -51,8 +51,6 @@ pub struct Chordal {
     pub measured: f64,
     /// Meshes made (1: the first was within `tol`).
     pub rounds: usize,
-    /// The sampling of the final mesh.
-    pub params: MeshParams,
     /// `None` when `measured ≤ tol`; otherwise why the refinement stopped.
     pub unmet: Option<String>,
 }
@@ -62,25 +60,13 @@ pub fn worst(d: f64, x: f64) -> f64 {
     if x.is_nan() { f64::INFINITY } else { d.max(x) }
 }
 
-/// Distance from `p` to the segment `ab`.
-fn segment_distance(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    let ab = b.sub(a);
-    let l2 = dot(&ab, &ab);
-    let t = if l2 > 0.0 {
-        (dot(&p.sub(a), &ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    dist(p, &a.add(&ab.scale(&t)))
-}
-
 /// Largest measured distance of an edge's curve from its chords: `samples` the mesh points
 /// along it, `halves[k]` the curve's point between samples `k` and `k + 1`.
 pub fn edge_deviation(samples: &[[f64; 3]], halves: &[[f64; 3]]) -> f64 {
     samples
         .windows(2)
         .zip(halves)
-        .fold(0.0, |d, (w, m)| worst(d, segment_distance(m, &w[0], &w[1])))
+        .fold(0.0, |d, (w, m)| worst(d, dist_to_segment(m, &w[0], &w[1])))
 }
 
 /// Largest measured distance of a face's surface from its triangles: `corners` the triangles'
@@ -147,7 +133,6 @@ pub fn mesh_within(model: &Model, brep: &Brep, tol: f64) -> (BrepMesh, Chordal) 
             tol,
             measured,
             rounds,
-            params,
             unmet,
         };
         return (mesh, chordal);

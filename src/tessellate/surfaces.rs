@@ -6,8 +6,7 @@
 //! ([`super::chordal::face_deviation`]: seven points per triangle, evidence) is at most the
 //! tolerance, while a direction keeps at most [`MAX_CELLS`] cells.
 
-use super::chordal::{Chordal, face_deviation};
-use super::{MeshParams, chordal::worst};
+use super::chordal::{Chordal, face_deviation, worst};
 use crate::model::{Model, Triangulation};
 
 /// Cells per direction of the first grid (as the OBJ and VTP writers sample surfaces).
@@ -86,12 +85,14 @@ pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<
         vertices: vec![],
         triangles: vec![],
     };
-    let (mut measured, mut finest, mut unmet) = (0.0_f64, FIRST_CELLS, None);
+    // The largest measure, the most halvings any surface needed, the first shortfall.
+    let (mut measured, mut halvings, mut unmet) = (0.0_f64, 0, None);
     for surf in &model.surfaces {
         let s = &surf.nurbs;
         // About FIRST_CELLS cells a direction to start with, at least one per knot span.
         let k = spans(s);
         let mut m = k.map(|x| FIRST_CELLS.div_ceil(x).max(1));
+        let mut halved = 0;
         loop {
             let mark = t.vertices.len();
             let (tris, corners) = grid(s, m, &mut t);
@@ -119,22 +120,19 @@ pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<
                     });
                 }
                 measured = worst(measured, d);
-                finest = finest.max(m[0] * k[0]).max(m[1] * k[1]);
+                halvings = halvings.max(halved);
                 t.triangles.extend(tris);
                 break;
             }
             t.vertices.truncate(mark);
             m = m.map(|x| 2 * x);
+            halved += 1;
         }
     }
     let chordal = tol.map(|tol| Chordal {
         tol,
         measured,
-        rounds: (finest / FIRST_CELLS).max(1).ilog2() as usize + 1,
-        params: MeshParams {
-            measure: true,
-            ..MeshParams::default()
-        },
+        rounds: halvings + 1,
         unmet,
     });
     (t, chordal)
