@@ -27,7 +27,9 @@ What it does
     OCCT: `GeomAPI_IntSS(S1, S2, 1e-7)`; each line sampled at 2000 parameters, closed when
       its first and last points are within 1e-6.
   Both outputs are measured against the construction: the distance of every output point
-  (vericad: every polyline vertex; OCCT: every sample) to the true curve — closed forms for
+  (vericad: every polyline vertex, with `--pieces cubic` 16 samples of every cubic piece,
+  rebuilt here from the points and tangent jets by the rule of docs/ssi.md; OCCT: every
+  sample) to the true curve — closed forms for
   circles and lines, a golden-section search on the curve's parametrization (torus sections,
   ellipses; parameter to 1e-12, float error far below the 1e-6 threshold) otherwise — and the
   fraction of each true component covered by output segments whose two ends are within 1e-6
@@ -38,7 +40,7 @@ What it does
 How to run
   pip install cadquery-ocp-novtk      # OCCT 8 Python bindings (module OCP)
   cargo build --release               # target/release/vericad, or set VERICAD=/path/to/vericad
-  python3 scripts/occt_ssi_cases.py [--repeat 3] [--only SUBSTRING]
+  python3 scripts/occt_ssi_cases.py [--repeat 3] [--only SUBSTRING] [--pieces chords|cubic]
   Prints one markdown table (the one in docs/ssi.md, "Against Open CASCADE on constructed
   cases") and a detail line per case on stderr."""
 import argparse, json, math, os, subprocess, sys, tempfile, time
@@ -274,6 +276,9 @@ def cases():
 
 # ---------------------------------------------------------------- measuring an output
 
+PIECES = "chords"
+
+
 def measure(polylines, truth, frame):
     """polylines: (points, closed). Returns (max distance to the truth, coverage per component)."""
     dmax = 0.0
@@ -308,6 +313,39 @@ def measure(polylines, truth, frame):
     return dmax, fr
 
 
+def hermite_samples(br, per_piece=16):
+    """The branch's cubic pieces (docs/ssi.md, "Cubic pieces"), rebuilt from `points`, `uv_a`,
+    `uv_b` and `tangents` by the documented rule, sampled at `per_piece` parameters each."""
+    pts, ua, ub, tg = br["points"], br["uv_a"], br["uv_b"], br["tangents"]
+    n = len(pts)
+    pk = [list(pts[i]) + list(ua[i]) + list(ub[i]) for i in range(n)]
+    jet = [None if j is None else list(j["t"]) + list(j["uv_a"]) + list(j["uv_b"]) for j in tg]
+    out = []
+    for i in range(n if br["closed"] else n - 1):
+        k = (i + 1) % n
+        p, q = pk[i], pk[k]
+        c = [q[d] - p[d] for d in range(3)]
+        length = math.sqrt(sum(x * x for x in c))
+        dp = dq = [q[d] - p[d] for d in range(7)]
+        if jet[i] is not None and jet[k] is not None:
+            def orient(j):
+                s = sum(j[d] * c[d] for d in range(3))
+                return [x * math.copysign(1.0, s) for x in j] if abs(s) > 0.5 * length else None
+            a, b = orient(jet[i]), orient(jet[k])
+            if a is not None and b is not None and length > 0:
+                cr = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+                phi = math.atan2(math.sqrt(sum(x * x for x in cr)), sum(a[d] * b[d] for d in range(3)))
+                m = length / math.cos(phi / 4) ** 2
+                dp, dq = [m * x for x in a], [m * x for x in b]
+        for s in range(per_piece):
+            t = s / per_piece
+            h = (2 * t**3 - 3 * t**2 + 1, t**3 - 2 * t**2 + t, -2 * t**3 + 3 * t**2, t**3 - t**2)
+            out.append(tuple(h[0] * p[d] + h[1] * dp[d] + h[2] * q[d] + h[3] * dq[d] for d in range(3)))
+    if not br["closed"]:
+        out.append(tuple(pts[-1]))
+    return out
+
+
 def run_vericad(a, b, tmp, repeat):
     pa, pb, out = (os.path.join(tmp, n) for n in ("a.json", "b.json", "r.json"))
     for p, s in ((pa, a), (pb, b)):
@@ -316,14 +354,16 @@ def run_vericad(a, b, tmp, repeat):
     best, proc = math.inf, None
     for _ in range(repeat):
         t = time.perf_counter()
-        proc = subprocess.run([EXE, "ssi", pa, pb, "--tol", str(TOL), "--threads", "1", "--out", out, "--json"],
-                              capture_output=True, text=True, timeout=900)
+        proc = subprocess.run([EXE, "ssi", pa, pb, "--tol", str(TOL), "--threads", "1", "--out", out, "--json",
+                               "--pieces", PIECES], capture_output=True, text=True, timeout=900)
         best = min(best, time.perf_counter() - t)
     if proc.returncode not in (0, 3):
         raise RuntimeError(f"vericad exit {proc.returncode}: {proc.stderr.strip()}")
     with open(out) as fh:
         r = json.load(fh)
-    branches = [(br["points"], br["closed"]) for pr in r["pairs"] for br in pr["branches"]]
+    # With cubic pieces the output curve is the pieces: measured at 16 samples per piece.
+    branches = [(hermite_samples(br) if br.get("tangents") else br["points"], br["closed"])
+                for pr in r["pairs"] for br in pr["branches"]]
     touch = sum(len(pr.get("touch_points", [])) for pr in r["pairs"])
     return best, r["summary"], proc.returncode, branches, touch
 
@@ -365,7 +405,11 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", default="")
     ap.add_argument("--keep", default="", help="directory to keep each case's a.json, b.json, r.json in")
+    ap.add_argument("--pieces", default="chords", choices=["chords", "cubic"],
+                    help="vericad's output pieces (cubic: measured on the pieces, 16 samples each)")
     args = ap.parse_args()
+    global PIECES
+    PIECES = args.pieces
     tmp = tempfile.mkdtemp()
     rows = []
     for name, truth_text, a, b, frame, truth in cases():

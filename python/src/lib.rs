@@ -312,7 +312,7 @@ fn threads_arg(threads: Option<i64>) -> Result<Option<usize>, Fault> {
 #[pyfunction]
 #[pyo3(signature = (file, file2=None, *, tol=1e-6, flatness=None, time_limit=None,
     untrimmed=false, threads=None, out=None, vtk=None, iges=None, fits=false, certify=true,
-    svg=None, view=String::from("-60,25")))]
+    svg=None, view=String::from("-60,25"), pieces=String::from("chords")))]
 #[allow(clippy::too_many_arguments)]
 fn ssi(
     py: Python<'_>,
@@ -330,17 +330,20 @@ fn ssi(
     certify: bool,
     svg: Option<PathBuf>,
     view: String,
+    pieces: String,
 ) -> PyResult<Py<PyAny>> {
     use vericad::ssi::job::{self, JobError};
     let v = detached(py, || {
         let threads = threads_arg(threads)?;
         let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
+        let pieces: vericad::ssi::Pieces = pieces.parse().map_err(bad)?;
         let prm = vericad::ssi::SsiParams {
             tol,
             flatness,
             time_limit,
             respect_trims: !untrimmed,
             certify,
+            pieces,
             ..Default::default()
         };
         let outputs = job::Outputs {

@@ -49,6 +49,26 @@ def test_ssi_without_certificates_equals_the_cli(cli):
     assert r.summary.dist_curve_max is None and r.summary.branches == 1
 
 
+def test_ssi_cubic_pieces_equal_the_cli(cli):
+    r = vericad.ssi(SPHERE, PLANE, pieces="cubic", threads=1)
+    c = cli_json(cli, "ssi", SPHERE, PLANE, "--pieces", "cubic")
+    strip = {"seconds"}
+    assert without(plain(r), strip) == without(c, strip)
+    assert r.certified and r.summary.branches == 1
+    (b,) = r.branches
+    chords = vericad.ssi(SPHERE, PLANE, threads=1).branches[0]
+    assert 10 * b.points.shape[0] < chords.points.shape[0]
+    # Every point has its tangent jet: a unit tangent of the unit circle z = 0 (horizontal,
+    # perpendicular to the radius).
+    assert len(b.tangents) == b.points.shape[0]
+    for p, j in zip(b.points, b.tangents):
+        t = np.asarray(j["t"])
+        assert abs(np.linalg.norm(t) - 1.0) < 1e-12 and abs(t[2]) < 1e-9
+        assert abs(t[0] * p[0] + t[1] * p[1]) < 1e-9
+    with pytest.raises(vericad.BadInputError, match="pieces"):
+        vericad.ssi(SPHERE, PLANE, pieces="splines")
+
+
 def test_ssi_outputs_and_fits(tmp_path):
     r = vericad.ssi(SPHERE, PLANE, vtk=tmp_path / "r.vtp", iges=tmp_path / "r.igs", fits=True)
     assert (tmp_path / "r.vtp").stat().st_size > 0

@@ -174,6 +174,12 @@ pub enum Command {
         /// `budget exhausted: memory ...` and exit code 1.
         #[arg(long, allow_hyphen_values = true)]
         max_memory: Option<f64>,
+        /// How each branch runs between its points: `chords` (split until every midpoint is
+        /// within tol of the curve) or `cubic` (Hermite pieces with the curve's tangents at
+        /// the ends, in `tangents`; split until each is within tol of the curve where
+        /// measured): far fewer points, each certified as with chords.
+        #[arg(long, default_value = "chords")]
+        pieces: crate::ssi::Pieces,
         /// Skip the certificates: no curve radius per point and no coverage (a faster preview;
         /// the run is reported as not certified, exit 3). Distances to each surface are still
         /// bounded.

@@ -139,6 +139,7 @@ pub fn run(cli: Cli) -> i32 {
             view,
             fits,
             max_memory,
+            pieces,
             no_certify,
             json,
         } => {
@@ -158,6 +159,7 @@ pub fn run(cli: Cli) -> i32 {
                 time_limit,
                 respect_trims: !untrimmed,
                 certify: !no_certify,
+                pieces,
                 control: crate::ssi::control::Control {
                     memory: memory.clone(),
                     ..Default::default()

@@ -4,8 +4,9 @@
 //! curve, [`super::krawczyk`]), classify the ends, fit splines.
 
 use super::certify::ExactSurface;
-use super::fit::fit_branch;
-use super::insert::{Inserter, newton_onto_curve, seams, small_angle};
+use super::fit::{fit_branch, fit_pieces};
+use super::hermite::{P7, branch_jets, branch_pieces};
+use super::insert::{Inserter, newton_onto_curve, packed, seams, small_angle};
 use super::krawczyk::Uncertified;
 use super::point_certs::{JET_RUN, certify_run};
 use super::refine::{
@@ -314,10 +315,19 @@ pub fn refine_branch(
     let points: Vec<[f64; 3]> = all.iter().map(|r| r.xyz).collect();
     let uv_a: Vec<[f64; 2]> = all.iter().map(|r| r.uv_a).collect();
     let uv_b: Vec<[f64; 2]> = all.iter().map(|r| r.uv_b).collect();
-    let fit = if prm.fits {
-        fit_branch(&points, &uv_a, &uv_b, b.closed)
+    let tangents = if prm.cubic {
+        let pk: Vec<P7> = all.iter().map(packed).collect();
+        branch_jets(g.sa, g.sb, &pk, b.closed)
     } else {
+        Vec::new()
+    };
+    let fit = if !prm.fits {
         None
+    } else if prm.cubic {
+        let pk: Vec<P7> = all.iter().map(packed).collect();
+        fit_pieces(&branch_pieces(&pk, &tangents, b.closed))
+    } else {
+        fit_branch(&points, &uv_a, &uv_b, b.closed)
     };
     let mut out = BranchOut {
         closed: b.closed,
@@ -333,6 +343,7 @@ pub fn refine_branch(
         inserted_points: ins.inserted,
         max_chord_deviation: ins.max_dev,
         fit,
+        tangents,
         dist_curve_max: None,
         curve_uncertified_points: 0,
         curve_radius: Vec::new(),

@@ -245,7 +245,11 @@ pub fn intersect_models(
         } else {
             format!("coverage: NOT certified: {uncertified} parameter-box pairs undecided (listed per pair with the reason): a branch could be missing there")
         },
-        "chord midpoints within tol of the true curve are measured after refinement (evidence, not proof)".to_string(),
+        if prm.pieces == super::Pieces::Cubic {
+            "cubic pieces (each rebuilt from its end points and their tangents in `tangents`): within tol of the true curve at a quarter, half and three quarters of each piece, measured after refinement (evidence, not proof); where a tangent is missing (surfaces meeting at a small angle) the piece is the chord, its midpoint measured; the coverage claim is about the pieces (each replaced by a polyline within a proven distance of it)".to_string()
+        } else {
+            "chord midpoints within tol of the true curve are measured after refinement (evidence, not proof)".to_string()
+        },
     ];
     if !singular.is_empty() {
         certificate.push(if singular_points_uncertified == 0 {

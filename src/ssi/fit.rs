@@ -139,6 +139,52 @@ pub fn fit_branch(
     })
 }
 
+/// The cubic pieces of a branch ([`super::hermite`]) as one cubic B-spline in 3D and in both
+/// domains: the pieces' own Bézier control points `p, p + H'(0)/3, q − H'(1)/3, q`, interior
+/// knots triple at the cumulative chord lengths (normalized to `[0, 1]`), so each span is
+/// exactly its piece (G1 at the points, C1 where consecutive pieces' derivatives match the
+/// chord lengths). Pieces shorter than 1e-12 of the whole are skipped. `None` without a piece.
+pub fn fit_pieces(pieces: &[super::hermite::Piece]) -> Option<FitOut> {
+    let len = |h: &super::hermite::Piece| {
+        (0..3)
+            .map(|k| (h.q[k] - h.p[k]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    // Pieces shorter than 1e-12 of the whole would make knots coincide once normalized.
+    let eps = 1e-12 * pieces.iter().map(len).sum::<f64>();
+    let used: Vec<&super::hermite::Piece> = pieces.iter().filter(|h| len(h) > eps).collect();
+    let first = used.first()?;
+    let mut ctrl: Vec<[f64; 7]> = vec![first.p];
+    let mut knots = vec![0.0; 4];
+    let mut pts = vec![first.p];
+    let mut t = 0.0;
+    for (i, h) in used.iter().enumerate() {
+        ctrl.push(std::array::from_fn(|k| h.p[k] + h.dp[k] / 3.0));
+        ctrl.push(std::array::from_fn(|k| h.q[k] - h.dq[k] / 3.0));
+        ctrl.push(h.q);
+        pts.push(h.q);
+        t += len(h);
+        if i + 1 < used.len() {
+            knots.extend([t; 3]);
+        }
+    }
+    knots.extend([t; 4]);
+    let kv = KnotVector::new(knots.iter().map(|k| k / t).collect(), 3, ctrl.len()).ok()?;
+    let c = BSplineCurve {
+        knots: kv,
+        control: ctrl,
+    };
+    Some(FitOut {
+        degree: 3,
+        knots: c.knots.knots().to_vec(),
+        control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
+        control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
+        control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
+        max_deviation_at_points: max_deviation_at_points(&c, &pts, 3),
+    })
+}
+
 /// Largest distance between the fit and the points at the fit's own knots (evidence of the
 /// interpolation property, measured, not assumed).
 pub fn max_deviation_at_points<const D: usize>(

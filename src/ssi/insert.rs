@@ -5,6 +5,7 @@
 //! (`newton_onto_curve`) before chords are measured against it.
 
 use super::branch::PairGeometry;
+use super::hermite::{P7, Piece, tangent_jet};
 use super::jet_cache::JetCache;
 use super::krawczyk::{CurveCertificate, Uncertified, certify_on_curve_cached, newton_on_curve};
 use super::refine::{
@@ -130,13 +131,16 @@ impl Inserter<'_, '_> {
             self.refused += 1;
             return;
         };
-        let dev = dist_to_segment(&m.xyz, &p.xyz, &q.xyz);
+        let (dev, power) = match self.hermite(p, q) {
+            Some(h) => (self.piece_deviation(&h, p, q, &m, seg), 4.0),
+            None => (dist_to_segment(&m.xyz, &p.xyz, &q.xyz), 2.0),
+        };
         if dev <= self.prm.tol || depth >= self.max_depth {
             self.max_dev = self.max_dev.max(dev);
             return;
         }
         let levels_left = self.max_depth - depth;
-        let k = pieces(dev, self.prm.tol, levels_left);
+        let k = pieces(dev, self.prm.tol, levels_left, power);
         if k > 2
             && let Some(xs) = self.split(p, q, &m, k, seg)
         {
@@ -155,6 +159,41 @@ impl Inserter<'_, '_> {
         out.push(m);
         self.inserted += 1;
         self.between(&m, q, seg, depth + 1, out);
+    }
+
+    /// With cubic pieces ([`RefineParams::cubic`]), the Hermite piece from `p` to `q` when both
+    /// have a tangent jet ([`hermite`]); `None`: the piece is the chord.
+    fn hermite(&self, p: &Refined, q: &Refined) -> Option<Piece> {
+        if !self.prm.cubic {
+            return None;
+        }
+        let jet = |r: &Refined| tangent_jet(self.g.sa, self.g.sb, &r.uv_a, &r.uv_b);
+        let (jp, jq) = (jet(p)?, jet(q)?);
+        Piece::cubic(&packed(p), &jp, &packed(q), &jq)
+    }
+
+    /// The largest distance from the piece `h` of the true curve points found from the chord
+    /// points at `1/4`, `1/2` (`m`) and `3/4` (a measurement; infinite where one is not found,
+    /// so that the piece is split).
+    fn piece_deviation(
+        &self,
+        h: &Piece,
+        p: &Refined,
+        q: &Refined,
+        m: &Refined,
+        seg: (u32, u32),
+    ) -> f64 {
+        let mut dev = h.dist(&m.xyz);
+        for f in [0.25, 0.75] {
+            if dev > self.prm.tol {
+                break;
+            }
+            dev = match self.refine_at(p, q, f, seg) {
+                Some(x) => dev.max(h.dist(&x.xyz)),
+                None => f64::INFINITY,
+            };
+        }
+        dev
     }
 
     /// The `k − 1` curve points found from the chord points at `j / k` (`m` at `1/2`), when
@@ -192,16 +231,24 @@ impl Inserter<'_, '_> {
     }
 }
 
-/// Number of pieces for a chord whose midpoint deviates by `dev > tol`: `⌈1.1 √(dev / tol)⌉`,
-/// at least 2, at most `2^levels_left` and 256.
-fn pieces(dev: f64, tol: f64, levels_left: u32) -> u32 {
-    let want = (1.1 * (dev / tol).sqrt()).ceil();
+/// Number of pieces for a chord whose midpoint deviates by `dev > tol`: `⌈1.1 (dev / tol)^(1/power)⌉`
+/// (`power` 2 for chords, 4 for Hermite pieces, whose error falls with the fourth power of
+/// the length), at least 2, at most `2^levels_left` and 256.
+fn pieces(dev: f64, tol: f64, levels_left: u32, power: f64) -> u32 {
+    let want = (1.1 * (dev / tol).powf(1.0 / power)).ceil();
     let cap = (1u64 << levels_left.min(8)) as f64;
     if want.is_finite() {
         want.clamp(2.0, cap.max(2.0)) as u32
     } else {
         2
     }
+}
+
+/// `r` packed as `(x, y, z, u_A, v_A, s_B, t_B)`.
+pub(super) fn packed(r: &Refined) -> P7 {
+    [
+        r.xyz[0], r.xyz[1], r.xyz[2], r.uv_a[0], r.uv_a[1], r.uv_b[0], r.uv_b[1],
+    ]
 }
 
 fn lerp(a: f64, b: f64, f: f64) -> f64 {
@@ -339,14 +386,14 @@ mod tests {
     /// Pieces: enough for `dev / k² ≤ tol / 1.21`, at least 2, capped by the depth left.
     #[test]
     fn pieces_follow_the_square_law() {
-        assert_eq!(pieces(1.01e-7, 1e-7, 12), 2);
-        assert_eq!(pieces(4e-7, 1e-7, 12), 3);
-        assert_eq!(pieces(5.1e-4, 1e-7, 12), 79);
-        assert_eq!(pieces(5.1e-4, 1e-7, 3), 8);
-        assert_eq!(pieces(1.0, 1e-300, 12), 256);
-        assert_eq!(pieces(f64::INFINITY, 1e-7, 12), 2);
+        assert_eq!(pieces(1.01e-7, 1e-7, 12, 2.0), 2);
+        assert_eq!(pieces(4e-7, 1e-7, 12, 2.0), 3);
+        assert_eq!(pieces(5.1e-4, 1e-7, 12, 2.0), 79);
+        assert_eq!(pieces(5.1e-4, 1e-7, 3, 2.0), 8);
+        assert_eq!(pieces(1.0, 1e-300, 12, 2.0), 256);
+        assert_eq!(pieces(f64::INFINITY, 1e-7, 12, 2.0), 2);
         for (dev, tol) in [(2e-7, 1e-7), (3.3e-3, 1e-6), (0.77, 1e-4)] {
-            let k = pieces(dev, tol, 12) as f64;
+            let k = pieces(dev, tol, 12, 2.0) as f64;
             assert!(dev / (k * k) <= tol / 1.21 * 1.0000001, "{dev} {tol} {k}");
             assert!(
                 dev / ((k - 1.0) * (k - 1.0)) > tol / 1.21,

@@ -172,6 +172,7 @@ pub fn intersect_meshes(
             refused_insertions: 0,
             max_chord_deviation: 0.0,
             fit: None,
+            tangents: Vec::new(),
             // The crossing points' bounds are distances to the exact crossing of the meshes,
             // a point of their intersection curve.
             dist_curve_max: Some(err),

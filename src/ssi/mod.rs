@@ -38,6 +38,7 @@ pub mod enclose2;
 pub mod fit;
 pub mod foreign;
 pub mod foreign_read;
+pub mod hermite;
 pub mod insert;
 pub mod jet_cache;
 pub mod job;
@@ -142,6 +143,33 @@ pub struct SsiParams {
     pub fits: bool,
     /// Cancel flag and progress from inside face pairs ([`control`]).
     pub control: control::Control,
+    /// How branches run between their points: chords (each midpoint within `tol` of the
+    /// curve) or cubic Hermite pieces with the curve's tangents at the ends ([`hermite`]),
+    /// each within `tol` of the curve where measured: far fewer points, each certified.
+    pub pieces: Pieces,
+}
+
+/// The pieces of a branch between consecutive points ([`SsiParams::pieces`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Pieces {
+    /// Straight chords, split until every midpoint is within `tol` of the curve.
+    #[default]
+    Chords,
+    /// Cubic Hermite pieces ([`hermite`]), split until each is within `tol` of the curve at
+    /// a quarter, half and three quarters of its parameter.
+    Cubic,
+}
+
+impl std::str::FromStr for Pieces {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Pieces, String> {
+        match s {
+            "chords" => Ok(Pieces::Chords),
+            "cubic" => Ok(Pieces::Cubic),
+            _ => Err(format!("pieces must be `chords` or `cubic`, not `{s}`")),
+        }
+    }
 }
 
 impl Default for SsiParams {
@@ -166,6 +194,7 @@ impl Default for SsiParams {
             certify: true,
             fits: true,
             control: control::Control::default(),
+            pieces: Pieces::Chords,
         }
     }
 }

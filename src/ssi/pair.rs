@@ -180,6 +180,7 @@ pub fn intersect_surfaces(
         tangent_sin: prm.refine_tangent_sin,
         curve_certificates: prm.certify,
         fits: prm.fits,
+        cubic: prm.pieces == crate::ssi::Pieces::Cubic,
     };
     let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
     ctl.report(ids, "tangential points", 0, 0);

@@ -49,6 +49,8 @@ pub struct RefineParams {
     pub curve_certificates: bool,
     /// Fit each branch's cubic ([`super::SsiParams::fits`]).
     pub fits: bool,
+    /// Cubic Hermite pieces between the points instead of chords ([`super::hermite`]).
+    pub cubic: bool,
 }
 
 type V3 = [f64; 3];

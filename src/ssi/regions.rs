@@ -226,6 +226,7 @@ fn region_run(
         tangent_sin: prm.refine_tangent_sin,
         curve_certificates: prm.certify,
         fits: prm.fits,
+        cubic: prm.pieces == crate::ssi::Pieces::Cubic,
     };
     let near = BranchNear::new(Vec::new(), prm.tol);
     let (mut branches, mut points) = (Vec::new(), Vec::new());

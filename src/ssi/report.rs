@@ -76,6 +76,12 @@ pub struct BranchOut {
     pub max_chord_deviation: f64,
     /// Cubic fits: control points and knots in 3D and in each domain (empty if too short).
     pub fit: Option<FitOut>,
+    /// With cubic pieces ([`super::Pieces::Cubic`]): per point, the tangent jet of the curve
+    /// (unit tangent and parameter rates, oriented along the branch), `None` where the
+    /// surfaces meet at too small an angle (the pieces at that point are chords); empty with
+    /// chords. Each piece is rebuilt from its ends' points and jets ([`super::hermite`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub tangents: Vec<Option<super::hermite::Jet>>,
 }
 
 /// A point of a branch not certified against the intersection curve, and why.
@@ -107,6 +113,20 @@ pub struct CurveCertOut {
 pub type CurveResult = Result<(f64, CurveCertKind), super::krawczyk::Uncertified>;
 
 impl BranchOut {
+    /// The points packed as `(x, y, z, u_A, v_A, s_B, t_B)` ([`super::hermite::P7`]).
+    pub fn packed(&self) -> Vec<super::hermite::P7> {
+        (0..self.points.len().min(self.uv_a.len()).min(self.uv_b.len()))
+            .map(|i| {
+                let (p, a, b) = (self.points[i], self.uv_a[i], self.uv_b[i]);
+                [p[0], p[1], p[2], a[0], a[1], b[0], b[1]]
+            })
+            .collect()
+    }
+    /// The pieces between consecutive points: chords, or with tangents the cubic pieces
+    /// ([`super::hermite::branch_pieces`]).
+    pub fn pieces(&self) -> Vec<super::hermite::Piece> {
+        super::hermite::branch_pieces(&self.packed(), &self.tangents, self.closed)
+    }
     /// Set the curve certificate from per-point Krawczyk results (radius, or why there is
     /// none).
     pub fn set_curve_radii(&mut self, radii: Vec<Result<f64, super::krawczyk::Uncertified>>) {

@@ -92,7 +92,11 @@ impl TrimRegion {
 }
 
 fn refit(b: &mut BranchOut) {
-    b.fit = fit_branch(&b.points, &b.uv_a, &b.uv_b, b.closed);
+    b.fit = if b.tangents.is_empty() {
+        fit_branch(&b.points, &b.uv_a, &b.uv_b, b.closed)
+    } else {
+        super::fit::fit_pieces(&b.pieces())
+    };
 }
 
 /// The parts of `b` inside both trimmed faces (`None`: untrimmed face).
@@ -146,6 +150,13 @@ pub fn clip_mask(b: &BranchOut, keep: &[bool]) -> Vec<BranchOut> {
                 points: r.iter().map(|&i| b.points[i]).collect(),
                 uv_a: r.iter().map(|&i| b.uv_a[i]).collect(),
                 uv_b: r.iter().map(|&i| b.uv_b[i]).collect(),
+                tangents: if b.tangents.is_empty() {
+                    Vec::new()
+                } else {
+                    r.iter()
+                        .map(|&i| b.tangents.get(i).copied().flatten())
+                        .collect()
+                },
                 ends: vec![end_kind(r[0], true), end_kind(r[r.len() - 1], false)],
                 fit: None,
                 ..b.clone()

@@ -166,11 +166,30 @@ pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 
     }
 }
 
-/// The output set: branch polylines and touching points.
-pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut], d: f64) -> Near {
+/// Chords per cubic piece at most, when the output set replaces it by a polyline.
+const MAX_PIECE_CHORDS: usize = 1 << 16;
+
+/// The output set: branch polylines and touching points, with its *slack*: the proven
+/// Hausdorff distance between the set and the output it stands for. Chords are themselves
+/// (slack 0); cubic pieces ([`super::hermite`]) are replaced by polylines within `d / 16`
+/// of them ([`super::hermite::densify`]; more only past [`MAX_PIECE_CHORDS`] chords), so a
+/// point within `d − slack` of the set is within `d` of the output.
+pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut], d: f64) -> (Near, f64) {
     let mut segs = Vec::new();
+    let mut slack = 0.0f64;
     for b in branches {
         let n = b.points.len();
+        if !b.tangents.is_empty() {
+            for h in b.pieces() {
+                let (pts, proven) = super::hermite::densify(&h, d / 16.0, MAX_PIECE_CHORDS);
+                slack = slack.max(proven);
+                segs.extend(pts.windows(2).map(|w| (w[0], w[1])));
+            }
+            if n == 1 {
+                segs.push((b.points[0], b.points[0]));
+            }
+            continue;
+        }
         for k in 0..n {
             if k + 1 < n {
                 segs.push((b.points[k], b.points[k + 1]));
@@ -184,7 +203,7 @@ pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut], d: f64) -
     for t in touches {
         segs.push((t.point, t.point));
     }
-    Near::with_chords(segs, d)
+    (Near::with_chords(segs, d - slack), slack)
 }
 
 /// A border curve of a piece (which surface, the fixed parameter and its value, the range of
@@ -226,8 +245,11 @@ pub fn coverage(
     prm: &CoverageParams,
 ) -> CoverageOut {
     let t0 = Instant::now();
-    let near = output_set(branches, touches, prm.match_distance);
-    let d = prm.match_distance;
+    let (near, slack) = output_set(branches, touches, prm.match_distance);
+    // Every nearness test is against the output set: within `d` of it is within
+    // `match_distance` of the output (a slack as large as the match distance leaves no
+    // distance to decide with: what is not free is then listed uncertified).
+    let d = prm.match_distance - slack;
     let tubes: Vec<(Near, f64)> = prm
         .tubes
         .iter()
@@ -237,7 +259,7 @@ pub fn coverage(
     let mut out = CoverageOut {
         boxes_a: ra.len(),
         boxes_b: rb.len(),
-        match_distance: d,
+        match_distance: prm.match_distance,
         ..Default::default()
     };
     let mut free_leaves: Vec<([f64; 4], [f64; 4], f64)> = Vec::new();

@@ -1,0 +1,182 @@
+//! Cubic pieces (`--pieces cubic`) against constructions whose curves are known in closed
+//! form: spheres and tori in rotated frames cut by planes (circles). Each piece is sampled
+//! at 64 parameters and measured against the true circles by their closed-form distance, not
+//! by the code under test; the points' certificates and the coverage claim are checked as
+//! for chords, and the point count against a chords run of the same case.
+
+mod common;
+use common::shapes::rotated;
+use vericad::spline::NurbsSurface;
+use vericad::spline::construct::{Frame, bilinear, cylinder, sphere, torus};
+use vericad::ssi::report::BranchOut;
+use vericad::ssi::{PairOut, Pieces, SsiParams, intersect_pair_canonical};
+
+fn run(a: &NurbsSurface<f64, 3>, b: &NurbsSurface<f64, 3>, tol: f64, pieces: Pieces) -> PairOut {
+    let prm = SsiParams {
+        tol,
+        pieces,
+        fits: true,
+        ..Default::default()
+    };
+    intersect_pair_canonical(a, b, (0, 1), &prm, None).expect("runs")
+}
+
+/// Distance from `q` to the circle of radius `rho` at height `h` about the frame's z axis.
+fn circle_dist(f: &Frame, rho: f64, h: f64, q: &[f64; 3]) -> f64 {
+    let d: [f64; 3] = std::array::from_fn(|k| q[k] - f.o[k]);
+    let dot = |u: &[f64; 3]| d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    let (a, b, c) = (dot(&f.x), dot(&f.y), dot(&f.z));
+    (((a * a + b * b).sqrt() - rho).powi(2) + (c - h).powi(2)).sqrt()
+}
+
+/// The plane through the frame's point at height `h`, normal to its z axis, `3 e` across.
+fn cut(f: &Frame, h: f64, e: f64) -> NurbsSurface<f64, 3> {
+    let at = |a: f64, b: f64| f.at(a, b, h);
+    bilinear(at(-e, -e), at(e, -e), at(-e, e), at(e, e)).unwrap()
+}
+
+/// Largest distance of the branch's pieces (64 samples each) to the nearest true circle,
+/// the fitted B-spline's value at its knots against the points, and whether the pieces
+/// include cubic ones.
+fn pieces_off(b: &BranchOut, dist: &dyn Fn(&[f64; 3]) -> f64) -> (f64, bool) {
+    let mut worst = 0.0f64;
+    let mut cubic = false;
+    for h in b.pieces() {
+        cubic |= h.dp != h.dq;
+        for i in 0..=64 {
+            let x = h.eval(i as f64 / 64.0);
+            worst = worst.max(dist(&[x[0], x[1], x[2]]));
+        }
+    }
+    (worst, cubic)
+}
+
+/// Spheres of radius 2 in rotated frames cut at heights from the equator to 1e-3 below the
+/// pole: one closed branch, every point certified within tol, every piece within tol of the
+/// circle at 64 samples, coverage certified, and far fewer points than chords need.
+#[test]
+fn sphere_sections_in_cubic_pieces() {
+    let tol = 1e-7;
+    for (seed, h) in [(1u64, 0.3), (2, 1.5), (3, -1.9), (4, 1.99), (5, 1.999)] {
+        let f = rotated(seed);
+        let s = sphere(&f, 2.0).unwrap();
+        let p = cut(&f, h, 3.0);
+        let rho = (4.0 - h * h).sqrt();
+        let r = run(&s, &p, tol, Pieces::Cubic);
+        let chords = run(&s, &p, tol, Pieces::Chords);
+        assert_eq!(r.branches.len(), 1, "seed {seed} h {h}");
+        let b = &r.branches[0];
+        assert!(b.closed, "seed {seed} h {h}");
+        assert_eq!(b.tangents.len(), b.points.len());
+        let radius = b.dist_curve_max.expect("every point certified");
+        assert!(radius <= tol, "seed {seed} h {h}: radius {radius}");
+        let (worst, cubic) = pieces_off(b, &|q| circle_dist(&f, rho, h, q));
+        assert!(cubic, "seed {seed} h {h}: no cubic piece");
+        assert!(
+            worst <= tol,
+            "seed {seed} h {h}: a piece {worst:.3e} from the circle"
+        );
+        let cov = r.coverage.as_ref().unwrap();
+        assert!(cov.no_missed_branches, "seed {seed} h {h}");
+        let n_chords: usize = chords.branches.iter().map(|b| b.points.len()).sum();
+        assert!(
+            10 * b.points.len() < n_chords,
+            "seed {seed} h {h}: {} points against {n_chords} with chords",
+            b.points.len()
+        );
+        // The fit is the pieces: through every point at its knots.
+        let fit = b.fit.as_ref().expect("a fit");
+        assert!(
+            fit.max_deviation_at_points <= 1e-12,
+            "{}",
+            fit.max_deviation_at_points
+        );
+        assert!(fit.control_points.len() <= 3 * b.points.len() + 1);
+        assert_eq!(fit.control_points.len() % 3, 1);
+    }
+}
+
+/// A torus (3, 1) in a rotated frame cut by z' = 0.5: two circles of radii 3 ± √0.75. Both
+/// found closed, in cubic pieces within tol of their circles.
+#[test]
+fn torus_sections_in_cubic_pieces() {
+    let tol = 1e-7;
+    for seed in [7u64, 8] {
+        let f = rotated(seed);
+        let t = torus(&f, 3.0, 1.0).unwrap();
+        let p = cut(&f, 0.5, 5.0);
+        let r = run(&t, &p, tol, Pieces::Cubic);
+        let w = 0.75f64.sqrt();
+        let dist =
+            |q: &[f64; 3]| circle_dist(&f, 3.0 - w, 0.5, q).min(circle_dist(&f, 3.0 + w, 0.5, q));
+        assert_eq!(r.branches.len(), 2, "seed {seed}");
+        for b in &r.branches {
+            assert!(b.closed);
+            assert!(b.dist_curve_max.is_some_and(|x| x <= tol));
+            let (worst, cubic) = pieces_off(b, &dist);
+            assert!(cubic && worst <= tol, "seed {seed}: {worst:.3e}");
+        }
+        assert!(r.coverage.as_ref().unwrap().no_missed_branches);
+    }
+}
+
+/// A cylinder of radius 1 in a rotated frame cut by the plane `z' = tan 60° · x'`: the
+/// ellipse `(cos a, sin a, tan 60° cos a)`, whose curvature varies, so the pieces between the
+/// traced points are split (points inserted) at tol 1e-9. Every piece within tol of the
+/// ellipse at 64 samples (distance by a scan of the ellipse's parameter refined by golden
+/// section, in the test).
+#[test]
+fn ellipses_need_inserted_pieces() {
+    let tol = 1e-9;
+    let k = 3f64.sqrt();
+    for seed in [9u64, 10] {
+        let f = rotated(seed);
+        let c = cylinder(&f, 1.0, -3.0, 3.0).unwrap();
+        let at = |a: f64, b: f64| f.at(a, b, k * a);
+        let p = bilinear(at(-1.5, -1.5), at(1.5, -1.5), at(-1.5, 1.5), at(1.5, 1.5)).unwrap();
+        let r = run(&c, &p, tol, Pieces::Cubic);
+        let local = |q: &[f64; 3]| {
+            let d: [f64; 3] = std::array::from_fn(|i| q[i] - f.o[i]);
+            let dot = |u: &[f64; 3]| d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+            [dot(&f.x), dot(&f.y), dot(&f.z)]
+        };
+        let dist = |q: &[f64; 3]| {
+            let x = local(q);
+            let e = |a: f64| {
+                ((a.cos() - x[0]).powi(2) + (a.sin() - x[1]).powi(2) + (k * a.cos() - x[2]).powi(2))
+                    .sqrt()
+            };
+            let n = 720;
+            let step = std::f64::consts::TAU / n as f64;
+            let a0 = (0..n)
+                .map(|i| i as f64 * step)
+                .min_by(|a, b| e(*a).total_cmp(&e(*b)))
+                .unwrap();
+            let (mut lo, mut hi) = (a0 - step, a0 + step);
+            let g = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..80 {
+                let (m1, m2) = (hi - g * (hi - lo), lo + g * (hi - lo));
+                if e(m1) < e(m2) {
+                    hi = m2;
+                } else {
+                    lo = m1;
+                }
+            }
+            e(0.5 * (lo + hi))
+        };
+        assert_eq!(r.branches.len(), 1, "seed {seed}");
+        let b = &r.branches[0];
+        assert!(
+            b.closed && b.inserted_points > 0,
+            "seed {seed}: {} inserted",
+            b.inserted_points
+        );
+        assert!(b.dist_curve_max.is_some_and(|x| x <= tol));
+        let (worst, cubic) = pieces_off(b, &dist);
+        assert!(
+            cubic && worst <= tol,
+            "seed {seed}: a piece {worst:.3e} from the ellipse"
+        );
+        assert!(r.coverage.as_ref().unwrap().no_missed_branches);
+    }
+}
