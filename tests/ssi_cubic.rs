@@ -180,3 +180,42 @@ fn ellipses_need_inserted_pieces() {
         assert!(r.coverage.as_ref().unwrap().no_missed_branches);
     }
 }
+
+/// The biquadratic dome `z = r² − ((x − ½)² + (y − ½)²)` over the unit square against the
+/// plane `z = 0`: the circle of radius r about `(½, ½, 0)`, where the surfaces meet at an
+/// angle whose tangent is `2r`. Few traced points (long pieces, where the midpoint alone can
+/// be within tol while the quarters are not): every piece within tol at 64 samples.
+#[test]
+fn dome_loops_in_cubic_pieces() {
+    let tol = 1e-7;
+    for radius in [0.2, 0.1, 0.05] {
+        let g = [0.25, -0.25, 0.25];
+        let xs = [0.0, 0.5, 1.0];
+        let mut pts = Vec::new();
+        for i in 0..3 {
+            for j in 0..3 {
+                pts.push([xs[i], xs[j], radius * radius - (g[i] + g[j])]);
+            }
+        }
+        let kn = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        let dome = NurbsSurface::new(kn.clone(), 2, kn, 2, 3, 3, pts, vec![1.0; 9]).unwrap();
+        let plane = bilinear(
+            [-5.0, -5.0, 0.0],
+            [5.0, -5.0, 0.0],
+            [-5.0, 5.0, 0.0],
+            [5.0, 5.0, 0.0],
+        )
+        .unwrap();
+        let r = run(&dome, &plane, tol, Pieces::Cubic);
+        let dist = |q: &[f64; 3]| {
+            let rho = ((q[0] - 0.5).powi(2) + (q[1] - 0.5).powi(2)).sqrt();
+            ((rho - radius).powi(2) + q[2] * q[2]).sqrt()
+        };
+        assert_eq!(r.branches.len(), 1, "r {radius}");
+        let b = &r.branches[0];
+        assert!(b.closed && b.dist_curve_max.is_some_and(|x| x <= tol));
+        let (worst, cubic) = pieces_off(b, &dist);
+        assert!(cubic && worst <= tol, "r {radius}: a piece {worst:.3e} from the circle");
+        assert!(r.coverage.as_ref().unwrap().no_missed_branches, "r {radius}");
+    }
+}
