@@ -215,7 +215,73 @@ fn dome_loops_in_cubic_pieces() {
         let b = &r.branches[0];
         assert!(b.closed && b.dist_curve_max.is_some_and(|x| x <= tol));
         let (worst, cubic) = pieces_off(b, &dist);
-        assert!(cubic && worst <= tol, "r {radius}: a piece {worst:.3e} from the circle");
-        assert!(r.coverage.as_ref().unwrap().no_missed_branches, "r {radius}");
+        assert!(
+            cubic && worst <= tol,
+            "r {radius}: a piece {worst:.3e} from the circle"
+        );
+        assert!(
+            r.coverage.as_ref().unwrap().no_missed_branches,
+            "r {radius}"
+        );
     }
+}
+
+/// `certify-ssi` reads a result in cubic pieces as its pieces (sampled within tol/4 of them)
+/// and checks every sample with its own global, certified closest points: the unit sphere's
+/// cut by z = 0 (tol 1e-5) is accepted (exit 0, every sample within tol of the curve). A result whose
+/// tangents are turned by 90° (pieces bulging off the circle) is rejected (exit 3).
+#[test]
+fn certify_ssi_checks_the_pieces() {
+    let dir = std::env::temp_dir().join(format!("vericad-cubic-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let sphere = data.join("public/gmsh-sphere_Rhino3D_default.igs");
+    let plane = data.join("faulty/plane-z0.step");
+    let (sphere, plane) = (sphere.to_str().unwrap(), plane.to_str().unwrap());
+    let out = dir.join("r.json");
+    let out_s = out.to_str().unwrap();
+    let (code, _, err) = common::mesh::vericad(&[
+        "ssi", sphere, plane, "--tol", "1e-5", "--pieces", "cubic", "--out", out_s,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let check = |curves: &str| {
+        common::mesh::vericad(&[
+            "certify-ssi",
+            sphere,
+            plane,
+            "--curves",
+            curves,
+            "--tol",
+            "1e-5",
+            "--json",
+        ])
+    };
+    let (code, text, err) = check(out_s);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let n = v["points_checked"].as_u64().unwrap();
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let pts = r["summary"]["points"].as_u64().unwrap();
+    assert!(n > 4 * pts, "{n} samples checked for {pts} points");
+    // Tangents turned about the z axis by 90°: still horizontal, now radial.
+    let mut bad = r.clone();
+    for b in bad["pairs"][0]["branches"].as_array_mut().unwrap() {
+        for j in b["tangents"].as_array_mut().unwrap() {
+            let t = j["t"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect::<Vec<_>>();
+            j["t"] = serde_json::json!([0.8 * t[1] + 0.6 * t[0], -0.8 * t[0] + 0.6 * t[1], t[2]]);
+        }
+    }
+    let bad_path = dir.join("bad.json");
+    std::fs::write(&bad_path, serde_json::to_string(&bad).unwrap()).unwrap();
+    let (code, text, _) = check(bad_path.to_str().unwrap());
+    assert_eq!(code, 3, "{text}");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(v["curves_off"].as_u64().unwrap() > 0, "{text}");
+    std::fs::remove_dir_all(&dir).ok();
 }

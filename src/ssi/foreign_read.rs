@@ -30,8 +30,10 @@ pub enum ForeignError {
 }
 
 /// The curves of a foreign result file: a model's space curves (sampled), or JSON
-/// polylines (`[[[x,y,z],...],...]`, `{"curves": [...]}`, or a vericad `ssi` result).
-pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, ForeignError> {
+/// polylines (`[[[x,y,z],...],...]`, `{"curves": [...]}`, or a vericad `ssi` result; a
+/// branch of one in cubic pieces is its pieces sampled within `tol / 4` of them,
+/// [`cubic_branch`]).
+pub fn read_foreign(path: &std::path::Path, tol: f64) -> Result<Vec<ForeignInput>, ForeignError> {
     let name = || path.display().to_string();
     let text = std::fs::read(path).map_err(|e| ForeignError::Io {
         path: name(),
@@ -42,7 +44,7 @@ pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, Foreign
             pairs
                 .iter()
                 .flat_map(|p| p["branches"].as_array().cloned().unwrap_or_default())
-                .map(|b| b["points"].clone())
+                .map(|b| cubic_branch(&b, tol).unwrap_or_else(|| b["points"].clone()))
                 .collect()
         } else if let Some(c) = v.get("curves").and_then(|c| c.as_array()) {
             c.clone()
@@ -96,6 +98,38 @@ pub fn read_foreign(path: &std::path::Path) -> Result<Vec<ForeignInput>, Foreign
         .collect())
 }
 
+/// A vericad branch in cubic pieces (with `tangents`) as the polyline of its pieces
+/// ([`super::hermite::densify`], within `tol / 4` of them, at most 4096 chords a piece);
+/// `None` for a branch of chords or one whose fields do not parse (then read as points).
+fn cubic_branch(b: &serde_json::Value, tol: f64) -> Option<serde_json::Value> {
+    use super::hermite::{Jet, branch_pieces, densify};
+    let tangents: Vec<Option<Jet>> = serde_json::from_value(b.get("tangents")?.clone()).ok()?;
+    let field = |k: &str| b.get(k).cloned();
+    let pts: Vec<[f64; 3]> = serde_json::from_value(field("points")?).ok()?;
+    let ua: Vec<[f64; 2]> = serde_json::from_value(field("uv_a")?).ok()?;
+    let ub: Vec<[f64; 2]> = serde_json::from_value(field("uv_b")?).ok()?;
+    let closed = b.get("closed")?.as_bool()?;
+    if tangents.len() != pts.len() || ua.len() != pts.len() || ub.len() != pts.len() {
+        return None;
+    }
+    let packed: Vec<[f64; 7]> = (0..pts.len())
+        .map(|i| {
+            let (p, a, c) = (pts[i], ua[i], ub[i]);
+            [p[0], p[1], p[2], a[0], a[1], c[0], c[1]]
+        })
+        .collect();
+    let mut out: Vec<[f64; 3]> = Vec::new();
+    for h in branch_pieces(&packed, &tangents, closed) {
+        let (poly, _) = densify(&h, 0.25 * tol, 4096);
+        let skip = usize::from(!out.is_empty());
+        out.extend(poly.into_iter().skip(skip));
+    }
+    if pts.len() == 1 {
+        out.push(pts[0]);
+    }
+    serde_json::to_value(out).ok()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,13 +141,13 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let f = dir.join("c.json");
         std::fs::write(&f, r#"{"curves": [[[0, 0, 0], [1, 0, 0]], []]}"#).unwrap();
-        let e = read_foreign(&f).unwrap_err();
+        let e = read_foreign(&f, 1e-6).unwrap_err();
         assert_eq!(
             e.to_string(),
             format!("{}: curve 1: no points", f.display())
         );
         std::fs::write(&f, r#"{"curves": [[[0, 0]]]}"#).unwrap();
-        let e = read_foreign(&f).unwrap_err();
+        let e = read_foreign(&f, 1e-6).unwrap_err();
         assert!(matches!(e, ForeignError::NotPoints { index: 0, .. }), "{e}");
         assert!(
             e.to_string().starts_with(&format!(
@@ -124,7 +158,7 @@ mod tests {
         );
         let missing = dir.join("missing.json");
         assert!(matches!(
-            read_foreign(&missing),
+            read_foreign(&missing, 1e-6),
             Err(ForeignError::Io { .. })
         ));
         std::fs::remove_dir_all(&dir).unwrap();

@@ -295,7 +295,7 @@ pub fn run_certify(
         Some(f) => Some(read_in_range(f)?),
         None => None,
     };
-    let foreign = super::foreign::read_foreign(curves)?;
+    let foreign = super::foreign::read_foreign(curves, prm.tol)?;
     check_writable([json_out])?;
     let t0 = Instant::now();
     // The check compares points; no fit is output.
