@@ -76,6 +76,10 @@ fn sphere_sections_in_cubic_pieces() {
             worst <= tol,
             "seed {seed} h {h}: a piece {worst:.3e} from the circle"
         );
+        // The drawn polyline (VTK, picture): the pieces' samples, on the circle.
+        let drawn = b.drawn(16);
+        assert!(drawn.len() > 10 * b.points.len() && drawn[0] == drawn[drawn.len() - 1]);
+        assert!(drawn.iter().all(|x| circle_dist(&f, rho, h, x) <= tol));
         let cov = r.coverage.as_ref().unwrap();
         assert!(cov.no_missed_branches, "seed {seed} h {h}");
         let n_chords: usize = chords.branches.iter().map(|b| b.points.len()).sum();

@@ -113,11 +113,9 @@ pub fn to_vtp(r: &SsiResult, a: &Model, b: Option<&Model>) -> String {
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (k, pair) in r.pairs.iter().enumerate() {
         for (j, br) in pair.branches.iter().enumerate() {
-            let mut pts = br.points.clone();
-            if br.closed && !pts.is_empty() {
-                pts.push(pts[0]);
-            }
-            p.add_polyline(&pts);
+            // Cubic pieces drawn at 16 samples each (the points alone would be a coarse
+            // polygon).
+            p.add_polyline(&br.drawn(16));
             pair_id.push(k as f64);
             branch_id.push(j as f64);
             closed.push(br.closed as u8 as f64);

@@ -86,6 +86,12 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
         }
         // Runs of segments of one status (a segment takes the worse of its ends).
         let segs = if br.closed { n } else { n - 1 };
+        // Cubic pieces are drawn through 16 samples each.
+        let pieces = if br.tangents.is_empty() {
+            Vec::new()
+        } else {
+            br.pieces()
+        };
         let mut run: Vec<[f64; 3]> = Vec::new();
         let mut run_status = usize::MAX;
         for k in 0..segs {
@@ -99,6 +105,12 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
                 }
                 run = vec![br.points[i]];
                 run_status = sg;
+            }
+            if let Some(h) = pieces.get(k).filter(|h| h.dp != h.dq) {
+                run.extend((1..16).map(|t| {
+                    let x = h.eval(t as f64 / 16.0);
+                    [x[0], x[1], x[2]]
+                }));
             }
             run.push(br.points[j]);
         }

@@ -127,6 +127,33 @@ impl BranchOut {
     pub fn pieces(&self) -> Vec<super::hermite::Piece> {
         super::hermite::branch_pieces(&self.packed(), &self.tangents, self.closed)
     }
+    /// The branch as a polyline for drawing: the points, with `per_piece − 1` samples of each
+    /// cubic piece between them (equally spaced in its parameter; none for chords), the
+    /// first point repeated at the end of a closed branch.
+    pub fn drawn(&self, per_piece: usize) -> Vec<[f64; 3]> {
+        let n = self.points.len();
+        let mut out = Vec::with_capacity(n * per_piece.max(1) + 1);
+        if n == 0 {
+            return out;
+        }
+        out.push(self.points[0]);
+        let pieces = if self.tangents.is_empty() {
+            Vec::new()
+        } else {
+            self.pieces()
+        };
+        let spans = if self.closed { n } else { n - 1 };
+        for k in 0..spans {
+            if let Some(h) = pieces.get(k).filter(|h| h.dp != h.dq) {
+                for i in 1..per_piece {
+                    let x = h.eval(i as f64 / per_piece as f64);
+                    out.push([x[0], x[1], x[2]]);
+                }
+            }
+            out.push(self.points[(k + 1) % n]);
+        }
+        out
+    }
     /// Set the curve certificate from per-point Krawczyk results (radius, or why there is
     /// none).
     pub fn set_curve_radii(&mut self, radii: Vec<Result<f64, super::krawczyk::Uncertified>>) {
