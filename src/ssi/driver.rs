@@ -111,6 +111,12 @@ pub fn intersect_models(
                     tubes = faces.as_ref().and_then(|f| f.tubes_for(i, j));
                     if outside.is_some() || tubes.is_some() {
                         let mut p = prm.clone();
+                        // Trimmed faces: branches are cut at their last point inside, which
+                        // with cubic pieces could leave a whole piece short of the trim
+                        // boundary; such pairs are output in chords.
+                        if outside.is_some() {
+                            p.pieces = super::Pieces::Chords;
+                        }
                         p.coverage_outside = outside;
                         p.shared_tubes = tubes.clone();
                         pair_canonical(x, y, (i, j), &p, deadline)
@@ -246,7 +252,7 @@ pub fn intersect_models(
             format!("coverage: NOT certified: {uncertified} parameter-box pairs undecided (listed per pair with the reason): a branch could be missing there")
         },
         if prm.pieces == super::Pieces::Cubic {
-            "cubic pieces (each rebuilt from its end points and their tangents in `tangents`): within tol of the true curve at a quarter, half and three quarters of each piece, measured after refinement (evidence, not proof); where a tangent is missing (surfaces meeting at a small angle) the piece is the chord, its midpoint measured; the coverage claim is about the pieces (each replaced by a polyline within a proven distance of it)".to_string()
+            "cubic pieces (each rebuilt from its end points and their tangents in `tangents`): within tol of the true curve at a quarter, half and three quarters of each piece, measured after refinement (evidence, not proof); where a tangent is missing (surfaces meeting at a small angle) the piece is the chord, its midpoint measured; pairs of trimmed faces are output in chords (no `tangents`); the coverage claim is about the pieces (each replaced by a polyline within a proven distance of it)".to_string()
         } else {
             "chord midpoints within tol of the true curve are measured after refinement (evidence, not proof)".to_string()
         },
