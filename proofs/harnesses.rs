@@ -14,6 +14,7 @@ mod common;
 mod cones;
 mod coverage;
 mod curve_on_surface;
+mod hermite;
 mod hull;
 mod interval;
 mod sign_change;
