@@ -72,7 +72,8 @@ pub struct BranchOut {
     /// Chord midpoints whose refinement broke down or jumped away (chord kept as is).
     pub refused_insertions: usize,
     /// Largest measured deviation of a segment midpoint from the refined true curve point
-    /// after insertion (evidence; 0 in mesh mode).
+    /// after insertion (with cubic pieces: of the curve points found from each piece at a
+    /// quarter, half and three quarters, from the piece); evidence; 0 in mesh mode.
     pub max_chord_deviation: f64,
     /// Cubic fits: control points and knots in 3D and in each domain (empty if too short).
     pub fit: Option<FitOut>,
