@@ -32,7 +32,7 @@ pub enum ForeignError {
 /// The curves of a foreign result file: a model's space curves (sampled), or JSON
 /// polylines (`[[[x,y,z],...],...]`, `{"curves": [...]}`, or a vericad `ssi` result; a
 /// branch of one in cubic pieces is its pieces sampled within `tol / 4` of them,
-/// [`cubic_branch`]).
+/// `cubic_branch`).
 pub fn read_foreign(path: &std::path::Path, tol: f64) -> Result<Vec<ForeignInput>, ForeignError> {
     let name = || path.display().to_string();
     let text = std::fs::read(path).map_err(|e| ForeignError::Io {
