@@ -136,7 +136,13 @@ impl Inserter<'_, '_> {
             None => (dist_to_segment(&m.xyz, &p.xyz, &q.xyz), 2.0),
         };
         if dev <= self.prm.tol || depth >= self.max_depth {
-            self.max_dev = self.max_dev.max(dev);
+            if dev.is_finite() {
+                self.max_dev = self.max_dev.max(dev);
+            } else {
+                // A piece whose quarter points could not be found, at the depth limit: kept
+                // unmeasured, as a chord whose midpoint cannot be found.
+                self.refused += 1;
+            }
             return;
         }
         let levels_left = self.max_depth - depth;
@@ -392,6 +398,9 @@ mod tests {
         assert_eq!(pieces(5.1e-4, 1e-7, 3, 2.0), 8);
         assert_eq!(pieces(1.0, 1e-300, 12, 2.0), 256);
         assert_eq!(pieces(f64::INFINITY, 1e-7, 12, 2.0), 2);
+        // Hermite pieces: the fourth-power law (16 = 2⁴: ⌈1.1 · 2⌉).
+        assert_eq!(pieces(1.6e-6, 1e-7, 12, 4.0), 3);
+        assert_eq!(pieces(1e-7 * 1e4, 1e-7, 12, 4.0), 11);
         for (dev, tol) in [(2e-7, 1e-7), (3.3e-3, 1e-6), (0.77, 1e-4)] {
             let k = pieces(dev, tol, 12, 2.0) as f64;
             assert!(dev / (k * k) <= tol / 1.21 * 1.0000001, "{dev} {tol} {k}");

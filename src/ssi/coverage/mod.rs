@@ -203,7 +203,7 @@ pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut], d: f64) -
     for t in touches {
         segs.push((t.point, t.point));
     }
-    (Near::with_chords(segs, d - slack), slack)
+    (Near::with_chords(segs, (d - slack).max(0.0)), slack)
 }
 
 /// A border curve of a piece (which surface, the fixed parameter and its value, the range of
@@ -249,7 +249,7 @@ pub fn coverage(
     // Every nearness test is against the output set: within `d` of it is within
     // `match_distance` of the output (a slack as large as the match distance leaves no
     // distance to decide with: what is not free is then listed uncertified).
-    let d = prm.match_distance - slack;
+    let d = (prm.match_distance - slack).max(0.0);
     let tubes: Vec<(Near, f64)> = prm
         .tubes
         .iter()
