@@ -289,3 +289,48 @@ fn certify_ssi_checks_the_pieces() {
     assert!(v["curves_off"].as_u64().unwrap() > 0, "{text}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// No two consecutive output points coincide (traced points on both sides of a knot line or
+/// mesh vertex refine to one curve point and are merged), with chords and with cubic pieces:
+/// planes crossing at 0.1 rad in a rotated frame (a straight segment, many mesh vertices on
+/// it) and a rotated sphere cut at h = 1.5.
+#[test]
+fn no_repeated_points() {
+    let f = rotated(3);
+    let at = |x: f64, y: f64, z: f64| f.at(x, y, z);
+    let a = bilinear(
+        at(-1.0, -1.0, 0.0),
+        at(1.0, -1.0, 0.0),
+        at(-1.0, 1.0, 0.0),
+        at(1.0, 1.0, 0.0),
+    )
+    .unwrap();
+    let t = 0.1f64.tan();
+    let b = bilinear(
+        at(-0.9, -1.2, -0.9 * t),
+        at(0.9, -1.2, 0.9 * t),
+        at(-0.9, 1.2, -0.9 * t),
+        at(0.9, 1.2, 0.9 * t),
+    )
+    .unwrap();
+    let s = sphere(&f, 2.0).unwrap();
+    let p = cut(&f, 1.5, 3.0);
+    for (x, y) in [(&a, &b), (&s, &p)] {
+        for pieces in [Pieces::Chords, Pieces::Cubic] {
+            let r = run(x, y, 1e-7, pieces);
+            assert!(!r.branches.is_empty());
+            for br in &r.branches {
+                let n = br.points.len();
+                let spans = if br.closed { n } else { n - 1 };
+                for k in 0..spans {
+                    let (u, v) = (br.points[k], br.points[(k + 1) % n]);
+                    assert!(
+                        u != v,
+                        "{pieces:?}: points {k} and {} coincide at {u:?}",
+                        (k + 1) % n
+                    );
+                }
+            }
+        }
+    }
+}

@@ -203,11 +203,14 @@ def ssi(
     certify: bool = True,
     svg: Optional[PathLike] = None,
     view: str = "-60,25",
+    pieces: str = "chords",
 ) -> SsiResult:
     """Intersect surfaces (``vericad ssi``): all face pairs of ``file``, or the faces of
     ``file`` against those of ``file2``. ``certify=False`` skips the curve radii and the
     coverage (``--no-certify``: faster, reported as not certified). ``svg`` writes a picture
-    seen from ``view`` (``"AZIMUTH,ELEVATION"`` in degrees)."""
+    seen from ``view`` (``"AZIMUTH,ELEVATION"`` in degrees). ``pieces="cubic"``
+    (``--pieces cubic``): branches as cubic Hermite pieces between far fewer certified points,
+    each point's tangent jet in ``tangents``."""
     return SsiResult(
         _vericad.ssi(
             os.fspath(file),
@@ -224,6 +227,7 @@ def ssi(
             certify=certify,
             svg=_p(svg),
             view=view,
+            pieces=pieces,
         )
     )
 

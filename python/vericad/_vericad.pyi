@@ -28,6 +28,7 @@ def ssi(
     certify: bool = True,
     svg: Optional[str] = None,
     view: str = "-60,25",
+    pieces: str = "chords",
 ) -> Dict[str, Any]: ...
 def certify_ssi(
     a: str,

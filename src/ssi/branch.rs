@@ -125,6 +125,42 @@ fn border_line(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> Option<(usize, f64)
     }
 }
 
+/// Indices of the refined points kept: a point that coincides with the one kept before it
+/// (within `4 ε` of the larger coordinate: traced points on either side of a knot line or a
+/// mesh vertex refine to one curve point) is dropped, so the output has no segment of zero
+/// length; the ends of an open branch are kept (the last replaces a coincident one before
+/// it), and a closed branch does not end on its first point.
+fn distinct(pts: &[Refined], closed: bool) -> Vec<usize> {
+    let same = |a: &Refined, b: &Refined| {
+        let scale = a
+            .xyz
+            .iter()
+            .chain(&b.xyz)
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        dist(&a.xyz, &b.xyz) <= 4.0 * f64::EPSILON * scale
+    };
+    let n = pts.len();
+    let mut kept: Vec<usize> = Vec::with_capacity(n);
+    for k in 0..n {
+        match kept.last() {
+            Some(&l) if same(&pts[l], &pts[k]) => {
+                if !closed && k == n - 1 && kept.len() > 1 {
+                    kept.pop();
+                    kept.push(k);
+                }
+            }
+            _ => kept.push(k),
+        }
+    }
+    if !closed && kept.len() == 1 && n > 1 {
+        kept.push(n - 1);
+    }
+    while closed && kept.len() > 1 && same(&pts[kept[kept.len() - 1]], &pts[kept[0]]) {
+        kept.pop();
+    }
+    kept
+}
+
 fn border_edge(f: Feature, m: &SurfaceMesh, d: &[f64; 4]) -> bool {
     border_line(f, m, d).is_some()
 }
@@ -227,15 +263,17 @@ pub fn refine_branch(
         seam_b: seams(g.sb),
     };
     let mut all: Vec<Refined> = Vec::with_capacity(refined.len() * 2);
-    let n = refined.len();
+    let kept = distinct(&refined, b.closed);
+    let n = kept.len();
     let spans = if b.closed { n } else { n - 1 };
-    for k in 0..n {
-        if check(k, n) {
+    for j in 0..n {
+        if check(j, n) {
             return None;
         }
+        let k = kept[j];
         all.push(refined[k]);
-        if k < spans {
-            let q = refined[(k + 1) % n];
+        if j < spans {
+            let q = refined[kept[(j + 1) % n]];
             ins.between(&refined[k], &q, seg_of(k), 0, &mut all);
         }
     }

@@ -61,9 +61,15 @@ impl std::fmt::Display for SsiResult {
             for (j, b) in p.branches.iter().enumerate() {
                 writeln!(
                     f,
-                    "    branch {j}: {}, {} points, proven dist {:.2e} / {:.2e}, to the curve {}, ends: {}",
+                    "    branch {j}: {}, {} points{}, proven dist {:.2e} / {:.2e}, to the curve {}, ends: {}",
                     if b.closed { "closed" } else { "open" },
                     b.points.len(),
+                    if b.tangents.is_empty() {
+                        String::new()
+                    } else {
+                        let cubic = b.pieces().iter().filter(|h| h.dp != h.dq).count();
+                        format!(" (cubic pieces: {cubic} cubic, the rest chords)")
+                    },
                     b.dist_a_max,
                     b.dist_b_max,
                     match (b.dist_curve_max, b.curve_cert.len()) {
