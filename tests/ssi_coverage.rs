@@ -5,7 +5,7 @@
 //! absent from the output.
 
 mod common;
-use common::shapes::{frame_of, rotated};
+use common::shapes::{dome, frame_of, rotated, square};
 use vericad::spline::NurbsSurface;
 use vericad::spline::construct::{bilinear, sphere};
 use vericad::ssi::coverage::{CoverageParams, coverage};
@@ -14,27 +14,8 @@ use vericad::ssi::{PairOut, SsiParams, intersect_pair_canonical};
 
 /// Biquadratic dome `z = c − k((x−½)² + (y−½)²)` over the unit square: it meets `z = 0` in
 /// the circle of radius `√(c/k)` about `(½, ½, 0)`.
-fn dome(c: f64, k: f64) -> NurbsSurface<f64, 3> {
-    let g = [0.25, -0.25, 0.25]; // Bernstein coefficients of (x − ½)² on [0, 1]
-    let xs = [0.0, 0.5, 1.0];
-    let mut pts = Vec::new();
-    for i in 0..3 {
-        for j in 0..3 {
-            pts.push([xs[i], xs[j], c - k * (g[i] + g[j])]);
-        }
-    }
-    let kn = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
-    NurbsSurface::new(kn.clone(), 2, kn, 2, 3, 3, pts, vec![1.0; 9]).unwrap()
-}
-
 fn big_plane() -> NurbsSurface<f64, 3> {
-    bilinear(
-        [-50.0, -50.0, 0.0],
-        [50.0, -50.0, 0.0],
-        [-50.0, 50.0, 0.0],
-        [50.0, 50.0, 0.0],
-    )
-    .unwrap()
+    square(50.0)
 }
 
 fn cparams(d: f64) -> CoverageParams {

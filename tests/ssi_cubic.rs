@@ -193,23 +193,10 @@ fn ellipses_need_inserted_pieces() {
 fn dome_loops_in_cubic_pieces() {
     let tol = 1e-7;
     for radius in [0.2, 0.1, 0.05] {
-        let g = [0.25, -0.25, 0.25];
-        let xs = [0.0, 0.5, 1.0];
-        let mut pts = Vec::new();
-        for i in 0..3 {
-            for j in 0..3 {
-                pts.push([xs[i], xs[j], radius * radius - (g[i] + g[j])]);
-            }
-        }
-        let kn = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
-        let dome = NurbsSurface::new(kn.clone(), 2, kn, 2, 3, 3, pts, vec![1.0; 9]).unwrap();
-        let plane = bilinear(
-            [-5.0, -5.0, 0.0],
-            [5.0, -5.0, 0.0],
-            [-5.0, 5.0, 0.0],
-            [5.0, 5.0, 0.0],
-        )
-        .unwrap();
+        let (dome, plane) = (
+            common::shapes::dome(radius * radius, 1.0),
+            common::shapes::square(5.0),
+        );
         let r = run(&dome, &plane, tol, Pieces::Cubic);
         let dist = |q: &[f64; 3]| {
             let rho = ((q[0] - 0.5).powi(2) + (q[1] - 0.5).powi(2)).sqrt();

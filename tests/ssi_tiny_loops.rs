@@ -6,35 +6,19 @@
 //! find it and certify it: one closed branch, every vertex within its proven curve radius of
 //! the true circle, every point of the true circle within the match distance of the output.
 
+mod common;
 use vericad::model::{Model, Surface};
 use vericad::spline::NurbsSurface;
-use vericad::spline::construct::bilinear;
 use vericad::ssi::{SsiParams, SsiResult, intersect_models};
 
 const TOL: f64 = 1e-7;
 
-/// Biquadratic dome `z = c − ((x−½)² + (y−½)²)` over the unit square.
 fn dome(c: f64) -> NurbsSurface<f64, 3> {
-    let g = [0.25, -0.25, 0.25]; // Bernstein coefficients of (x − ½)² on [0, 1]
-    let xs = [0.0, 0.5, 1.0];
-    let mut pts = Vec::new();
-    for i in 0..3 {
-        for j in 0..3 {
-            pts.push([xs[i], xs[j], c - (g[i] + g[j])]);
-        }
-    }
-    let kn = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
-    NurbsSurface::new(kn.clone(), 2, kn, 2, 3, 3, pts, vec![1.0; 9]).unwrap()
+    common::shapes::dome(c, 1.0)
 }
 
 fn run(c: f64) -> SsiResult {
-    let big = bilinear(
-        [-50.0, -50.0, 0.0],
-        [50.0, -50.0, 0.0],
-        [-50.0, 50.0, 0.0],
-        [50.0, 50.0, 0.0],
-    )
-    .unwrap();
+    let big = common::shapes::square(50.0);
     let m = |s| Model {
         surfaces: vec![Surface::new("face", s)],
         ..Default::default()

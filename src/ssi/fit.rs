@@ -129,14 +129,19 @@ pub fn fit_branch(
             [p[0], p[1], p[2], a[0], a[1], b[0], b[1]]
         })
         .collect();
-    fit_cubic(&packed, closed, 3).map(|(c, used)| FitOut {
+    fit_cubic(&packed, closed, 3).map(|(c, used)| fit_out(&c, &used))
+}
+
+/// The report of a packed `(x, y, z, u_A, v_A, s_B, t_B)` cubic through `pts` at its knots.
+fn fit_out(c: &BSplineCurve<[f64; 7]>, pts: &[[f64; 7]]) -> FitOut {
+    FitOut {
         degree: 3,
         knots: c.knots.knots().to_vec(),
         control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
         control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
         control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
-        max_deviation_at_points: max_deviation_at_points(&c, &used, 3),
-    })
+        max_deviation_at_points: max_deviation_at_points(c, pts, 3),
+    }
 }
 
 /// The cubic pieces of a branch ([`super::hermite`]) as one cubic B-spline in 3D and in both
@@ -175,14 +180,7 @@ pub fn fit_pieces(pieces: &[super::hermite::Piece]) -> Option<FitOut> {
         knots: kv,
         control: ctrl,
     };
-    Some(FitOut {
-        degree: 3,
-        knots: c.knots.knots().to_vec(),
-        control_points: c.control.iter().map(|p| [p[0], p[1], p[2]]).collect(),
-        control_points_uv_a: c.control.iter().map(|p| [p[3], p[4]]).collect(),
-        control_points_uv_b: c.control.iter().map(|p| [p[5], p[6]]).collect(),
-        max_deviation_at_points: max_deviation_at_points(&c, &pts, 3),
-    })
+    Some(fit_out(&c, &pts))
 }
 
 /// Largest distance between the fit and the points at the fit's own knots (evidence of the

@@ -1,7 +1,7 @@
 //! Constructions shared by the SSI tests: the exact rational sphere and rotated frames.
 
 use vericad::spline::NurbsSurface;
-use vericad::spline::construct::{CIRCLE_KNOTS, Frame};
+use vericad::spline::construct::{CIRCLE_KNOTS, Frame, bilinear};
 
 /// The sphere of radius `r` about the origin with *exact* f64 data: quarter circles as
 /// rational quadratics in non-standard form, corner weight 1 between end weights 1 and 2
@@ -82,4 +82,25 @@ pub fn rotated(seed: u64) -> Frame {
         0.2 + (2.1 * s).cos(),
     ];
     frame_of(q, [0.1 * s.cos(), -0.2, 0.3])
+}
+
+/// The biquadratic dome `z = c − k((x−½)² + (y−½)²)` over the unit square (Bézier, exact
+/// data): against the plane `z = 0` it meets it in the circle of radius `√(c/k)` about
+/// `(½, ½, 0)` when `c > 0`.
+pub fn dome(c: f64, k: f64) -> NurbsSurface<f64, 3> {
+    let g = [0.25, -0.25, 0.25]; // Bernstein coefficients of (x − ½)² on [0, 1]
+    let xs = [0.0, 0.5, 1.0];
+    let mut pts = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            pts.push([xs[i], xs[j], c - k * (g[i] + g[j])]);
+        }
+    }
+    let kn = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    NurbsSurface::new(kn.clone(), 2, kn, 2, 3, 3, pts, vec![1.0; 9]).unwrap()
+}
+
+/// The plane `z = 0` over `[-h, h]²`, bilinear.
+pub fn square(h: f64) -> NurbsSurface<f64, 3> {
+    bilinear([-h, -h, 0.0], [h, -h, 0.0], [-h, h, 0.0], [h, h, 0.0]).unwrap()
 }
