@@ -55,10 +55,16 @@ What it does
 How to run
   pip install cadquery-ocp-novtk      # OCCT 8 Python bindings (module OCP)
   cargo build --release               # target/release/vericad, or set VERICAD=/path/to/vericad
-  python3 scripts/occt_ssi_freeform.py [--repeat 3] [--only SUBSTRING] [--keep DIR]
+  python3 scripts/occt_ssi_freeform.py [--repeat 3] [--only SUBSTRING] [--keep DIR] [--pieces chords|cubic]
+  (--pieces cubic: vericad outputs cubic pieces; its curves are compared through the pieces,
+  rebuilt at 16 samples each by scripts/occt_ssi_cases.py's hermite_samples.)
   Prints one markdown table and a detail line per case on stderr; --keep DIR keeps each case's
   a.json, b.json, r.json (and r_nocert.json) in DIR/<case-name>/."""
 import argparse, json, math, os, subprocess, sys, tempfile, time
+
+from occt_ssi_cases import hermite_samples  # scripts/ is the script's own directory
+
+PIECES = "chords"
 
 import OCP.OCP as o
 
@@ -238,7 +244,7 @@ def run_vericad(a, b, work, repeat):
     pa, pb, out, out_nc = (os.path.join(work, n) for n in ("a.json", "b.json", "r.json", "r_nocert.json"))
     write_model(pa, a)
     write_model(pb, b)
-    cmd = [EXE, "ssi", pa, pb, "--tol", str(TOL), "--threads", "1", "--json"]
+    cmd = [EXE, "ssi", pa, pb, "--tol", str(TOL), "--threads", "1", "--json", "--pieces", PIECES]
     best, own, proc = math.inf, math.inf, None
     for _ in range(repeat):
         t = time.perf_counter()
@@ -257,7 +263,10 @@ def run_vericad(a, b, work, repeat):
         raise RuntimeError(f"vericad --no-certify exit {pnc.returncode}: {pnc.stderr.strip()[-2000:]}")
     with open(out_nc) as fh:
         r_nc = json.load(fh)
-    branches = [(br["points"], br["closed"]) for pr in r["pairs"] for br in pr["branches"]]
+    # With cubic pieces the output curve is the pieces (16 samples each, rebuilt by the rule
+    # of docs/ssi.md in scripts/occt_ssi_cases.py).
+    branches = [(hermite_samples(br) if br.get("tangents") else br["points"], br["closed"])
+                for pr in r["pairs"] for br in pr["branches"]]
     reasons = {}
     for pr in r["pairs"]:
         for reg in ((pr.get("coverage") or {}).get("uncertified_regions") or []):
@@ -320,7 +329,11 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", default="")
     ap.add_argument("--keep", default="", help="directory to keep each case's a.json, b.json, r.json in")
+    ap.add_argument("--pieces", default="chords", choices=["chords", "cubic"],
+                    help="vericad's output pieces (cubic: compared on the pieces, 16 samples each)")
     args = ap.parse_args()
+    global PIECES
+    PIECES = args.pieces
     if not os.path.exists(EXE):
         sys.exit(f"no vericad binary at {EXE} (build it or set VERICAD)")
     tmp = tempfile.mkdtemp()
