@@ -7,7 +7,8 @@
 
 mod common;
 
-use common::mesh::{dense_max, vericad};
+use common::cli::vericad;
+use common::mesh::dense_max;
 use std::path::Path;
 use vericad::tessellate::chordal::mesh_within;
 use vericad::tessellate::{MeshParams, mesh_brep};

@@ -1,18 +1,7 @@
 //! The command-line tool end to end: exit codes distinguish bad input (2) from failure (1).
 
-use std::process::Command;
-
-fn vericad(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_vericad"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into(),
-        String::from_utf8_lossy(&o.stderr).into(),
-    )
-}
+mod common;
+use common::cli::vericad;
 
 /// Two bilinear planes over [−1, 1]² as model files in `d`: z = 0, and the plane tilted about
 /// the x axis (z from −0.5 to 0.5); they meet along the x axis.

@@ -2,6 +2,7 @@
 //! CASCADE's bug28366), the same across its C0 crease, and `vericad coons` end to end.
 
 mod common;
+use common::cli::vericad;
 
 use common::coons::{fuselage, fuselage_top, joined, polyline};
 use vericad::approx::coons::boundary::BoundarySpec;
@@ -49,18 +50,6 @@ fn fuselage_part() {
             .fold(f64::INFINITY, f64::min);
         assert!(d <= best + 1e-9, "measured {d} > {best}");
     }
-}
-
-fn vericad(args: &[&str]) -> (i32, String, String) {
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into(),
-        String::from_utf8_lossy(&o.stderr).into(),
-    )
 }
 
 /// `vericad coons` end to end on the fuselage: exit 0, the surface written as IGES reads

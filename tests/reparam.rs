@@ -8,6 +8,7 @@ use vericad::reparam::{Params, ReparamError, reparametrize};
 use vericad::spline::NurbsSurface;
 
 mod common;
+use common::cli::vericad;
 use common::reparam::{lattice, pole_sphere_patch, quarter_cylinder, separable_plane};
 
 #[test]
@@ -288,18 +289,6 @@ fn t20_faces() {
             Err(e) => eprintln!("| {k} | {:?} | refused: {e} |", f.kind),
         }
     }
-}
-
-fn vericad(args: &[&str]) -> (i32, String, String) {
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_vericad"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into(),
-        String::from_utf8_lossy(&o.stderr).into(),
-    )
 }
 
 #[test]

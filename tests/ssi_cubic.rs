@@ -231,12 +231,12 @@ fn certify_ssi_checks_the_pieces() {
     let (sphere, plane) = (sphere.to_str().unwrap(), plane.to_str().unwrap());
     let out = dir.join("r.json");
     let out_s = out.to_str().unwrap();
-    let (code, _, err) = common::mesh::vericad(&[
+    let (code, _, err) = common::cli::vericad(&[
         "ssi", sphere, plane, "--tol", "1e-5", "--pieces", "cubic", "--out", out_s,
     ]);
     assert_eq!(code, 0, "{err}");
     let check = |curves: &str| {
-        common::mesh::vericad(&[
+        common::cli::vericad(&[
             "certify-ssi",
             sphere,
             plane,

@@ -1,7 +1,5 @@
-//! Measuring triangulations against surfaces known from their construction, and running the
-//! command-line tool.
+//! Measuring triangulations against surfaces known from their construction.
 
-use std::process::Command;
 use vericad::model::Triangulation;
 
 /// Largest `off(p)` (a point's distance from the true surface, computed by the caller from the
@@ -21,17 +19,4 @@ pub fn dense_max(t: &Triangulation, off: impl Fn(&[f64; 3]) -> f64) -> f64 {
         }
     }
     worst
-}
-
-/// Run the `vericad` binary: exit code, standard output, standard error.
-pub fn vericad(args: &[&str]) -> (i32, String, String) {
-    let o = Command::new(env!("CARGO_BIN_EXE_vericad"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        o.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&o.stdout).into_owned(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-    )
 }

@@ -2,6 +2,7 @@
 //! integer-grid inputs, and the case count (`VERICAD_LARGE=1` multiplies it by 20).
 #![allow(dead_code)]
 
+pub mod cli;
 pub mod coons;
 pub mod curves;
 pub mod mesh;
