@@ -353,8 +353,12 @@ pub fn refine_branch(
     let points: Vec<[f64; 3]> = all.iter().map(|r| r.xyz).collect();
     let uv_a: Vec<[f64; 2]> = all.iter().map(|r| r.uv_a).collect();
     let uv_b: Vec<[f64; 2]> = all.iter().map(|r| r.uv_b).collect();
+    let pk: Vec<P7> = if prm.cubic {
+        all.iter().map(packed).collect()
+    } else {
+        Vec::new()
+    };
     let tangents = if prm.cubic {
-        let pk: Vec<P7> = all.iter().map(packed).collect();
         branch_jets(g.sa, g.sb, &pk, b.closed)
     } else {
         Vec::new()
@@ -362,7 +366,6 @@ pub fn refine_branch(
     let fit = if !prm.fits {
         None
     } else if prm.cubic {
-        let pk: Vec<P7> = all.iter().map(packed).collect();
         fit_pieces(&branch_pieces(&pk, &tangents, b.closed))
     } else {
         fit_branch(&points, &uv_a, &uv_b, b.closed)

@@ -201,6 +201,20 @@ impl Piece {
         })
     }
 
+    /// The `per_piece − 1` points of the piece (3D) at `τ = i / per_piece`, `0 < i <
+    /// per_piece`, for drawing; none for a chord (its ends are its points).
+    pub fn interior(&self, per_piece: usize) -> Vec<[f64; 3]> {
+        if self.dp == self.dq {
+            return Vec::new();
+        }
+        (1..per_piece)
+            .map(|i| {
+                let x = self.eval(i as f64 / per_piece as f64);
+                [x[0], x[1], x[2]]
+            })
+            .collect()
+    }
+
     /// `H(τ)`.
     pub fn eval(&self, t: f64) -> P7 {
         let (t2, t3) = (t * t, t * t * t);

@@ -106,11 +106,8 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
                 run = vec![br.points[i]];
                 run_status = sg;
             }
-            if let Some(h) = pieces.get(k).filter(|h| h.dp != h.dq) {
-                run.extend((1..16).map(|t| {
-                    let x = h.eval(t as f64 / 16.0);
-                    [x[0], x[1], x[2]]
-                }));
+            if let Some(h) = pieces.get(k) {
+                run.extend(h.interior(16));
             }
             run.push(br.points[j]);
         }

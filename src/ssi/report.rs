@@ -145,11 +145,8 @@ impl BranchOut {
         };
         let spans = if self.closed { n } else { n - 1 };
         for k in 0..spans {
-            if let Some(h) = pieces.get(k).filter(|h| h.dp != h.dq) {
-                for i in 1..per_piece {
-                    let x = h.eval(i as f64 / per_piece as f64);
-                    out.push([x[0], x[1], x[2]]);
-                }
+            if let Some(h) = pieces.get(k) {
+                out.extend(h.interior(per_piece));
             }
             out.push(self.points[(k + 1) % n]);
         }
