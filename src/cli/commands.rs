@@ -193,7 +193,8 @@ pub enum Command {
     /// omitted, between every two distinct faces of A). Per curve point: proven bounds on its
     /// distance to each face set (global branch and bound, not a local search), and a proven
     /// radius to a true intersection point (Krawczyk test; tangent contacts are never
-    /// accepted). A vericad branch is reported missing only with a certified witness point
+    /// accepted) whose parameters lie inside both faces' trim loops (points whose true curve
+    /// point is outside a face are reported `outside_faces`). A vericad branch is reported missing only with a certified witness point
     /// far from every foreign curve. Exit 0 only when every curve is within tol of the
     /// intersection, no branch is missing, partial or unverified, and vericad's own coverage
     /// is certified; 3 otherwise.

@@ -87,14 +87,6 @@ pub struct Faces<'a> {
     pub trimmed: usize,
 }
 
-fn regions(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
-    if m.brep.is_some() {
-        TrimRegion::of_brep(m)
-    } else {
-        (m.surfaces.iter().map(TrimRegion::of).collect(), vec![])
-    }
-}
-
 fn model_size(m: &Model) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -112,10 +104,10 @@ fn model_size(m: &Model) -> f64 {
 
 impl<'a> Faces<'a> {
     pub fn new(a: &'a Model, b: Option<&'a Model>, tol: f64) -> Faces<'a> {
-        let (ra, mut failed) = regions(a);
+        let (ra, mut failed) = TrimRegion::of_model(a);
         let rb = match b {
             Some(m) => {
-                let (r, f) = regions(m);
+                let (r, f) = TrimRegion::of_model(m);
                 failed.extend(f);
                 r
             }

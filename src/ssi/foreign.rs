@@ -29,9 +29,10 @@ mod text_report;
 use super::closest::IvSurface;
 use super::coverage::near::Near;
 use super::report::SsiResult;
+use super::trims::TrimRegion;
 use crate::model::Model;
 use crate::scalar::Interval;
-use point::{Check, check_point, curve_point_radius};
+use point::{Check, InFaces, check_point, curve_point_radius, in_faces};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -48,6 +49,10 @@ pub enum PointStatus {
     /// One-file mode: within tol of the two nearest faces and on the border of one of them
     /// (faces of a B-rep meeting along an edge).
     SharedEdge,
+    /// A true intersection point of the surfaces is proven within tol, but its parameters lie
+    /// outside a face's trim loops (decided against the trim polygon): the curve follows the
+    /// untrimmed surfaces there, not the faces.
+    OutsideFaces,
     /// Neither could be proven.
     Uncertified,
 }
@@ -59,7 +64,8 @@ pub struct PointIssue {
     pub point: [f64; 3],
     pub status: PointStatus,
     /// `singular`, `no_contraction`, `face_border`, `no_enclosure` (Krawczyk),
-    /// `radius_above_tol`, `off_surface`, `no_face`.
+    /// `radius_above_tol`, `off_surface`, `no_face`, `outside_faces` (the true point lies
+    /// outside a face's trim), `trim_boundary` (its parameter box meets a trim's edge).
     pub reason: String,
     /// Proven lower bound on the distance to the intersection (max over the two face sets).
     pub dist_lower: f64,
@@ -88,8 +94,10 @@ pub struct ForeignCurve {
     pub points_on_curve: usize,
     pub points_off: usize,
     pub points_shared_edge: usize,
+    pub points_outside_faces: usize,
     pub points_uncertified: usize,
-    /// `within_tol` (every point on_curve), `off` (some point proven off), `shared_edge`
+    /// `within_tol` (every point on_curve), `off` (some point proven off), `outside_faces`
+    /// (some point's true curve point outside a face's trim, none off), `shared_edge`
     /// (one-file mode: on_curve or on a shared edge), `uncertified`.
     pub status: &'static str,
     /// `status == within_tol`.
@@ -208,6 +216,18 @@ pub fn certify(
     let fa = prep(a);
     let fb = b.map(prep);
     let fbs = fb.as_deref();
+    let (ta, mut failed) = TrimRegion::of_model(a);
+    let tb = b.map(|m| {
+        let (t, f) = TrimRegion::of_model(m);
+        failed.extend(f);
+        t
+    });
+    let trims = (&ta[..], tb.as_deref());
+    let trimmed = ta
+        .iter()
+        .chain(tb.iter().flatten())
+        .filter(|r| r.is_some())
+        .count();
     let total: usize = foreign.iter().map(|f| f.2.len()).sum();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let curves: Vec<ForeignCurve> = foreign
@@ -217,23 +237,26 @@ pub fn certify(
             let checks: Vec<Check> = pts
                 .par_iter()
                 .map(|x| {
-                    let c = check_point(&fa, fbs, x, tol);
+                    let c = check_point(&fa, fbs, trims, x, tol);
                     let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                     progress(n, total);
                     c
                 })
                 .collect();
             let count = |s: PointStatus| checks.iter().filter(|c| c.status == s).count();
-            let (on, off, shared, unc) = (
+            let (on, off, shared, outside, unc) = (
                 count(PointStatus::OnCurve),
                 count(PointStatus::Off),
                 count(PointStatus::SharedEdge),
+                count(PointStatus::OutsideFaces),
                 count(PointStatus::Uncertified),
             );
             let status = if on == checks.len() {
                 "within_tol"
             } else if off > 0 {
                 "off"
+            } else if outside > 0 {
+                "outside_faces"
             } else if unc == 0 {
                 "shared_edge"
             } else {
@@ -267,6 +290,7 @@ pub fn certify(
                 points_on_curve: on,
                 points_off: off,
                 points_shared_edge: shared,
+                points_outside_faces: outside,
                 points_uncertified: unc,
                 status,
                 within_tol: status == "within_tol",
@@ -321,8 +345,9 @@ pub fn certify(
                 let step = (uncovered.len() / 16).max(1);
                 for &j in uncovered.iter().step_by(step).take(16) {
                     let x = br.points[j];
-                    if let Ok(r) =
+                    if let Ok((r, params)) =
                         curve_point_radius(&fa[p.a], &sb[p.b], &x, br.uv_a[j], br.uv_b[j])
+                        && in_faces(trims, p.a, p.b, &params) == InFaces::Inside
                         && far_from_foreign(&x, r)
                     {
                         witness = Some((x, r));
@@ -360,6 +385,14 @@ pub fn certify(
     ];
     if b.is_none() {
         notes.push("one-file mode: foreign points are checked against every pair of distinct faces of the model (the nearest face and the nearest other face); points within tol of both and on the border of one of them (edges along which faces of a B-rep meet) that cannot be certified are reported shared_edge: not wrong, not certified".into());
+    }
+    if trimmed > 0 {
+        notes.push(format!("trimmed faces ({trimmed}): a point is on_curve only when the parameter box of its true intersection point lies inside both faces' trim loops, and a witness of a missing branch likewise; outside_faces when it lies outside one face's loops, uncertified (trim_boundary) when it meets a loop; the loops are decided as parameter-plane polygons through points of the trim curves (exact for the polygons, evidence against the curves themselves)"));
+    }
+    for f in &failed {
+        notes.push(format!(
+            "{f}: its loops could not be outlined, so its whole surface is taken as the face"
+        ));
     }
     if !vericad_ok {
         notes.push("vericad's own coverage certificate does not hold on this input (uncertified regions or a partial run): the completeness of the foreign result is not established".into());

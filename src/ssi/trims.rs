@@ -80,6 +80,21 @@ impl TrimRegion {
         (out, failed)
     }
 
+    /// The regions of every surface of `m`: its B-rep faces' when it has a B-rep
+    /// ([`TrimRegion::of_brep`]), else each surface's own trim loops ([`TrimRegion::of`]).
+    pub fn of_model(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
+        if m.brep.is_some() {
+            TrimRegion::of_brep(m)
+        } else {
+            (m.surfaces.iter().map(TrimRegion::of).collect(), vec![])
+        }
+    }
+
+    /// The parameter box lies wholly inside one of the regions.
+    pub fn box_inside(&self, b: &[f64; 4]) -> bool {
+        self.regions.iter().any(|r| r.box_inside(b))
+    }
+
     /// Inside any of the regions.
     pub fn inside(&self, p: &[f64; 2]) -> bool {
         self.regions.iter().any(|r| r.inside(p))

@@ -111,6 +111,23 @@ impl FaceRegion {
         }
         true
     }
+    /// Whether the parameter box `[u0, u1, v0, v1]` lies wholly inside the face: under some
+    /// shift by whole periods, no polygon edge meets the closed box and its centre is inside
+    /// (the box is connected and crosses no edge, so every point of it is on the centre's
+    /// side of every polygon).
+    pub fn box_inside(&self, b: &[f64; 4]) -> bool {
+        self.shifts().iter().any(|s| {
+            let lo = [b[0] + s[0], b[2] + s[1]];
+            let hi = [b[1] + s[0], b[3] + s[1]];
+            let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+            self.inside_once(&centre)
+                && self.polys.iter().all(|poly| {
+                    (0..poly.len()).all(|k| {
+                        !segment_meets_box(&poly[k], &poly[(k + 1) % poly.len()], &lo, &hi)
+                    })
+                })
+        })
+    }
 }
 
 /// Liang–Barsky: whether the segment `a b` meets the closed box `lo..hi`.
@@ -166,6 +183,20 @@ mod tests {
         assert!(!r.box_outside(&[0.45, 0.55, 0.45, 0.55], 0.1));
         assert!(!r.box_outside(&[0.1, 0.2, 0.1, 0.2], 0.0));
         assert!(r.box_outside(&[2.0, 3.0, 2.0, 3.0], 0.01));
+        assert!(r.box_inside(&[0.1, 0.2, 0.1, 0.2]));
+        assert!(
+            !r.box_inside(&[0.35, 0.45, 0.35, 0.45]),
+            "crosses the hole's edge"
+        );
+        assert!(!r.box_inside(&[0.45, 0.55, 0.45, 0.55]), "in the hole");
+        assert!(
+            !r.box_inside(&[0.9, 1.1, 0.2, 0.3]),
+            "crosses the outer edge"
+        );
+        assert!(
+            !r.box_inside(&[0.1, 0.4, 0.0, 0.1]),
+            "touches the outer edge"
+        );
     }
 
     #[test]
@@ -180,5 +211,7 @@ mod tests {
         assert!(r.inside(&[0.1, 0.1]));
         assert!(r.inside(&[0.9, 0.1]));
         assert!(!r.inside(&[0.1, 0.5]));
+        assert!(r.box_inside(&[0.05, 0.1, 0.1, 0.2]), "inside one period on");
+        assert!(!r.box_inside(&[0.4, 0.6, 0.1, 0.2]), "crosses u = 0.5");
     }
 }

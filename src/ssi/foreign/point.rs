@@ -5,6 +5,50 @@
 use super::PointStatus;
 use crate::ssi::closest::{ClosestParams, IvSurface, closest};
 use crate::ssi::krawczyk::{Uncertified, certify_on_curve};
+use crate::ssi::trims::TrimRegion;
+
+/// The trimmed regions of each face set's surfaces (`None` for a surface: the whole domain is
+/// the face; the second set `None`: one-file mode, the first set's).
+pub(crate) type Trims<'a> = (&'a [Option<TrimRegion>], Option<&'a [Option<TrimRegion>]>);
+
+/// Where a certified true intersection point lies with respect to the two faces' trims.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum InFaces {
+    /// Its parameter box lies inside both faces' trim polygons.
+    Inside,
+    /// Its parameter box lies outside one face's trim polygon.
+    Outside,
+    /// Neither: the box meets a trim polygon's edge.
+    Boundary,
+}
+
+/// Where the parameter box `params` (`u, v` on face `i` of the first set, `s, t` on face `j`
+/// of the second) lies with respect to the faces' trims.
+pub(super) fn in_faces(trims: Trims, i: usize, j: usize, params: &[[f64; 2]; 4]) -> InFaces {
+    let second = trims.1.unwrap_or(trims.0);
+    let ba = [params[0][0], params[0][1], params[1][0], params[1][1]];
+    let bb = [params[2][0], params[2][1], params[3][0], params[3][1]];
+    let mut out = InFaces::Inside;
+    for (r, b) in [(trims.0.get(i), ba), (second.get(j), bb)] {
+        let Some(Some(r)) = r else { continue };
+        if r.box_outside(&b, 0.0) {
+            return InFaces::Outside;
+        }
+        if !r.box_inside(&b) {
+            out = InFaces::Boundary;
+        }
+    }
+    out
+}
+
+/// Whether `uv` lies on a trim polygon's edge or outside it (a box of a relative 1e-7 of the
+/// domain around it is not wholly inside; `false` for an untrimmed face).
+fn on_trim(r: Option<&Option<TrimRegion>>, f: &IvSurface, uv: &[f64; 2]) -> bool {
+    let Some(Some(r)) = r else { return false };
+    let d = f.dom;
+    let (wu, wv) = (1e-7 * (d[1] - d[0]), 1e-7 * (d[3] - d[2]));
+    !r.box_inside(&[uv[0] - wu, uv[0] + wu, uv[1] - wv, uv[1] + wv])
+}
 
 /// Whether `uv` lies on (within a relative 1e-7 of) a border of the face's domain.
 fn on_border(f: &IvSurface, uv: &[f64; 2]) -> bool {
@@ -35,23 +79,25 @@ fn fail_name(e: Uncertified) -> &'static str {
     }
 }
 
-/// A proven radius within which a true intersection point of the two faces lies
-/// ([`super::super::krawczyk`]).
+/// A proven radius within which a true intersection point of the two surfaces lies
+/// ([`super::super::krawczyk`]), and the parameter box `(u, v, s, t)` holding it.
 pub(super) fn curve_point_radius(
     a: &IvSurface,
     b: &IvSurface,
     x: &[f64; 3],
     uv_a: [f64; 2],
     uv_b: [f64; 2],
-) -> Result<f64, Uncertified> {
-    certify_on_curve(&a.s, &b.s, x, &uv_a, &uv_b).map(|c| c.radius)
+) -> Result<(f64, [[f64; 2]; 4]), Uncertified> {
+    certify_on_curve(&a.s, &b.s, x, &uv_a, &uv_b)
+        .map(|c| (c.radius, c.params.map(|p| [p.lo, p.hi])))
 }
 
 /// Check one foreign point against face sets `fa` and `fb` (`None`: one-file mode, the
-/// distinct faces of `fa`).
+/// distinct faces of `fa`), trimmed by `trims`.
 pub(super) fn check_point(
     fa: &[IvSurface],
     fb: Option<&[IvSurface]>,
+    trims: Trims,
     x: &[f64; 3],
     tol: f64,
 ) -> Check {
@@ -94,6 +140,8 @@ pub(super) fn check_point(
     let mut cands_a = vec![ca];
     let mut cands_b = vec![cb];
     let mut err = Uncertified::NoContraction;
+    // A true point within tol whose parameters lie outside a face, or on a trim's edge.
+    let (mut outside, mut boundary) = (false, false);
     for round in 0..2 {
         if round == 1 {
             if let Some(c) = second(fa, &ca, same.then_some(cb.face)) {
@@ -109,30 +157,43 @@ pub(super) fn check_point(
                     continue;
                 }
                 match curve_point_radius(&fa[a.face], &other[b.face], x, a.uv, b.uv) {
-                    Ok(r) => {
-                        out.radius = Some(out.radius.map_or(r, |q: f64| q.min(r)));
+                    Ok((r, params)) => {
                         if r <= tol {
-                            out.status = PointStatus::OnCurve;
-                            out.reason = "";
-                            return out;
+                            match in_faces(trims, a.face, b.face, &params) {
+                                InFaces::Inside => {
+                                    out.radius = Some(r);
+                                    out.status = PointStatus::OnCurve;
+                                    out.reason = "";
+                                    return out;
+                                }
+                                InFaces::Outside => outside = true,
+                                InFaces::Boundary => boundary = true,
+                            }
+                            continue;
                         }
+                        out.radius = Some(out.radius.map_or(r, |q: f64| q.min(r)));
                     }
                     Err(e) => err = e,
                 }
             }
         }
     }
-    out.reason = if out.radius.is_some() {
+    out.reason = if boundary {
+        "trim_boundary"
+    } else if outside {
+        "outside_faces"
+    } else if out.radius.is_some() {
         "radius_above_tol"
     } else {
         fail_name(err)
     };
-    if same
-        && ca.upper <= tol
-        && cb.upper <= tol
-        && (on_border(&fa[ca.face], &ca.uv) || on_border(&fa[cb.face], &cb.uv))
-    {
+    let border = |c: &super::super::closest::Closest| {
+        on_border(&fa[c.face], &c.uv) || on_trim(trims.0.get(c.face), &fa[c.face], &c.uv)
+    };
+    if same && ca.upper <= tol && cb.upper <= tol && (border(&ca) || border(&cb)) {
         out.status = PointStatus::SharedEdge;
+    } else if outside && !boundary {
+        out.status = PointStatus::OutsideFaces;
     }
     out
 }

@@ -16,13 +16,14 @@ impl std::fmt::Display for CertifyReport {
         for c in &self.curves {
             writeln!(
                 f,
-                "  curve {} ({}, {} points): {} on the curve, {} off, {} on shared edges, {} uncertified; distance to A <= {:.3e}, to B <= {:.3e}, to the intersection >= {:.3e}{} -> {}",
+                "  curve {} ({}, {} points): {} on the curve, {} off, {} on shared edges, {} outside the faces' trims, {} uncertified; distance to A <= {:.3e}, to B <= {:.3e}, to the intersection >= {:.3e}{} -> {}",
                 c.index,
                 c.kind,
                 c.points_checked,
                 c.points_on_curve,
                 c.points_off,
                 c.points_shared_edge,
+                c.points_outside_faces,
                 c.points_uncertified,
                 c.dist_a_max,
                 c.dist_b_max,
@@ -34,6 +35,8 @@ impl std::fmt::Display for CertifyReport {
                     "within_tol" => "within tol",
                     "off" => "NOT within tol (proven off)",
                     "shared_edge" => "on shared edges (not certified)",
+                    "outside_faces" =>
+                        "NOT within tol of the faces (on their surfaces outside the trims)",
                     _ => "NOT certified",
                 }
             )?;
