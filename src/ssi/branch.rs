@@ -15,6 +15,7 @@ use super::refine::{
 use super::report::{BranchOut, CurveCertKind, CurveResult, EndKind, TouchOut};
 use super::shared_tubes::SharedTubes;
 use super::sign_change::{SignChangeCert, SignChangeFail, certify_by_sign_change};
+use super::thin::thin;
 use super::topology::Topology;
 use super::touch::touch_out;
 use super::trace::Branch;
@@ -263,7 +264,10 @@ pub fn refine_branch(
         seam_b: seams(g.sb),
     };
     let mut all: Vec<Refined> = Vec::with_capacity(refined.len() * 2);
-    let kept = distinct(&refined, b.closed);
+    let mut kept = distinct(&refined, b.closed);
+    if prm.cubic {
+        kept = thin(g.sa, g.sb, &refined, &kept, b.closed, prm.tol);
+    }
     let n = kept.len();
     let spans = if b.closed { n } else { n - 1 };
     for j in 0..n {

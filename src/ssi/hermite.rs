@@ -37,8 +37,9 @@ pub type P7 = [f64; 7];
 /// A jet is kept where the sine of the angle between the normals is at least this. The
 /// tangent `n_A × n_B` turns by about `ε / sin` for an error `ε` of the point's position,
 /// and the points are on the curve to about 1e-13 (certified, moved onto the curve below a
-/// sine of 1/4, [`super::insert`]); closer to tangency the pieces are chords.
-pub const MIN_SIN: f64 = 0.01;
+/// sine of 1/4, [`super::insert`]): at this bound it turns by about 1e-10, and every piece is
+/// measured against the curve anyway; closer to tangency the pieces are chords.
+pub const MIN_SIN: f64 = 1e-3;
 
 /// The tangent jet of the intersection curve at parameters `uv_a` on A and `uv_b` on B: the
 /// unit tangent `t = n_A × n_B / ‖n_A × n_B‖` and `d(u, v)/ds`, `d(s, t)/ds`, the parameter

@@ -135,6 +135,11 @@ impl Inserter<'_, '_> {
             Some(h) => (self.piece_deviation(&h, p, q, &m, seg), 4.0),
             None => (dist_to_segment(&m.xyz, &p.xyz, &q.xyz), 2.0),
         };
+        // A chord between a point with a tangent jet and one without (a branch point, a
+        // tangent end) is halved: the points inserted have jets, so the parts but the one at
+        // the end without become cubic pieces, which the chords' square law would overcount.
+        let one_sided =
+            self.prm.cubic && power == 2.0 && (self.jet(p).is_some() != self.jet(q).is_some());
         if dev <= self.prm.tol || depth >= self.max_depth {
             if dev.is_finite() {
                 self.max_dev = self.max_dev.max(dev);
@@ -146,7 +151,11 @@ impl Inserter<'_, '_> {
             return;
         }
         let levels_left = self.max_depth - depth;
-        let k = pieces(dev, self.prm.tol, levels_left, power);
+        let k = if one_sided {
+            2
+        } else {
+            pieces(dev, self.prm.tol, levels_left, power)
+        };
         if k > 2
             && let Some(xs) = self.split(p, q, &m, k, seg)
         {
@@ -173,9 +182,13 @@ impl Inserter<'_, '_> {
         if !self.prm.cubic {
             return None;
         }
-        let jet = |r: &Refined| tangent_jet(self.g.sa, self.g.sb, &r.uv_a, &r.uv_b);
-        let (jp, jq) = (jet(p)?, jet(q)?);
+        let (jp, jq) = (self.jet(p)?, self.jet(q)?);
         Piece::cubic(&packed(p), &jp, &packed(q), &jq)
+    }
+
+    /// The tangent jet at `r` ([`tangent_jet`]).
+    fn jet(&self, r: &Refined) -> Option<P7> {
+        tangent_jet(self.g.sa, self.g.sb, &r.uv_a, &r.uv_b)
     }
 
     /// The largest distance from the piece `h` of the true curve points found from the chord

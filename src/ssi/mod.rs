@@ -55,6 +55,7 @@ pub mod shared_tubes;
 pub mod sign_change;
 pub mod singular;
 pub mod tangent_contact;
+mod thin;
 pub mod topology;
 pub mod touch;
 pub mod trace;

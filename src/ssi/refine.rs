@@ -119,6 +119,9 @@ fn tangent_step(su: &V3, sv: &V3, n: &V3, delta: &V3) -> [f64; 2] {
     ]
 }
 
+/// Steps taken past `gap <= tol` ([`auxiliary_plane`]).
+const POLISH: u32 = 2;
+
 /// The Auxiliary Plane Method from `(uv_a, uv_b)`.
 pub fn auxiliary_plane(
     sa: &NurbsSurface<f64, 3>,
@@ -133,6 +136,8 @@ pub fn auxiliary_plane(
     let mut best: Option<Refined> = None;
     let mut status = RefineStatus::NotConverged;
     let mut boundary_hits = 0;
+    let mut converged: Option<Refined> = None;
+    let mut polished = 0;
     for it in 0..=prm.max_iter {
         let (p0, su, sv) = point_d1(sa, uv_a[0], uv_a[1]);
         let (q0, rw, rt) = point_d1(sb, uv_b[0], uv_b[1]);
@@ -149,12 +154,26 @@ pub fn auxiliary_plane(
         if best.is_none_or(|b| gap < b.gap || !b.gap.is_finite()) {
             best = Some(cand);
         }
+        // Within tol of each other the points can still lie about `tol / sin θ` from the
+        // curve (surfaces at an angle θ): up to [`POLISH`] more steps while the gap keeps
+        // falling (quadratically: one step usually takes it to rounding level), so that
+        // measurements against the curve (the insertion's) see the curve, not the tolerance.
+        if let Some(c) = converged
+            && gap.partial_cmp(&(0.5 * c.gap)) != Some(std::cmp::Ordering::Less)
+        {
+            return c;
+        }
         if gap <= prm.tol {
-            return Refined {
+            let c = Refined {
                 status: RefineStatus::Converged,
                 sin_angle: sin_between(&su, &sv, &rw, &rt),
                 ..cand
             };
+            polished += 1;
+            if polished > POLISH || gap <= 1e-4 * prm.tol {
+                return c;
+            }
+            converged = Some(c);
         }
         if it == prm.max_iter || !gap.is_finite() {
             break;
@@ -200,6 +219,9 @@ pub fn auxiliary_plane(
         }
         uv_a = na_uv;
         uv_b = nb_uv;
+    }
+    if let Some(c) = converged {
+        return c;
     }
     let b = best.unwrap_or(Refined {
         xyz: [f64::NAN; 3],
