@@ -90,43 +90,26 @@ fn merged_patches_are_the_feature_bounded_regions() {
     }
 }
 
-/// A cylinder of radius 1 from exact rational quadratic quarter arcs (weights 1, √2/2, 1),
-/// four sectors around and two levels up; each arc gets a random knot inserted (so stacked
-/// neighbours hold the same arc with different knots: rational, incompatible rows) and the
-/// height direction degree 1 or 2. Perturbed by `NOISE`. After repair: shared rows identical,
-/// every point within a few perturbations of the cylinder.
-#[test]
-fn rational_rows_with_different_knots_share_identical_edges() {
-    use vericad::geom::Hom;
-    use vericad::spline::BSplineCurve;
-    let s2 = std::f64::consts::FRAC_1_SQRT_2;
-    let mut r = Rng(4242);
+/// Four sectors around and two levels up of the cylinder of radius 1: sector `k` at `level` is
+/// the quarter arc `arc(k, rng)` (in the xy plane) swept up by 1 with height degree 1 or 2, its
+/// weights multiplied by `scale(rng)`, every control point perturbed by `NOISE`.
+fn cylinder_sectors(
+    r: &mut Rng,
+    arc: &dyn Fn(&mut Rng) -> vericad::spline::BSplineCurve<vericad::geom::Hom<f64, 3>>,
+    scale: &dyn Fn(&mut Rng) -> f64,
+) -> Vec<NurbsSurface<f64, 3>> {
     let mut ps = Vec::new();
     for k in 0..4 {
         for level in 0..2 {
-            let rot = |x: f64, y: f64| -> [f64; 2] {
-                let (c, s) = match k {
-                    0 => (1.0, 0.0),
-                    1 => (0.0, 1.0),
-                    2 => (-1.0, 0.0),
-                    _ => (0.0, -1.0),
-                };
-                [c * x - s * y, s * x + c * y]
+            let (c, s) = match k {
+                0 => (1.0, 0.0),
+                1 => (0.0, 1.0),
+                2 => (-1.0, 0.0),
+                _ => (0.0, -1.0),
             };
-            let arc = BSplineCurve::new(
-                vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-                2,
-                [(1.0, 0.0, 1.0), (1.0, 1.0, s2), (0.0, 1.0, 1.0)]
-                    .iter()
-                    .map(|&(x, y, w)| {
-                        let p = rot(x, y);
-                        Hom::from_point(&[p[0], p[1], 0.0], &w)
-                    })
-                    .collect(),
-            )
-            .unwrap();
-            let arc = arc.insert_knot(&r.range(0.2, 0.8), 1);
+            let arc = arc(r);
             let q = 1 + r.below(2);
+            let f = scale(r);
             let zs: Vec<f64> = (0..=q)
                 .map(|j| level as f64 + j as f64 / q as f64)
                 .collect();
@@ -134,10 +117,11 @@ fn rational_rows_with_different_knots_share_identical_edges() {
             let mut pts = Vec::new();
             let mut w = Vec::new();
             for h in &arc.control {
+                let (x, y) = (h.wp[0] / h.w, h.wp[1] / h.w);
                 for z in &zs {
-                    let p = [h.wp[0] / h.w, h.wp[1] / h.w, *z];
+                    let p = [c * x - s * y, s * x + c * y, *z];
                     pts.push(p.map(|c| c + NOISE * (2.0 * r.unit() - 1.0)));
-                    w.push(h.w);
+                    w.push(h.w * f);
                 }
             }
             let nu = arc.control.len();
@@ -146,6 +130,28 @@ fn rational_rows_with_different_knots_share_identical_edges() {
             );
         }
     }
+    ps
+}
+
+/// The quarter arc from (1, 0) to (0, 1) with weights `(1, m/√2, m²)`: the standard rational
+/// quadratic arc under a linear rational reparametrization (`m = 1`: the standard one).
+fn quarter_arc(m: f64) -> vericad::spline::BSplineCurve<vericad::geom::Hom<f64, 3>> {
+    use vericad::geom::Hom;
+    let s2 = std::f64::consts::FRAC_1_SQRT_2;
+    vericad::spline::BSplineCurve::new(
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        2,
+        [(1.0, 0.0, 1.0), (1.0, 1.0, m * s2), (0.0, 1.0, m * m)]
+            .iter()
+            .map(|&(x, y, w)| Hom::from_point(&[x, y, 0.0], &w))
+            .collect(),
+    )
+    .unwrap()
+}
+
+/// Repair the sectors; shared rows identical (4 seams per level, 4 arcs between the levels);
+/// the largest distance of 17 × 9 samples of every output patch from the cylinder.
+fn repair_sectors(ps: Vec<NurbsSurface<f64, 3>>) -> (vericad::repair::RepairResult, f64) {
     let prm = RepairParams {
         u1: 1e-2,
         u2: 1e-2,
@@ -153,10 +159,8 @@ fn rational_rows_with_different_knots_share_identical_edges() {
     };
     let res = repair(ps, &prm, &FeatureOverrides::default(), &none).unwrap();
     let rep = &res.report;
-    // 4 vertical seams per level, 4 arcs between the levels.
     assert_eq!(rep.edges_connected, 12, "{rep}");
     assert!(rep.averaging.left.is_empty(), "{:?}", rep.averaging.left);
-    assert!(rep.averaging.edges_fitted >= 4, "{rep}");
     let out = &res.connected_patches;
     let id = |k: usize, level: usize| 2 * k + level;
     for k in 0..4 {
@@ -167,6 +171,7 @@ fn rational_rows_with_different_knots_share_identical_edges() {
         }
         assert_identical(&out[id(k, 0)], 2, &out[id(k, 1)], 0);
     }
+    let mut worst: f64 = 0.0;
     for s in out {
         let (u0, u1, v0, v1) = s.hom.domain();
         for i in 0..=16 {
@@ -175,11 +180,51 @@ fn rational_rows_with_different_knots_share_identical_edges() {
                     &(u0 + (u1 - u0) * i as f64 / 16.0),
                     &(v0 + (v1 - v0) * j as f64 / 8.0),
                 );
-                let off = ((x[0] * x[0] + x[1] * x[1]).sqrt() - 1.0).abs();
-                assert!(off < 6.0 * NOISE, "{off} off the cylinder at {x:?}");
+                worst = worst.max(((x[0] * x[0] + x[1] * x[1]).sqrt() - 1.0).abs());
             }
         }
     }
+    (res, worst)
+}
+
+/// A cylinder of radius 1 from exact rational quadratic quarter arcs (weights 1, √2/2, 1),
+/// four sectors around and two levels up; each arc gets a random knot inserted (so stacked
+/// neighbours hold the same arc with different knots: rational, incompatible rows) and the
+/// height direction degree 1 or 2. Perturbed by `NOISE`. After repair: shared rows identical,
+/// every point within a few perturbations of the cylinder.
+#[test]
+fn rational_rows_with_different_knots_share_identical_edges() {
+    let mut r = Rng(4242);
+    let ps = cylinder_sectors(
+        &mut r,
+        &|r| quarter_arc(1.0).insert_knot(&r.range(0.2, 0.8), 1),
+        &|_| 1.0,
+    );
+    let (res, worst) = repair_sectors(ps);
+    assert!(res.report.averaging.edges_fitted >= 4, "{}", res.report);
+    assert!(worst < 6.0 * NOISE, "{worst} off the cylinder");
+}
+
+/// The same cylinder with every quarter arc in its own parametrization (weights
+/// `(1, m/√2, m²)`, `m` in [0.8, 1.25]) and every patch's weights multiplied by its own factor
+/// in [0.5, 2]: corner weights that differ from patch to patch. Each patch is first brought to
+/// corner weights 1 by a linear rational reparametrization (`spline::mobius`; all 8 here), so
+/// the shared corners' one homogeneous point does not bend them: every point within 2 NOISE of
+/// the cylinder (6.4e-5 here; 7.1e-4 = 7.1 NOISE with the corner weights left as they were,
+/// measured with that step turned off).
+#[test]
+fn own_parametrizations_and_weights_meet_without_bending() {
+    let mut r = Rng(77);
+    let ps = cylinder_sectors(&mut r, &|r| quarter_arc(r.range(0.8, 1.25)), &|r| {
+        r.range(0.5, 2.0)
+    });
+    let (res, worst) = repair_sectors(ps);
+    assert_eq!(
+        res.report.averaging.corner_weights_unified, 8,
+        "{}",
+        res.report
+    );
+    assert!(worst < 2.0 * NOISE, "{worst} off the cylinder");
 }
 
 /// occt-hammer.iges (untrimmed faces, 43 incompatible shared rows, rational beside

@@ -26,6 +26,7 @@ use super::fit_edge::{EdgeFit, end_corner, fit_edge};
 use crate::geom::{Hom, dist};
 use crate::spline::NurbsSurface;
 use crate::spline::elevate::refine_to;
+use crate::spline::mobius::unit_corner_weights;
 use std::collections::{BTreeMap, HashMap};
 
 mod edge_rows;
@@ -133,6 +134,15 @@ pub fn average(
 ) -> AveragingOutcome {
     let mut out = AveragingOutcome::default();
     let original = patches.to_vec();
+    // Corner weights brought to 1 where a reparametrization can (see the outcome's field).
+    let mut unified = vec![false; patches.len()];
+    for (p, s) in patches.iter_mut().enumerate() {
+        if let Some(r) = unit_corner_weights(s) {
+            *s = r;
+            unified[p] = true;
+            out.corner_weights_unified += 1;
+        }
+    }
     // Corner clusters and their means (§4 (iv)).
     // Positions: clusters through connections and collapsed edges. Weights: one per group of
     // corners joined by connections (the ends of shared rows, which must be one homogeneous
@@ -402,7 +412,8 @@ pub fn average(
     }
     // The interior follows the boundary; per patch what moved and the deviation.
     for (p, s) in patches.iter_mut().enumerate() {
-        if s.hom.net == before[p].hom.net
+        if !unified[p]
+            && s.hom.net == before[p].hom.net
             && s.hom.ku == original[p].hom.ku
             && s.hom.kv == original[p].hom.kv
         {
@@ -413,6 +424,7 @@ pub fn average(
         let measured = measured_deviation(&original[p], s, 9);
         out.max_control_point_move = out.max_control_point_move.max(mv);
         out.max_deviation_measured_evidence = out.max_deviation_measured_evidence.max(measured);
+        let same_w = same_w && !unified[p];
         if same_w {
             out.max_deviation_bound_proven =
                 Some(out.max_deviation_bound_proven.unwrap_or(0.0).max(mv));

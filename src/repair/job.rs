@@ -195,9 +195,10 @@ impl std::fmt::Display for RepairReport {
         )?;
         writeln!(
             f,
-            "  averaging: {} corner clusters (largest move {:.3e}), {} edges by control points, {} by fitted curves (largest fit residual {:.3e}, evidence), {} left",
+            "  averaging: {} corner clusters (largest move {:.3e}; {} rational patches reparametrized to corner weights 1 first), {} edges by control points, {} by fitted curves (largest fit residual {:.3e}, evidence), {} left",
             self.averaging.corner_clusters,
             self.averaging.max_corner_move,
+            self.averaging.corner_weights_unified,
             self.averaging.edges_averaged,
             self.averaging.edges_fitted,
             self.averaging.max_fit_error_evidence,

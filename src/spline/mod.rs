@@ -35,6 +35,7 @@ pub mod fit_knots;
 pub mod interpolate;
 pub mod knots;
 pub mod linalg;
+pub mod mobius;
 pub mod nurbs;
 pub mod pcurve_bound;
 pub mod project;

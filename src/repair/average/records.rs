@@ -70,6 +70,12 @@ pub struct AveragingOutcome {
     pub left: Vec<LeftEdge>,
     /// Knot classes raised and refined so that fitted curves fit in.
     pub classes_refined: usize,
+    /// Rational patches brought to corner weights 1 first by a linear rational (Möbius)
+    /// reparametrization in u and v ([`crate::spline::mobius`]): the same surface (up to
+    /// rounding), so a shared corner's one homogeneous point changes their shape no more than
+    /// the move of the corner. Their deviation bound is not claimed proven (the
+    /// reparametrization is computed in `f64`); the measured deviation is against the input.
+    pub corner_weights_unified: usize,
     pub max_control_point_move: f64,
     pub max_fit_error_evidence: f64,
     pub max_deviation_measured_evidence: f64,
