@@ -210,3 +210,65 @@ fn circle_over_a_hole_is_outside_the_faces() {
     assert_eq!(r.missing_branches + r.partial_branches, 0, "{r}");
     assert!(r.certified, "{r}");
 }
+
+/// One-file mode on a real B-rep (abc-0000.step: planes, cylinders, tori, spheres, trimmed):
+/// points sampled on the 3D curves of edges two faces share, where those faces meet by
+/// construction of the solid. Their true intersection point lies on both faces' trim
+/// boundaries, so none is `on_curve` or `outside_faces`, none is proven `off`: all 84 points
+/// of 12 edges are `shared_edge` (within tol of both nearest faces, on a trim polygon's edge).
+/// With every box taken as inside the faces (the trims not decided), points are accepted
+/// `on_curve` from the untrimmed surfaces and the test fails.
+#[test]
+fn shared_edges_of_a_trimmed_solid_are_not_certified_curves() {
+    use vericad::brep::LoopKind;
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/public/abc-0000.step");
+    let m = vericad::io::read_model(&path).unwrap();
+    let brep = m.brep.as_ref().unwrap();
+    let mut uses = vec![std::collections::BTreeSet::new(); brep.edges.len()];
+    for f in &brep.faces {
+        for l in &f.loops {
+            if let LoopKind::Edges(es) = &l.kind {
+                for o in es {
+                    uses[o.edge].insert(f.surface);
+                }
+            }
+        }
+    }
+    let curves: Vec<Vec<[f64; 3]>> = brep
+        .edges
+        .iter()
+        .zip(&uses)
+        .filter(|(e, u)| u.len() == 2 && e.curve.is_some())
+        .take(12)
+        .map(|(e, _)| {
+            let c = &e.curve.as_ref().unwrap().nurbs;
+            let (t0, t1) = c.hom.domain();
+            (1..8)
+                .map(|k| c.eval(&(t0 + (t1 - t0) * k as f64 / 8.0)))
+                .collect()
+        })
+        .collect();
+    assert!(curves.len() >= 8, "{} shared edges", curves.len());
+    let prm = SsiParams {
+        tol: TOL,
+        ..Default::default()
+    };
+    let r = vericad::ssi::intersect_models(&m, None, &prm, &|_, _| {}).unwrap();
+    let foreign: Vec<ForeignInput> = curves
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (format!("edge {i}"), "polyline", c.clone()))
+        .collect();
+    let rep = certify(&m, None, &foreign, &r, TOL, 100.0 * TOL, &|_, _| {});
+    let (mut shared, mut total) = (0, 0);
+    for c in &rep.curves {
+        assert_eq!(c.points_on_curve, 0, "{rep}");
+        assert_eq!(c.points_off, 0, "{rep}");
+        assert_eq!(c.points_outside_faces, 0, "{rep}");
+        shared += c.points_shared_edge;
+        total += c.points_checked;
+    }
+    assert_eq!(shared, total, "{rep}");
+    assert!(!rep.certified);
+}
