@@ -13,7 +13,8 @@
 //!
 //! Kept always: the ends of an open branch, points without a tangent jet (surfaces at a small
 //! angle, [`super::hermite::MIN_SIN`]) or not converged, and both ends of a step whose
-//! parameters jump by more than a quarter of a domain (a seam crossing).
+//! parameters jump by more than a quarter of a domain (a seam crossing); a closed branch keeps
+//! at least three points (else it is left as traced).
 
 use super::hermite::{P7, Piece, tangent_jet};
 use super::insert::packed;
@@ -89,6 +90,82 @@ pub(super) fn thin(
     if closed {
         // The walk ended on the first point again.
         out.pop();
+        // A loop smaller than `tol / 8` could come out as one or two points: keep it as traced.
+        if out.len() < 3 {
+            return kept.to_vec();
+        }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::bilinear;
+
+    /// The planes z = 0 (A, over [−1, 1]²) and x = 0 (B, over y, z in [−1, 1]): the curve is
+    /// the y axis, its tangent jet defined everywhere.
+    fn planes() -> (NurbsSurface<f64, 3>, NurbsSurface<f64, 3>) {
+        (
+            bilinear(
+                [-1.0, -1.0, 0.0],
+                [1.0, -1.0, 0.0],
+                [-1.0, 1.0, 0.0],
+                [1.0, 1.0, 0.0],
+            )
+            .unwrap(),
+            bilinear(
+                [0.0, -1.0, -1.0],
+                [0.0, 1.0, -1.0],
+                [0.0, -1.0, 1.0],
+                [0.0, 1.0, 1.0],
+            )
+            .unwrap(),
+        )
+    }
+
+    /// The point `(0, y, 0)` on both planes, or `(e, y, 0)` off the curve by `e`.
+    fn at(y: f64, e: f64) -> Refined {
+        let v = (y + 1.0) / 2.0;
+        Refined {
+            xyz: [e, y, 0.0],
+            uv_a: [(e + 1.0) / 2.0, v],
+            uv_b: [v, 0.5],
+            gap: 0.0,
+            status: RefineStatus::Converged,
+            iterations: 1,
+            sin_angle: 1.0,
+        }
+    }
+
+    #[test]
+    fn straight_runs_shrink_to_their_ends_and_bends_are_kept() {
+        let (a, b) = planes();
+        let pts: Vec<Refined> = (0..=10).map(|k| at(-0.9 + 0.18 * k as f64, 0.0)).collect();
+        let all: Vec<usize> = (0..pts.len()).collect();
+        assert_eq!(thin(&a, &b, &pts, &all, false, 1e-7), vec![0, 10]);
+        // A point 1e-7 off the line (more than tol / 8 from any piece through points on the
+        // line) ends a run.
+        let mut bent = pts.clone();
+        bent[5] = at(bent[5].xyz[1], 1e-7);
+        let kept = thin(&a, &b, &bent, &all, false, 1e-7);
+        assert!(kept.contains(&5) && kept.len() < pts.len(), "{kept:?}");
+        // A point without a tangent jet (not converged) is kept, and so are its neighbours (a
+        // piece ending at it would be a chord, which is not thinned).
+        let mut stuck = pts.clone();
+        stuck[3].status = RefineStatus::NotConverged;
+        assert_eq!(
+            thin(&a, &b, &stuck, &all, false, 1e-7),
+            vec![0, 2, 3, 4, 10]
+        );
+    }
+
+    #[test]
+    fn a_loop_below_the_tolerance_keeps_its_points() {
+        let (a, b) = planes();
+        // Ten points within 1e-12 of each other, as a closed branch.
+        let pts: Vec<Refined> = (0..10).map(|k| at(1e-13 * k as f64, 0.0)).collect();
+        let all: Vec<usize> = (0..pts.len()).collect();
+        assert_eq!(thin(&a, &b, &pts, &all, true, 1e-7), all);
+    }
 }
