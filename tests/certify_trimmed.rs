@@ -3,6 +3,7 @@
 //! construction (a line where two planes meet, a circle where a plane meets a sphere, the
 //! trims as parameter rectangles), not from vericad's output.
 
+mod common;
 use vericad::model::{Model, Surface, TrimLoop};
 use vericad::spline::construct::{Frame, bilinear, sphere};
 use vericad::spline::{NurbsCurve, NurbsSurface};
@@ -52,23 +53,8 @@ fn run(a: &Model, b: &Model, curves: &[Vec<[f64; 3]>]) -> CertifyReport {
 
 /// A rotated frame (about (2, −1, 2)/3 by 0.9 rad) at `o`.
 fn frame(o: [f64; 3]) -> Frame {
-    let k = [2.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0];
-    let (c, s) = (0.9f64.cos(), 0.9f64.sin());
-    let rot = |v: [f64; 3]| -> [f64; 3] {
-        let kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
-        let kx = [
-            k[1] * v[2] - k[2] * v[1],
-            k[2] * v[0] - k[0] * v[2],
-            k[0] * v[1] - k[1] * v[0],
-        ];
-        std::array::from_fn(|i| v[i] * c + kx[i] * s + k[i] * kv * (1.0 - c))
-    };
-    Frame {
-        o,
-        x: rot([1.0, 0.0, 0.0]),
-        y: rot([0.0, 1.0, 0.0]),
-        z: rot([0.0, 0.0, 1.0]),
-    }
+    let (c, s) = (0.45f64.cos(), 0.45f64.sin());
+    common::shapes::frame_of([c, 2.0 / 3.0 * s, -1.0 / 3.0 * s, 2.0 / 3.0 * s], o)
 }
 
 /// Points `f.at(x, 0, 0)` for `x` from `x0` to `x1`.
