@@ -123,12 +123,7 @@ pub fn fit_branch(
     uv_b: &[[f64; 2]],
     closed: bool,
 ) -> Option<FitOut> {
-    let packed: Vec<[f64; 7]> = (0..points.len().min(uv_a.len()).min(uv_b.len()))
-        .map(|i| {
-            let (p, a, b) = (points[i], uv_a[i], uv_b[i]);
-            [p[0], p[1], p[2], a[0], a[1], b[0], b[1]]
-        })
-        .collect();
+    let packed = super::hermite::pack(points, uv_a, uv_b);
     fit_cubic(&packed, closed, 3).map(|(c, used)| fit_out(&c, &used))
 }
 

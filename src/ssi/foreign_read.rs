@@ -102,7 +102,7 @@ pub fn read_foreign(path: &std::path::Path, tol: f64) -> Result<Vec<ForeignInput
 /// ([`super::hermite::densify`], within `tol / 4` of them, at most 4096 chords a piece);
 /// `None` for a branch of chords or one whose fields do not parse (then read as points).
 fn cubic_branch(b: &serde_json::Value, tol: f64) -> Option<serde_json::Value> {
-    use super::hermite::{Jet, branch_pieces, densify};
+    use super::hermite::{Jet, branch_pieces, densify, pack};
     let tangents: Vec<Option<Jet>> = serde_json::from_value(b.get("tangents")?.clone()).ok()?;
     let field = |k: &str| b.get(k).cloned();
     let pts: Vec<[f64; 3]> = serde_json::from_value(field("points")?).ok()?;
@@ -112,12 +112,7 @@ fn cubic_branch(b: &serde_json::Value, tol: f64) -> Option<serde_json::Value> {
     if tangents.len() != pts.len() || ua.len() != pts.len() || ub.len() != pts.len() {
         return None;
     }
-    let packed: Vec<[f64; 7]> = (0..pts.len())
-        .map(|i| {
-            let (p, a, c) = (pts[i], ua[i], ub[i]);
-            [p[0], p[1], p[2], a[0], a[1], c[0], c[1]]
-        })
-        .collect();
+    let packed = pack(&pts, &ua, &ub);
     let mut out: Vec<[f64; 3]> = Vec::new();
     for h in branch_pieces(&packed, &tangents, closed) {
         let (poly, _) = densify(&h, 0.25 * tol, 4096);

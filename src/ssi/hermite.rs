@@ -18,8 +18,8 @@
 //! parameters too) when a jet is missing — the surfaces meet at an angle whose sine is below
 //! [`MIN_SIN`], or a normal is undefined — or a unit tangent makes more than 60° with the
 //! chord. The rule depends only on the two end points and their jets, so a reader rebuilds
-//! every piece from the JSON (`points`, `uv_a`, `uv_b`, `tangents`, `tangents_uv_a`,
-//! `tangents_uv_b`).
+//! every piece from the JSON (`points`, `uv_a`, `uv_b` and `tangents`, each jet `{t, uv_a,
+//! uv_b}`).
 //!
 //! What is proven about the pieces: nothing beyond their end points (each certified against
 //! the true curve like every output point). That a piece lies within `tol` of the true curve
@@ -33,6 +33,16 @@ use crate::spline::project::point_d1;
 
 /// Packed point: `(x, y, z, u_A, v_A, s_B, t_B)`.
 pub type P7 = [f64; 7];
+
+/// Points with their parameters on A and on B, packed (as many as the shortest list).
+pub fn pack(points: &[[f64; 3]], uv_a: &[[f64; 2]], uv_b: &[[f64; 2]]) -> Vec<P7> {
+    points
+        .iter()
+        .zip(uv_a)
+        .zip(uv_b)
+        .map(|((p, a), b)| [p[0], p[1], p[2], a[0], a[1], b[0], b[1]])
+        .collect()
+}
 
 /// A jet is kept where the sine of the angle between the normals is at least this. The
 /// tangent `n_A × n_B` turns by about `ε / sin` for an error `ε` of the point's position,

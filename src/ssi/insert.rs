@@ -131,15 +131,20 @@ impl Inserter<'_, '_> {
             self.refused += 1;
             return;
         };
-        let (dev, power) = match self.hermite(p, q) {
+        // With cubic pieces ([`RefineParams::cubic`]) the Hermite piece from `p` to `q` when
+        // both have a tangent jet ([`tangent_jet`]), else the chord.
+        let (jp, jq) = if self.prm.cubic {
+            (self.jet(p), self.jet(q))
+        } else {
+            (None, None)
+        };
+        let piece = jp
+            .zip(jq)
+            .and_then(|(a, b)| Piece::cubic(&packed(p), &a, &packed(q), &b));
+        let (dev, power) = match piece {
             Some(h) => (self.piece_deviation(&h, p, q, &m, seg), 4.0),
             None => (dist_to_segment(&m.xyz, &p.xyz, &q.xyz), 2.0),
         };
-        // A chord between a point with a tangent jet and one without (a branch point, a
-        // tangent end) is halved: the points inserted have jets, so the parts but the one at
-        // the end without become cubic pieces, which the chords' square law would overcount.
-        let one_sided =
-            self.prm.cubic && power == 2.0 && (self.jet(p).is_some() != self.jet(q).is_some());
         if dev <= self.prm.tol || depth >= self.max_depth {
             if dev.is_finite() {
                 self.max_dev = self.max_dev.max(dev);
@@ -151,6 +156,10 @@ impl Inserter<'_, '_> {
             return;
         }
         let levels_left = self.max_depth - depth;
+        // A chord between a point with a tangent jet and one without (a branch point, a
+        // tangent end) is halved: the points inserted have jets, so the parts but the one at
+        // the end without become cubic pieces, which the chords' square law would overcount.
+        let one_sided = jp.is_some() != jq.is_some();
         let k = if one_sided {
             2
         } else {
@@ -174,16 +183,6 @@ impl Inserter<'_, '_> {
         out.push(m);
         self.inserted += 1;
         self.between(&m, q, seg, depth + 1, out);
-    }
-
-    /// With cubic pieces ([`RefineParams::cubic`]), the Hermite piece from `p` to `q` when both
-    /// have a tangent jet ([`hermite`]); `None`: the piece is the chord.
-    fn hermite(&self, p: &Refined, q: &Refined) -> Option<Piece> {
-        if !self.prm.cubic {
-            return None;
-        }
-        let (jp, jq) = (self.jet(p)?, self.jet(q)?);
-        Piece::cubic(&packed(p), &jp, &packed(q), &jq)
     }
 
     /// The tangent jet at `r` ([`tangent_jet`]).

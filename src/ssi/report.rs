@@ -116,12 +116,7 @@ pub type CurveResult = Result<(f64, CurveCertKind), super::krawczyk::Uncertified
 impl BranchOut {
     /// The points packed as `(x, y, z, u_A, v_A, s_B, t_B)` ([`super::hermite::P7`]).
     pub fn packed(&self) -> Vec<super::hermite::P7> {
-        (0..self.points.len().min(self.uv_a.len()).min(self.uv_b.len()))
-            .map(|i| {
-                let (p, a, b) = (self.points[i], self.uv_a[i], self.uv_b[i]);
-                [p[0], p[1], p[2], a[0], a[1], b[0], b[1]]
-            })
-            .collect()
+        super::hermite::pack(&self.points, &self.uv_a, &self.uv_b)
     }
     /// The pieces between consecutive points: chords, or with tangents the cubic pieces
     /// ([`super::hermite::branch_pieces`]).
