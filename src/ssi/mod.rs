@@ -47,6 +47,7 @@ mod linalg4;
 pub mod mesh;
 pub mod overlap;
 pub mod pair;
+mod pair_meshes;
 pub mod picture;
 pub mod refine;
 pub mod regions;

@@ -5,6 +5,7 @@ use super::certify::ExactSurface;
 use super::coincide::coincidence;
 use super::control::CHECK_EVERY;
 use super::coverage::{CoverageParams, coverage};
+use super::pair_meshes::meshes;
 use super::refine::RefineParams;
 use super::refine::Refined;
 use super::report::{ContactOut, PairOut, PairStats, SingularKind};
@@ -13,13 +14,12 @@ use super::touch::{region, tangential_points, touch_out};
 use super::trace::{check_invariants, trace};
 use super::tri_tri::intersect_pair;
 use super::tri_tri::{Feature, PointId};
-use super::triangulate::{CellKey, SurfaceMesh, TriangulateParams, triangulate};
+use super::triangulate::SurfaceMesh;
 use super::{SsiError, SsiParams};
 use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::predicates::tri_tri::ConstructedPoint;
 use crate::spline::NurbsSurface;
 use std::collections::HashMap;
-use std::collections::HashSet;
 use std::time::Instant;
 
 /// Triangle `t` of `m` as three points.
@@ -62,50 +62,6 @@ pub fn net_diagonal(ss: &[&NurbsSurface<f64, 3>]) -> f64 {
         }
     }
     (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
-}
-
-/// Triangulate both surfaces, refining cells where the meshes come close at a small angle
-/// (near tangency), up to `rounds` times — none when `transversal` (no normal of one surface
-/// is ever parallel to one of the other, proven: the surfaces meet at no tangential point, so
-/// planes at a small angle get no finer mesh than planes at a large one).
-fn meshes(
-    sa: &NurbsSurface<f64, 3>,
-    sb: &NurbsSurface<f64, 3>,
-    prm: &SsiParams,
-    transversal: bool,
-    stats: &mut PairStats,
-) -> (SurfaceMesh, SurfaceMesh) {
-    let diag = net_diagonal(&[sa, sb]).max(f64::MIN_POSITIVE);
-    let tp = TriangulateParams {
-        flatness: prm.flatness.unwrap_or(diag * 2e-3),
-        max_edge: diag / prm.min_cells_per_diagonal.max(1) as f64,
-        max_depth: prm.max_depth,
-    };
-    let (mut fa, mut fb) = (HashSet::<CellKey>::new(), HashSet::<CellKey>::new());
-    let cos_t = prm.tangent_angle_deg.to_radians().cos();
-    let mut ma = triangulate(sa, &tp, &fa);
-    let mut mb = triangulate(sb, &tp, &fb);
-    let rounds = if transversal { 0 } else { prm.tangency_rounds };
-    for _ in 0..rounds {
-        let pairs = tree(&ma).overlapping_pairs(&tree(&mb));
-        let (na, nb) = (fa.len(), fb.len());
-        for (ta, tb) in pairs {
-            if let (Some(x), Some(y)) = (unit_normal(&tri(&ma, ta)), unit_normal(&tri(&mb, tb))) {
-                let c = (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs();
-                if c > cos_t {
-                    fa.insert(ma.cells[ma.tri_cell[ta as usize] as usize]);
-                    fb.insert(mb.cells[mb.tri_cell[tb as usize] as usize]);
-                }
-            }
-        }
-        if fa.len() == na && fb.len() == nb {
-            break;
-        }
-        stats.tangency_refinement_rounds += 1;
-        ma = triangulate(sa, &tp, &fa);
-        mb = triangulate(sb, &tp, &fb);
-    }
-    (ma, mb)
 }
 
 /// Intersect surfaces `sa` (face `a`) and `sb` (face `b`).

@@ -11,7 +11,8 @@
 //! ([`super::singular`]): the search itself decides nothing.
 
 use super::branch::PairGeometry;
-use super::pair::{tri, unit_normal};
+use super::pair::tri;
+use super::pair_meshes::unit_normals;
 use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point};
 use super::report::TouchOut;
 use super::singular::classify;
@@ -19,7 +20,7 @@ use super::triangulate::SurfaceMesh;
 use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::geom::{cross, dist, norm};
 use crate::spline::NurbsSurface;
-use std::collections::BTreeSet;
+use std::collections::HashSet;
 
 /// Most seeds tried per pair.
 pub const MAX_SEEDS: usize = 256;
@@ -56,10 +57,11 @@ pub fn tangential_points(
 ) -> Vec<Refined> {
     let cos_t = tangent_angle_deg.to_radians().cos();
     let pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
-    let mut seeds: BTreeSet<(u32, u32)> = BTreeSet::new();
+    let mut seeds: HashSet<(u32, u32)> = HashSet::new();
     let mut seed_tris = Vec::new();
+    let (ua, ub) = (unit_normals(g.ma), unit_normals(g.mb));
     for &(ta, tb) in &pairs {
-        if let (Some(x), Some(y)) = (unit_normal(&tri(g.ma, ta)), unit_normal(&tri(g.mb, tb)))
+        if let (Some(x), Some(y)) = (ua[ta as usize], ub[tb as usize])
             && (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs() > cos_t
         {
             let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);
@@ -88,7 +90,7 @@ pub fn tangential_points(
     // those vertices (a budget of their own). Vertex normals are computed on demand, once
     // each; no facet angle filters them (a coarse facet says nothing of its vertices).
     let (mut na, mut nb) = (vec![None; g.ma.uv.len()], vec![None; g.mb.uv.len()]);
-    let mut vseeds: BTreeSet<(u32, u32)> = BTreeSet::new();
+    let mut vseeds: HashSet<(u32, u32)> = HashSet::new();
     let mut vertex_pairs = Vec::new();
     for &(ta, tb) in &pairs {
         let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);

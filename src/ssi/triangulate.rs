@@ -172,18 +172,22 @@ impl Lattice {
 struct Evaluator<'a> {
     s: &'a NurbsSurface<f64, 3>,
     lat: &'a Lattice,
-    cache: HashMap<(u64, u64), [f64; 3]>,
+    cache: &'a mut Evaluations,
 }
+
+/// Points of one surface at lattice parameters, kept between the triangulations of a run
+/// (the rounds of refinement near tangency evaluate the same corners and midpoints again).
+/// Valid for one surface only: the keys are its lattice's indices.
+#[derive(Debug, Default)]
+pub struct Evaluations(HashMap<(u64, u64), [f64; 3]>);
 
 impl Evaluator<'_> {
     fn at(&mut self, i: u64, j: u64) -> [f64; 3] {
-        if let Some(p) = self.cache.get(&(i, j)) {
-            return *p;
-        }
-        let [u, v] = self.lat.uv(i, j);
-        let p = self.s.eval(&u, &v);
-        self.cache.insert((i, j), p);
-        p
+        let (s, lat) = (self.s, self.lat);
+        *self.cache.0.entry((i, j)).or_insert_with(|| {
+            let [u, v] = lat.uv(i, j);
+            s.eval(&u, &v)
+        })
     }
 }
 
@@ -222,11 +226,18 @@ pub fn leaf_cells(
     prm: &TriangulateParams,
     force: &HashSet<CellKey>,
 ) -> (Vec<CellKey>, usize) {
-    let mut ev = Evaluator {
-        s,
-        lat,
-        cache: HashMap::new(),
-    };
+    leaf_cells_with(s, lat, prm, force, &mut Evaluations::default())
+}
+
+/// [`leaf_cells`] with the surface's points taken from, and added to, `cache`.
+fn leaf_cells_with(
+    s: &NurbsSurface<f64, 3>,
+    lat: &Lattice,
+    prm: &TriangulateParams,
+    force: &HashSet<CellKey>,
+    cache: &mut Evaluations,
+) -> (Vec<CellKey>, usize) {
+    let mut ev = Evaluator { s, lat, cache };
     let depth_cap = prm.max_depth.min(LEVELS - 1);
     let mut stack: Vec<(CellKey, u32)> = Vec::new();
     for i in (0..lat.knots_u.len().saturating_sub(1)).rev() {
@@ -295,6 +306,17 @@ pub fn triangulate_cells(
     leaves: Vec<CellKey>,
     unresolved: usize,
 ) -> SurfaceMesh {
+    triangulate_cells_with(s, lat, leaves, unresolved, &mut Evaluations::default())
+}
+
+/// [`triangulate_cells`] with the vertices taken from, and added to, `cache`.
+fn triangulate_cells_with(
+    s: &NurbsSurface<f64, 3>,
+    lat: &Lattice,
+    leaves: Vec<CellKey>,
+    unresolved: usize,
+    cache: &mut Evaluations,
+) -> SurfaceMesh {
     // Corners of all leaves, sorted along horizontal (v, u) and vertical (u, v) lines.
     let mut horiz: BTreeSet<(u64, u64)> = BTreeSet::new();
     let mut vert: BTreeSet<(u64, u64)> = BTreeSet::new();
@@ -334,7 +356,11 @@ pub fn triangulate_cells(
         *index.entry((i, j)).or_insert_with(|| {
             keys.push((i, j));
             let uv = lat.uv(i, j);
-            mesh.vertices.push(s.eval(&uv[0], &uv[1]));
+            let p = *cache
+                .0
+                .entry((i, j))
+                .or_insert_with(|| s.eval(&uv[0], &uv[1]));
+            mesh.vertices.push(p);
             mesh.uv.push(uv);
             (mesh.vertices.len() - 1) as u32
         })
@@ -399,9 +425,20 @@ pub fn triangulate(
     prm: &TriangulateParams,
     force: &HashSet<CellKey>,
 ) -> SurfaceMesh {
+    triangulate_cached(s, prm, force, &mut Evaluations::default())
+}
+
+/// [`triangulate`] with the surface's points taken from, and added to, `cache` (one cache per
+/// surface; the same mesh as without it).
+pub fn triangulate_cached(
+    s: &NurbsSurface<f64, 3>,
+    prm: &TriangulateParams,
+    force: &HashSet<CellKey>,
+    cache: &mut Evaluations,
+) -> SurfaceMesh {
     let lat = Lattice::of(s);
-    let (leaves, unresolved) = leaf_cells(s, &lat, prm, force);
-    triangulate_cells(s, &lat, leaves, unresolved)
+    let (leaves, unresolved) = leaf_cells_with(s, &lat, prm, force, cache);
+    triangulate_cells_with(s, &lat, leaves, unresolved, cache)
 }
 
 /// Every mesh edge is shared by exactly two triangles with opposite orientation, except
