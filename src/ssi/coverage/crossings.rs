@@ -27,7 +27,7 @@ pub(crate) struct CrossingSearch {
 /// A piece of the surface with what every part of the curve is tested against: its enclosed
 /// Cartesian control points and their box, its rough normal with the control points'
 /// projection onto it, and its enclosures for the crossing test (made when first asked for).
-struct Piece {
+pub(crate) struct Piece {
     s: IPatch,
     pts: Option<(Vec<V>, Box3)>,
     normal: [f64; 3],
@@ -42,6 +42,12 @@ impl Piece {
             (p, b)
         });
         let normal = s.rough_normal();
+        Piece::with(s, pts, normal)
+    }
+    /// A piece from its enclosed Cartesian control points with their box (as
+    /// [`IPatch::cartesian`] gives them) and its rough normal ([`IPatch::rough_normal`]):
+    /// made once per piece of the refinement and shared by every search against it.
+    pub(crate) fn with(s: IPatch, pts: Option<(Vec<V>, Box3)>, normal: [f64; 3]) -> Rc<Piece> {
         let range = pts.as_ref().and_then(|(p, _)| range_along(p, &normal));
         Rc::new(Piece {
             s,
@@ -53,12 +59,12 @@ impl Piece {
     }
 }
 
-/// Search `curve` against `patch`: subdivide both until every part is empty, within `d` of
+/// Search `curve` against the piece `patch`: subdivide both until every part is empty, within `d` of
 /// the output `near` or inside a tube (within its reach of its polyline); stop at `max_depth`
 /// levels or `max_boxes` boxes.
 pub(crate) fn search(
     curve: &ICurve,
-    patch: &IPatch,
+    patch: &Rc<Piece>,
     (near, d): (&Near, f64),
     tubes: &[(Near, f64)],
     max_depth: u32,
@@ -66,8 +72,7 @@ pub(crate) fn search(
 ) -> CrossingSearch {
     let mut out = CrossingSearch::default();
     // Pieces are shared while only the curve splits.
-    let mut stack: Vec<(ICurve, Rc<Piece>, u32)> =
-        vec![(curve.clone(), Piece::new(patch.clone()), 0)];
+    let mut stack: Vec<(ICurve, Rc<Piece>, u32)> = vec![(curve.clone(), patch.clone(), 0)];
     // Consecutive parts of the curve are usually near the same output chord.
     let hint = super::near::Hint::default();
     while let Some((c, sp, depth)) = stack.pop() {

@@ -345,6 +345,7 @@ pub fn coverage(
         if a.cones_apart(&b) {
             let mut open = None;
             'sides: for (k, (from, to)) in [(&a, &b), (&b, &a)].into_iter().enumerate() {
+                let piece = to.piece();
                 for side in SIDES {
                     // A border shared by two neighbouring pieces is one exact curve: a search
                     // that succeeded against the same piece of the other surface holds for both.
@@ -355,7 +356,7 @@ pub fn coverage(
                     let left = prm.max_boxes.saturating_sub(boxes).max(1);
                     let s = search(
                         &from.patch.edge(side),
-                        &to.patch,
+                        &piece,
                         (&near, d),
                         &tubes,
                         prm.max_crossing_depth,

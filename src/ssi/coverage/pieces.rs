@@ -4,6 +4,7 @@
 //! control-point box and normal-cone generators, cached for reuse.
 
 use super::cones::{cones_separated, normal_box, normal_generators};
+use super::crossings::Piece;
 use super::patch::{Box3, IPatch, V, box_of, diagonal};
 use crate::geom::{Hom, lift_point};
 use crate::scalar::{Interval, Scalar, lift};
@@ -32,6 +33,8 @@ pub(crate) struct Cell {
     normals: OnceCell<Vec<V>>,
     normal_box: OnceCell<Option<V>>,
     kids: OnceCell<Rc<[Rc<Cell>]>>,
+    /// The piece as the border-crossing search takes it (made when first searched against).
+    piece: OnceCell<Rc<Piece>>,
 }
 
 impl Cell {
@@ -47,7 +50,18 @@ impl Cell {
             normals: OnceCell::new(),
             normal_box: OnceCell::new(),
             kids: OnceCell::new(),
+            piece: OnceCell::new(),
         })
+    }
+    /// The piece for [`super::crossings::search`], made once and shared by every search
+    /// against it.
+    pub(super) fn piece(&self) -> Rc<Piece> {
+        self.piece
+            .get_or_init(|| {
+                let pts = self.pts.clone().zip(self.hull);
+                Piece::with(self.patch.clone(), pts, self.normal)
+            })
+            .clone()
     }
     pub(super) fn normals(&self) -> &[V] {
         self.normals
