@@ -27,6 +27,7 @@ pub mod compose;
 pub mod construct;
 pub mod elevate;
 pub mod enclose;
+pub mod enclose2;
 pub mod enclose_net;
 pub mod enclosed_bezier;
 pub mod exact_point;

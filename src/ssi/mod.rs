@@ -31,10 +31,11 @@ pub mod control;
 pub mod coverage;
 pub mod driver;
 mod point_certs;
-/// The box enclosures live in the kernel ([`crate::spline::enclose`]); re-exported here for
-/// the certificate and the Krawczyk test.
+/// The box enclosures live in the kernel ([`crate::spline::enclose`],
+/// [`crate::spline::enclose2`]); re-exported here for the certificate, the Krawczyk test and
+/// the singular points.
 pub use crate::spline::enclose;
-pub mod enclose2;
+pub use crate::spline::enclose2;
 pub mod fit;
 pub mod foreign;
 pub mod foreign_read;

@@ -1,6 +1,7 @@
 //! Enclosures of a NURBS surface and of its partial derivatives up to order two over a
-//! parameter box, for the singular-point proof ([`super::singular`]): the second-order
-//! companion of [`super::enclose`]. Basis functions and their derivatives by the Cox–de Boor
+//! parameter box, for the singular-point proof ([`crate::ssi::singular`]) and the tessellation's
+//! proven chordal bound ([`crate::tessellate::bound`]): the second-order companion of
+//! [`super::enclose`]. Basis functions and their derivatives by the Cox–de Boor
 //! recurrence in outward-rounded interval arithmetic (The NURBS Book eq. 2.9, A2.3), the
 //! rational quotient rule (eq. 4.20); a box is cut into the spans it meets, grouped where the
 //! surface is C² across the knot (multiplicity at most the degree − 2), and in a closed
@@ -290,10 +291,10 @@ mod tests {
                     groups(&s.hom.kv, pt(v), false).unwrap(),
                 ];
                 let j = group_jet(&s, &g[0][0], &g[1][0]).unwrap();
-                let (p, su, sv) = super::super::refine::point_d1(&s, u, v);
+                let (p, su, sv) = crate::spline::project::point_d1(&s, u, v);
                 let e = 1e-6;
                 let d1 = |u: f64, v: f64| {
-                    let (_, a, b) = super::super::refine::point_d1(&s, u, v);
+                    let (_, a, b) = crate::spline::project::point_d1(&s, u, v);
                     (a, b)
                 };
                 let (up, um) = (d1(u + e, v), d1(u - e, v));
