@@ -57,7 +57,7 @@ fn refined_meshes_stay_within_the_chordal_tolerance_of_the_true_cylinder() {
     assert!(d0 > 3e-4, "default mesh already within {d0:e}");
     let mut triangles = coarse.triangulation.triangles.len();
     for tol in [3e-4, 1e-4, 1e-5] {
-        let (mesh, c) = mesh_within(&m, b, tol);
+        let (mesh, c) = mesh_within(&m, b, tol, false);
         assert!(c.unmet.is_none(), "{tol:e}: {:?}", c.unmet);
         assert!(c.measured <= tol && c.rounds > 1, "{tol:e}: {c:?}");
         assert!(mesh.faces.iter().all(|f| f.is_ok()));
@@ -155,11 +155,11 @@ fn a_sphere_without_a_brep_is_meshed_within_the_tolerance() {
         surfaces: vec![vericad::model::Surface::new("s", sphere(&f, 1.0).unwrap())],
         ..Default::default()
     };
-    let (coarse, none) = mesh_surfaces(&m, None);
+    let (coarse, none) = mesh_surfaces(&m, None, false);
     assert!(none.is_none());
     let on_sphere = |p: &[f64; 3]| (vericad::geom::dist(p, &f.o) - 1.0).abs();
     assert!(dense_max(&coarse, on_sphere) > 1e-3);
-    let (t, c) = mesh_surfaces(&m, Some(1e-4));
+    let (t, c) = mesh_surfaces(&m, Some(1e-4), false);
     let c = c.unwrap();
     assert!(
         c.unmet.is_none() && c.measured <= 1e-4 && c.rounds > 1,

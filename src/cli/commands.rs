@@ -49,6 +49,12 @@ pub enum Command {
         /// (model units). Exit 3 when it is not reached.
         #[arg(long)]
         chordal: Option<f64>,
+        /// With --chordal: also prove a bound on the final mesh's deviation (every triangle
+        /// within it of its face's surface over its parameter triangle, and back), from
+        /// interval enclosures of the second derivatives and of the corners; several interval
+        /// evaluations per triangle, so far slower than the meshing itself
+        #[arg(long, requires = "chordal")]
+        prove_chordal: bool,
         #[command(flatten)]
         memory: memory::MemoryArg,
     },

@@ -10,7 +10,7 @@ pub(super) fn run(
     input: &Path,
     output: &Path,
     format: Option<&str>,
-    chordal: Option<f64>,
+    (chordal, prove): (Option<f64>, bool),
     memory: &super::memory::MemoryArg,
 ) -> i32 {
     if let Err(e) = memory.watch("convert") {
@@ -34,7 +34,7 @@ pub(super) fn run(
         Ok(m) => m,
         Err(e) => return bad(e),
     };
-    match crate::io::write_model_chordal(output, &m, format, chordal) {
+    match crate::io::write_model_chordal(output, &m, format, chordal, prove) {
         Ok((warnings, reached)) => {
             for w in warnings {
                 eprintln!("warning: {w}");
@@ -61,6 +61,18 @@ pub(super) fn run(
             match reached {
                 Some(c) => {
                     let how = "sampled at 7 points per triangle and at edge midpoints: evidence, not a bound";
+                    if let Some(p) = c.proven {
+                        let without = match c.unbounded {
+                            0 => String::new(),
+                            n => format!(
+                                "; {n} triangle(s) without a bound: a knot line where the surface is not C2 crosses them, no enclosure, or a face of more than {} triangles",
+                                crate::tessellate::bound::MAX_TRIANGLES
+                            ),
+                        };
+                        println!(
+                            "chordal deviation proven <= {p:.3e} (triangles and surfaces within it of each other over every parameter triangle, from enclosures of the second derivatives and of the corners{without})"
+                        );
+                    }
                     match &c.unmet {
                         None => {
                             println!(

@@ -206,10 +206,11 @@ fn trimmed_mesh_model(
     m: &crate::model::Model,
     b: &crate::brep::Brep,
     chordal: Option<f64>,
+    prove: bool,
 ) -> (crate::model::Model, Vec<String>, Option<Chordal>) {
     let (mesh, reached) = match chordal {
         Some(tol) => {
-            let (mesh, c) = crate::tessellate::chordal::mesh_within(m, b, tol);
+            let (mesh, c) = crate::tessellate::chordal::mesh_within(m, b, tol, prove);
             (mesh, Some(c))
         }
         None => (
@@ -255,7 +256,7 @@ pub fn write_model_as(
     m: &crate::model::Model,
     format: Option<&str>,
 ) -> Result<Vec<String>, WriteError> {
-    Ok(write_model_chordal(path, m, format, None)?.0)
+    Ok(write_model_chordal(path, m, format, None, false)?.0)
 }
 
 /// The output format a write takes: `format` when given, else the path's extension; lower
@@ -277,12 +278,14 @@ pub fn is_mesh_format(ext: &str) -> bool {
 /// ([`crate::tessellate::chordal`]); with what that refinement reached (`None` when nothing
 /// was triangulated). A model of surfaces without a B-rep is triangulated surface by surface
 /// (untrimmed, [`crate::tessellate::surfaces`]) for STL, and for OBJ and VTP when `chordal`
-/// is given.
+/// is given. With `prove` (and `chordal`), the final mesh also gets a proven bound on its
+/// deviation ([`crate::tessellate::bound`]).
 pub fn write_model_chordal(
     path: &std::path::Path,
     m: &crate::model::Model,
     format: Option<&str>,
     chordal: Option<f64>,
+    prove: bool,
 ) -> Result<(Vec<String>, Option<Chordal>), WriteError> {
     let mut warnings = Vec::new();
     let ext = output_format(path, format);
@@ -294,7 +297,7 @@ pub fn write_model_chordal(
     if let Some(b) = &m.brep {
         if is_mesh_format(&ext) {
             // Mesh formats get the faces triangulated inside their trims.
-            let (meshed, mut notes, reached) = trimmed_mesh_model(m, b, chordal);
+            let (meshed, mut notes, reached) = trimmed_mesh_model(m, b, chordal, prove);
             warnings.append(&mut notes);
             let mut rest = write_model_as(path, &meshed, Some(&ext))?;
             warnings.append(&mut rest);
@@ -315,7 +318,7 @@ pub fn write_model_chordal(
     {
         // Surfaces without a B-rep, to a mesh format that holds triangles only (or a chordal
         // tolerance asked for): each surface triangulated whole.
-        let (mesh, reached) = crate::tessellate::surfaces::mesh_surfaces(m, chordal);
+        let (mesh, reached) = crate::tessellate::surfaces::mesh_surfaces(m, chordal, prove);
         let trimmed = m
             .surfaces
             .iter()

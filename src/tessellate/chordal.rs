@@ -1,7 +1,8 @@
 //! Chordal deviation of a trimmed tessellation, and the refinement that brings it under a
 //! tolerance (`vericad convert --chordal TOL`).
 //!
-//! **Measured, not proven.** Per triangle, the distance from the face's surface to the flat
+//! **Measured** (the figure the refinement steers by; the proven bound beside it is
+//! [`super::bound`]'s). Per triangle, the distance from the face's surface to the flat
 //! triangle at seven parameter points: the centroid, the three edge midpoints and the points
 //! `(2/3, 1/6, 1/6)` (and permutations) of the corners' parameters, each mapped by the surface
 //! and measured to the triangle by its exact closest point ([`closest_point`]). Per edge
@@ -53,6 +54,13 @@ pub struct Chordal {
     pub rounds: usize,
     /// `None` when `measured ≤ tol`; otherwise why the refinement stopped.
     pub unmet: Option<String>,
+    /// The largest proven bound on the final mesh's deviation ([`super::bound`]: every
+    /// triangle within it of its face's surface over its parameter triangle, and that surface
+    /// within it of the triangle), over the triangles that have one; `None` when not asked for.
+    pub proven: Option<f64>,
+    /// Triangles with no proven bound (across a knot line where the surface is not C², out of
+    /// an open direction's domain, or no enclosure); `proven` says nothing of them.
+    pub unbounded: usize,
 }
 
 /// The larger of `d` and `x`, a NaN counting as infinitely far.
@@ -90,10 +98,12 @@ pub fn face_deviation(
 }
 
 /// Triangulate `brep` ([`mesh_brep`]) finer until its measured chordal deviation is at most
-/// `tol` (see the module comment); the final mesh and what was reached.
-pub fn mesh_within(model: &Model, brep: &Brep, tol: f64) -> (BrepMesh, Chordal) {
+/// `tol` (see the module comment); the final mesh and what was reached, with a proven bound
+/// on the final mesh when `prove` ([`super::bound`]).
+pub fn mesh_within(model: &Model, brep: &Brep, tol: f64, prove: bool) -> (BrepMesh, Chordal) {
     let mut params = MeshParams {
         measure: true,
+        prove: false,
         ..MeshParams::default()
     };
     let mut last = f64::INFINITY;
@@ -129,11 +139,29 @@ pub fn mesh_within(model: &Model, brep: &Brep, tol: f64) -> (BrepMesh, Chordal) 
             last = measured;
             continue;
         };
+        // The proven bound of the final mesh, when asked for (meshed once more with it).
+        let (mesh, bound) = if prove {
+            let m = mesh_brep(
+                model,
+                brep,
+                &MeshParams {
+                    prove: true,
+                    ..params
+                },
+            );
+            let b = m.bound;
+            (m, b)
+        } else {
+            (mesh, None)
+        };
+        let (proven, unbounded) = bound.map_or((None, 0), |(b, n)| (Some(b), n));
         let chordal = Chordal {
             tol,
             measured,
             rounds,
             unmet,
+            proven,
+            unbounded,
         };
         return (mesh, chordal);
     }

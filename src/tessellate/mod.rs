@@ -8,6 +8,7 @@
 //! what the sampling gives (edge length `h`, at most π/12 of turn per segment), measured on
 //! request ([`MeshParams::measure`]) and brought under a tolerance by [`chordal::mesh_within`].
 
+pub mod bound;
 pub mod chordal;
 pub mod domain;
 pub mod face;
@@ -28,6 +29,9 @@ pub struct MeshParams {
     pub max_turn: f64,
     /// Measure the mesh's chordal deviation ([`BrepMesh::deviation`], [`chordal`]).
     pub measure: bool,
+    /// With `measure`: also prove a bound on it ([`BrepMesh::bound`], [`bound`]; several
+    /// interval evaluations per triangle).
+    pub prove: bool,
 }
 
 impl Default for MeshParams {
@@ -36,6 +40,7 @@ impl Default for MeshParams {
             relative_edge: 1.0 / 40.0,
             max_turn: std::f64::consts::PI / 12.0,
             measure: false,
+            prove: false,
         }
     }
 }
@@ -48,6 +53,7 @@ impl MeshParams {
             relative_edge: 1.0 / 150.0,
             max_turn: std::f64::consts::PI / 60.0,
             measure: false,
+            prove: false,
         }
     }
 }
@@ -67,6 +73,9 @@ pub struct BrepMesh {
     /// projected parameters), when measured: edges that lie off their faces' surfaces (within
     /// the file's tolerance) put this floor under [`BrepMesh::deviation`].
     pub floor: Option<f64>,
+    /// The largest proven chordal bound over the triangles that have one, and how many have
+    /// none ([`bound`]), when [`MeshParams::prove`] asked for it.
+    pub bound: Option<(f64, usize)>,
 }
 
 impl BrepMesh {
@@ -231,6 +240,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
             .fold(0.0, f64::max)
     });
     let mut floor = params.measure.then_some(0.0);
+    let mut proven = (params.measure && params.prove).then_some((0.0f64, 0usize));
     // Faces a shell uses reversed: their triangles turn the other way (the region is the
     // face's own).
     let reversed = reversed_in_shell(brep);
@@ -276,6 +286,18 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
                     let e = chordal::face_deviation(corners, &m.uv, |q| fs.eval(q));
                     *d = d.max(e);
                 }
+                if let Some(p) = proven.as_mut() {
+                    let bs = bound::BoundSurface {
+                        s: fs.s,
+                        domain: fs.domain,
+                        periodic: fs.period.map(|x| x.is_some()),
+                    };
+                    let v = &t.vertices;
+                    let corners = m.triangles.iter().map(|x| x.map(|i| v[i]));
+                    let goal = 2.0 * deviation.unwrap_or(0.0);
+                    let (b, n) = bound::mesh_bound(&bs, corners, &m.uv, goal);
+                    *p = (p.0.max(b), p.1 + n);
+                }
                 let flip = reversed[fi];
                 t.triangles.extend(m.triangles.iter().map(|x| {
                     let x = x.map(|i| i as u32);
@@ -291,6 +313,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
         faces,
         deviation,
         floor,
+        bound: proven,
     }
 }
 

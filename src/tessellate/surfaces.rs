@@ -4,8 +4,11 @@
 //! two triangles a cell, its vertices on the surface. With a chordal tolerance the cells of
 //! each surface are halved until its measured deviation
 //! ([`super::chordal::face_deviation`]: seven points per triangle, evidence) is at most the
-//! tolerance, while a direction keeps at most [`MAX_CELLS`] cells.
+//! tolerance, while a direction keeps at most [`MAX_CELLS`] cells; the final grid's proven
+//! bound ([`super::bound`]) is reported beside the measure (every triangle lies inside one
+//! knot span, so every triangle has one).
 
+use super::bound::{BoundSurface, mesh_bound};
 use super::chordal::{Chordal, face_deviation, worst};
 use crate::model::{Model, Triangulation};
 
@@ -78,8 +81,13 @@ fn spans(s: &crate::spline::NurbsSurface<f64, 3>) -> [usize; 2] {
 }
 
 /// Every surface of `model` triangulated (see the module comment); with `tol`, each surface's
-/// grid refined until its measured deviation is at most `tol`, and what was reached.
-pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<Chordal>) {
+/// grid refined until its measured deviation is at most `tol`, and what was reached (with a
+/// proven bound when `prove`).
+pub fn mesh_surfaces(
+    model: &Model,
+    tol: Option<f64>,
+    prove: bool,
+) -> (Triangulation, Option<Chordal>) {
     let mut t = Triangulation {
         name: "surfaces".into(),
         vertices: vec![],
@@ -87,6 +95,7 @@ pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<
     };
     // The largest measure, the most halvings any surface needed, the first shortfall.
     let (mut measured, mut halvings, mut unmet) = (0.0_f64, 0, None);
+    let (mut proven, mut unbounded) = (0.0_f64, 0);
     for surf in &model.surfaces {
         let s = &surf.nurbs;
         // About FIRST_CELLS cells a direction to start with, at least one per knot span.
@@ -121,6 +130,18 @@ pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<
                 }
                 measured = worst(measured, d);
                 halvings = halvings.max(halved);
+                let (u0, u1, v0, v1) = s.hom.domain();
+                let bs = prove.then_some(BoundSurface {
+                    s,
+                    domain: [u0, u1, v0, v1],
+                    periodic: [false; 2],
+                });
+                if let Some(bs) = bs {
+                    let corners3 = tris.iter().map(|x| x.map(|i| v[i as usize]));
+                    let (b, n) = mesh_bound(&bs, corners3, &corners, 2.0 * d);
+                    proven = proven.max(b);
+                    unbounded += n;
+                }
                 t.triangles.extend(tris);
                 break;
             }
@@ -134,6 +155,8 @@ pub fn mesh_surfaces(model: &Model, tol: Option<f64>) -> (Triangulation, Option<
         measured,
         rounds: halvings + 1,
         unmet,
+        proven: prove.then_some(proven),
+        unbounded,
     });
     (t, chordal)
 }
