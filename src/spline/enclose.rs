@@ -244,11 +244,12 @@ pub fn enclose_jet(s: &NurbsSurface<f64, 3>, u: Interval, v: Interval) -> Option
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::spline::construct::{Frame, sphere, torus};
 
-    fn frame() -> Frame {
+    /// A rotated frame off the origin (shared with [`super::super::enclose2`]'s tests).
+    pub(in crate::spline) fn frame() -> Frame {
         Frame {
             o: [0.1, -0.2, 0.3],
             x: [1.0, 0.0, 0.0],

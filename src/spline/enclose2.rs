@@ -266,16 +266,8 @@ pub(crate) fn group_jet(s: &NurbsSurface<f64, 3>, gu: &[Piece], gv: &[Piece]) ->
 mod tests {
     use super::*;
     use crate::spline::closure::exact_seam as closed;
-    use crate::spline::construct::{Frame, sphere, torus};
-
-    fn frame() -> Frame {
-        Frame {
-            o: [0.1, -0.2, 0.3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 0.6, 0.8],
-            z: [0.0, -0.8, 0.6],
-        }
-    }
+    use crate::spline::construct::{sphere, torus};
+    use crate::spline::enclose::tests::frame;
 
     /// Thin enclosures hold the f64 evaluation and central differences of the first
     /// derivatives (second derivatives), away from knot lines.
