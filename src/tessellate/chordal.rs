@@ -59,7 +59,8 @@ pub struct Chordal {
     /// within it of the triangle), over the triangles that have one; `None` when not asked for.
     pub proven: Option<f64>,
     /// Triangles with no proven bound (across a knot line where the surface is not C², out of
-    /// an open direction's domain, or no enclosure); `proven` says nothing of them.
+    /// an open direction's domain, no enclosure, or on a face meshed into more than
+    /// [`super::bound::MAX_TRIANGLES`]); `proven` says nothing of them.
     pub unbounded: usize,
 }
 

@@ -4,9 +4,10 @@
 //! two triangles a cell, its vertices on the surface. With a chordal tolerance the cells of
 //! each surface are halved until its measured deviation
 //! ([`super::chordal::face_deviation`]: seven points per triangle, evidence) is at most the
-//! tolerance, while a direction keeps at most [`MAX_CELLS`] cells; the final grid's proven
-//! bound ([`super::bound`]) is reported beside the measure (every triangle lies inside one
-//! knot span, so every triangle has one).
+//! tolerance, while a direction keeps at most [`MAX_CELLS`] cells; when asked, the final
+//! grid's proven bound ([`super::bound`]) is reported beside the measure (every triangle lies
+//! inside one knot span, so every triangle of a surface meshed into at most
+//! [`super::bound::MAX_TRIANGLES`] has one).
 
 use super::bound::{BoundSurface, mesh_bound};
 use super::chordal::{Chordal, face_deviation, worst};
