@@ -65,7 +65,7 @@ pub(super) fn run(
                         let without = match c.unbounded {
                             0 => String::new(),
                             n => format!(
-                                "; {n} triangle(s) without a bound: a knot line where the surface is not C2 crosses them, no enclosure, or a face of more than {} triangles",
+                                "; {n} triangle(s) without a bound: a corner on an uncertain side of a knot line where the surface is not C2, a box out of the domain, no enclosure, or a face of more than {} triangles",
                                 crate::tessellate::bound::MAX_TRIANGLES
                             ),
                         };

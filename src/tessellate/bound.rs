@@ -34,11 +34,17 @@
 //! the parameter box of `T` ([`crate::spline::enclose2`]: interval Cox–de Boor and the
 //! rational quotient rule); `S(q_i)` enclosed at the corner and `‖V_i − S(q_i)‖` bounded
 //! above from the enclosure; `r²` and the final sum rounded up; the parts' corners (midpoints)
-//! carried as interval boxes holding the exact midpoints. A triangle gets no bound
-//! (counted) where the surface is not C² over its box (a knot line of multiplicity at least
-//! the degree − 1 crosses it), where its box leaves the domain in a direction that is not
-//! closed, where an enclosure fails (a weight not proven positive), and every triangle of a
-//! face (or surface) meshed into more than [`MAX_TRIANGLES`].
+//! carried as interval boxes holding the exact midpoints.
+//!
+//! **Knot lines.** Where a knot line of multiplicity at least the degree − 1 (the surface not
+//! C² across it; in a closed direction also one period away) crosses a part's box, the part is
+//! cut along it into two convex polygons, fanned into triangles: the crossing points of its
+//! edges are enclosed in intervals (on the line exactly in its direction), `P` at them by the
+//! same interpolation, and each piece is bounded with the surface's function on its side (at
+//! most [`MAX_CUTS`] cuts a triangle). A triangle gets no bound (counted) where a corner's box
+//! straddles such a line, past the cuts, where a box leaves the domain in a direction that is
+//! not closed, where an enclosure fails (a weight not proven positive), and every triangle of
+//! a face (or surface) meshed into more than [`MAX_TRIANGLES`].
 
 use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
@@ -69,21 +75,104 @@ fn norm_up(v: &[I; 3]) -> f64 {
 
 /// The one C² group of each direction over the box `[u] × [v]`, if the surface is C² there
 /// and the box stays in the domain where the direction is not closed.
-fn group(bs: &BoundSurface, u: I, v: I) -> Option<(Vec<Piece>, Vec<Piece>)> {
+fn group(bs: &BoundSurface, u: I, v: I) -> Grouped {
     let h = &bs.s.hom;
     for (d, x) in [u, v].into_iter().enumerate() {
         let (lo, hi) = (bs.domain[2 * d], bs.domain[2 * d + 1]);
         if !bs.periodic[d] && (x.lo < lo || x.hi > hi) {
-            return None;
+            return Grouped::Refused;
         }
     }
-    let mut gu = groups(&h.ku, u, bs.periodic[0])?;
-    let mut gv = groups(&h.kv, v, bs.periodic[1])?;
-    if gu.len() != 1 || gv.len() != 1 {
-        return None;
+    let (Some(mut gu), Some(mut gv)) = (
+        groups(&h.ku, u, bs.periodic[0]),
+        groups(&h.kv, v, bs.periodic[1]),
+    ) else {
+        return Grouped::Refused;
+    };
+    // A knot line where the surface is not C² crosses the box: the knot (first span of the
+    // second group).
+    for (d, g, k) in [(0, &gu, &h.ku), (1, &gv, &h.kv)] {
+        if g.len() > 1 {
+            return match g[1].first() {
+                // One period away in a closed direction: the knot plus the offset, when that
+                // sum is exact (Knuth's TwoSum error zero).
+                Some(&(span, _, o)) => {
+                    let t = k.knots()[span];
+                    let s = t + o;
+                    let bb = s - t;
+                    if (t - (s - bb)) + (o - bb) == 0.0 && s.is_finite() {
+                        Grouped::Cut(d, s)
+                    } else {
+                        Grouped::Refused
+                    }
+                }
+                None => Grouped::Refused,
+            };
+        }
     }
-    Some((gu.pop()?, gv.pop()?))
+    match (gu.pop(), gv.pop()) {
+        (Some(a), Some(b)) => Grouped::One(a, b),
+        _ => Grouped::Refused,
+    }
 }
+
+/// The C² groups over a box: one in each direction, or a knot line to cut at, or none.
+enum Grouped {
+    One(Vec<Piece>, Vec<Piece>),
+    /// Direction and knot value of a line where the surface is not C².
+    Cut(usize, f64),
+    Refused,
+}
+
+/// The corners of `q` (values `v`) on each side of the line `x_d = k`, with the points where
+/// the triangle's edges cross it, as convex polygons (left, right); `None` where a corner's
+/// box straddles the line without lying on it.
+type Poly = Vec<([I; 3], [I; 2])>;
+fn cut(v: &[[I; 3]; 3], q: &[[I; 2]; 3], d: usize, k: f64) -> Option<(Poly, Poly)> {
+    let side = |x: I| {
+        if x.hi < k {
+            Some(-1)
+        } else if x.lo > k {
+            Some(1)
+        } else if x.lo == k && x.hi == k {
+            Some(0)
+        } else {
+            None
+        }
+    };
+    let s: Vec<i8> = q.iter().map(|p| side(p[d])).collect::<Option<_>>()?;
+    let (mut left, mut right) = (Vec::new(), Vec::new());
+    for i in 0..3 {
+        let j = (i + 1) % 3;
+        let here = (v[i], q[i]);
+        if s[i] <= 0 {
+            left.push(here);
+        }
+        if s[i] >= 0 {
+            right.push(here);
+        }
+        if s[i] * s[j] < 0 {
+            // The crossing point of edge i → j: t = (k − q_i) / (q_j − q_i), enclosed; on the
+            // line exactly in direction d.
+            let t = (pt(k) - q[i][d]).checked_div(q[j][d] - q[i][d])?;
+            let t = I::new(t.lo.max(0.0), t.hi.min(1.0));
+            let x: [I; 2] = std::array::from_fn(|c| {
+                if c == d {
+                    pt(k)
+                } else {
+                    q[i][c] + t * (q[j][c] - q[i][c])
+                }
+            });
+            let p: [I; 3] = std::array::from_fn(|c| v[i][c] + t * (v[j][c] - v[i][c]));
+            left.push((p, x));
+            right.push((p, x));
+        }
+    }
+    Some((left, right))
+}
+
+/// Cuts at knot lines allowed per triangle (each adds at most three parts).
+pub const MAX_CUTS: u32 = 4;
 
 /// Squared distance between two parameter points (intervals), enclosed.
 fn d2(a: &[I; 2], b: &[I; 2]) -> I {
@@ -141,11 +230,33 @@ fn piece_bound(
     q: &[[I; 2]; 3],
     goal: f64,
     depth: u32,
+    cuts: u32,
     gaps: &mut Gaps,
 ) -> Option<f64> {
     let lo = |d: usize| q.iter().map(|p| p[d].lo).fold(f64::INFINITY, f64::min);
     let hi = |d: usize| q.iter().map(|p| p[d].hi).fold(f64::NEG_INFINITY, f64::max);
-    let (gu, gv) = group(bs, I::new(lo(0), hi(0)), I::new(lo(1), hi(1)))?;
+    let (gu, gv) = match group(bs, I::new(lo(0), hi(0)), I::new(lo(1), hi(1))) {
+        Grouped::One(a, b) => (a, b),
+        Grouped::Refused => return None,
+        Grouped::Cut(d, k) => {
+            // The surface is C² on each side: the triangle cut there into convex polygons,
+            // each fanned into triangles (P stays affine on them).
+            if cuts == 0 {
+                return None;
+            }
+            let (l, r) = cut(v, q, d, k)?;
+            let mut worst = 0.0f64;
+            for poly in [l, r] {
+                for i in 1..poly.len().saturating_sub(1) {
+                    let pv = [poly[0].0, poly[i].0, poly[i + 1].0];
+                    let pq = [poly[0].1, poly[i].1, poly[i + 1].1];
+                    let b = piece_bound(bs, &pv, &pq, goal, depth, cuts - 1, gaps)?;
+                    worst = worst.max(b);
+                }
+            }
+            return Some(worst);
+        }
+    };
     let j = group_jet(bs.s, &gu, &gv)?;
     let m = pt(norm_up(&j.suu).max(norm_up(&j.svv))) + pt(norm_up(&j.suv));
     let r2 = enclosing_radius_sq(q)?;
@@ -188,7 +299,7 @@ fn piece_bound(
     ];
     let mut worst = 0.0f64;
     for (pv, pq) in &parts {
-        worst = worst.max(piece_bound(bs, pv, pq, goal, depth - 1, gaps)?);
+        worst = worst.max(piece_bound(bs, pv, pq, goal, depth - 1, cuts, gaps)?);
     }
     Some(worst.min(b))
 }
@@ -205,7 +316,7 @@ pub fn triangle_bound(
     gaps: &mut Gaps,
 ) -> Option<f64> {
     let (v, q) = (v.map(|p| p.map(pt)), q.map(|p| p.map(pt)));
-    piece_bound(bs, &v, &q, goal, MAX_SPLITS, gaps)
+    piece_bound(bs, &v, &q, goal, MAX_SPLITS, MAX_CUTS, gaps)
 }
 
 /// Proven gaps between mesh vertices and the surface at their parameters, by the bits of the

@@ -58,7 +58,8 @@ pub struct Chordal {
     /// triangle within it of its face's surface over its parameter triangle, and that surface
     /// within it of the triangle), over the triangles that have one; `None` when not asked for.
     pub proven: Option<f64>,
-    /// Triangles with no proven bound (across a knot line where the surface is not C², out of
+    /// Triangles with no proven bound (a corner on an uncertain side of a knot line where the
+    /// surface is not C², past [`super::bound::MAX_CUTS`] cuts there, out of
     /// an open direction's domain, no enclosure, or on a face meshed into more than
     /// [`super::bound::MAX_TRIANGLES`]); `proven` says nothing of them.
     pub unbounded: usize,
