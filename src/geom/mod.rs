@@ -154,6 +154,23 @@ pub fn dist<S: RealScalar, const D: usize>(a: &[S; D], b: &[S; D]) -> S {
     norm(&a.sub(b))
 }
 
+/// A well-spread triple of `pts`: the first point, the point farthest from it, and the point
+/// farthest from the line through those two (of equally far ones, the last); `None` when
+/// `pts` is empty. Collinear points give a degenerate triple.
+pub fn spread_triple(pts: &[[f64; 3]]) -> Option<[[f64; 3]; 3]> {
+    let &p0 = pts.first()?;
+    let far = |key: &dyn Fn(&[f64; 3]) -> f64| {
+        pts.iter()
+            .copied()
+            .max_by(|a, b| key(a).total_cmp(&key(b)))
+            .unwrap_or(p0)
+    };
+    let p1 = far(&|p| norm2(&p.sub(&p0)));
+    let e = p1.sub(&p0);
+    let p2 = far(&|p| norm2(&cross(&e, &p.sub(&p0))));
+    Some([p0, p1, p2])
+}
+
 /// Distance from `x` to the segment `pq` (to `p` when the segment is a point).
 pub fn dist_to_segment<S: RealScalar, const D: usize>(x: &[S; D], p: &[S; D], q: &[S; D]) -> S {
     let d = q.sub(p);

@@ -86,6 +86,12 @@ impl Interval {
     pub fn mag(&self) -> f64 {
         self.lo.abs().max(self.hi.abs())
     }
+    /// Upper bound of the Euclidean norm of every point of the box `x` (one interval a
+    /// coordinate).
+    pub fn norm_hi(x: &[Interval]) -> f64 {
+        let s = x.iter().fold(Interval::point(0.0), |s, c| s + c.sqr());
+        s.hi.sqrt().next_up()
+    }
     /// Enclosure of `x²` (non-negative even when the interval holds 0).
     pub fn sqr(self) -> Interval {
         let m = self * self;

@@ -87,30 +87,10 @@ fn proven_not_coplanar(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> 
         .filter(|h| h.w == 1.0 && h.wp.iter().all(|x| x.is_finite()))
         .map(|h| h.wp)
         .collect();
-    let Some(&p0) = pts.first() else {
+    // A well-spread triple (any triple is sound: a collinear one only makes every test zero).
+    let Some([p0, p1, p2]) = crate::geom::spread_triple(&pts) else {
         return false;
     };
-    let d2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>();
-    // A well-spread triple (any triple is sound: a collinear one only makes every test zero).
-    let far = |key: &dyn Fn(&[f64; 3]) -> f64| {
-        pts.iter()
-            .copied()
-            .max_by(|a, b| key(a).total_cmp(&key(b)))
-            .unwrap_or(p0)
-    };
-    let p1 = far(&|p| d2(p, &p0));
-    let p2 = far(&|p| {
-        let (u, v) = (
-            [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]],
-            [p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]],
-        );
-        let c = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
-        c[0] * c[0] + c[1] * c[1] + c[2] * c[2]
-    });
     pts.iter()
         .any(|p| orient3d::<f64>(&p0, &p1, &p2, p) != Sign::Zero)
 }

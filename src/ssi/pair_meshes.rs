@@ -7,6 +7,7 @@ use super::report::PairStats;
 use super::triangulate::{
     CellKey, Evaluations, SurfaceMesh, TriangulateParams, triangulate_cached,
 };
+use crate::geom::{Point, cross, dot, norm2, spread_triple};
 use crate::spline::NurbsSurface;
 use std::collections::HashSet;
 
@@ -18,42 +19,23 @@ pub(crate) fn unit_normals(m: &SurfaceMesh) -> Vec<Option<[f64; 3]>> {
 }
 
 /// Whether every control point of `s` lies within 1e-12 of the net's size from one plane
-/// (through the first point, the point farthest from it and the point farthest from their
-/// line). A scheduling test for the mesh only: nothing is claimed from it.
+/// (through a well-spread triple of them, [`spread_triple`]). A scheduling test for the mesh
+/// only: nothing is claimed from it.
 fn planar(s: &NurbsSurface<f64, 3>) -> bool {
     let (pts, _) = s.points_weights();
-    let Some(&p0) = pts.first() else {
+    let Some([p0, a, b]) = spread_triple(&pts) else {
         return false;
     };
-    let sub = |a: &[f64; 3], b: &[f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let cross = |a: &[f64; 3], b: &[f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let far = |f: &dyn Fn(&[f64; 3]) -> f64| {
-        pts.iter()
-            .map(|p| (f(p), *p))
-            .fold((0.0, p0), |b, x| if x.0 > b.0 { x } else { b })
-    };
-    let (r2, a) = far(&|p| dot(&sub(p, &p0), &sub(p, &p0)));
-    let e = sub(&a, &p0);
-    let (c2, b) = far(&|p| {
-        let c = cross(&e, &sub(p, &p0));
-        dot(&c, &c)
-    });
+    let e = a.sub(&p0);
+    let n = cross(&e, &b.sub(&p0));
+    let (r2, c2) = (norm2(&e), norm2(&n));
     // Collinear (or a single point): no plane to speak of.
     if !r2.is_finite() || r2 <= 0.0 || c2.is_nan() || c2 <= 1e-12 * r2 * r2 {
         return false;
     }
-    let n = cross(&e, &sub(&b, &p0));
-    let len = dot(&n, &n).sqrt();
-    let size = r2.sqrt();
+    let (len, size) = (c2.sqrt(), r2.sqrt());
     pts.iter()
-        .all(|p| (dot(&sub(p, &p0), &n) / len).abs() <= 1e-12 * size)
+        .all(|p| (dot(&p.sub(&p0), &n) / len).abs() <= 1e-12 * size)
 }
 
 /// Triangulate both surfaces, refining cells where the meshes come close at a small angle

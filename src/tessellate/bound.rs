@@ -65,14 +65,6 @@ pub struct BoundSurface<'a> {
     pub periodic: [bool; 2],
 }
 
-/// An upper bound of the Euclidean norm of an interval vector (each component's magnitude).
-fn norm_up(v: &[I; 3]) -> f64 {
-    let sq = v
-        .iter()
-        .fold(pt(0.0), |acc, c| acc + pt(c.mag()) * pt(c.mag()));
-    sq.hi.sqrt().next_up()
-}
-
 /// The one C² group of each direction over the box `[u] × [v]`, if the surface is C² there
 /// and the box stays in the domain where the direction is not closed.
 fn group(bs: &BoundSurface, u: I, v: I) -> Grouped {
@@ -258,7 +250,7 @@ fn piece_bound(
         }
     };
     let j = group_jet(bs.s, &gu, &gv)?;
-    let m = pt(norm_up(&j.suu).max(norm_up(&j.svv))) + pt(norm_up(&j.suv));
+    let m = pt(I::norm_hi(&j.suu).max(I::norm_hi(&j.svv))) + pt(I::norm_hi(&j.suv));
     let r2 = enclosing_radius_sq(q)?;
     let mut corner = 0.0f64;
     for (vi, qi) in v.iter().zip(q) {
@@ -273,7 +265,7 @@ fn piece_bound(
         // knot line at the box's border.
         let s = group_jet(bs.s, &restrict(&gu, qi[0]), &restrict(&gv, qi[1]))?.s;
         let gap: [I; 3] = std::array::from_fn(|k| vi[k] - s[k]);
-        let g = norm_up(&gap);
+        let g = I::norm_hi(&gap);
         if let Some(k) = key {
             gaps.insert(k, g);
         }

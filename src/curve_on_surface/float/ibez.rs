@@ -246,11 +246,7 @@ pub(crate) fn mr_polar_values<const D: usize>(
 
 /// Upper bound of the Euclidean norm of every point of the box `x`.
 pub fn norm_hi<const D: usize>(x: &IP<D>) -> f64 {
-    let mut s = I::point(0.0);
-    for c in x {
-        s = s + c.sqr();
-    }
-    s.hi.sqrt().next_up()
+    I::norm_hi(x)
 }
 
 /// Upper bound of the distance from every point of the box `x` to the point `y`.
