@@ -24,7 +24,7 @@ use super::triangulate::SurfaceMesh;
 use crate::geom::dist;
 use crate::spline::NurbsSurface;
 use rayon::prelude::*;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::sync::Mutex;
 
 /// The two surfaces of a pair with their meshes and exact forms.
@@ -58,7 +58,7 @@ impl BranchNear {
             points,
             radius: 100.0 * tol,
             tol,
-            cache: Mutex::new(HashMap::new()),
+            cache: Mutex::new(HashMap::default()),
         }
     }
 

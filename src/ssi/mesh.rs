@@ -11,7 +11,7 @@ use super::tri_tri::Feature;
 use crate::geom::dist;
 use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::model::Triangulation;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
 
 fn tri(m: &Triangulation, t: u32) -> [[f64; 3]; 3] {

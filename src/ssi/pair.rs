@@ -19,7 +19,7 @@ use super::{SsiError, SsiParams};
 use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::predicates::tri_tri::ConstructedPoint;
 use crate::spline::NurbsSurface;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::time::Instant;
 
 /// Triangle `t` of `m` as three points.
@@ -298,7 +298,7 @@ struct SingularRegions {
 }
 
 fn edge_map(m: &SurfaceMesh) -> HashMap<(u32, u32), Vec<u32>> {
-    let mut e: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+    let mut e: HashMap<(u32, u32), Vec<u32>> = HashMap::default();
     for t in 0..m.triangles.len() as u32 {
         let v = m.topo_triangle(t);
         for k in 0..3 {
@@ -312,10 +312,10 @@ fn edge_map(m: &SurfaceMesh) -> HashMap<(u32, u32), Vec<u32>> {
 impl SingularRegions {
     fn new(ma: &SurfaceMesh, mb: &SurfaceMesh, singular: &[Refined], r: f64) -> Self {
         let mut s = SingularRegions {
-            tri_a: HashMap::new(),
-            tri_b: HashMap::new(),
-            edges_a: HashMap::new(),
-            edges_b: HashMap::new(),
+            tri_a: HashMap::default(),
+            tri_b: HashMap::default(),
+            edges_a: HashMap::default(),
+            edges_b: HashMap::default(),
         };
         if singular.is_empty() {
             return s;

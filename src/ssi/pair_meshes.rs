@@ -9,7 +9,7 @@ use super::triangulate::{
 };
 use crate::geom::{Point, cross, dot, norm2, spread_triple};
 use crate::spline::NurbsSurface;
-use std::collections::HashSet;
+use rustc_hash::FxHashSet as HashSet;
 
 /// The unit normal of every triangle of `m` (`None` for a degenerate one).
 pub(crate) fn unit_normals(m: &SurfaceMesh) -> Vec<Option<[f64; 3]>> {
@@ -68,7 +68,7 @@ pub(crate) fn meshes(
         ..tp
     };
     let (ta, tb) = (own(sa), own(sb));
-    let (mut fa, mut fb) = (HashSet::<CellKey>::new(), HashSet::<CellKey>::new());
+    let (mut fa, mut fb) = (HashSet::<CellKey>::default(), HashSet::<CellKey>::default());
     let cos_t = prm.tangent_angle_deg.to_radians().cos();
     let (mut ca, mut cb) = (Evaluations::default(), Evaluations::default());
     let mut ma = triangulate_cached(sa, &ta, &fa, &mut ca);

@@ -37,8 +37,8 @@ use super::report::{BranchOut, PairOut, PairStats, TouchOut};
 use super::trace::{check_invariants, trace};
 use super::triangulate::{TriangulateParams, triangulate};
 use crate::spline::NurbsSurface;
+use rustc_hash::FxHashSet as HashSet;
 use serde::Serialize;
-use std::collections::HashSet;
 use std::time::Instant;
 
 /// Rounds of region runs per pair.
@@ -197,7 +197,7 @@ fn region_run(
         max_edge: diag / (f64::from(prm.min_cells_per_diagonal.max(1)) * scale),
         max_depth: prm.max_depth,
     };
-    let none = HashSet::new();
+    let none = HashSet::default();
     let (ma, mb) = (triangulate(&pa, &tp, &none), triangulate(&pb, &tp, &none));
     let g = PairGeometry {
         sa,

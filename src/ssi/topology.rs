@@ -9,7 +9,7 @@
 
 use super::tri_tri::{Feature, PointId};
 use crate::predicates::tri_tri::ConstructedPoint;
-use std::collections::{HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
 
 /// A unique intersection point.
 #[derive(Clone, Debug)]

@@ -20,7 +20,7 @@ use super::triangulate::SurfaceMesh;
 use crate::geom::tri_tree::{TriTree, triangle_box};
 use crate::geom::{cross, dist, norm};
 use crate::spline::NurbsSurface;
-use std::collections::HashSet;
+use rustc_hash::FxHashSet as HashSet;
 
 /// Most seeds tried per pair.
 pub const MAX_SEEDS: usize = 256;
@@ -57,7 +57,7 @@ pub fn tangential_points(
 ) -> Vec<Refined> {
     let cos_t = tangent_angle_deg.to_radians().cos();
     let pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
-    let mut seeds: HashSet<(u32, u32)> = HashSet::new();
+    let mut seeds: HashSet<(u32, u32)> = HashSet::default();
     let mut seed_tris = Vec::new();
     let (ua, ub) = (unit_normals(g.ma), unit_normals(g.mb));
     for &(ta, tb) in &pairs {
@@ -90,7 +90,7 @@ pub fn tangential_points(
     // those vertices (a budget of their own). Vertex normals are computed on demand, once
     // each; no facet angle filters them (a coarse facet says nothing of its vertices).
     let (mut na, mut nb) = (vec![None; g.ma.uv.len()], vec![None; g.mb.uv.len()]);
-    let mut vseeds: HashSet<(u32, u32)> = HashSet::new();
+    let mut vseeds: HashSet<(u32, u32)> = HashSet::default();
     let mut vertex_pairs = Vec::new();
     for &(ta, tb) in &pairs {
         let key = (g.ma.tri_cell[ta as usize], g.mb.tri_cell[tb as usize]);

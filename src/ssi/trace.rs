@@ -168,7 +168,7 @@ pub fn check_invariants(t: &Topology, branches: &[Branch]) -> Result<(), Invaria
                 return Err(InvariantError::OpenThroughEnd { branch: bi });
             }
         }
-        let mut seen = std::collections::HashSet::new();
+        let mut seen = rustc_hash::FxHashSet::default();
         for &p in interior {
             if !seen.insert(p) {
                 return Err(InvariantError::PointTwice {

@@ -15,7 +15,8 @@
 use crate::geom::dist;
 use crate::spline::NurbsSurface;
 use crate::spline::closure::Closure;
-use std::collections::{BTreeSet, HashMap, HashSet};
+use rustc_hash::{FxHashMap as HashMap, FxHashSet as HashSet};
+use std::collections::BTreeSet;
 
 /// Lattice steps per knot span are `2^LEVELS`; leaves stop one level above so their centre
 /// is a lattice point.
@@ -122,7 +123,7 @@ fn weld_border(
         m.vertices[k] = m.vertices[r as usize];
     }
     let (u0, u1, v0, v1) = bounds(m);
-    let mut first: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut first: HashMap<[u64; 3], u32> = HashMap::default();
     for i in 0..m.vertices.len() {
         let uv = m.uv[i];
         if m.topo_id[i] != i as u32 || !(uv[0] == u0 || uv[0] == u1 || uv[1] == v0 || uv[1] == v1) {
@@ -351,7 +352,7 @@ fn triangulate_cells_with(
         unresolved_cells: unresolved,
         ..Default::default()
     };
-    let mut index: HashMap<(u64, u64), u32> = HashMap::new();
+    let mut index: HashMap<(u64, u64), u32> = HashMap::default();
     let mut vertex = |mesh: &mut SurfaceMesh, i: u64, j: u64| -> u32 {
         *index.entry((i, j)).or_insert_with(|| {
             keys.push((i, j));
@@ -445,7 +446,7 @@ pub fn triangulate_cached(
 /// edges on the domain boundary (used once). Returns the number of boundary edges, or the
 /// first edge that breaks the rule (a crack or a fold).
 pub fn check_crack_free(m: &SurfaceMesh) -> Result<usize, (u32, u32)> {
-    let mut count: HashMap<(u32, u32), i32> = HashMap::new();
+    let mut count: HashMap<(u32, u32), i32> = HashMap::default();
     for t in &m.triangles {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);

@@ -271,7 +271,7 @@ pub fn coverage(
     }
     let mut boxes = 0usize;
     let kept = std::cell::Cell::new(0usize);
-    let mut searched: std::collections::HashSet<[u64; 8]> = std::collections::HashSet::new();
+    let mut searched: rustc_hash::FxHashSet<[u64; 8]> = Default::default();
     let uncertified = |out: &mut CoverageOut, a: &Cell, b: &Cell, reason, point| {
         out.uncertified += 1;
         if out.uncertified_regions.len() < 100 {
