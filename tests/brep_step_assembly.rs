@@ -377,3 +377,135 @@ fn info_convert_and_ssi_work_on_assemblies() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Signed volume enclosed by the B-rep's triangulation (divergence theorem; positive when
+/// the triangles face outward): the oracle for the faces' orientation after a mirroring.
+fn mesh_volume(m: &Model, b: &Brep) -> f64 {
+    let mesh = vericad::tessellate::mesh_brep(m, b, &vericad::tessellate::MeshParams::default());
+    assert!(mesh.issues(b).is_empty(), "{:?}", mesh.issues(b));
+    let t = &mesh.triangulation;
+    t.triangles
+        .iter()
+        .map(|tri| {
+            let [a, b, c] = tri.map(|i| t.vertices[i as usize]);
+            vericad::geom::dot(&a, &vericad::geom::cross(&b, &c)) / 6.0
+        })
+        .sum()
+}
+
+#[test]
+fn cartesian_transformation_operators_scale_and_mirror() {
+    // The first box placed by an operator with scale 2 (the standard's 7-attribute form, the
+    // axes of the file's own frame #15); the second by a mirroring operator (6-attribute
+    // form: axis1 = y, axis2 = x, axis3 unset, so T p = (p_y, p_x, p_z)) at (100, 0, 0).
+    let t = text("occt-assembly-boxes.step")
+        .replace(
+            "#374 = ITEM_DEFINED_TRANSFORMATION('','',#11,#15);",
+            "#374 = CARTESIAN_TRANSFORMATION_OPERATOR_3D('','',#18,#9001,#16,2.,#17);\n#9001 = DIRECTION('',(-1.,0.,0.));",
+        )
+        .replace(
+            "#380 = ITEM_DEFINED_TRANSFORMATION('','',#11,#19);",
+            "#380 = CARTESIAN_TRANSFORMATION_OPERATOR_3D('',#9002,#9003,#16,$,$);\n#9002 = DIRECTION('',(0.,1.,0.));\n#9003 = DIRECTION('',(1.,0.,0.));",
+        );
+    let (m, b) = read("operators", &t);
+    let w = m.warnings.join("\n");
+    assert!(!w.contains("assembly"), "{w}");
+    let bx = corners([10.0, 20.0, 30.0]);
+    let m1 = motion([0.0, 0.0, 1.0], 90.0, [100.0, 0.0, 0.0]);
+    let scaled: Vec<[f64; 3]> = bx.iter().map(|&p| m1(p.map(|x| 2.0 * x))).collect();
+    let mirrored: Vec<[f64; 3]> = bx
+        .iter()
+        .map(|p| [p[1] + 100.0, p[0], p[2]])
+        .collect();
+    vertices_are(&b, 0, &scaled, 1e-9);
+    vertices_are(&b, 1, &mirrored, 1e-9);
+    // Areas scale by 4; the mirrored box keeps its area, and both enclose their volume
+    // with the faces outward.
+    let got = solids(&m, &b);
+    assert!((got[0].0 - 4.0 * 2200.0).abs() < 1e-6, "{got:?}");
+    assert!((got[1].0 - 2200.0).abs() < 1e-6, "{got:?}");
+    // Every face meshed: 8 · 6000 + 6000 (a mirrored box facing inward would give 42000).
+    let v = mesh_volume(&m, &b);
+    assert!((v - 54000.0).abs() < 1e-6 * 54000.0, "{v}");
+    // ISO 10303-42: each bound, taken with its orientation, runs counter-clockwise about the
+    // face's outward normal (the face on its left). For a box the outward normal of a face
+    // points from the box's centre to the face's centre.
+    for (k, centre) in [(0, m1([10.0, 20.0, 30.0])), (1, [110.0, 5.0, 15.0])] {
+        for &(f, _) in &b.shells[b.solids[k].outer].faces {
+            for l in &b.faces[f].loops {
+                let vericad::brep::LoopKind::Edges(es) = &l.kind else {
+                    panic!("a box face bounded by edges")
+                };
+                let pts: Vec<[f64; 3]> = es
+                    .iter()
+                    .map(|oe| {
+                        let e = &b.edges[oe.edge];
+                        b.vertices[if oe.forward { e.start } else { e.end }].point
+                    })
+                    .collect();
+                let n = pts.len() as f64;
+                let mid = [0, 1, 2].map(|i| pts.iter().map(|p| p[i]).sum::<f64>() / n);
+                let mut newell = [0.0; 3];
+                for (i, p) in pts.iter().enumerate() {
+                    let q = pts[(i + 1) % pts.len()];
+                    let c = vericad::geom::cross(p, &q);
+                    (0..3).for_each(|j| newell[j] += c[j]);
+                }
+                let out = [0, 1, 2].map(|i| mid[i] - centre[i]);
+                let turn = vericad::geom::dot(&newell, &out) * if l.orientation { 1.0 } else { -1.0 };
+                assert!(turn > 0.0, "solid {k}, face {}: bound {} runs clockwise", b.faces[f].source, l.source);
+            }
+        }
+    }
+
+    // Reversed (the parent as rep_1): the inverse of the scaled operator places the child.
+    let r = t
+        .replace("( REPRESENTATION_RELATIONSHIP('','',#36,#10)", "( REPRESENTATION_RELATIONSHIP('','',#10,#36)");
+    let (m, b) = read("operators reversed", &r);
+    assert!(!m.warnings.join("\n").contains("assembly"));
+    let inv = |p: [f64; 3]| [p[1] / 2.0, (100.0 - p[0]) / 2.0, p[2] / 2.0];
+    vertices_are(&b, 0, &bx.iter().map(|&p| inv(p)).collect::<Vec<_>>(), 1e-9);
+
+    // An operator as a MAPPED_ITEM's target (mapping origin the world frame #11): the
+    // identity operator and one with scale 3 and origin (1, 2, 3) place the cylinder part at
+    // S and at 3 S + (1, 2, 3).
+    let t = text("occt-assembly-cylinder.step");
+    let cut = (t.find("#136 = ").unwrap(), t.find("#141 = ").unwrap());
+    let mapped = |scale: &str, o: &str| {
+        let t = format!("{}{}", &t[..cut.0], &t[cut.1..])
+            .replace("#25 = SHAPE_DEFINITION_REPRESENTATION(#26,#32);", "")
+            .replace(
+                "#10 = SHAPE_REPRESENTATION('',(#11,#15),#19);",
+                &format!("#10 = SHAPE_REPRESENTATION('',(#11,#900),#19);\n#900 = MAPPED_ITEM('',#901,#902);\n#901 = REPRESENTATION_MAP(#11,#32);\n#902 = CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#903,{scale},$);\n#903 = CARTESIAN_POINT('',({o}));"),
+            );
+        let (m, b) = read("mapped operator", &t);
+        assert!(!m.warnings.join("\n").contains("assembly"));
+        solids(&m, &b)[0]
+    };
+    let (a1, b1) = mapped("$", "0.,0.,0.");
+    let (a3, b3) = mapped("3.", "1.,2.,3.");
+    assert!((a3 - 9.0 * a1).abs() < 1e-9 * a3, "{a1} {a3}");
+    for k in 0..6 {
+        let want = 3.0 * b1[k] + [1.0, 2.0, 3.0][k % 3];
+        assert!((b3[k] - want).abs() < 1e-6, "{b1:?} {b3:?}");
+    }
+}
+
+#[test]
+fn faulty_operators_are_reported() {
+    for (op, says) in [
+        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',#17,$,#16,$,#17)", "do not span"),
+        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#16,-1.,$)", "scale"),
+        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#16)", "attributes"),
+        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#9999,$,$)", "#9999"),
+    ] {
+        let t = text("occt-assembly-boxes.step").replace(
+            "#374 = ITEM_DEFINED_TRANSFORMATION('','',#11,#15);",
+            &format!("#374 = {op};"),
+        );
+        let (m, b) = read("faulty operator", &t);
+        let w = m.warnings.join("\n");
+        assert!(w.contains("#376") && w.contains(says), "{op}: {w}");
+        assert_eq!(b.solids.len(), 2);
+    }
+}

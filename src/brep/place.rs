@@ -87,10 +87,42 @@ impl Motion {
                 dev = dev.max((d - if i == j { 1.0 } else { 0.0 }).abs());
             }
         }
-        let det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
+        (dev, self.determinant())
+    }
+
+    /// `det R`: negative for a mirroring.
+    pub fn determinant(&self) -> f64 {
+        let r = &self.rotation;
+        r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1])
             - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0])
-            + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
-        (dev, det)
+            + r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0])
+    }
+
+    /// The inverse map of any invertible `R` (scaled or mirroring, as a
+    /// `cartesian_transformation_operator` gives them): `R⁻¹ = adj(R) / det R`, translation
+    /// `−R⁻¹ t`; `None` when `det R` is zero or not finite. Rigid motions use
+    /// [`Motion::inverse_rigid`] (the exact transpose).
+    pub fn inverse(&self) -> Option<Motion> {
+        let det = self.determinant();
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let r = &self.rotation;
+        // adj(R)[i][j] is the cofactor of R[j][i].
+        let c = |i: usize, j: usize| {
+            let (a, b) = ((j + 1) % 3, (j + 2) % 3);
+            let (x, y) = ((i + 1) % 3, (i + 2) % 3);
+            (r[a][x] * r[b][y] - r[a][y] * r[b][x]) / det
+        };
+        let m = Motion {
+            rotation: [0, 1, 2].map(|i| [0, 1, 2].map(|j| c(i, j))),
+            translation: [0.0; 3],
+        };
+        let t = m.rotate(&self.translation);
+        Some(Motion {
+            translation: t.map(|x| -x),
+            ..m
+        })
     }
 
     fn hom(&self, h: &Hom<f64, 3>) -> Hom<f64, 3> {
@@ -248,8 +280,13 @@ impl Copier<'_> {
             });
             self.out_surfaces.len() - 1
         });
+        // A mirroring turns S_u × S_v against the image of the face's normal and the loops'
+        // sense of turning with it: the face's sense and each bound's orientation flip, so the
+        // placed face keeps its outward normal and the material on the loops' left.
+        let mirror = self.m.determinant() < 0.0;
         let mut loops = src.loops.clone();
         for l in &mut loops {
+            l.orientation ^= mirror;
             match &mut l.kind {
                 LoopKind::Edges(es) => {
                     for oe in es.iter_mut() {
@@ -267,7 +304,7 @@ impl Copier<'_> {
             source: src.source.clone(),
             surface,
             surface_source: src.surface_source.clone(),
-            same_sense: src.same_sense,
+            same_sense: src.same_sense ^ mirror,
             loops,
         });
         self.faces.insert(f, i);
@@ -288,5 +325,31 @@ impl Copier<'_> {
         });
         self.shells.insert(s, i);
         i
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Motion;
+
+    #[test]
+    fn inverse_undoes_scaled_and_mirroring_maps() {
+        // A mirroring (x and y swapped) scaled by 3 after a rotation, then a translation.
+        let (c, s) = (0.6, 0.8);
+        let m = Motion {
+            rotation: [[0.0, 3.0, 0.0], [3.0 * c, 0.0, -3.0 * s], [3.0 * s, 0.0, 3.0 * c]],
+            translation: [1.0, -2.0, 5.0],
+        };
+        assert!((m.determinant() + 27.0).abs() < 1e-12);
+        let inv = m.inverse().unwrap();
+        for p in [[0.0, 0.0, 0.0], [1.5, -4.0, 2.25], [-7.0, 3.0, 11.0]] {
+            let back = inv.apply(&m.apply(&p));
+            assert!((0..3).all(|i| (back[i] - p[i]).abs() < 1e-12), "{back:?} {p:?}");
+        }
+        let singular = Motion {
+            rotation: [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]],
+            translation: [0.0; 3],
+        };
+        assert!(singular.inverse().is_none());
     }
 }

@@ -7,16 +7,20 @@
 //! whose `item_defined_transformation` is a pair of `axis2_placement_3d`s. The motion maps
 //! the first placement onto the second (ISO 10303-43, `item_defined_transformation`):
 //! `T = B ∘ A⁻¹` for frames `A` (`transform_item_1`) and `B` (`transform_item_2`), taking the
-//! child representation's coordinates to the parent's. When the relationship names the
+//! child representation's coordinates to the parent's; or a
+//! `cartesian_transformation_operator_3d` (`super::transform_operator`: rotation, uniform
+//! scale, mirroring) mapping rep_1's coordinates to rep_2's. When the relationship names the
 //! parent as `rep_1` (reversed against the NAUO), the inverse is used. `mapped_item`s
 //! (`representation_map` with `mapping_origin` `A`, `mapping_target` `B`) place their
-//! representation by `B ∘ A⁻¹` likewise. Nested occurrences compose their motions.
+//! representation by `B ∘ A⁻¹` likewise, or by `T ∘ A⁻¹` for an operator `T` as the target.
+//! Nested occurrences compose their motions.
 //!
 //! The result is a list of placed occurrences (depth-first), each with the solids and shells
 //! (STEP ids) its product's shape holds, and the warnings for what could not be placed.
 
 use super::entities::Reader;
 use super::part21::{Entity, ListRefs, Value};
+use super::transform_operator::NAME as CTO;
 use crate::brep::place::Motion;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -285,7 +289,16 @@ impl Walker<'_> {
             ));
             return;
         }
-        match self.map_frames(origin, target) {
+        let to_target = if self.r.p.entities.get(&target).is_some_and(|e| e.is(CTO)) {
+            // `T ∘ A⁻¹`: the origin frame onto the operator's image of the world frame.
+            self.r
+                .transformation_operator(target)
+                .map_err(|e| format!("{}: {}", e.location, e.reason))
+                .and_then(|t| Ok(t.then_after(&self.frame(origin)?.inverse_rigid())))
+        } else {
+            self.map_frames(origin, target)
+        };
+        match to_target {
             Ok(t) => self.items(&[rep], m.then_after(&t), depth + 1, out),
             Err(e) => self
                 .warnings
@@ -312,13 +325,26 @@ impl Walker<'_> {
             ));
             return Motion::IDENTITY;
         };
-        let idt = wt
-            .first()
-            .and_then(Value::reference)
+        let op = wt.first().and_then(Value::reference);
+        if let Some(op) = op.filter(|o| p.entities.get(o).is_some_and(|e| e.is(CTO)))
+        {
+            // A functionally defined transformation maps rep_1's coordinates to rep_2's.
+            return match self.r.transformation_operator(op) {
+                Ok(t) => self.towards_parent(srr, nauo, child, rr, t, Motion::inverse),
+                Err(e) => {
+                    self.warnings.push(format!(
+                        "assembly: {}: {} ({CTO} placing #{nauo}); placed without motion",
+                        e.location, e.reason
+                    ));
+                    Motion::IDENTITY
+                }
+            };
+        }
+        let idt = op
             .and_then(|t| Some((t, p.entities.get(&t)?.part("ITEM_DEFINED_TRANSFORMATION")?)));
         let Some((tid, idt)) = idt else {
             self.warnings.push(format!(
-                "assembly: #{srr} (placing #{nauo}): the transformation is not an ITEM_DEFINED_TRANSFORMATION (not supported); placed without motion"
+                "assembly: #{srr} (placing #{nauo}): the transformation is neither an ITEM_DEFINED_TRANSFORMATION nor a {CTO} (not supported); placed without motion"
             ));
             return Motion::IDENTITY;
         };
@@ -340,6 +366,20 @@ impl Walker<'_> {
                 return Motion::IDENTITY;
             }
         };
+        self.towards_parent(srr, nauo, child, rr, t, |m| Some(m.inverse_rigid()))
+    }
+
+    /// `t` (rep_1 to rep_2 of the relationship `rr`) as the map from the child's coordinates
+    /// to the parent's: `t` when rep_1 is the child's, its inverse when rep_2 is.
+    fn towards_parent(
+        &mut self,
+        srr: u64,
+        nauo: u64,
+        child: u64,
+        rr: &[Value],
+        t: Motion,
+        inverse: fn(&Motion) -> Option<Motion>,
+    ) -> Motion {
         let child_reps: Vec<u64> = self.reps.get(&child).map_or(vec![], |v| {
             v.iter().flat_map(|&r| self.closure(r)).collect()
         });
@@ -348,7 +388,12 @@ impl Walker<'_> {
         if rep1.is_some_and(|r| child_reps.contains(&r)) {
             t
         } else if rep2.is_some_and(|r| child_reps.contains(&r)) {
-            t.inverse_rigid()
+            inverse(&t).unwrap_or_else(|| {
+                self.warnings.push(format!(
+                    "assembly: #{srr} (placing #{nauo}): its transformation cannot be inverted; placed without motion"
+                ));
+                Motion::IDENTITY
+            })
         } else {
             self.warnings.push(format!(
                 "assembly: #{srr} (placing #{nauo}) relates no representation of the child product; rep_1 taken as the child's"

@@ -19,6 +19,7 @@ mod occurrences;
 pub mod part21;
 mod shells;
 mod topology;
+mod transform_operator;
 mod units;
 use entities::Reader;
 use units::unit;
