@@ -413,10 +413,7 @@ fn cartesian_transformation_operators_scale_and_mirror() {
     let bx = corners([10.0, 20.0, 30.0]);
     let m1 = motion([0.0, 0.0, 1.0], 90.0, [100.0, 0.0, 0.0]);
     let scaled: Vec<[f64; 3]> = bx.iter().map(|&p| m1(p.map(|x| 2.0 * x))).collect();
-    let mirrored: Vec<[f64; 3]> = bx
-        .iter()
-        .map(|p| [p[1] + 100.0, p[0], p[2]])
-        .collect();
+    let mirrored: Vec<[f64; 3]> = bx.iter().map(|p| [p[1] + 100.0, p[0], p[2]]).collect();
     vertices_are(&b, 0, &scaled, 1e-9);
     vertices_are(&b, 1, &mirrored, 1e-9);
     // Areas scale by 4; the mirrored box keeps its area, and both enclose their volume
@@ -452,15 +449,23 @@ fn cartesian_transformation_operators_scale_and_mirror() {
                     (0..3).for_each(|j| newell[j] += c[j]);
                 }
                 let out = [0, 1, 2].map(|i| mid[i] - centre[i]);
-                let turn = vericad::geom::dot(&newell, &out) * if l.orientation { 1.0 } else { -1.0 };
-                assert!(turn > 0.0, "solid {k}, face {}: bound {} runs clockwise", b.faces[f].source, l.source);
+                let turn =
+                    vericad::geom::dot(&newell, &out) * if l.orientation { 1.0 } else { -1.0 };
+                assert!(
+                    turn > 0.0,
+                    "solid {k}, face {}: bound {} runs clockwise",
+                    b.faces[f].source,
+                    l.source
+                );
             }
         }
     }
 
     // Reversed (the parent as rep_1): the inverse of the scaled operator places the child.
-    let r = t
-        .replace("( REPRESENTATION_RELATIONSHIP('','',#36,#10)", "( REPRESENTATION_RELATIONSHIP('','',#10,#36)");
+    let r = t.replace(
+        "( REPRESENTATION_RELATIONSHIP('','',#36,#10)",
+        "( REPRESENTATION_RELATIONSHIP('','',#10,#36)",
+    );
     let (m, b) = read("operators reversed", &r);
     assert!(!m.warnings.join("\n").contains("assembly"));
     let inv = |p: [f64; 3]| [p[1] / 2.0, (100.0 - p[0]) / 2.0, p[2] / 2.0];
@@ -494,10 +499,22 @@ fn cartesian_transformation_operators_scale_and_mirror() {
 #[test]
 fn faulty_operators_are_reported() {
     for (op, says) in [
-        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',#17,$,#16,$,#17)", "do not span"),
-        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#16,-1.,$)", "scale"),
-        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#16)", "attributes"),
-        ("CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#9999,$,$)", "#9999"),
+        (
+            "CARTESIAN_TRANSFORMATION_OPERATOR_3D('',#17,$,#16,$,#17)",
+            "do not span",
+        ),
+        (
+            "CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#16,-1.,$)",
+            "scale",
+        ),
+        (
+            "CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#16)",
+            "attributes",
+        ),
+        (
+            "CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#9999,$,$)",
+            "#9999",
+        ),
     ] {
         let t = text("occt-assembly-boxes.step").replace(
             "#374 = ITEM_DEFINED_TRANSFORMATION('','',#11,#15);",
@@ -508,4 +525,90 @@ fn faulty_operators_are_reported() {
         assert!(w.contains("#376") && w.contains(says), "{op}: {w}");
         assert_eq!(b.solids.len(), 2);
     }
+}
+
+#[test]
+fn parts_in_another_length_unit_are_scaled_into_the_assemblys() {
+    // The box part's context in inches (a conversion-based unit of 25.4 mm), the assembly's
+    // in millimetres: the model is in mm, the boxes are 254 × 508 × 762 mm, placed by the
+    // file's motions (their translations are the assembly's, in mm).
+    let t = text("occt-assembly-boxes.step").replace(
+        "#368 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );",
+        "#368 = ( CONVERSION_BASED_UNIT('INCH',#9020) LENGTH_UNIT() NAMED_UNIT(#9021) );\n#9020 = LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#24);\n#9021 = DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);",
+    );
+    let (m, b) = read("inch part", &t);
+    assert_eq!(m.unit.as_deref(), Some("mm"));
+    let w = m.warnings.join("\n");
+    assert!(w.contains("#36 ") && w.contains("scaled by 25.4"), "{w}");
+    let bx = corners([254.0, 508.0, 762.0]);
+    let m1 = motion([0.0, 0.0, 1.0], 90.0, [100.0, 0.0, 0.0]);
+    let m2 = motion([1.0, 1.0, 0.0], 30.0, [0.0, 50.0, 10.0]);
+    vertices_are(
+        &b,
+        0,
+        &bx.iter().map(|&p| m1(p)).collect::<Vec<_>>(),
+        1e-9 * 762.0,
+    );
+    vertices_are(
+        &b,
+        1,
+        &bx.iter().map(|&p| m2(p)).collect::<Vec<_>>(),
+        1e-9 * 762.0,
+    );
+    // Open CASCADE 8.0.1 reads the same file (it converts every unit to mm) as these two
+    // solids: area 1419352 mm² each, boxes printed to 1e-6 mm.
+    let occt: [Occt; 2] = [
+        (1419352.0, [-408.0, 0.0, 0.0, 100.0, 254.0, 762.0]),
+        (
+            1419352.0,
+            [
+                0.0,
+                -219.407684,
+                -79.802561,
+                540.422457,
+                540.985226,
+                849.51648,
+            ],
+        ),
+    ];
+    check("inch part", &solids(&m, &b), &occt);
+    // The child's frame of the first placement moved to (1, 2, 3) in the part (inches): it is
+    // 25.4 · (1, 2, 3) mm in the model, and the motion maps it onto the assembly's frame.
+    let t2 = t
+        .replace(
+            "#374 = ITEM_DEFINED_TRANSFORMATION('','',#11,#15);",
+            "#374 = ITEM_DEFINED_TRANSFORMATION('','',#9030,#15);\n#9030 = AXIS2_PLACEMENT_3D('',#9031,#13,#14);\n#9031 = CARTESIAN_POINT('',(1.,2.,3.));",
+        )
+        .replace("#36 = ADVANCED_BREP_SHAPE_REPRESENTATION('',(#11,#37),#367);", "#36 = ADVANCED_BREP_SHAPE_REPRESENTATION('',(#11,#37,#9030),#367);");
+    assert_ne!(t2, t);
+    let (_, b) = read("inch part, moved frame", &t2);
+    let shifted: Vec<[f64; 3]> = bx
+        .iter()
+        .map(|&p| m1([p[0] - 25.4, p[1] - 50.8, p[2] - 76.2]))
+        .collect();
+    vertices_are(&b, 0, &shifted, 1e-9 * 762.0);
+
+    // Without the occurrences nothing says how the two units relate: a warning, not a guess.
+    let lines: Vec<&str> = t
+        .lines()
+        .filter(|l| !l.contains("NEXT_ASSEMBLY_USAGE_OCCURRENCE"))
+        .collect();
+    let (m, _) = read("inch part, no structure", &lines.join("\n"));
+    let w = m.warnings.join("\n");
+    assert!(w.contains("use 2 length units (1e-3, 2.54e-2 m)"), "{w}");
+
+    // The same part in metres (SI, no prefix) and the assembly in mm: scaled by 1000.
+    let t = text("occt-assembly-boxes.step").replace(
+        "#368 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );",
+        "#368 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT($,.METRE.) );",
+    );
+    let (m, b) = read("metre part", &t);
+    let bx = corners([10000.0, 20000.0, 30000.0]);
+    vertices_are(
+        &b,
+        0,
+        &bx.iter().map(|&p| m1(p)).collect::<Vec<_>>(),
+        1e-9 * 30000.0,
+    );
+    assert_eq!(m.unit.as_deref(), Some("mm"));
 }

@@ -337,14 +337,21 @@ mod tests {
         // A mirroring (x and y swapped) scaled by 3 after a rotation, then a translation.
         let (c, s) = (0.6, 0.8);
         let m = Motion {
-            rotation: [[0.0, 3.0, 0.0], [3.0 * c, 0.0, -3.0 * s], [3.0 * s, 0.0, 3.0 * c]],
+            rotation: [
+                [0.0, 3.0, 0.0],
+                [3.0 * c, 0.0, -3.0 * s],
+                [3.0 * s, 0.0, 3.0 * c],
+            ],
             translation: [1.0, -2.0, 5.0],
         };
         assert!((m.determinant() + 27.0).abs() < 1e-12);
         let inv = m.inverse().unwrap();
         for p in [[0.0, 0.0, 0.0], [1.5, -4.0, 2.25], [-7.0, 3.0, 11.0]] {
             let back = inv.apply(&m.apply(&p));
-            assert!((0..3).all(|i| (back[i] - p[i]).abs() < 1e-12), "{back:?} {p:?}");
+            assert!(
+                (0..3).all(|i| (back[i] - p[i]).abs() < 1e-12),
+                "{back:?} {p:?}"
+            );
         }
         let singular = Motion {
             rotation: [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]],

@@ -20,6 +20,8 @@
 
 use super::entities::Reader;
 use super::part21::{Entity, ListRefs, Value};
+mod motions;
+
 use super::transform_operator::NAME as CTO;
 use crate::brep::place::Motion;
 use std::collections::{BTreeMap, BTreeSet};
@@ -51,6 +53,10 @@ pub(super) struct Tree {
 
 struct Walker<'a> {
     r: &'a Reader<'a>,
+    /// Metres per unit of the model's length unit (`None`: unknown, nothing is scaled).
+    model_metres: Option<f64>,
+    /// Representations already reported as scaled into the model's unit.
+    scaled: BTreeSet<u64>,
     /// Representations of each product definition.
     reps: BTreeMap<u64, Vec<u64>>,
     /// Plain representation links (both directions).
@@ -89,6 +95,8 @@ pub(super) fn read(r: &Reader) -> Option<Tree> {
     let p = r.p;
     let mut w = Walker {
         r,
+        model_metres: super::units::model_metres(p),
+        scaled: BTreeSet::new(),
         reps: BTreeMap::new(),
         links: BTreeMap::new(),
         children: BTreeMap::new(),
@@ -192,20 +200,6 @@ impl Walker<'_> {
             .unwrap_or_default()
     }
 
-    /// A frame's motion (world frame to the `axis2_placement_3d`).
-    fn frame(&self, id: u64) -> Result<Motion, String> {
-        let f = self
-            .r
-            .placement(id)
-            .map_err(|e| format!("{}: {}", e.location, e.reason))?;
-        Ok(Motion::from_frame(f.o, f.x, f.y, f.z))
-    }
-
-    /// `B ∘ A⁻¹` for the frames `a`, `b`.
-    fn map_frames(&self, a: u64, b: u64) -> Result<Motion, String> {
-        Ok(self.frame(b)?.then_after(&self.frame(a)?.inverse_rigid()))
-    }
-
     /// The representations making up `rep` (itself and those joined by plain relationships).
     fn closure(&self, rep: u64) -> Vec<u64> {
         let mut seen = vec![rep];
@@ -221,8 +215,9 @@ impl Walker<'_> {
         seen
     }
 
-    /// Solids, shells and mapped items of a definition's shape, placed by `m`.
-    fn items(
+    /// Solids, shells and mapped items of a definition's shape, placed by `m`; the items of a
+    /// representation in another length unit than the model's scaled into it first.
+    pub(super) fn items(
         &mut self,
         reps: &[u64],
         m: Motion,
@@ -230,175 +225,48 @@ impl Walker<'_> {
         out: &mut Vec<(Motion, Vec<u64>, Vec<u64>)>,
     ) {
         let p = self.r.p;
-        let (mut solids, mut shells) = (Vec::new(), Vec::new());
+        // `(factor, solids, shells)`, one group per length unit met.
+        let mut groups: Vec<(f64, Vec<u64>, Vec<u64>)> = Vec::new();
         for &rep in reps {
             for rid in self.closure(rep) {
                 let Some(items) = p.entities.get(&rid).and_then(rep_items) else {
                     continue;
+                };
+                let k = self.factor(rid);
+                let g = match groups.iter().position(|g| g.0 == k) {
+                    Some(i) => i,
+                    None => {
+                        groups.push((k, vec![], vec![]));
+                        groups.len() - 1
+                    }
                 };
                 for id in items.flatten() {
                     let Some(e) = p.entities.get(&id) else {
                         continue;
                     };
                     if e.is("MANIFOLD_SOLID_BREP") || e.is("BREP_WITH_VOIDS") {
-                        solids.push(id);
+                        groups[g].1.push(id);
                     } else if let Some(a) = e.part("SHELL_BASED_SURFACE_MODEL") {
                         let list = a.get(1).and_then(Value::list_refs).unwrap_or_default();
-                        shells.extend(list.flatten());
+                        groups[g].2.extend(list.flatten());
                     } else if let Some(a) = e.part("MAPPED_ITEM") {
-                        self.mapped(id, a, m, depth, out);
+                        self.mapped((id, a), k, m, depth, out);
                     }
                 }
             }
         }
-        if !solids.is_empty() || !shells.is_empty() {
-            out.push((m, solids, shells));
-        }
-    }
-
-    fn mapped(
-        &mut self,
-        id: u64,
-        a: &[Value],
-        m: Motion,
-        depth: usize,
-        out: &mut Vec<(Motion, Vec<u64>, Vec<u64>)>,
-    ) {
-        let map = a
-            .get(1)
-            .and_then(Value::reference)
-            .and_then(|r| self.r.p.entities.get(&r)?.part("REPRESENTATION_MAP"));
-        let (Some(map), Some(target)) = (map, a.get(2).and_then(Value::reference)) else {
-            self.warnings.push(format!(
-                "assembly: MAPPED_ITEM #{id}: mapping_source is not a REPRESENTATION_MAP or mapping_target not a reference; not placed"
-            ));
-            return;
-        };
-        let (Some(origin), Some(rep)) = (
-            map.first().and_then(Value::reference),
-            map.get(1).and_then(Value::reference),
-        ) else {
-            self.warnings.push(format!(
-                "assembly: MAPPED_ITEM #{id}: its REPRESENTATION_MAP is malformed; not placed"
-            ));
-            return;
-        };
-        if depth >= MAX_DEPTH {
-            self.warnings.push(format!(
-                "assembly: MAPPED_ITEM #{id}: nested deeper than {MAX_DEPTH} (a cycle?); not placed"
-            ));
-            return;
-        }
-        let to_target = if self.r.p.entities.get(&target).is_some_and(|e| e.is(CTO)) {
-            // `T ∘ A⁻¹`: the origin frame onto the operator's image of the world frame.
-            self.r
-                .transformation_operator(target)
-                .map_err(|e| format!("{}: {}", e.location, e.reason))
-                .and_then(|t| Ok(t.then_after(&self.frame(origin)?.inverse_rigid())))
-        } else {
-            self.map_frames(origin, target)
-        };
-        match to_target {
-            Ok(t) => self.items(&[rep], m.then_after(&t), depth + 1, out),
-            Err(e) => self
-                .warnings
-                .push(format!("assembly: MAPPED_ITEM #{id}: {e}; not placed")),
-        }
-    }
-
-    /// The motion of occurrence `nauo` placing `child` in its parent: from the child's
-    /// representation to the parent's.
-    fn occurrence_motion(&mut self, nauo: u64, child: u64) -> Motion {
-        let Some(&srr) = self.placing.get(&nauo) else {
-            self.warnings.push(format!(
-                "assembly: NEXT_ASSEMBLY_USAGE_OCCURRENCE #{nauo} has no CONTEXT_DEPENDENT_SHAPE_REPRESENTATION; placed without motion"
-            ));
-            return Motion::IDENTITY;
-        };
-        let p = self.r.p;
-        let e = p.entities.get(&srr);
-        let rr = e.and_then(|e| e.part("REPRESENTATION_RELATIONSHIP"));
-        let wt = e.and_then(|e| e.part("REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION"));
-        let (Some(rr), Some(wt)) = (rr, wt) else {
-            self.warnings.push(format!(
-                "assembly: #{srr} (placing #{nauo}) is not a REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION; placed without motion"
-            ));
-            return Motion::IDENTITY;
-        };
-        let op = wt.first().and_then(Value::reference);
-        if let Some(op) = op.filter(|o| p.entities.get(o).is_some_and(|e| e.is(CTO)))
-        {
-            // A functionally defined transformation maps rep_1's coordinates to rep_2's.
-            return match self.r.transformation_operator(op) {
-                Ok(t) => self.towards_parent(srr, nauo, child, rr, t, Motion::inverse),
-                Err(e) => {
-                    self.warnings.push(format!(
-                        "assembly: {}: {} ({CTO} placing #{nauo}); placed without motion",
-                        e.location, e.reason
-                    ));
-                    Motion::IDENTITY
-                }
-            };
-        }
-        let idt = op
-            .and_then(|t| Some((t, p.entities.get(&t)?.part("ITEM_DEFINED_TRANSFORMATION")?)));
-        let Some((tid, idt)) = idt else {
-            self.warnings.push(format!(
-                "assembly: #{srr} (placing #{nauo}): the transformation is neither an ITEM_DEFINED_TRANSFORMATION nor a {CTO} (not supported); placed without motion"
-            ));
-            return Motion::IDENTITY;
-        };
-        let (Some(a), Some(b)) = (
-            idt.get(2).and_then(Value::reference),
-            idt.get(3).and_then(Value::reference),
-        ) else {
-            self.warnings.push(format!(
-                "assembly: ITEM_DEFINED_TRANSFORMATION #{tid}: items are not references; #{nauo} placed without motion"
-            ));
-            return Motion::IDENTITY;
-        };
-        let t = match self.map_frames(a, b) {
-            Ok(t) => t,
-            Err(e) => {
-                self.warnings.push(format!(
-                    "assembly: ITEM_DEFINED_TRANSFORMATION #{tid}: {e}; #{nauo} placed without motion"
-                ));
-                return Motion::IDENTITY;
+        for (k, solids, shells) in groups {
+            if !solids.is_empty() || !shells.is_empty() {
+                let placed = if k == 1.0 {
+                    m
+                } else {
+                    m.then_after(&Motion {
+                        rotation: Motion::IDENTITY.rotation.map(|r| r.map(|x| x * k)),
+                        translation: [0.0; 3],
+                    })
+                };
+                out.push((placed, solids, shells));
             }
-        };
-        self.towards_parent(srr, nauo, child, rr, t, |m| Some(m.inverse_rigid()))
-    }
-
-    /// `t` (rep_1 to rep_2 of the relationship `rr`) as the map from the child's coordinates
-    /// to the parent's: `t` when rep_1 is the child's, its inverse when rep_2 is.
-    fn towards_parent(
-        &mut self,
-        srr: u64,
-        nauo: u64,
-        child: u64,
-        rr: &[Value],
-        t: Motion,
-        inverse: fn(&Motion) -> Option<Motion>,
-    ) -> Motion {
-        let child_reps: Vec<u64> = self.reps.get(&child).map_or(vec![], |v| {
-            v.iter().flat_map(|&r| self.closure(r)).collect()
-        });
-        let rep1 = rr.get(2).and_then(Value::reference);
-        let rep2 = rr.get(3).and_then(Value::reference);
-        if rep1.is_some_and(|r| child_reps.contains(&r)) {
-            t
-        } else if rep2.is_some_and(|r| child_reps.contains(&r)) {
-            inverse(&t).unwrap_or_else(|| {
-                self.warnings.push(format!(
-                    "assembly: #{srr} (placing #{nauo}): its transformation cannot be inverted; placed without motion"
-                ));
-                Motion::IDENTITY
-            })
-        } else {
-            self.warnings.push(format!(
-                "assembly: #{srr} (placing #{nauo}) relates no representation of the child product; rep_1 taken as the child's"
-            ));
-            t
         }
     }
 

@@ -243,6 +243,14 @@ fn from_part21(
             occurrences::apply(&mut model, tree);
         }
     }
+    let lengths = units::context_lengths(p);
+    if lengths.len() > 1 && model.brep.as_ref().is_none_or(|b| b.occurrences.is_empty()) {
+        model.warnings.push(format!(
+            "the representation contexts use {} length units ({} m); no product structure places them, so every item keeps its file numbers in the model's unit",
+            lengths.len(),
+            lengths.iter().map(|m| format!("{m:e}")).collect::<Vec<_>>().join(", ")
+        ));
+    }
     // Free B-spline curves (not referenced by edges or surfaces are still listed); one
     // that cannot be read is reported with its id and reason.
     let mut bad_curves = Vec::new();

@@ -133,9 +133,11 @@ mod tests {
             Some([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
         );
         // axis2 against z × x: a left-handed (mirroring) set is kept as given.
-        let [d1, d2, d3] =
-            base_axis(Some([0.0, 1.0, 0.0]), Some([1.0, 0.0, 0.0]), None).unwrap();
-        assert_eq!((d1, d2, d3), ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]));
+        let [d1, d2, d3] = base_axis(Some([0.0, 1.0, 0.0]), Some([1.0, 0.0, 0.0]), None).unwrap();
+        assert_eq!(
+            (d1, d2, d3),
+            ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+        );
         // axis3 along x with axis1 unset: the default first axis is y, and the default
         // second axis (also y) is then indeterminate; with axis2 given, z × x = −z here.
         assert_eq!(base_axis(None, None, Some([-1.0, 0.0, 0.0])), None);

@@ -27,7 +27,10 @@ pub fn unit(p: &Part21) -> (Option<String>, f64) {
             .collect()
     };
     for e in units {
-        if e.is("LENGTH_UNIT") {
+        // The first length unit: where representations differ (an assembly of parts in other
+        // units) the model takes the first one's, usually the root's, and the assembly reader
+        // scales the others into it.
+        if e.is("LENGTH_UNIT") && length.is_none() {
             if let Some(si) = e.part("SI_UNIT") {
                 let prefix = si.first().and_then(|v| v.enumeration()).unwrap_or("");
                 length = Some(
@@ -56,4 +59,148 @@ pub fn unit(p: &Part21) -> (Option<String>, f64) {
         }
     }
     (length, angle)
+}
+
+/// Metres per unit of the length-unit instance `id`: an SI unit of length with its prefix, a
+/// conversion-based unit (`conversion_factor` a `length_measure_with_unit`: its value times
+/// its own unit's metres, followed at most 8 deep), or, failing that, a conversion-based unit
+/// named inch, foot or a metric length. `None` for anything else.
+pub(super) fn metres_per_unit(p: &Part21, id: u64) -> Option<f64> {
+    metres_at(p, id, 0)
+}
+
+fn metres_at(p: &Part21, id: u64, depth: usize) -> Option<f64> {
+    let e = p.entities.get(&id)?;
+    if let Some(si) = e.part("SI_UNIT") {
+        if si.get(1).and_then(Value::enumeration) != Some("METRE") {
+            return None;
+        }
+        let prefix = si.first().and_then(Value::enumeration).unwrap_or("");
+        let f = match prefix {
+            "" => 1.0,
+            "EXA" => 1e18,
+            "PETA" => 1e15,
+            "TERA" => 1e12,
+            "GIGA" => 1e9,
+            "MEGA" => 1e6,
+            "KILO" => 1e3,
+            "HECTO" => 1e2,
+            "DECA" => 1e1,
+            "DECI" => 1e-1,
+            "CENTI" => 1e-2,
+            "MILLI" => 1e-3,
+            "MICRO" => 1e-6,
+            "NANO" => 1e-9,
+            "PICO" => 1e-12,
+            "FEMTO" => 1e-15,
+            "ATTO" => 1e-18,
+            _ => return None,
+        };
+        return Some(f);
+    }
+    let cb = e.part("CONVERSION_BASED_UNIT")?;
+    let factor = (depth < 8)
+        .then(|| {
+            let m = p.entities.get(&cb.get(1)?.reference()?)?;
+            let a = m
+                .part("LENGTH_MEASURE_WITH_UNIT")
+                .filter(|a| a.len() >= 2)
+                .or_else(|| m.part("MEASURE_WITH_UNIT"))?;
+            let v = a.first()?.num()?;
+            let base = metres_at(p, a.get(1)?.reference()?, depth + 1)?;
+            Some(v * base).filter(|x| *x > 0.0 && x.is_finite())
+        })
+        .flatten();
+    factor.or_else(|| match cb.first() {
+        Some(Value::Str(n)) => match crate::model::normalize_unit(n).as_str() {
+            "inch" => Some(0.0254),
+            "foot" => Some(0.3048),
+            "m" => Some(1.0),
+            "mm" => Some(1e-3),
+            "cm" => Some(1e-2),
+            "km" => Some(1e3),
+            "um" => Some(1e-6),
+            _ => None,
+        },
+        _ => None,
+    })
+}
+
+/// Metres per length unit of the representation `rep` (its `context_of_items`, third
+/// attribute, through the context's `global_unit_assigned_context`); `None` when the
+/// representation, its context or a length unit there is missing.
+pub(super) fn rep_metres(p: &Part21, rep: u64) -> Option<f64> {
+    let ctx = representation_context(p.entities.get(&rep)?)?;
+    let units = p.entities.get(&ctx)?.part("GLOBAL_UNIT_ASSIGNED_CONTEXT")?;
+    let mut ids = vec![];
+    units.iter().for_each(|v| v.refs(&mut ids));
+    ids.into_iter()
+        .filter(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
+        .next()
+        .and_then(|id| metres_per_unit(p, id))
+}
+
+/// The `context_of_items` of a representation instance (simple or complex).
+fn representation_context(e: &Entity) -> Option<u64> {
+    let parts: Vec<(&str, &[Value])> = match e {
+        Entity::Simple(n, a) => vec![(&**n, &**a)],
+        Entity::Complex(p) => p.iter().map(|(n, a)| (&**n, &**a)).collect(),
+    };
+    parts.into_iter().find_map(|(n, a)| {
+        n.ends_with("REPRESENTATION")
+            .then(|| a.get(2)?.reference())
+            .flatten()
+    })
+}
+
+/// Metres per unit of the file's length unit as [`unit`] chooses it (the first length unit a
+/// representation context assigns, or the first length unit instance).
+pub(super) fn model_metres(p: &Part21) -> Option<f64> {
+    let assigned: Vec<u64> = p
+        .entities
+        .values()
+        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
+        .flat_map(|a| {
+            let mut r = vec![];
+            a.iter().for_each(|v| v.refs(&mut r));
+            r
+        })
+        .collect();
+    let ids: Vec<u64> = if assigned.is_empty() {
+        p.entities.keys().copied().collect()
+    } else {
+        assigned
+    };
+    ids.into_iter()
+        .filter(|id| {
+            p.entities.get(id).is_some_and(|e| {
+                e.is("LENGTH_UNIT") && (e.is("SI_UNIT") || e.is("CONVERSION_BASED_UNIT"))
+            })
+        })
+        .next()
+        .and_then(|id| metres_per_unit(p, id))
+}
+
+/// Metres per unit of every distinct length unit the representation contexts assign (in
+/// table order).
+pub(super) fn context_lengths(p: &Part21) -> Vec<f64> {
+    let mut out: Vec<f64> = vec![];
+    for a in p
+        .entities
+        .values()
+        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
+    {
+        let mut ids = vec![];
+        a.iter().for_each(|v| v.refs(&mut ids));
+        for m in ids
+            .into_iter()
+            .filter(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
+            .filter_map(|id| metres_per_unit(p, id))
+        {
+            if !out.contains(&m) {
+                out.push(m);
+            }
+        }
+    }
+    out
 }
