@@ -257,6 +257,21 @@ pub fn tangential_point(
     uv_b: [f64; 2],
     prm: &RefineParams,
 ) -> Refined {
+    tangential_point_until(sa, sb, (uv_a, uv_b), prm, |_| false).0
+}
+
+/// [`tangential_point`], stopped (status `NotConverged`) as soon as the midpoint of an
+/// iterate satisfies `known` — the neighbourhood of a point already found, where the run
+/// would end as a duplicate of it. A scheduling choice only: the search proposes points and
+/// decides nothing. The flag says whether the run stalled short of a root (a local minimum
+/// of the residual that is not a root).
+pub fn tangential_point_until(
+    sa: &NurbsSurface<f64, 3>,
+    sb: &NurbsSurface<f64, 3>,
+    (uv_a, uv_b): ([f64; 2], [f64; 2]),
+    prm: &RefineParams,
+    known: impl Fn(&[f64; 3]) -> bool,
+) -> (Refined, bool) {
     let (da, db) = (domain(sa), domain(sb));
     let residual = |x: &[f64; 4]| -> ([f64; 5], f64, f64, [f64; 3]) {
         let (p, su, sv) = point_d1(sa, x[0], x[1]);
@@ -300,9 +315,15 @@ pub fn tangential_point(
     // reduced them by `STALL_RATIO` over that span is stalled at a local minimum that is
     // not a root (towards a root Gauss–Newton's reduction is at least geometric).
     let mut recent = [f64::INFINITY; STALL_SPAN];
+    let (mut duplicate, mut stalled) = (false, false);
     while it < prm.max_iter && !(gap <= prm.tol * 1e-2 && sin <= prm.tangent_sin * 1e-2) {
+        if known(&mid) {
+            duplicate = true;
+            break;
+        }
         let now = sq(&r);
         if now > STALL_RATIO * recent[it as usize % STALL_SPAN] {
+            stalled = true;
             break;
         }
         recent[it as usize % STALL_SPAN] = now;
@@ -352,15 +373,17 @@ pub fn tangential_point(
             lambda *= 10.0;
         }
         if !improved {
+            stalled = true;
             break;
         }
     }
-    let status = if gap <= prm.tol && sin <= prm.tangent_sin {
+    let root = !duplicate && gap <= prm.tol && sin <= prm.tangent_sin;
+    let status = if root {
         RefineStatus::Tangential
     } else {
         RefineStatus::NotConverged
     };
-    Refined {
+    let r = Refined {
         xyz: mid,
         uv_a: [x[0], x[1]],
         uv_b: [x[2], x[3]],
@@ -368,7 +391,8 @@ pub fn tangential_point(
         status,
         iterations: it,
         sin_angle: f64::NAN,
-    }
+    };
+    (r, stalled && !root)
 }
 
 /// Gaussian elimination with partial pivoting for a 4 × 4 system.

@@ -13,7 +13,7 @@
 use super::branch::PairGeometry;
 use super::pair::tri;
 use super::pair_meshes::unit_normals;
-use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point};
+use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point_until};
 use super::report::TouchOut;
 use super::singular::classify;
 use super::triangulate::SurfaceMesh;
@@ -72,12 +72,26 @@ pub fn tangential_points(
     }
     let step = seed_tris.len().div_ceil(MAX_SEEDS).max(1);
     let mut out: Vec<Refined> = Vec::new();
-    let try_seed = |uv_a: [f64; 2], uv_b: [f64; 2], out: &mut Vec<Refined>| {
-        let r = tangential_point(g.sa, g.sb, uv_a, uv_b, prm);
-        if r.status == RefineStatus::Tangential
-            && !out.iter().any(|t| dist(&t.xyz, &r.xyz) <= flatness)
-        {
-            out.push(r);
+    // A run whose iterate comes within half the merge distance of a point already found, or
+    // of where an earlier run stalled short of a root, is stopped: it would end as a
+    // duplicate of that point or stall there too (near a pole every seed of the
+    // neighbourhood runs to the pole, a local minimum of the residual where the surfaces do
+    // not touch).
+    let mut stalled: Vec<[f64; 3]> = Vec::new();
+    let mut try_seed = |uv_a: [f64; 2], uv_b: [f64; 2], out: &mut Vec<Refined>| {
+        let known = |m: &[f64; 3]| {
+            out.iter()
+                .map(|t| &t.xyz)
+                .chain(&stalled)
+                .any(|x| dist(x, m) <= 0.5 * flatness)
+        };
+        let (r, stuck) = tangential_point_until(g.sa, g.sb, (uv_a, uv_b), prm, known);
+        if r.status == RefineStatus::Tangential {
+            if !out.iter().any(|t| dist(&t.xyz, &r.xyz) <= flatness) {
+                out.push(r);
+            }
+        } else if stuck {
+            stalled.push(r.xyz);
         }
     };
     for &(ta, tb) in seed_tris.iter().step_by(step) {
