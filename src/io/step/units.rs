@@ -135,8 +135,7 @@ pub(super) fn rep_metres(p: &Part21, rep: u64) -> Option<f64> {
     let mut ids = vec![];
     units.iter().for_each(|v| v.refs(&mut ids));
     ids.into_iter()
-        .filter(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
-        .next()
+        .find(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
         .and_then(|id| metres_per_unit(p, id))
 }
 
@@ -172,12 +171,11 @@ pub(super) fn model_metres(p: &Part21) -> Option<f64> {
         assigned
     };
     ids.into_iter()
-        .filter(|id| {
+        .find(|id| {
             p.entities.get(id).is_some_and(|e| {
                 e.is("LENGTH_UNIT") && (e.is("SI_UNIT") || e.is("CONVERSION_BASED_UNIT"))
             })
         })
-        .next()
         .and_then(|id| metres_per_unit(p, id))
 }
 
