@@ -19,6 +19,7 @@ pub mod geom;
 pub mod io;
 pub mod model;
 pub mod predicates;
+pub mod progress;
 pub mod repair;
 pub mod reparam;
 pub mod scalar;

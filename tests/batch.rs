@@ -379,7 +379,8 @@ fn a_panicking_job_becomes_a_panic_record() {
             warnings: 0,
         })
     };
-    let done = vericad::batch::run::execute(&models, &job, file, Some(2), false).unwrap();
+    let done =
+        vericad::batch::run::execute(&models, &job, file, Some(2), Default::default()).unwrap();
     assert_eq!(done.records.len(), 3);
     let rs = records(&out);
     assert_eq!(path_status(&rs), path_status(&done.records));

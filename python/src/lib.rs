@@ -347,6 +347,7 @@ fn ssi(
             ..Default::default()
         };
         let outputs = job::Outputs {
+            progress: Default::default(),
             json: out.as_deref(),
             vtk: vtk.as_deref(),
             iges: iges.as_deref(),
@@ -385,7 +386,7 @@ fn certify_ssi(
             &curves,
             &prm,
             match_distance,
-            out.as_deref(),
+            (out.as_deref(), Default::default()),
         )
         .map_err(|e| fault(&e, e.is_bad_input(), matches!(e, JobError::Write(..))))?;
         serialize(&r)
@@ -423,6 +424,7 @@ fn curve_on_surface(
     let v = detached(py, || {
         let params = Params::from_options(tol, angle, bound, exact, evidence);
         let outputs = job::Outputs {
+            progress: Default::default(),
             json: out.as_deref(),
             svg: svg.as_deref(),
             iges: iges.as_deref(),
@@ -459,7 +461,14 @@ fn curve_on_faces(
     };
     let v = detached(py, || {
         let params = Params::from_options(tol, angle, bound, exact, 0);
-        let r = face_job::run(&file, faces, &params, out.as_deref(), iges.as_deref()).map_err(
+        let r = face_job::run(
+            &file,
+            faces,
+            &params,
+            (out.as_deref(), iges.as_deref()),
+            Default::default(),
+        )
+        .map_err(
             |e| {
                 fault(
                     &e,
@@ -501,6 +510,7 @@ fn repair(
             ..Default::default()
         };
         let outputs = job::Outputs {
+            progress: Default::default(),
             model: out.as_deref(),
             report: report.as_deref(),
             vtk: vtk.as_deref(),
@@ -548,6 +558,7 @@ fn reparam(
             ..Default::default()
         };
         let outputs = job::Outputs {
+            progress: Default::default(),
             model: out.as_deref(),
             report: report.as_deref(),
             svg: svg.as_deref(),
@@ -607,6 +618,7 @@ fn coons(
     let (rep, surface) = detached(py, || {
         let params = coons_params(tol, m, n, max_resolution, closure, k)?;
         let outputs = job::Outputs {
+            progress: Default::default(),
             model: out.as_deref(),
             report: report.as_deref(),
             vtk: vtk.as_deref(),
@@ -645,6 +657,7 @@ fn approximate(
     let (rep, surfaces) = detached(py, || {
         let params = coons_params(tol, m, n, max_resolution, closure, k)?;
         let outputs = layout_job::Outputs {
+            progress: Default::default(),
             model: out.as_deref(),
             report: report.as_deref(),
             vtk: vtk.as_deref(),
@@ -777,7 +790,7 @@ fn batch(
             out,
             shard,
             threads,
-            progress: false,
+            progress: Default::default(),
         };
         let s = vericad::batch::run(&opts).map_err(|e| fault(&e, e.is_bad_input(), true))?;
         let counts: serde_json::Map<String, Value> = vericad::batch::Status::ALL

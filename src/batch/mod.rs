@@ -176,8 +176,8 @@ pub struct Options {
     pub shard: Option<(usize, usize)>,
     /// Worker threads (default: all cores).
     pub threads: Option<usize>,
-    /// Print progress (at most once per second) on stderr.
-    pub progress: bool,
+    /// Where progress lines go (at most once per second; default: nowhere).
+    pub progress: crate::progress::Progress,
 }
 
 /// Run a batch: discover, shard, skip what `out` already holds, run the rest (each record

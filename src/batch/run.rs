@@ -181,14 +181,14 @@ struct Shared<W> {
 /// Run `job` on every model in parallel (`threads` workers, default all cores) and append each
 /// model's record to `out` as one JSON line, flushed, as soon as it finishes. A panic in `job`
 /// is caught and becomes a `panic` record; the other models go on. After a failed write no
-/// further model starts, and the error is returned. With `progress`, done/total, rate and ETA
-/// go to stderr at most once per second.
+/// further model starts, and the error is returned. Done/total, rate and ETA go to
+/// `progress` at most once per second.
 pub fn execute<W: Write + Send>(
     models: &[PathBuf],
     job: &(dyn Fn(&Path) -> Outcome + Sync),
     out: W,
     threads: Option<usize>,
-    progress: bool,
+    progress: crate::progress::Progress,
 ) -> Result<Executed, BatchError> {
     let t0 = Instant::now();
     let mut builder = rayon::ThreadPoolBuilder::new();
@@ -229,12 +229,16 @@ pub fn execute<W: Write + Send>(
             }
             s.records.push(r);
             let done = s.records.len();
-            if progress && (s.last_progress.elapsed().as_secs_f64() >= 1.0 || done == total) {
+            if progress.0.is_some()
+                && (s.last_progress.elapsed().as_secs_f64() >= 1.0 || done == total)
+            {
                 s.last_progress = Instant::now();
                 let el = t0.elapsed().as_secs_f64();
                 let rate = done as f64 / el.max(1e-9);
                 let eta = (total - done) as f64 / rate.max(1e-9);
-                eprintln!("batch: {done}/{total} done, {rate:.2} models/s, ETA {eta:.0} s");
+                progress.say(|| {
+                    format!("batch: {done}/{total} done, {rate:.2} models/s, ETA {eta:.0} s")
+                });
             }
         });
     });

@@ -42,6 +42,7 @@ pub fn run(a: ApproximateArgs) -> i32 {
         return super::bad(e);
     }
     let outputs = crate::approx::coons::layout_job::Outputs {
+        progress: crate::progress::Progress::stderr(),
         model: a.out.as_deref(),
         report: a.report.as_deref(),
         vtk: a.vtk.as_deref(),

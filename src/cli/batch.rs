@@ -87,7 +87,11 @@ pub fn run(a: BatchArgs) -> i32 {
         out: a.out,
         shard,
         threads,
-        progress: !a.quiet,
+        progress: if a.quiet {
+            crate::progress::Progress::default()
+        } else {
+            crate::progress::Progress::stderr()
+        },
     };
     match crate::batch::run(&opts) {
         Ok(s) => {

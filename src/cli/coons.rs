@@ -82,6 +82,7 @@ pub fn run(a: CoonsArgs) -> i32 {
         return super::bad(e);
     }
     let outputs = crate::approx::coons::job::Outputs {
+        progress: crate::progress::Progress::stderr(),
         model: a.out.as_deref(),
         report: a.report.as_deref(),
         vtk: a.vtk.as_deref(),

@@ -91,6 +91,7 @@ pub fn run(cli: Cli) -> i32 {
             };
             let params = Params::from_options(tol, angle, bound, exact, evidence.unwrap_or(0));
             let outputs = job::Outputs {
+                progress: crate::progress::Progress::stderr(),
                 json: out.as_deref(),
                 svg: svg.as_deref(),
                 iges: iges.as_deref(),
@@ -109,8 +110,8 @@ pub fn run(cli: Cli) -> i32 {
                         &surface,
                         &face,
                         &params,
-                        out.as_deref(),
-                        iges.as_deref(),
+                        (out.as_deref(), iges.as_deref()),
+                        crate::progress::Progress::stderr(),
                     ),
                     json,
                     |r| r.all_certified(),
@@ -167,6 +168,7 @@ pub fn run(cli: Cli) -> i32 {
                 ..Default::default()
             };
             let outputs = job::Outputs {
+                progress: crate::progress::Progress::stderr(),
                 json: out.as_deref(),
                 vtk: vtk.as_deref(),
                 iges: iges.as_deref(),
@@ -208,7 +210,7 @@ pub fn run(cli: Cli) -> i32 {
                 &curves,
                 &prm,
                 match_distance,
-                out.as_deref(),
+                (out.as_deref(), crate::progress::Progress::stderr()),
             );
             if let Some(code) = memory::exhausted(&memory) {
                 return code;
@@ -241,6 +243,7 @@ pub fn run(cli: Cli) -> i32 {
             };
             memory::watch(&memory, "repair");
             let outputs = crate::repair::job::Outputs {
+                progress: crate::progress::Progress::stderr(),
                 model: out.as_deref(),
                 report: report.as_deref(),
                 vtk: vtk.as_deref(),

@@ -48,6 +48,7 @@ pub fn run(a: ReparamArgs) -> i32 {
         ..Default::default()
     };
     let outputs = crate::reparam::job::Outputs {
+        progress: crate::progress::Progress::stderr(),
         model: a.out.as_deref(),
         report: a.report.as_deref(),
         svg: a.svg.as_deref(),

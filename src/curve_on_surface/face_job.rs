@@ -53,13 +53,14 @@ pub fn select(m: &Model, spec: &str) -> Result<Vec<usize>, String> {
 }
 
 /// Run the job on `file`'s faces `spec` ([`select`]); writes the JSON result and the curves
-/// as IGES (rational B-splines, 126) when asked.
+/// as IGES (rational B-splines, 126) when asked; progress lines go to `progress` on runs over
+/// a second.
 pub fn run(
     file: &str,
     spec: &str,
     params: &Params,
-    json: Option<&std::path::Path>,
-    iges: Option<&std::path::Path>,
+    (json, iges): (Option<&std::path::Path>, Option<&std::path::Path>),
+    progress: crate::progress::Progress,
 ) -> Result<FacesReport, JobError> {
     crate::io::check_all_writable([json, iges])
         .map_err(|(p, e)| JobError::Write(p.display().to_string(), e))?;
@@ -76,12 +77,14 @@ pub fn run(
     let mut faces = Vec::new();
     for (k, &fi) in picked.iter().enumerate() {
         if start.elapsed().as_secs_f64() > 1.0 {
-            eprintln!(
-                "[{:>7.1} s] face {} of {}",
-                start.elapsed().as_secs_f64(),
-                k + 1,
-                picked.len()
-            );
+            progress.say(|| {
+                format!(
+                    "[{:>7.1} s] face {} of {}",
+                    start.elapsed().as_secs_f64(),
+                    k + 1,
+                    picked.len()
+                )
+            });
         }
         match face_curves(b, &m, fi, params, &mut pcs) {
             Some(f) => faces.push(f),

@@ -58,6 +58,8 @@ pub struct Outputs<'a> {
     /// ([`super::picture`]), seen along `view`.
     pub svg_3d: Option<&'a std::path::Path>,
     pub view: crate::io::picture::View,
+    /// Where progress lines go on runs over a second (default: nowhere).
+    pub progress: crate::progress::Progress,
 }
 
 /// Run the job.
@@ -98,14 +100,16 @@ pub fn run(
         )
     })?;
     let r = {
-        // Progress on stderr once a run takes longer than a second.
+        // Progress once a run takes longer than a second.
         let start = std::time::Instant::now();
         let mut report = |stage: &str, n: usize| {
             if start.elapsed().as_secs_f64() > 1.0 {
-                eprintln!(
-                    "[{:>7.1} s] {stage}: {n} segments",
-                    start.elapsed().as_secs_f64()
-                );
+                outputs.progress.say(|| {
+                    format!(
+                        "[{:>7.1} s] {stage}: {n} segments",
+                        start.elapsed().as_secs_f64()
+                    )
+                });
             }
         };
         approximate_with_progress(&surf.nurbs, curve, params, &mut report)?

@@ -34,6 +34,8 @@ pub struct Outputs<'a> {
     /// ([`super::picture`]), seen along `view`.
     pub svg: Option<&'a Path>,
     pub view: crate::io::picture::View,
+    /// Where progress lines go on runs over a second (default: nowhere).
+    pub progress: crate::progress::Progress,
 }
 
 fn write(path: &Path, text: &str) -> Result<(), JobError> {
@@ -75,7 +77,8 @@ pub fn run_result(
     let t0 = std::time::Instant::now();
     let progress = |step: &str| {
         if t0.elapsed().as_secs_f64() > 1.0 {
-            eprintln!("repair: {step} ({:.1} s)", t0.elapsed().as_secs_f64());
+            out.progress
+                .say(|| format!("repair: {step} ({:.1} s)", t0.elapsed().as_secs_f64()));
         }
     };
     let r = repair(patches, prm, &overrides, &progress)?;

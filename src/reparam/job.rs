@@ -38,6 +38,8 @@ pub struct Outputs<'a> {
     pub report: Option<&'a Path>,
     pub svg: Option<&'a Path>,
     pub vtk: Option<&'a Path>,
+    /// Where progress lines go on runs over a second (default: nowhere).
+    pub progress: crate::progress::Progress,
 }
 
 /// One face's entry in the report: its report, or why it was not reparametrized.
@@ -121,12 +123,14 @@ pub fn run(spec: &str, params: &Params, out: Outputs) -> Result<JobReport, JobEr
         let f = &model.surfaces[k];
         let mut progress = |stage: &str, n: usize| {
             if t0.elapsed().as_secs_f64() > 1.0 {
-                eprintln!(
-                    "[{:>7.1} s] face {k} ({}/{}): {stage} {n}",
-                    t0.elapsed().as_secs_f64(),
-                    count + 1,
-                    indices.len()
-                );
+                out.progress.say(|| {
+                    format!(
+                        "[{:>7.1} s] face {k} ({}/{}): {stage} {n}",
+                        t0.elapsed().as_secs_f64(),
+                        count + 1,
+                        indices.len()
+                    )
+                });
             }
         };
         let mut entry = FaceEntry {

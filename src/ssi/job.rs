@@ -72,6 +72,8 @@ pub struct Outputs<'a> {
     /// ([`super::picture`]), seen along `view`.
     pub svg: Option<&'a Path>,
     pub view: crate::io::picture::View,
+    /// Where progress lines go on runs over a second (default: nowhere).
+    pub progress: crate::progress::Progress,
 }
 
 /// Fail before the work when an output cannot be written.
@@ -200,14 +202,18 @@ pub fn run(
             && (el - *l >= 1.0 || done == total)
         {
             *l = el;
-            eprintln!("ssi: {done}/{total} face pairs ({el:.1} s)");
+            outputs
+                .progress
+                .say(|| format!("ssi: {done}/{total} face pairs ({el:.1} s)"));
         }
     };
     // Inside a long face pair too, at most once a second.
     let mut prm = prm.clone();
     // The cubic fits only where an output holds them.
     prm.fits = outputs.fits || outputs.iges.is_some();
-    if prm.control.progress.is_none() {
+    if prm.control.progress.is_none()
+        && let Some(say) = outputs.progress.0
+    {
         let last = std::sync::Mutex::new(0.0f64);
         prm.control.progress = Some(std::sync::Arc::new(move |s: &super::control::Stage| {
             let el = t0.elapsed().as_secs_f64();
@@ -216,10 +222,10 @@ pub fn run(
                 && el - *l >= 1.0
             {
                 *l = el;
-                eprintln!(
+                say(&format!(
                     "ssi: faces ({}, {}): {} {}/{} ({el:.1} s)",
                     s.pair.0, s.pair.1, s.step, s.done, s.total
-                );
+                ));
             }
         }));
     }
@@ -256,8 +262,12 @@ pub fn run(
     Ok(r)
 }
 
-/// Progress on stderr for runs over a second (at most once a second, and at the end).
-fn progress_printer(what: &'static str, t0: Instant) -> impl Fn(usize, usize) + Sync {
+/// Progress lines to `say` for runs over a second (at most once a second, and at the end).
+fn progress_printer(
+    what: &'static str,
+    t0: Instant,
+    say: crate::progress::Progress,
+) -> impl Fn(usize, usize) + Sync {
     let last = std::sync::Mutex::new(0.0f64);
     move |done: usize, total: usize| {
         let el = t0.elapsed().as_secs_f64();
@@ -267,21 +277,22 @@ fn progress_printer(what: &'static str, t0: Instant) -> impl Fn(usize, usize) + 
             && *l < el
         {
             *l = el;
-            eprintln!("certify-ssi: {done}/{total} {what} ({el:.1} s)");
+            say.say(|| format!("certify-ssi: {done}/{total} {what} ({el:.1} s)"));
         }
     }
 }
 
 /// The `certify-ssi` job: a foreign result checked against faces of `file_a` and `file_b`
 /// (`None`: every pair of distinct faces of `file_a`), and vericad's own branches of the
-/// same faces checked for presence in it. `--out` is checked writable before the work.
+/// same faces checked for presence in it. `--out` is checked writable before the work;
+/// progress lines go to `progress` on runs over a second.
 pub fn run_certify(
     file_a: &Path,
     file_b: Option<&Path>,
     curves: &Path,
     prm: &SsiParams,
     match_distance: Option<f64>,
-    json_out: Option<&Path>,
+    (json_out, progress): (Option<&Path>, crate::progress::Progress),
 ) -> Result<super::foreign::CertifyReport, JobError> {
     prm.validate()?;
     let m = match_distance.unwrap_or(100.0 * prm.tol);
@@ -305,7 +316,7 @@ pub fn run_certify(
         &a,
         b.as_ref(),
         prm,
-        &progress_printer("face pairs (vericad ssi)", t0),
+        &progress_printer("face pairs (vericad ssi)", t0, progress),
     )?;
     let rep = super::foreign::certify(
         &a,
@@ -314,7 +325,7 @@ pub fn run_certify(
         &r,
         prm.tol,
         m,
-        &progress_printer("foreign points", t0),
+        &progress_printer("foreign points", t0, progress),
     );
     if let Some(p) = json_out {
         write_json(p, &rep)?;

@@ -2,7 +2,7 @@
 //! miss each other entirely (a convex surface's chords lie off the surface). Triangle pairs
 //! whose boxes, grown by the flatness tolerance, overlap and whose normals are within the
 //! tangent angle seed a search for tangential points on the true surfaces
-//! ([`tangential_point`]): touching points, and the singular points where intersection curves
+//! ([`tangential_point_until`]): touching points, and the singular points where intersection curves
 //! cross (the Steinmetz curve's branch points). Triangles around such a point form its
 //! *singular region*: every mesh crossing point named by a feature of a region triangle is
 //! merged into one Point for it, so the tracer ends curves there (a branch point when more
@@ -48,7 +48,7 @@ fn centroid_uv(m: &SurfaceMesh, t: u32) -> [f64; 2] {
 
 /// Tangential points of the pair (touching points and singular points of the intersection),
 /// one per `flatness` neighbourhood, found from every seed (up to [`MAX_SEEDS`], spread
-/// evenly) by [`tangential_point`].
+/// evenly) by [`tangential_point_until`].
 pub fn tangential_points(
     g: &PairGeometry,
     flatness: f64,

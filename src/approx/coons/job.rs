@@ -45,6 +45,8 @@ pub struct Outputs<'a> {
     pub model: Option<&'a Path>,
     pub report: Option<&'a Path>,
     pub vtk: Option<&'a Path>,
+    /// Where progress lines go on runs over a second (default: nowhere).
+    pub progress: crate::progress::Progress,
 }
 
 /// An output that cannot be written: its path, why, and whether its type is the fault.
@@ -186,7 +188,8 @@ pub fn run_surface(
     let t0 = std::time::Instant::now();
     let mut progress = |stage: &str, k: usize| {
         if t0.elapsed().as_secs_f64() > 1.0 {
-            eprintln!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64());
+            out.progress
+                .say(|| format!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64()));
         }
     };
     let ap =

@@ -218,7 +218,8 @@ pub fn run(
     let t0 = std::time::Instant::now();
     let mut progress = |stage: &str, k: usize| {
         if t0.elapsed().as_secs_f64() > 1.0 {
-            eprintln!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64());
+            out.progress
+                .say(|| format!("[{:>7.1} s] {stage} {k}", t0.elapsed().as_secs_f64()));
         }
     };
     let Replacement {
