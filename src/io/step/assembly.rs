@@ -79,11 +79,7 @@ fn str_at(a: &[Value], i: usize) -> Option<&str> {
 /// The `items` of a representation instance (any `*REPRESENTATION` partial entity with a list
 /// as its second attribute).
 fn rep_items(e: &Entity) -> Option<ListRefs<'_>> {
-    let parts: Vec<(&str, &[Value])> = match e {
-        Entity::Simple(n, a) => vec![(&**n, &**a)],
-        Entity::Complex(p) => p.iter().map(|(n, a)| (&**n, &**a)).collect(),
-    };
-    parts.into_iter().find_map(|(n, a)| {
+    e.parts().find_map(|(n, a)| {
         n.ends_with("REPRESENTATION")
             .then(|| a.get(1)?.list_refs())
             .flatten()

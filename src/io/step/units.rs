@@ -7,25 +7,10 @@ use super::part21::{Entity, Part21, Value};
 pub fn unit(p: &Part21) -> (Option<String>, f64) {
     let mut length = None;
     let mut angle = 1.0;
-    // Prefer the units the representation context assigns; otherwise any unit instance.
-    let assigned: Vec<u64> = p
-        .entities
-        .values()
-        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
-        .flat_map(|a| {
-            let mut r = vec![];
-            a.iter().for_each(|v| v.refs(&mut r));
-            r
-        })
+    let units: Vec<&Entity> = unit_candidates(p)
+        .iter()
+        .filter_map(|id| p.entities.get(id))
         .collect();
-    let units: Vec<&Entity> = if assigned.is_empty() {
-        p.entities.values().collect()
-    } else {
-        assigned
-            .iter()
-            .filter_map(|id| p.entities.get(id))
-            .collect()
-    };
     for e in units {
         // The first length unit: where representations differ (an assembly of parts in other
         // units) the model takes the first one's, usually the root's, and the assembly reader
@@ -141,20 +126,17 @@ pub(super) fn rep_metres(p: &Part21, rep: u64) -> Option<f64> {
 
 /// The `context_of_items` of a representation instance (simple or complex).
 fn representation_context(e: &Entity) -> Option<u64> {
-    let parts: Vec<(&str, &[Value])> = match e {
-        Entity::Simple(n, a) => vec![(&**n, &**a)],
-        Entity::Complex(p) => p.iter().map(|(n, a)| (&**n, &**a)).collect(),
-    };
-    parts.into_iter().find_map(|(n, a)| {
+    // The first such part with a context (a complex instance's subtype parts are empty).
+    e.parts().find_map(|(n, a)| {
         n.ends_with("REPRESENTATION")
             .then(|| a.get(2)?.reference())
             .flatten()
     })
 }
 
-/// Metres per unit of the file's length unit as [`unit`] chooses it (the first length unit a
-/// representation context assigns, or the first length unit instance).
-pub(super) fn model_metres(p: &Part21) -> Option<f64> {
+/// The instances that may hold the file's units: those the representation contexts assign
+/// (`global_unit_assigned_context`), or every instance where no context assigns any.
+fn unit_candidates(p: &Part21) -> Vec<u64> {
     let assigned: Vec<u64> = p
         .entities
         .values()
@@ -165,12 +147,18 @@ pub(super) fn model_metres(p: &Part21) -> Option<f64> {
             r
         })
         .collect();
-    let ids: Vec<u64> = if assigned.is_empty() {
+    if assigned.is_empty() {
         p.entities.keys().copied().collect()
     } else {
         assigned
-    };
-    ids.into_iter()
+    }
+}
+
+/// Metres per unit of the file's length unit as [`unit`] chooses it (the first length unit a
+/// representation context assigns, or the first length unit instance).
+pub(super) fn model_metres(p: &Part21) -> Option<f64> {
+    unit_candidates(p)
+        .into_iter()
         .find(|id| {
             p.entities.get(id).is_some_and(|e| {
                 e.is("LENGTH_UNIT") && (e.is("SI_UNIT") || e.is("CONVERSION_BASED_UNIT"))

@@ -157,6 +157,15 @@ impl Entity {
             _ => None,
         }
     }
+    /// Every (partial) entity's name and arguments, in file order.
+    pub fn parts(&self) -> impl Iterator<Item = (&str, &[Value])> {
+        let (one, many) = match self {
+            Entity::Simple(n, a) => (Some((&**n, &**a)), &[][..]),
+            Entity::Complex(p) => (None, &**p),
+        };
+        one.into_iter()
+            .chain(many.iter().map(|(n, a)| (&**n, &**a)))
+    }
     /// Whether the instance is, or contains, `name`.
     pub fn is(&self, name: &str) -> bool {
         self.part(name).is_some()
