@@ -384,3 +384,86 @@ fn faces_used_reversed_are_written_reversed() {
     };
     assert_eq!(outward(b), outward(y));
 }
+
+#[test]
+fn circle_pcurves_on_planes_lie_on_their_edges() {
+    // occt-assembly-cylinder.step: the cylinder's top and bottom circles (r 7, centres
+    // (0, 0, 0) and (0, 0, 25), in the planes' frames: origin on the axis, x along (1, 0, 0))
+    // carry 2D CIRCLE pcurves on the planes #61 and #111. Mapped through each plane's own
+    // frame, every point of the pcurve must be on the 3D circle the file gives the edge.
+    let m = model("occt-assembly-cylinder.step");
+    let b = m.brep.as_ref().unwrap();
+    let mut seen = 0;
+    for pc in b.edges.iter().flat_map(|e| &e.pcurves) {
+        let vericad::brep::PCurveGeometry::Nurbs(c) = &pc.geometry else {
+            continue;
+        };
+        let z = match pc.source.as_str() {
+            "#60" => 25.0,
+            "#110" => 0.0,
+            _ => continue,
+        };
+        seen += 1;
+        let (t0, t1) = c.hom.domain();
+        for i in 0..=200 {
+            let q = c.eval(&(t0 + (t1 - t0) * i as f64 / 200.0));
+            // The plane's frame is the world's, shifted to z.
+            let p = [q[0], q[1], z];
+            let r = (p[0] * p[0] + p[1] * p[1]).sqrt();
+            assert!(
+                (r - 7.0).abs() < 1e-12,
+                "{}: radius {r} at {q:?}",
+                pc.source
+            );
+        }
+        // The whole circle, once round, from the placement's ref_direction.
+        let q0 = c.eval(&t0);
+        assert!((q0[0] - 7.0).abs() < 1e-12 && q0[1].abs() < 1e-12, "{q0:?}");
+        let q = c.eval(&(t0 + 0.25 * (t1 - t0)));
+        assert!(
+            q[1] > 6.9,
+            "counter-clockwise: a quarter in is near (0, 7): {q:?}"
+        );
+    }
+    assert_eq!(seen, 2, "both circle pcurves read");
+    // An ellipse (semi-axes 7 and 3) about (1, 2) with its major axis along y: every point
+    // satisfies (a/7)² + (b/3)² = 1 in that frame.
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/occt-written/occt-assembly-cylinder.step");
+    let t = std::fs::read_to_string(p)
+        .unwrap()
+        .replace("#67 = CIRCLE('',#68,7.);", "#67 = ELLIPSE('',#68,7.,3.);")
+        .replace(
+            "#69 = CARTESIAN_POINT('',(0.,0.));",
+            "#69 = CARTESIAN_POINT('',(1.,2.));",
+        )
+        .replace(
+            "#70 = DIRECTION('',(1.,0.));",
+            "#70 = DIRECTION('',(0.,2.));",
+        );
+    let e = vericad::io::step::from_str(&t, "ellipse").unwrap();
+    let pc = e
+        .brep
+        .as_ref()
+        .unwrap()
+        .edges
+        .iter()
+        .flat_map(|e| &e.pcurves);
+    let Some(vericad::brep::PCurveGeometry::Nurbs(c)) =
+        pc.filter(|p| p.source == "#60").map(|p| &p.geometry).next()
+    else {
+        panic!("the ellipse pcurve read")
+    };
+    let (t0, t1) = c.hom.domain();
+    for i in 0..=200 {
+        let q = c.eval(&(t0 + (t1 - t0) * i as f64 / 200.0));
+        let (a, b) = (q[1] - 2.0, -(q[0] - 1.0));
+        let f = (a / 7.0).powi(2) + (b / 3.0).powi(2);
+        assert!((f - 1.0).abs() < 1e-12, "{q:?}: {f}");
+    }
+    assert!(
+        !m.warnings.iter().any(|w| w.contains("CIRCLE")),
+        "{:?}",
+        m.warnings
+    );
+}

@@ -356,6 +356,8 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
             origin: o,
             direction: [d[0] / l * m, d[1] / l * m],
         }
+    } else if let Some(args) = ce.part("CIRCLE").or_else(|| ce.part("ELLIPSE")) {
+        PCurveGeometry::Nurbs(conic2(r, cid, args, ce.is("ELLIPSE"))?)
     } else if ce.is("B_SPLINE_CURVE_WITH_KNOTS") {
         let c = r.bspline_curve(cid, ce).map_err(s)?;
         let (pts, w) = c.points_weights();
@@ -381,4 +383,50 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
         surface_source: format!("#{surface}"),
         geometry,
     }))
+}
+
+/// A 2D circle or ellipse (`args` of instance `id`: name, `axis2_placement_2d`, radius or
+/// semi-axes) as its exact rational quadratic NURBS form, the whole curve counter-clockwise
+/// from the placement's `ref_direction` (The NURBS Book A7.1 on the unit circle, scaled and
+/// placed: an affine image of a NURBS curve is its control points' image). The edge's part
+/// of it is found where it is used, from the vertices (`brep::pcurve::source`).
+fn conic2(r: &Reader, id: u64, args: &[Value], ellipse: bool) -> R<NurbsCurve<f64, 2>> {
+    let ty = if ellipse { "ELLIPSE" } else { "CIRCLE" };
+    let s = |x| step(x, id, ty);
+    let pl = r.reference(id, args, 1).map_err(s)?;
+    let pa = r
+        .get(pl)
+        .map_err(|x| step(x, pl, "AXIS2_PLACEMENT_2D"))?
+        .part("AXIS2_PLACEMENT_2D")
+        .ok_or_else(|| invalid(pl, "AXIS2_PLACEMENT_2D", "expected an AXIS2_PLACEMENT_2D"))?;
+    let o = coords2(r, r.reference(pl, pa, 1).map_err(s)?, "CARTESIAN_POINT")?;
+    let x = match pa.get(2).and_then(Value::reference) {
+        Some(d) => coords2(r, d, "DIRECTION")?,
+        None => [1.0, 0.0],
+    };
+    let l = (x[0] * x[0] + x[1] * x[1]).sqrt();
+    if !(l > 0.0 && l.is_finite()) {
+        return Err(invalid(pl, "AXIS2_PLACEMENT_2D", "zero ref_direction"));
+    }
+    let (x, y) = ([x[0] / l, x[1] / l], [-x[1] / l, x[0] / l]);
+    let ra = r.num(id, args, 2).map_err(s)?;
+    let rb = if ellipse {
+        r.num(id, args, 3).map_err(s)?
+    } else {
+        ra
+    };
+    if !(ra > 0.0 && rb > 0.0 && ra.is_finite() && rb.is_finite()) {
+        return Err(invalid(id, ty, "radius not positive and finite"));
+    }
+    let spline = |e: crate::spline::SplineError| invalid(id, ty, e.to_string());
+    let unit = construct::arc(&Frame::WORLD, 1.0, 0.0, TAU).map_err(spline)?;
+    let (pts, ws) = unit.points_weights();
+    let pts = pts
+        .iter()
+        .map(|p| {
+            let (a, b) = (ra * p[0], rb * p[1]);
+            [o[0] + a * x[0] + b * y[0], o[1] + a * x[1] + b * y[1]]
+        })
+        .collect();
+    NurbsCurve::new(unit.hom.knots.knots().to_vec(), 2, pts, ws).map_err(spline)
 }
