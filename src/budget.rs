@@ -11,6 +11,10 @@
 
 use std::sync::{Arc, Mutex, OnceLock};
 
+/// Largest number of worker threads a job accepts (`--threads`, the Python `threads=`): each
+/// worker has its own stack.
+pub const MAX_THREADS: usize = 1024;
+
 /// Bytes of heap in use, as the probe of the running program counts them.
 pub type MemoryProbe = dyn Fn() -> usize + Send + Sync;
 

@@ -10,6 +10,7 @@ pub mod approx;
 pub mod batch;
 pub mod brep;
 pub mod budget;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod curve_on_surface;
 pub mod demo;

@@ -300,10 +300,10 @@ fn info(py: Python<'_>, path: PathBuf) -> PyResult<Py<PyAny>> {
 fn threads_arg(threads: Option<i64>) -> Result<Option<usize>, Fault> {
     match threads {
         None => Ok(None),
-        Some(n) if (1..=vericad::cli::MAX_THREADS as i64).contains(&n) => Ok(Some(n as usize)),
+        Some(n) if (1..=vericad::budget::MAX_THREADS as i64).contains(&n) => Ok(Some(n as usize)),
         Some(n) => Err(bad(format!(
             "threads must be in 1..={}, not {n}",
-            vericad::cli::MAX_THREADS
+            vericad::budget::MAX_THREADS
         ))),
     }
 }

@@ -29,8 +29,7 @@ pub const EXIT_FAILURE: i32 = 1;
 /// partial run; `certify-ssi` with
 /// foreign curves not within tol, or vericad branches missing or partly missing from them.
 pub const EXIT_UNCERTIFIED: i32 = 3;
-/// Largest `--threads` accepted (each worker has its own stack).
-pub const MAX_THREADS: usize = 1024;
+pub use crate::budget::MAX_THREADS;
 
 #[derive(Parser, Debug)]
 #[command(
