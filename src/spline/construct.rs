@@ -174,6 +174,20 @@ pub fn arc(f: &Frame, r: f64, a0: f64, a1: f64) -> Result<NurbsCurve<f64, 3>, Sp
     NurbsCurve::new(knots, 2, pts, ws)
 }
 
+/// The affine image `place(x, y)` of the unit circle's arc from `a0` to `a1` ([`arc`]): a
+/// circular or elliptic arc in any frame, 2D or 3D. Exact: an affine image of a NURBS curve is
+/// the curve of its control points' images with the same knots and weights.
+pub fn conic_arc<const D: usize>(
+    a0: f64,
+    a1: f64,
+    place: impl Fn(f64, f64) -> [f64; D],
+) -> Result<NurbsCurve<f64, D>, SplineError> {
+    let unit = arc(&Frame::WORLD, 1.0, a0, a1)?;
+    let (pts, ws) = unit.points_weights();
+    let pts = pts.iter().map(|p| place(p[0], p[1])).collect();
+    NurbsCurve::new(unit.hom.knots.knots().to_vec(), 2, pts, ws)
+}
+
 /// Extrude a NURBS curve along `d`: `S(u, v) = C(u) + v d`, `v ∈ [0, 1]`.
 pub fn extrude(c: &NurbsCurve<f64, 3>, d: &[f64; 3]) -> Result<NurbsSurface<f64, 3>, SplineError> {
     let (cp, cw) = c.points_weights();

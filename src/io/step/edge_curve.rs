@@ -11,7 +11,7 @@ use super::part21::Value;
 use crate::brep::{CurveKind, EdgeCurve, IssueKind, PCurve, PCurveGeometry};
 use crate::geom::{Point, dist, dot};
 use crate::spline::NurbsCurve;
-use crate::spline::construct::{self, Frame};
+use crate::spline::construct;
 use std::f64::consts::TAU;
 
 /// Reference chains longer than this (trimmed curve of a surface curve of …) are refused.
@@ -172,13 +172,8 @@ fn basis_curve(
         if a == b || sweep == 0.0 {
             sweep = TAU;
         }
-        let unit = construct::arc(&Frame::WORLD, 1.0, a0, a0 + sweep).map_err(spline)?;
-        let (pts, ws) = unit.points_weights();
-        let pts = pts
-            .iter()
-            .map(|p| f.at(ra * p[0], rb * p[1], 0.0))
-            .collect();
-        let c = NurbsCurve::new(unit.hom.knots.knots().to_vec(), 2, pts, ws).map_err(spline)?;
+        let c = construct::conic_arc(a0, a0 + sweep, |x, y| f.at(ra * x, rb * y, 0.0))
+            .map_err(spline)?;
         let k = if e.is("ELLIPSE") {
             CurveKind::Ellipse
         } else {
@@ -387,8 +382,7 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
 
 /// A 2D circle or ellipse (`args` of instance `id`: name, `axis2_placement_2d`, radius or
 /// semi-axes) as its exact rational quadratic NURBS form, the whole curve counter-clockwise
-/// from the placement's `ref_direction` (The NURBS Book A7.1 on the unit circle, scaled and
-/// placed: an affine image of a NURBS curve is its control points' image). The edge's part
+/// from the placement's `ref_direction` ([`construct::conic_arc`]). The edge's part
 /// of it is found where it is used, from the vertices (`brep::pcurve::source`).
 fn conic2(r: &Reader, id: u64, args: &[Value], ellipse: bool) -> R<NurbsCurve<f64, 2>> {
     let ty = if ellipse { "ELLIPSE" } else { "CIRCLE" };
@@ -418,15 +412,9 @@ fn conic2(r: &Reader, id: u64, args: &[Value], ellipse: bool) -> R<NurbsCurve<f6
     if !(ra > 0.0 && rb > 0.0 && ra.is_finite() && rb.is_finite()) {
         return Err(invalid(id, ty, "radius not positive and finite"));
     }
-    let spline = |e: crate::spline::SplineError| invalid(id, ty, e.to_string());
-    let unit = construct::arc(&Frame::WORLD, 1.0, 0.0, TAU).map_err(spline)?;
-    let (pts, ws) = unit.points_weights();
-    let pts = pts
-        .iter()
-        .map(|p| {
-            let (a, b) = (ra * p[0], rb * p[1]);
-            [o[0] + a * x[0] + b * y[0], o[1] + a * x[1] + b * y[1]]
-        })
-        .collect();
-    NurbsCurve::new(unit.hom.knots.knots().to_vec(), 2, pts, ws).map_err(spline)
+    construct::conic_arc(0.0, TAU, |a, b| {
+        let (a, b) = (ra * a, rb * b);
+        [o[0] + a * x[0] + b * y[0], o[1] + a * x[1] + b * y[1]]
+    })
+    .map_err(|e| invalid(id, ty, e.to_string()))
 }

@@ -117,9 +117,8 @@ fn metres_at(p: &Part21, id: u64, depth: usize) -> Option<f64> {
 pub(super) fn rep_metres(p: &Part21, rep: u64) -> Option<f64> {
     let ctx = representation_context(p.entities.get(&rep)?)?;
     let units = p.entities.get(&ctx)?.part("GLOBAL_UNIT_ASSIGNED_CONTEXT")?;
-    let mut ids = vec![];
-    units.iter().for_each(|v| v.refs(&mut ids));
-    ids.into_iter()
+    unit_ids(units)
+        .into_iter()
         .find(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
         .and_then(|id| metres_per_unit(p, id))
 }
@@ -134,23 +133,30 @@ fn representation_context(e: &Entity) -> Option<u64> {
     })
 }
 
+/// The unit instances a `global_unit_assigned_context`'s arguments name.
+fn unit_ids(args: &[Value]) -> Vec<u64> {
+    let mut ids = vec![];
+    args.iter().for_each(|v| v.refs(&mut ids));
+    ids
+}
+
+/// The unit instances every representation context assigns, in table order.
+fn assigned(p: &Part21) -> Vec<u64> {
+    p.entities
+        .values()
+        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
+        .flat_map(unit_ids)
+        .collect()
+}
+
 /// The instances that may hold the file's units: those the representation contexts assign
 /// (`global_unit_assigned_context`), or every instance where no context assigns any.
 fn unit_candidates(p: &Part21) -> Vec<u64> {
-    let assigned: Vec<u64> = p
-        .entities
-        .values()
-        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
-        .flat_map(|a| {
-            let mut r = vec![];
-            a.iter().for_each(|v| v.refs(&mut r));
-            r
-        })
-        .collect();
-    if assigned.is_empty() {
+    let a = assigned(p);
+    if a.is_empty() {
         p.entities.keys().copied().collect()
     } else {
-        assigned
+        a
     }
 }
 
@@ -171,21 +177,13 @@ pub(super) fn model_metres(p: &Part21) -> Option<f64> {
 /// table order).
 pub(super) fn context_lengths(p: &Part21) -> Vec<f64> {
     let mut out: Vec<f64> = vec![];
-    for a in p
-        .entities
-        .values()
-        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
+    for m in assigned(p)
+        .into_iter()
+        .filter(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
+        .filter_map(|id| metres_per_unit(p, id))
     {
-        let mut ids = vec![];
-        a.iter().for_each(|v| v.refs(&mut ids));
-        for m in ids
-            .into_iter()
-            .filter(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
-            .filter_map(|id| metres_per_unit(p, id))
-        {
-            if !out.contains(&m) {
-                out.push(m);
-            }
+        if !out.contains(&m) {
+            out.push(m);
         }
     }
     out
