@@ -661,9 +661,11 @@ fn repair_picture_and_outputs_checked_first() {
     let src = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/public/gmsh-t20_data.step");
     let svg = d.join("r.svg");
+    // t20's faces are mostly trimmed: the patch-set repair only when asked for.
     let (code, stdout, stderr) = vericad(&[
         "repair",
         src.to_str().unwrap(),
+        "--patches",
         "--svg",
         svg.to_str().unwrap(),
         "--view",
@@ -673,6 +675,20 @@ fn repair_picture_and_outputs_checked_first() {
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(text.starts_with("<svg") && text.contains("output patches ("));
     assert!(stdout.contains("patches:"), "{stdout}");
+    assert!(stdout.contains("trims ignored: 15 of 21 faces"), "{stdout}");
+    let (code, stdout, stderr) = vericad(&[
+        "repair",
+        src.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.starts_with("<svg")
+            && text.contains("faces (21), one colour each, inside their trims")
+    );
+    assert!(stdout.contains("faces: 21 (15 trimmed"), "{stdout}");
     let report = d.join("report.json");
     let bad = d.join("no-such-dir").join("r.svg");
     let (code, _, stderr) = vericad(&[

@@ -106,6 +106,10 @@ pub struct RepairFigures {
     pub pairs_left: usize,
     pub edges_connected: usize,
     pub gap_max_after: f64,
+    /// Trimmed faces whose trims the patch-set repair ignored (it works on the untrimmed
+    /// surfaces; `vericad repair` repairs such models' faces instead).
+    #[serde(default)]
+    pub trims_ignored: usize,
 }
 
 /// One model's line in the output.

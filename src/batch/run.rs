@@ -112,6 +112,7 @@ impl Job {
                         pairs_left: r.report.gaps_left.len(),
                         edges_connected: r.report.edges_connected,
                         gap_max_after: r.report.gap_max_after,
+                        trims_ignored: crate::repair::job::trims_ignored(&m).len(),
                     }),
                     Err(e) => error(Status::BadInput, "repair", e),
                 }

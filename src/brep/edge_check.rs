@@ -56,19 +56,38 @@ impl EdgeChecks {
     }
 }
 
-/// Check every edge of every face of `b` (surfaces in `m`).
-pub fn check_edges(b: &Brep, m: &Model) -> EdgeChecks {
+/// One edge on one face: the proven bound on the Hausdorff distance between the image of the
+/// face's pcurve of the edge and the edge, where one was proven, else the measured distance
+/// of the edge from the face's surface (when the bound is missing or above the tolerance it
+/// was checked against).
+#[derive(Clone, Debug)]
+pub struct EdgeFace {
+    /// Indices into the B-rep's faces and edges.
+    pub face: usize,
+    pub edge: usize,
+    /// The pcurve tried, when one could be had.
+    pub pcurve: Option<PcurveOrigin>,
+    /// The proven bound, when one was proven.
+    pub bound: Option<f64>,
+    /// Why none was proven, when none was.
+    pub unproven: Option<String>,
+    /// Largest distance from [`SAMPLES`] + 1 points of the edge to the nearest surface points
+    /// found (evidence); measured only where no bound within the tolerance was proven and
+    /// the edge has a 3D curve.
+    pub measured: Option<f64>,
+}
+
+/// Every edge of every face of `b` (surfaces in `m`) once per face (a seam edge counts once),
+/// with its proven bound, and its measurement where the bound is not within `tolerance`.
+pub fn edge_faces(b: &Brep, m: &Model, tolerance: f64) -> Vec<EdgeFace> {
     let mut pcs = Pcurves::new(b, m);
-    let tolerance = b.tolerance.max(1e-8 * b.extent());
-    let mut out = EdgeChecks {
-        tolerance,
-        ..Default::default()
-    };
+    let mut out = Vec::new();
     for (fi, face) in b.faces.iter().enumerate() {
         let Some(surface) = face.surface.and_then(|s| m.surfaces.get(s)) else {
             continue;
         };
         let mut seen = std::collections::BTreeSet::new();
+        let mut foot: Option<crate::spline::project::SurfaceFoot> = None;
         for l in &face.loops {
             let LoopKind::Edges(oes) = &l.kind else {
                 continue;
@@ -80,50 +99,72 @@ pub fn check_edges(b: &Brep, m: &Model) -> EdgeChecks {
                 let Some(edge) = b.edges.get(oe.edge) else {
                     continue;
                 };
-                out.pairs += 1;
+                let mut pair = EdgeFace {
+                    face: fi,
+                    edge: oe.edge,
+                    pcurve: None,
+                    bound: None,
+                    unproven: Some("the edge has no 3D curve".into()),
+                    measured: None,
+                };
                 let Some(arc) = edge.curve.as_ref().map(|c| &c.nurbs) else {
-                    out.not_proven.push(EdgeOffFace {
-                        face: face.source.clone(),
-                        edge: edge.source.clone(),
-                        pcurve: None,
-                        bound: None,
-                        unproven: Some("the edge has no 3D curve".into()),
-                        measured: None,
-                        above_tolerance: false,
-                    });
+                    out.push(pair);
                     continue;
                 };
                 let pc = pcs.polynomial(oe.edge, fi, 0);
-                let (bound, unproven) = match pc.as_ref().map(|p| &p.bound) {
+                (pair.bound, pair.unproven) = match pc.as_ref().map(|p| &p.bound) {
                     Some(Ok(d)) => (Some(*d), None),
                     Some(Err(why)) => (None, Some(why.clone())),
                     None => (None, Some("no pcurve could be made".to_string())),
                 };
-                if let Some(d) = bound.filter(|d| *d <= tolerance) {
-                    out.proven += 1;
-                    out.largest_bound = out.largest_bound.max(d);
+                pair.pcurve = pc.map(|p| p.origin);
+                if pair.bound.is_some_and(|d| d <= tolerance) {
+                    out.push(pair);
                     continue;
                 }
                 let (t0, t1) = arc.hom.domain();
-                let mut foot = crate::spline::project::SurfaceFoot::new(&surface.nurbs);
-                let measured = (0..=SAMPLES)
-                    .map(|i| {
-                        let x = arc.eval(&(t0 + (t1 - t0) * i as f64 / SAMPLES as f64));
-                        let uv = foot.closest(&x);
-                        crate::geom::dist(&surface.nurbs.eval(&uv[0], &uv[1]), &x)
-                    })
-                    .fold(0.0, f64::max);
-                out.not_proven.push(EdgeOffFace {
-                    face: face.source.clone(),
-                    edge: edge.source.clone(),
-                    pcurve: pc.map(|p| p.origin),
-                    bound,
-                    unproven,
-                    measured: Some(measured),
-                    above_tolerance: measured > tolerance,
+                let foot = foot.get_or_insert_with(|| {
+                    crate::spline::project::SurfaceFoot::new(&surface.nurbs)
                 });
+                pair.measured = Some(
+                    (0..=SAMPLES)
+                        .map(|i| {
+                            let x = arc.eval(&(t0 + (t1 - t0) * i as f64 / SAMPLES as f64));
+                            let uv = foot.closest(&x);
+                            crate::geom::dist(&surface.nurbs.eval(&uv[0], &uv[1]), &x)
+                        })
+                        .fold(0.0, f64::max),
+                );
+                out.push(pair);
             }
         }
+    }
+    out
+}
+
+/// Check every edge of every face of `b` (surfaces in `m`).
+pub fn check_edges(b: &Brep, m: &Model) -> EdgeChecks {
+    let tolerance = b.tolerance.max(1e-8 * b.extent());
+    let mut out = EdgeChecks {
+        tolerance,
+        ..Default::default()
+    };
+    for pair in edge_faces(b, m, tolerance) {
+        out.pairs += 1;
+        if let Some(d) = pair.bound.filter(|d| *d <= tolerance) {
+            out.proven += 1;
+            out.largest_bound = out.largest_bound.max(d);
+            continue;
+        }
+        out.not_proven.push(EdgeOffFace {
+            face: b.faces[pair.face].source.clone(),
+            edge: b.edges[pair.edge].source.clone(),
+            pcurve: pair.pcurve,
+            bound: pair.bound,
+            unproven: pair.unproven,
+            measured: pair.measured,
+            above_tolerance: pair.measured.is_some_and(|d| d > tolerance),
+        });
     }
     out
 }

@@ -14,6 +14,7 @@
 pub mod check;
 pub mod counts;
 pub mod edge_check;
+pub mod natural;
 pub mod pcurve;
 pub mod place;
 pub mod report;

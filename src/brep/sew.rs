@@ -53,7 +53,7 @@ fn ends(c: &NurbsCurve<f64, 3>) -> ([f64; 3], [f64; 3]) {
 }
 
 /// Whether `a` and `b` are the same curve within `tol` (seven interior points each way).
-fn same_curve(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>, tol: f64) -> bool {
+pub fn same_curve(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>, tol: f64) -> bool {
     let inside = |x: &NurbsCurve<f64, 3>, y: &NurbsCurve<f64, 3>| {
         let (t0, t1) = x.hom.domain();
         let foot = CurveFoot::new(y);

@@ -234,9 +234,20 @@ pub enum Command {
     /// Repair a faulty patch set (Uva, Monno & Hamann): connectivity with T-junction splits,
     /// edge verification, corner and boundary averaging, feature lines, group growing and
     /// merging of control nets, and a report (which lists what is left open and why).
+    /// A B-rep with trimmed faces gets the faces repair instead: trims kept, free edges
+    /// sewn within u1, gaps along shared edges (proven where the pcurves' bounds are) and
+    /// feature edges reported (`--patches` forces the patch-set repair).
     Repair {
         /// Patch set: native JSON, STEP, IGES (faces as patches) or Plot3D.
         input: PathBuf,
+        /// Repair the untrimmed surfaces as a patch set even where faces are trimmed (the
+        /// trims are ignored, which the report says).
+        #[arg(long, conflicts_with = "faces")]
+        patches: bool,
+        /// Repair the B-rep's faces (trims kept) even where every face is bounded by its
+        /// surface's rectangle.
+        #[arg(long)]
+        faces: bool,
         /// Corner distance threshold (Algorithm 1).
         #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true)]
         u1: f64,

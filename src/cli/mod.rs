@@ -218,6 +218,8 @@ pub fn run(cli: Cli) -> i32 {
         }
         Command::Repair {
             input,
+            patches,
+            faces,
             u1,
             u2,
             feature_angle,
@@ -249,8 +251,14 @@ pub fn run(cli: Cli) -> i32 {
                 svg: svg.as_deref(),
                 view,
             };
+            use crate::repair::faces::job::{Mode, run};
+            let mode = match (patches, faces) {
+                (true, _) => Mode::Patches,
+                (_, true) => Mode::Faces,
+                _ => Mode::Auto,
+            };
             finish(
-                crate::repair::job::run(&input, &prm, features.as_deref(), outputs),
+                run(&input, &prm, features.as_deref(), outputs, mode).map(|r| r.report()),
                 json,
                 |e| e.is_bad_input(),
             )

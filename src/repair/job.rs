@@ -60,10 +60,46 @@ pub fn run_result(
     features: Option<&Path>,
     out: Outputs,
 ) -> Result<RepairResult, JobError> {
+    let m = read(input, &out)?;
+    run_on(&m, prm, features, out)
+}
+
+/// Read the model and check every output path writable (before the work: an unwritable
+/// path fails at once).
+pub(super) fn read(input: &Path, out: &Outputs) -> Result<Model, JobError> {
     let m = crate::io::read_model(input)?;
-    // Outputs are checked before the work: an unwritable path fails at once.
     crate::io::check_all_writable([out.model, out.report, out.vtk, out.svg])
         .map_err(|(p, e)| JobError::Write(p.display().to_string(), e.to_string()))?;
+    Ok(m)
+}
+
+/// The faces of `m` whose trims a patch-set repair ignores: B-rep faces not bounded by their
+/// surface's rectangle, else surfaces carrying parameter-space trims (source ids).
+pub fn trims_ignored(m: &Model) -> Vec<String> {
+    match &m.brep {
+        Some(b) => b
+            .faces
+            .iter()
+            .zip(crate::brep::natural::natural_faces(b, m))
+            .filter(|x| !x.1)
+            .map(|x| x.0.source.clone())
+            .collect(),
+        None => m
+            .surfaces
+            .iter()
+            .filter(|s| !s.trim_loops.is_empty())
+            .map(|s| s.name.clone())
+            .collect(),
+    }
+}
+
+/// The patch-set repair of `m`'s surfaces (their trims ignored, which the report says).
+pub(super) fn run_on(
+    m: &Model,
+    prm: &RepairParams,
+    features: Option<&Path>,
+    out: Outputs,
+) -> Result<RepairResult, JobError> {
     let overrides: FeatureOverrides = match features {
         Some(p) => {
             let t = std::fs::read_to_string(p)
@@ -81,7 +117,17 @@ pub fn run_result(
                 .say(|| format!("repair: {step} ({:.1} s)", t0.elapsed().as_secs_f64()));
         }
     };
-    let r = repair(patches, prm, &overrides, &progress)?;
+    let mut r = repair(patches, prm, &overrides, &progress)?;
+    let ignored = trims_ignored(m);
+    if !ignored.is_empty() {
+        r.report.not_done.push(format!(
+            "trims ignored: {} of {} faces are trimmed ({}); this repair works on their untrimmed surfaces (without --patches, repair keeps the trims and sews the faces instead)",
+            ignored.len(),
+            m.brep.as_ref().map_or(m.surfaces.len(), |b| b.faces.len()),
+            ignored.iter().take(5).cloned().collect::<Vec<_>>().join(", ")
+                + if ignored.len() > 5 { ", ..." } else { "" }
+        ));
+    }
     if let Some(p) = out.model {
         let mut om = Model {
             unit: m.unit.clone(),

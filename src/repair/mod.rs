@@ -15,6 +15,7 @@ pub mod blend;
 pub mod classes;
 pub mod connectivity;
 pub mod edges;
+pub mod faces;
 pub mod features;
 pub mod fit_edge;
 pub mod group;
@@ -40,6 +41,8 @@ pub enum RepairError {
     Patch(usize, String),
     #[error("no patches to repair")]
     Empty,
+    #[error("no faces to repair: the model has no B-rep")]
+    NoFaces,
     #[error(
         "feature override [{0}, {1}] names no patch edge (patches 0..{2}, edges 0 south, 1 east, 2 north, 3 west)"
     )]
@@ -132,7 +135,8 @@ pub struct RepairResult {
     pub report: RepairReport,
 }
 
-fn check(prm: &RepairParams, patches: &[NurbsSurface<f64, 3>]) -> Result<(), RepairError> {
+/// The parameters checked: `u1`, `u2` positive and finite, the feature angle in (0, 180).
+fn check_params(prm: &RepairParams) -> Result<(), RepairError> {
     for (name, v) in [("u1", prm.u1), ("u2", prm.u2)] {
         if !(v > 0.0 && v.is_finite()) {
             return Err(RepairError::Parameter(name, v));
@@ -144,6 +148,11 @@ fn check(prm: &RepairParams, patches: &[NurbsSurface<f64, 3>]) -> Result<(), Rep
             prm.feature_angle_deg,
         ));
     }
+    Ok(())
+}
+
+fn check(prm: &RepairParams, patches: &[NurbsSurface<f64, 3>]) -> Result<(), RepairError> {
+    check_params(prm)?;
     if patches.is_empty() {
         return Err(RepairError::Empty);
     }
