@@ -55,7 +55,7 @@ def occt(fs, tol, repeat=5):
 def vericad(path, tol, repeat=5):
     best, rep = float("inf"), None
     for _ in range(repeat):
-        out = subprocess.run([EXE, "repair", path, "--u1", str(tol), "--u2", str(tol), "--json"],
+        out = subprocess.run([EXE, "repair", path, "--patches", "--u1", str(tol), "--u2", str(tol), "--json"],
                              capture_output=True, text=True, check=True)
         rep = json.loads(out.stdout)
         best = min(best, rep["seconds"])

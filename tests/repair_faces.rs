@@ -188,7 +188,8 @@ fn a_lifted_top_is_sewn_into_a_closed_shell_with_its_gap_proven() {
     assert_eq!(rep.sewing.edges_sewn.len(), 4);
     assert_eq!(rep.sewing.vertices_merged, 4);
     assert!((rep.sewing.max_vertex_move - delta / 2.0).abs() < 1e-12);
-    assert!(!rep.shells[0].closed_before && rep.shells[0].closed_after);
+    assert_eq!((rep.shells_before, rep.closed_shells_before), (1, 0));
+    assert!(rep.shells[0].closed);
     assert!(r.brep.shells[0].closed);
     assert!(r.brep.check().is_empty(), "{:?}", r.brep.check());
     assert_eq!(rep.edges.len(), 12);
@@ -233,7 +234,7 @@ fn a_lift_above_u1_is_left_open() {
     let mut faces: Vec<&str> = rep.free_edges.iter().map(|[_, f]| f.as_str()).collect();
     faces.sort();
     assert_eq!(faces, ["top", "top", "top", "top", "x0", "x1", "y0", "y1"]);
-    assert!(!rep.shells[0].closed_after);
+    assert!(!rep.shells[0].closed);
 }
 
 #[test]
@@ -258,7 +259,8 @@ fn coplanar_faces_meet_without_a_feature_edge() {
     );
     assert!(!middle[0].feature);
     assert_eq!(rep.feature_edges, 14);
-    assert!(rep.shells[0].closed_before && rep.shells[0].closed_after);
+    assert_eq!(rep.closed_shells_before, 1);
+    assert!(rep.shells[0].closed);
 }
 
 #[test]
@@ -281,4 +283,32 @@ fn an_inward_face_still_meets_its_coplanar_neighbour_at_angle_zero() {
         middle[0]
     );
     assert_eq!(r.report.feature_edges, 14);
+}
+
+/// The lifted cube as Open CASCADE writes it (`scripts/occt_repair_faces.py`): six faces, each
+/// its own shell with its own edges and vertices. Open CASCADE's `BRepBuilderAPI_Sewing` on
+/// the same file leaves 0 free edges at 1e-3 and 8 at 5e-5 (recorded from that script, and it
+/// reads vericad's repaired STEP back with the same counts, `BRepCheck` valid).
+#[test]
+fn a_cube_written_face_by_face_is_sewn_as_open_cascade_sews_it() {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/public/occt-written/occt-lifted-cube.step");
+    let m = vericad::io::read_model(&p).unwrap();
+    let b = m.brep.as_ref().unwrap();
+    assert_eq!((b.faces.len(), b.edges.len(), b.shells.len()), (6, 24, 6));
+    for (u1, free) in [(1e-3, 0), (5e-5, 8)] {
+        let r = repaired(&m, u1, 1e-3);
+        let rep = &r.report;
+        assert_eq!(rep.free_edges_before, 24);
+        assert_eq!(rep.free_edges_after, free, "u1 = {u1}");
+        // The sides and the bottom are sewn at both tolerances; the top joins them only
+        // above its lift.
+        let shells = if free == 0 { 1 } else { 2 };
+        assert_eq!(
+            (rep.shells.len(), rep.sewing.shells_joined),
+            (shells, 6 - shells)
+        );
+        assert_eq!(rep.shells[0].closed, free == 0);
+        assert_eq!(r.brep.edges.len(), 12 + free / 2);
+    }
 }

@@ -33,24 +33,18 @@ impl fmt::Display for FacesReport {
             s.max_vertex_move,
             self.non_manifold_edges.len()
         )?;
-        let closed = |after: bool| {
-            self.shells
-                .iter()
-                .filter(|x| {
-                    if after {
-                        x.closed_after
-                    } else {
-                        x.closed_before
-                    }
-                })
-                .count()
-        };
         writeln!(
             f,
-            "  shells: {}, closed {} before, {} after",
+            "  shells: {} ({} closed) before, {} ({} closed) after{}",
+            self.shells_before,
+            self.closed_shells_before,
             self.shells.len(),
-            closed(false),
-            closed(true)
+            self.shells.iter().filter(|x| x.closed).count(),
+            if s.shells_joined > 0 {
+                format!("; {} joined to others by sewn edges", s.shells_joined)
+            } else {
+                String::new()
+            }
         )?;
         let proven = match self.gap_max_proven {
             Some(g) => format!("largest proven {g:.3e}"),

@@ -8,8 +8,8 @@
 //! records the larger distance in its `vertex_gap`.
 //!
 //! Two vertices are never clustered when an edge joins their clusters (that edge would
-//! collapse), and edges of different shells are not joined (the shells are kept apart; the
-//! pairs are counted).
+//! collapse). Shells that sewn edges connect become one shell (the lowest-numbered; solids
+//! and occurrences that named the others name it).
 
 use crate::brep::sew::same_curve;
 use crate::brep::{Brep, LoopKind};
@@ -38,8 +38,9 @@ pub struct Sewing {
     /// Largest distance a vertex moved to its cluster's mean.
     pub max_vertex_move: f64,
     pub edges_sewn: Vec<SewnEdge>,
-    /// Free edges that match a free edge of another shell (not joined).
-    pub across_shells: usize,
+    /// Shells merged into another because sewn edges join them (a part written as one
+    /// shell per face is one shell after sewing).
+    pub shells_joined: usize,
 }
 
 /// Union–find over vertex indices.
@@ -174,6 +175,7 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
         by_ends.entry((s.min(t), s.max(t))).or_default().push(e);
     }
     let mut replace: BTreeMap<usize, (usize, bool)> = BTreeMap::new();
+    let mut joined_shells = Vec::new();
     for es in by_ends.values() {
         for (i, &a) in es.iter().enumerate() {
             if replace.contains_key(&a) || replace.values().any(|(k, _)| *k == a) {
@@ -190,9 +192,10 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
                     continue;
                 }
                 let (fa, fc) = (free[&a], free[&c]);
-                if shell_of[fa] != shell_of[fc] {
-                    out.across_shells += 1;
-                    continue;
+                if let (Some(x), Some(y)) = (shell_of[fa], shell_of[fc])
+                    && x != y
+                {
+                    joined_shells.push((x, y));
                 }
                 let same_way = if b.edges[a].start != b.edges[a].end {
                     b.edges[a].start == b.edges[c].start
@@ -236,7 +239,55 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
         }
     }
     compact(b);
+    out.shells_joined = join_shells(b, &joined_shells);
     out
+}
+
+/// Join the shells that sewn edges connect (pairs of shell indices): each group becomes its
+/// lowest-numbered shell, holding every member's faces; solids and occurrences that named a
+/// member name it. Returns the number of shells removed.
+fn join_shells(b: &mut Brep, pairs: &[(usize, usize)]) -> usize {
+    if pairs.is_empty() {
+        return 0;
+    }
+    let mut cl = Clusters((0..b.shells.len()).collect());
+    for &(x, y) in pairs {
+        let (rx, ry) = (cl.root(x), cl.root(y));
+        if rx != ry {
+            // The lower index is the root.
+            let (lo, hi) = (rx.min(ry), rx.max(ry));
+            cl.0[hi] = lo;
+        }
+    }
+    let roots: Vec<usize> = (0..b.shells.len()).map(|i| cl.root(i)).collect();
+    for i in 0..b.shells.len() {
+        let r = roots[i];
+        if r != i {
+            let faces = std::mem::take(&mut b.shells[i].faces);
+            b.shells[r].faces.extend(faces);
+        }
+    }
+    let kept: Vec<bool> = roots.iter().enumerate().map(|(i, r)| *r == i).collect();
+    let map = renumber(&kept);
+    let to = |i: usize| roots.get(i).map_or(i, |r| map[*r]);
+    let mut k = 0;
+    b.shells.retain(|_| {
+        k += 1;
+        kept[k - 1]
+    });
+    for s in b.solids.iter_mut() {
+        s.outer = to(s.outer);
+        for v in s.voids.iter_mut() {
+            *v = to(*v);
+        }
+    }
+    for o in b.occurrences.iter_mut() {
+        for s in o.shells.iter_mut() {
+            *s = to(*s);
+        }
+        o.shells.dedup();
+    }
+    kept.iter().filter(|k| !**k).count()
 }
 
 /// Whether `c` runs the way `a` does, for closed edges: its quarter point is nearer `a`'s
