@@ -482,14 +482,17 @@ fn curve_on_faces(
     Ok(to_py(py, &v, None)?.unbind())
 }
 
-/// Repair a patch set: `vericad repair`. Returns `{"report": ..., "patches": [...]}`.
+/// Repair a patch set or a B-rep's faces: `vericad repair`. Returns `{"report": ...,
+/// "patches": [...]}` (no patches from the faces repair, which writes its B-rep to `out`).
+/// `mode`: `"auto"` (faces when the B-rep has trimmed faces), `"patches"` or `"faces"`.
 #[pyfunction]
-#[pyo3(signature = (input, *, u1=1e-3, u2=1e-3, feature_angle=30.0, features=None, out=None,
-    report=None, vtk=None, svg=None, view=String::from("-60,25")))]
+#[pyo3(signature = (input, *, mode=String::from("auto"), u1=1e-3, u2=1e-3, feature_angle=30.0,
+    features=None, out=None, report=None, vtk=None, svg=None, view=String::from("-60,25")))]
 #[allow(clippy::too_many_arguments)]
 fn repair(
     py: Python<'_>,
     input: PathBuf,
+    mode: String,
     u1: f64,
     u2: f64,
     feature_angle: f64,
@@ -500,9 +503,16 @@ fn repair(
     svg: Option<PathBuf>,
     view: String,
 ) -> PyResult<Py<PyAny>> {
+    use vericad::repair::faces::job::{Mode, Repaired, run};
     use vericad::repair::job;
     let r = detached(py, || {
         let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
+        let mode = match mode.as_str() {
+            "auto" => Mode::Auto,
+            "patches" => Mode::Patches,
+            "faces" => Mode::Faces,
+            _ => return Err(bad(format!("mode {mode:?}: one of auto, patches, faces"))),
+        };
         let prm = vericad::repair::RepairParams {
             u1,
             u2,
@@ -517,9 +527,12 @@ fn repair(
             svg: svg.as_deref(),
             view,
         };
-        let r = job::run_result(&input, &prm, features.as_deref(), outputs)
+        let r = run(&input, &prm, features.as_deref(), outputs, mode)
             .map_err(|e| fault(&e, e.is_bad_input(), matches!(e, job::JobError::Write(..))))?;
-        Ok((serialize(&r.report)?, r.patches))
+        Ok(match r {
+            Repaired::Patches(r) => (serialize(&r.report)?, r.patches),
+            Repaired::Faces(r) => (serialize(&r.report)?, Vec::new()),
+        })
     })?;
     let d = PyDict::new(py);
     d.set_item("report", to_py(py, &r.0, None)?)?;

@@ -254,6 +254,21 @@ def test_repair_equals_the_cli_and_returns_the_patches(cli, tmp_path):
     assert json.loads((tmp_path / "rep.json").read_text())["patches_in"] == 2
 
 
+def test_repair_of_trimmed_faces_equals_the_cli(cli, tmp_path):
+    t20 = FAULTY.parent / "public" / "gmsh-t20_data.step"
+    r = vericad.repair(t20, out=tmp_path / "out.step")
+    ref = cli_json(cli, "repair", t20)
+    assert without(plain(r.report), {"seconds"}) == without(ref, {"seconds"})
+    assert r.report.mode == "faces" and r.report.faces == 21 and r.patches == []
+    assert vericad.read_model(tmp_path / "out.step").brep_faces == 21
+    p = vericad.repair(t20, mode="patches")
+    ref = cli_json(cli, "repair", t20, "--patches")
+    assert without(plain(p.report), {"seconds"}) == without(ref, {"seconds"})
+    assert any("trims ignored: 15 of 21 faces" in n for n in p.report.not_done)
+    with pytest.raises(vericad.BadInputError, match="mode"):
+        vericad.repair(t20, mode="trimmed")
+
+
 def test_repair_options_reach_the_library(cli):
     r = vericad.repair(TWO, u1=1e-2, u2=1e-2, feature_angle=60.0)
     ref = cli_json(cli, "repair", TWO, "--u1", "1e-2", "--u2", "1e-2", "--feature-angle", "60")

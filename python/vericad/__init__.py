@@ -328,6 +328,7 @@ def curve_on_faces(
 def repair(
     input: PathLike,
     *,
+    mode: str = "auto",
     u1: float = 1e-3,
     u2: float = 1e-3,
     feature_angle: float = 30.0,
@@ -338,11 +339,15 @@ def repair(
     svg: Optional[PathLike] = None,
     view: str = "-60,25",
 ) -> RepairResult:
-    """Repair a patch set (``vericad repair``); ``svg`` writes a picture seen from ``view``
-    (``"AZIMUTH,ELEVATION"`` in degrees)."""
+    """Repair a patch set, or a B-rep's faces (``vericad repair``); ``svg`` writes a picture
+    seen from ``view`` (``"AZIMUTH,ELEVATION"`` in degrees). ``mode``: ``"auto"`` (the faces
+    repair when the model's B-rep has trimmed faces, as the command line), ``"patches"``
+    (``--patches``) or ``"faces"`` (``--faces``); the faces repair returns no ``patches`` (its
+    B-rep is written to ``out``)."""
     return RepairResult(
         _vericad.repair(
             os.fspath(input),
+            mode=mode,
             u1=u1,
             u2=u2,
             feature_angle=feature_angle,

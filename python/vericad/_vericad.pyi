@@ -68,6 +68,7 @@ def curve_on_faces(
 def repair(
     input: str,
     *,
+    mode: str = "auto",
     u1: float = 1e-3,
     u2: float = 1e-3,
     feature_angle: float = 30.0,
