@@ -129,6 +129,8 @@ pub fn curve_on_surface(data: &[u8]) {
 /// free curves are the model's curves (STEP `B_SPLINE_CURVE_WITH_KNOTS`, IGES 126), the
 /// converted IGES faces and surfaces its surfaces. STEP and IGES are read twice: refusing a
 /// file with an invalid face, and skipping such faces (`ReadOptions::skip_invalid_faces`).
+/// A B-rep read is also written and read back, and repaired by the faces repair, whose
+/// result must pass its own invariants ([`crate::repair::faces::FacesResult::check`]).
 pub fn readers(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let accounted = |m: &crate::model::Model, curve_kind: &str| {
@@ -160,6 +162,26 @@ pub fn readers(data: &[u8]) {
             let (text, _) = crate::io::step::write::write(&m, "fuzz");
             if let Err(e) = crate::io::step::from_str(&text, "written.step") {
                 panic!("vericad's STEP does not read back: {e}");
+            }
+            // The faces repair (sewing within a thousandth of the model's size) gives a
+            // B-rep and a report that agree (small B-reps: the verification projects every
+            // edge onto its faces).
+            if m.brep.as_ref().is_some_and(|b| b.faces.len() <= 8) {
+                let size = m.brep.as_ref().map_or(1.0, |b| b.extent());
+                let tol = if size.is_finite() && size > 0.0 {
+                    1e-3 * size
+                } else {
+                    1e-3
+                };
+                let prm = crate::repair::RepairParams {
+                    u1: tol,
+                    u2: tol,
+                    ..Default::default()
+                };
+                if let Ok(r) = crate::repair::faces::repair_faces(&m, &prm, &|_| {}) {
+                    let faults = r.check();
+                    assert!(faults.is_empty(), "faces repair: {faults:?}");
+                }
             }
         }
     };

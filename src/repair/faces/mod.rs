@@ -20,6 +20,7 @@
 //! The surfaces, trims and edge curves are not changed; gaps are reported, not closed.
 
 pub mod angles;
+mod check;
 pub mod job;
 pub mod picture;
 mod report;
@@ -252,5 +253,7 @@ pub fn repair_faces(
         ));
     }
     r.seconds = t0.elapsed().as_secs_f64();
-    Ok(FacesResult { report: r, brep: b })
+    let out = FacesResult { report: r, brep: b };
+    debug_assert!(out.check().is_empty(), "{:?}", out.check());
+    Ok(out)
 }
