@@ -106,6 +106,12 @@ fn cube(lift: f64, split: bool, margin: f64) -> Model {
 /// [`cube`] with the faces named in `inward` facing into the cube (axes swapped: the
 /// surface's normal and the loop's sense both turned).
 fn cube_with(lift: f64, split: bool, margin: f64, inward: &[&str]) -> Model {
+    cube_sides(lift, split, margin, inward, split)
+}
+
+/// [`cube_with`], the sides' top edges split at the middle only when `side_vertices` (a
+/// split top without them meets each long side edge at its middle: a T-junction).
+fn cube_sides(lift: f64, split: bool, margin: f64, inward: &[&str], side_vertices: bool) -> Model {
     let mut sides = sides(lift, split);
     for s in sides.iter_mut().filter(|s| inward.contains(&s.name)) {
         std::mem::swap(&mut s.e1, &mut s.e2);
@@ -125,7 +131,7 @@ fn cube_with(lift: f64, split: bool, margin: f64, inward: &[&str]) -> Model {
             let (p, q) = (corners[k], corners[(k + 1) % 4]);
             // With a split top, the sides' top edges along x have a vertex where the split
             // meets them.
-            if split && !is_top(s.name) && p[2] == top && q[2] == top && p[0] != q[0] {
+            if side_vertices && !is_top(s.name) && p[2] == top && q[2] == top && p[0] != q[0] {
                 let mid = std::array::from_fn(|j| 0.5 * (p[j] + q[j]));
                 curves.push((format!("{} edge {k}a", s.name), line(p, mid)));
                 curves.push((format!("{} edge {k}b", s.name), line(mid, q)));
@@ -355,4 +361,31 @@ fn closed_public_parts_are_left_as_they_are() {
             assert_eq!(rep.gaps_left.contains(&e.edge), g >= 1e-3, "{name}: {e:?}");
         }
     }
+}
+
+#[test]
+fn an_edge_met_in_its_middle_is_split_and_sewn() {
+    // The split top, lifted by δ, against sides whose top edges run whole: the two halves'
+    // south (and north) edges end at the middle of the side's top edge. That edge is split
+    // there, and each half is sewn to its piece: a closed shell of 15 edges.
+    let delta = 1e-4;
+    let m = cube_sides(delta, true, 0.5, &[], false);
+    let r = repaired(&m, 1e-3, 1e-3);
+    let rep = &r.report;
+    assert_eq!(rep.sewing.t_splits, 2);
+    assert_eq!(rep.free_edges_after, 0, "{:?}", rep.free_edges);
+    assert_eq!(r.brep.edges.len(), 15);
+    assert!(rep.shells[0].closed);
+    for e in rep.edges.iter().filter(|e| e.edge.contains("(part ")) {
+        let g = e.gap_bound_proven.unwrap();
+        assert!(
+            g >= delta * (1.0 - 1e-9) && g <= 1.01 * delta,
+            "{}: {g}",
+            e.edge
+        );
+    }
+    // Below the lift nothing is split or sewn at the top.
+    let r = repaired(&m, 5e-5, 1e-3);
+    assert_eq!(r.report.sewing.t_splits, 0);
+    assert!(!r.report.shells.iter().any(|s| s.closed));
 }

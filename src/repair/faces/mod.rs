@@ -25,6 +25,7 @@ pub mod job;
 pub mod picture;
 mod report;
 pub mod sew;
+mod t_split;
 
 use super::{RepairError, RepairParams};
 use crate::brep::Brep;

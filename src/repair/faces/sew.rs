@@ -38,6 +38,8 @@ pub struct Sewing {
     /// Largest distance a vertex moved to its cluster's mean.
     pub max_vertex_move: f64,
     pub edges_sewn: Vec<SewnEdge>,
+    /// Free edges split where another free edge ends on their interior (T-junctions).
+    pub t_splits: usize,
     /// Shells merged into another because sewn edges join them (a part written as one
     /// shell per face is one shell after sewing).
     pub shells_joined: usize,
@@ -168,6 +170,18 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
             }
         }
     }
+    // T-junctions: free edges split where another free edge ends on their interior.
+    let roots: Vec<usize> = {
+        let mut r: Vec<usize> = members.keys().copied().collect();
+        r.dedup();
+        r
+    };
+    out.t_splits = super::t_split::split_at_vertices(b, &free, &roots, u1);
+    let (free, _) = if out.t_splits > 0 {
+        owners(b)
+    } else {
+        (free, Vec::new())
+    };
     // Free edges between the same clusters, paired where their curves agree.
     let mut by_ends: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
     for &e in free.keys() {
