@@ -71,7 +71,7 @@ pub struct EdgeFace {
     pub bound: Option<f64>,
     /// Why none was proven, when none was.
     pub unproven: Option<String>,
-    /// Largest distance from [`SAMPLES`] + 1 points of the edge to the nearest surface points
+    /// Largest distance from 33 points of the edge (`SAMPLES` + 1) to the nearest surface points
     /// found (evidence); measured only where no bound within the tolerance was proven and
     /// the edge has a 3D curve.
     pub measured: Option<f64>,
