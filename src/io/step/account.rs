@@ -14,11 +14,11 @@
 //! layer) does not consume it. What is left is a free instance of a kind the reader does not
 //! convert: `unsupported`, with its id.
 
-use super::part21::{Entity, Part21};
+use super::part21::{Inst, Part21};
 use super::{SURFACE_TYPES, UNSUPPORTED_SURFACES};
 use crate::brep::BrepReport;
 use crate::model::{Accounting, Outcome};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// Surface kinds accounted besides [`SURFACE_TYPES`] and [`UNSUPPORTED_SURFACES`].
 const OTHER_SURFACES: [&str; 2] = ["SURFACE_REPLICA", "ORIENTED_SURFACE"];
@@ -69,7 +69,7 @@ const FREE_CURVE: &str =
 /// Whether a reference from `e` does not consume the referenced geometry: `e` only groups
 /// or presents items (a geometric set, the items of a shape representation, a style or a
 /// layer assignment). The definitional representation of a pcurve does consume its curve.
-fn groups_only(e: &Entity) -> bool {
+fn groups_only(e: Inst) -> bool {
     const GROUPS: [&str; 6] = [
         "GEOMETRIC_CURVE_SET",
         "GEOMETRIC_SET",
@@ -123,28 +123,31 @@ pub(super) fn account(
         .collect();
     let n_surfaces = SURFACE_TYPES.len() + UNSUPPORTED_SURFACES.len() + OTHER_SURFACES.len();
     for id in outcomes.keys() {
-        if let Some(e) = p.entities.get(id)
+        if let Some(e) = p.entities.inst(*id)
             && !kinds.iter().any(|k| e.is(k))
             && !e.name().is_empty()
         {
             kinds.push(e.name());
         }
     }
-    let mut consumed = BTreeSet::new();
-    for e in p.entities.values().filter(|e| !groups_only(e)) {
-        consumed.extend(e.refs());
+    // Per instance (in table order), whether a reference consumes it.
+    let mut consumed = vec![false; p.entities.len()];
+    for (_, e) in p.entities.insts().filter(|(_, e)| !groups_only(*e)) {
+        for i in e.refs().into_iter().filter_map(|r| p.entities.index_of(r)) {
+            consumed[i] = true;
+        }
     }
     let mut acc = Accounting::default();
-    for (id, e) in &p.entities {
+    for (i, (id, e)) in p.entities.insts().enumerate() {
         let Some(k) = kinds.iter().position(|k| e.is(k)) else {
             continue;
         };
         let sid = format!("#{id}");
-        let outcome = match outcomes.get(id) {
+        let outcome = match outcomes.get(&id) {
             Some(o) => o.clone(),
             None => match report.and_then(|r| refused(r, &sid)) {
                 Some(o) => o,
-                None if consumed.contains(id) => Outcome::Used,
+                None if consumed[i] => Outcome::Used,
                 None if k < n_surfaces => {
                     Outcome::Unsupported("not the surface of a face, not referenced".into())
                 }

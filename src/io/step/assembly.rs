@@ -19,7 +19,7 @@
 //! (STEP ids) its product's shape holds, and the warnings for what could not be placed.
 
 use super::entities::Reader;
-use super::part21::{Entity, ListRefs, Value};
+use super::part21::{Args, Inst, ListRefs};
 mod motions;
 
 use super::transform_operator::NAME as CTO;
@@ -69,16 +69,13 @@ struct Walker<'a> {
     warnings: Vec<String>,
 }
 
-fn str_at(a: &[Value], i: usize) -> Option<&str> {
-    match a.get(i) {
-        Some(Value::Str(s)) => Some(s),
-        _ => None,
-    }
+fn str_at<'a>(a: Args<'a>, i: usize) -> Option<&'a str> {
+    a.get(i)?.str()
 }
 
 /// The `items` of a representation instance (any `*REPRESENTATION` partial entity with a list
 /// as its second attribute).
-fn rep_items(e: &Entity) -> Option<ListRefs<'_>> {
+fn rep_items(e: Inst<'_>) -> Option<ListRefs<'_>> {
     e.parts().find_map(|(n, a)| {
         n.ends_with("REPRESENTATION")
             .then(|| a.get(1)?.list_refs())
@@ -106,17 +103,17 @@ pub(super) fn read(r: &Reader) -> Option<Tree> {
     let mut in_cdsr = BTreeSet::new();
     let def_of_pds = |id: u64| {
         p.entities
-            .get(&id)?
+            .inst(id)?
             .part("PRODUCT_DEFINITION_SHAPE")?
             .get(2)?
             .reference()
     };
-    for (&id, e) in &p.entities {
+    for (id, e) in p.entities.insts() {
         if e.is("PRODUCT_DEFINITION") {
             definitions.push(id);
         } else if let Some(a) = e.part("NEXT_ASSEMBLY_USAGE_OCCURRENCE") {
             any = true;
-            match (a.get(3).and_then(Value::reference), a.get(4).and_then(Value::reference)) {
+            match (a.get(3).and_then(|v| v.reference()), a.get(4).and_then(|v| v.reference())) {
                 (Some(parent), Some(child)) => {
                     w.children.entry(parent).or_default().push((id, child));
                     is_child.insert(child);
@@ -129,15 +126,15 @@ pub(super) fn read(r: &Reader) -> Option<Tree> {
             any = true;
         } else if let Some(a) = e.part("SHAPE_DEFINITION_REPRESENTATION") {
             if let (Some(d), Some(rep)) = (
-                a.first().and_then(Value::reference).and_then(def_of_pds),
-                a.get(1).and_then(Value::reference),
+                a.first().and_then(|v| v.reference()).and_then(def_of_pds),
+                a.get(1).and_then(|v| v.reference()),
             ) {
                 w.reps.entry(d).or_default().push(rep);
             }
         } else if let Some(a) = e.part("CONTEXT_DEPENDENT_SHAPE_REPRESENTATION")
             && let (Some(srr), Some(nauo)) = (
-                a.first().and_then(Value::reference),
-                a.get(1).and_then(Value::reference).and_then(def_of_pds),
+                a.first().and_then(|v| v.reference()),
+                a.get(1).and_then(|v| v.reference()).and_then(def_of_pds),
             )
         {
             w.placing.insert(nauo, srr);
@@ -147,13 +144,13 @@ pub(super) fn read(r: &Reader) -> Option<Tree> {
     if !any {
         return None;
     }
-    for (&id, e) in &p.entities {
+    for (id, e) in p.entities.insts() {
         if let Some(a) = e.part("REPRESENTATION_RELATIONSHIP")
             && !e.is("REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION")
             && !in_cdsr.contains(&id)
             && let (Some(r1), Some(r2)) = (
-                a.get(2).and_then(Value::reference),
-                a.get(3).and_then(Value::reference),
+                a.get(2).and_then(|v| v.reference()),
+                a.get(3).and_then(|v| v.reference()),
             )
         {
             w.links.entry(r1).or_default().push(r2);
@@ -181,18 +178,18 @@ impl Walker<'_> {
     fn name_of(&self, def: u64) -> String {
         let e = &self.r.p.entities;
         let formation = e
-            .get(&def)
+            .inst(def)
             .and_then(|x| x.part("PRODUCT_DEFINITION"))
             .and_then(|a| a.get(2)?.reference());
         let product = formation.and_then(|f| {
-            let x = e.get(&f)?;
+            let x = e.inst(f)?;
             let a = x
                 .part("PRODUCT_DEFINITION_FORMATION")
                 .or_else(|| x.part("PRODUCT_DEFINITION_FORMATION_WITH_SPECIFIED_SOURCE"))?;
             a.get(2)?.reference()
         });
         product
-            .and_then(|pr| str_at(e.get(&pr)?.part("PRODUCT")?, 1).map(str::to_string))
+            .and_then(|pr| str_at(e.inst(pr)?.part("PRODUCT")?, 1).map(str::to_string))
             .unwrap_or_default()
     }
 
@@ -225,7 +222,7 @@ impl Walker<'_> {
         let mut groups: Vec<(f64, Vec<u64>, Vec<u64>)> = Vec::new();
         for &rep in reps {
             for rid in self.closure(rep) {
-                let Some(items) = p.entities.get(&rid).and_then(rep_items) else {
+                let Some(items) = p.entities.inst(rid).and_then(rep_items) else {
                     continue;
                 };
                 let k = self.factor(rid);
@@ -237,13 +234,13 @@ impl Walker<'_> {
                     }
                 };
                 for id in items.flatten() {
-                    let Some(e) = p.entities.get(&id) else {
+                    let Some(e) = p.entities.inst(id) else {
                         continue;
                     };
                     if e.is("MANIFOLD_SOLID_BREP") || e.is("BREP_WITH_VOIDS") {
                         groups[g].1.push(id);
                     } else if let Some(a) = e.part("SHELL_BASED_SURFACE_MODEL") {
-                        let list = a.get(1).and_then(Value::list_refs).unwrap_or_default();
+                        let list = a.get(1).and_then(|v| v.list_refs()).unwrap_or_default();
                         groups[g].2.extend(list.flatten());
                     } else if let Some(a) = e.part("MAPPED_ITEM") {
                         self.mapped((id, a), k, m, depth, out);

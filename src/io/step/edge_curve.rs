@@ -7,7 +7,7 @@
 //! read from the `associated_geometry` of surface curves.
 
 use super::entities::Reader;
-use super::part21::Value;
+use super::part21::Args;
 use crate::brep::{CurveKind, EdgeCurve, IssueKind, PCurve, PCurveGeometry};
 use crate::geom::{Point, dist, dot};
 use crate::spline::NurbsCurve;
@@ -81,7 +81,7 @@ pub(super) fn edge_curve(
                 "SURFACE_CURVE"
             };
             found.types.push((id, ty.to_string()));
-            if let Some(list) = a.get(2).and_then(Value::list_refs) {
+            if let Some(list) = a.get(2).and_then(|v| v.list_refs()) {
                 for g in list.flatten() {
                     match pcurve(r, g) {
                         Ok(Some(pc)) => {
@@ -98,7 +98,7 @@ pub(super) fn edge_curve(
         }
         if let Some(a) = e.part("TRIMMED_CURVE") {
             found.types.push((id, "TRIMMED_CURVE".into()));
-            if a.get(4).and_then(Value::enumeration) == Some("F") {
+            if a.get(4).and_then(|v| v.enumeration()) == Some("F") {
                 sense = !sense;
             }
             id = r
@@ -300,7 +300,7 @@ fn bspline_range(
 /// A 2D point or direction: the first two coordinates of `CARTESIAN_POINT` / `DIRECTION`.
 fn coords2(r: &Reader, id: u64, ty: &str) -> R<[f64; 2]> {
     let e = r.get(id).map_err(|x| step(x, id, ty))?;
-    let c: Option<Vec<f64>> = e.part(ty).and_then(|a| a.get(1)).and_then(Value::numbers);
+    let c: Option<Vec<f64>> = e.part(ty).and_then(|a| a.get(1)).and_then(|v| v.numbers());
     match c {
         Some(c) if c.len() == 2 && c.iter().all(|x| x.is_finite()) => Ok([c[0], c[1]]),
         _ => Err(invalid(id, ty, "not a 2D entity with two finite numbers")),
@@ -321,7 +321,7 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
         .map_err(s)?
         .part("DEFINITIONAL_REPRESENTATION")
         .and_then(|d| d.get(1))
-        .and_then(Value::list_refs)
+        .and_then(|v| v.list_refs())
         .ok_or_else(|| {
             invalid(
                 rep,
@@ -384,7 +384,7 @@ fn pcurve(r: &Reader, id: u64) -> R<Option<PCurve>> {
 /// semi-axes) as its exact rational quadratic NURBS form, the whole curve counter-clockwise
 /// from the placement's `ref_direction` ([`construct::conic_arc`]). The edge's part
 /// of it is found where it is used, from the vertices (`brep::pcurve::source`).
-fn conic2(r: &Reader, id: u64, args: &[Value], ellipse: bool) -> R<NurbsCurve<f64, 2>> {
+fn conic2(r: &Reader, id: u64, args: Args, ellipse: bool) -> R<NurbsCurve<f64, 2>> {
     let ty = if ellipse { "ELLIPSE" } else { "CIRCLE" };
     let s = |x| step(x, id, ty);
     let pl = r.reference(id, args, 1).map_err(s)?;
@@ -394,7 +394,7 @@ fn conic2(r: &Reader, id: u64, args: &[Value], ellipse: bool) -> R<NurbsCurve<f6
         .part("AXIS2_PLACEMENT_2D")
         .ok_or_else(|| invalid(pl, "AXIS2_PLACEMENT_2D", "expected an AXIS2_PLACEMENT_2D"))?;
     let o = coords2(r, r.reference(pl, pa, 1).map_err(s)?, "CARTESIAN_POINT")?;
-    let x = match pa.get(2).and_then(Value::reference) {
+    let x = match pa.get(2).and_then(|v| v.reference()) {
         Some(d) => coords2(r, d, "DIRECTION")?,
         None => [1.0, 0.0],
     };

@@ -4,7 +4,7 @@
 mod surfaces;
 
 use super::StepError;
-use super::part21::{Entity, Part21, Value};
+use super::part21::{Args, Inst, Part21, Val};
 use crate::geom::Point;
 use crate::spline::construct::Frame;
 use crate::spline::{NurbsCurve, NurbsSurface};
@@ -17,7 +17,7 @@ pub(super) struct Reader<'a> {
 
 type R<T> = Result<T, StepError>;
 
-impl Reader<'_> {
+impl<'a> Reader<'a> {
     pub(super) fn err<T>(&self, id: u64, reason: impl Into<String>) -> R<T> {
         Err(StepError {
             file: self.file.into(),
@@ -25,26 +25,26 @@ impl Reader<'_> {
             reason: reason.into(),
         })
     }
-    pub(super) fn get(&self, id: u64) -> R<&Entity> {
-        match self.p.entities.get(&id) {
+    pub(super) fn get(&self, id: u64) -> R<Inst<'a>> {
+        match self.p.entities.inst(id) {
             Some(e) => Ok(e),
             None => self.err(id, "reference to a missing instance"),
         }
     }
-    pub(super) fn arg<'b>(&self, id: u64, args: &'b [Value], i: usize) -> R<&'b Value> {
+    pub(super) fn arg<'b>(&self, id: u64, args: Args<'b>, i: usize) -> R<Val<'b>> {
         match args.get(i) {
             Some(v) => Ok(v),
             None => self.err(id, format!("missing attribute {i}")),
         }
     }
-    pub(super) fn num(&self, id: u64, args: &[Value], i: usize) -> R<f64> {
+    pub(super) fn num(&self, id: u64, args: Args, i: usize) -> R<f64> {
         match self.arg(id, args, i)?.num() {
             Some(x) if x.is_finite() => Ok(x),
             _ => self.err(id, format!("attribute {i} is not a number")),
         }
     }
     /// A degree (or other count): an integer, not a real that would be truncated.
-    fn degree(&self, id: u64, args: &[Value], i: usize) -> R<usize> {
+    fn degree(&self, id: u64, args: Args, i: usize) -> R<usize> {
         let x = self.num(id, args, i)?;
         if x.fract() != 0.0 || !(1.0..=crate::spline::MAX_DEGREE as f64).contains(&x) {
             return self.err(
@@ -57,7 +57,7 @@ impl Reader<'_> {
         }
         Ok(x as usize)
     }
-    pub(super) fn reference(&self, id: u64, args: &[Value], i: usize) -> R<u64> {
+    pub(super) fn reference(&self, id: u64, args: Args, i: usize) -> R<u64> {
         match self.arg(id, args, i)?.reference() {
             Some(r) => Ok(r),
             None => self.err(id, format!("attribute {i} is not a reference")),
@@ -72,7 +72,7 @@ impl Reader<'_> {
                 location: format!("#{id}"),
                 reason: "expected a CARTESIAN_POINT".into(),
             })?;
-        match self.arg(id, a, 1).map(Value::numbers)? {
+        match self.arg(id, a, 1).map(|v| v.numbers())? {
             Some(c) if c.len() == 3 && c.iter().all(|x| x.is_finite()) => Ok([c[0], c[1], c[2]]),
             Some(c) if c.len() == 2 => Ok([c[0], c[1], 0.0]),
             _ => self.err(id, "point coordinates are not 2 or 3 finite numbers"),
@@ -84,7 +84,7 @@ impl Reader<'_> {
             location: format!("#{id}"),
             reason: "expected a DIRECTION".into(),
         })?;
-        match self.arg(id, a, 1).map(Value::numbers)? {
+        match self.arg(id, a, 1).map(|v| v.numbers())? {
             Some(c) if c.len() == 3 => {
                 let l = crate::geom::norm(&[c[0], c[1], c[2]]);
                 if l > 0.0 && l.is_finite() {
@@ -100,7 +100,7 @@ impl Reader<'_> {
         let a = self
             .get(id)?
             .part("AXIS2_PLACEMENT_3D")
-            .or_else(|| self.p.entities.get(&id)?.part("AXIS1_PLACEMENT"));
+            .or_else(|| self.p.entities.inst(id)?.part("AXIS1_PLACEMENT"));
         let Some(a) = a else {
             return self.err(id, "expected an AXIS2_PLACEMENT_3D");
         };
@@ -132,7 +132,7 @@ impl Reader<'_> {
             z,
         })
     }
-    fn knots(&self, id: u64, mults: &Value, knots: &Value) -> R<Vec<f64>> {
+    fn knots(&self, id: u64, mults: Val, knots: Val) -> R<Vec<f64>> {
         let (Some(m), Some(k)) = (mults.list(), knots.numbers()) else {
             return self.err(id, "knot multiplicities or knots malformed");
         };
@@ -143,7 +143,7 @@ impl Reader<'_> {
             );
         }
         let mut out = Vec::new();
-        for (mi, ki) in m.iter().zip(&k) {
+        for (mi, ki) in m.into_iter().zip(&k) {
             match mi.int() {
                 Some(c) if (1..=64).contains(&c) => {
                     out.extend(std::iter::repeat_n(*ki, c as usize))
@@ -153,12 +153,12 @@ impl Reader<'_> {
         }
         Ok(out)
     }
-    fn bspline_surface(&self, id: u64, e: &Entity) -> R<NurbsSurface<f64, 3>> {
+    fn bspline_surface(&self, id: u64, e: Inst) -> R<NurbsSurface<f64, 3>> {
         // Simple instances carry the name first; complex ones split the attributes.
         let (base, k) =
-            match e {
-                Entity::Simple(_, a) => (&a[1.min(a.len())..], &a[8.min(a.len())..]),
-                Entity::Complex(_) => match (
+            match e.simple_args() {
+                Some(a) => (a.from(1), a.from(8)),
+                None => match (
                     e.part("B_SPLINE_SURFACE"),
                     e.part("B_SPLINE_SURFACE_WITH_KNOTS"),
                 ) {
@@ -179,7 +179,7 @@ impl Reader<'_> {
         let nu = rows.len();
         let nv = rows
             .first()
-            .and_then(Value::list_refs)
+            .and_then(|v| v.list_refs())
             .map_or(0, |r| r.len());
         let mut pts = Vec::with_capacity(nu * nv);
         for r in rows {
@@ -216,10 +216,10 @@ impl Reader<'_> {
         };
         NurbsSurface::new(ku, p, kv, q, nu, nv, pts, w).or_else(|e| self.err(id, e.to_string()))
     }
-    pub(super) fn bspline_curve(&self, id: u64, e: &Entity) -> R<NurbsCurve<f64, 3>> {
-        let (base, k) = match e {
-            Entity::Simple(_, a) => (&a[1.min(a.len())..], &a[6.min(a.len())..]),
-            Entity::Complex(_) => match (
+    pub(super) fn bspline_curve(&self, id: u64, e: Inst) -> R<NurbsCurve<f64, 3>> {
+        let (base, k) = match e.simple_args() {
+            Some(a) => (a.from(1), a.from(6)),
+            None => match (
                 e.part("B_SPLINE_CURVE"),
                 e.part("B_SPLINE_CURVE_WITH_KNOTS"),
             ) {
@@ -246,7 +246,7 @@ impl Reader<'_> {
             .collect::<R<Vec<_>>>()?;
         let knots = self.knots(id, self.arg(id, k, 0)?, self.arg(id, k, 1)?)?;
         let w = match e.part("RATIONAL_B_SPLINE_CURVE") {
-            Some(rw) => match rw.first().and_then(Value::numbers) {
+            Some(rw) => match rw.first().and_then(|v| v.numbers()) {
                 Some(w) => w,
                 None => return self.err(id, "weights malformed"),
             },

@@ -28,7 +28,6 @@ mod write_topology;
 
 use crate::brep::IssueKind;
 use crate::model::{Curve, CurveGeometry, Model, Outcome, Surface};
-use part21::Entity;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A fault in a STEP file: where and why.
@@ -68,11 +67,11 @@ const SURFACE_TYPES: [&str; 9] = [
 fn vertex_tolerance(p: &part21::Part21) -> f64 {
     let mut unc: f64 = 0.0;
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for e in p.entities.values() {
+    for (_, e) in p.entities.insts() {
         if let Some(a) = e.part("UNCERTAINTY_MEASURE_WITH_UNIT")
-            && let Some(part21::Value::Typed(t)) = a.first()
-            && &*t.0 == "LENGTH_MEASURE"
-            && let Some(x) = t.1.first().and_then(|x| x.num())
+            && let Some((name, t)) = a.first().and_then(|v| v.typed())
+            && name == "LENGTH_MEASURE"
+            && let Some(x) = t.first().and_then(|x| x.num())
             && x.is_finite()
         {
             unc = unc.max(x);
@@ -107,24 +106,76 @@ pub fn from_str_with(
     file: &str,
     opt: crate::io::ReadOptions,
 ) -> Result<Model, StepError> {
-    from_part21(&parse_text(text, file)?, file, opt)
+    from_part21(parse_text(text, file)?, file, opt)
+}
+
+/// A syntax fault of `file` as a [`StepError`] naming its line.
+fn syntax(e: part21::SyntaxError, file: &str) -> StepError {
+    StepError {
+        file: file.into(),
+        location: format!("line {}", e.line),
+        reason: e.reason,
+    }
 }
 
 /// The Part 21 table of STEP text; a syntax fault names its line.
 fn parse_text(text: &str, file: &str) -> Result<part21::Part21, StepError> {
-    part21::parse(text).map_err(|e| StepError {
-        file: file.into(),
-        location: format!("line {}", e.line),
-        reason: e.reason,
-    })
+    part21::parse(text).map_err(|e| syntax(e, file))
 }
 
-/// The model of a parsed STEP file.
+/// The model of a parsed STEP file: everything read from the table, which is then dropped
+/// before the assembly's occurrences are placed.
 fn from_part21(
-    p: &part21::Part21,
+    p: part21::Part21,
     file: &str,
     opt: crate::io::ReadOptions,
 ) -> Result<Model, StepError> {
+    let read = read_table(&p, file, opt)?;
+    drop(p);
+    Ok(read.finish())
+}
+
+/// What [`read_table`] found; [`TableRead::finish`] makes the model of it.
+struct TableRead {
+    model: Model,
+    tree: Option<assembly::Tree>,
+    /// Metres per unit of the representation contexts' distinct length units.
+    lengths: Vec<f64>,
+    /// Warnings that follow the assembly's.
+    later: Vec<String>,
+}
+
+impl TableRead {
+    fn finish(self) -> Model {
+        let TableRead {
+            mut model,
+            tree,
+            lengths,
+            later,
+        } = self;
+        if let Some(tree) = tree {
+            occurrences::apply(&mut model, tree);
+        }
+        if lengths.len() > 1 && model.brep.as_ref().is_none_or(|b| b.occurrences.is_empty()) {
+            model.warnings.push(format!(
+                "the representation contexts use {} length units ({} m); no product structure places them, so every item keeps its file numbers in the model's unit",
+                lengths.len(),
+                lengths.iter().map(|m| format!("{m:e}")).collect::<Vec<_>>().join(", ")
+            ));
+        }
+        model.warnings.extend(later);
+        let degenerate = model.degeneracy_warnings();
+        model.warnings.extend(degenerate);
+        model
+    }
+}
+
+/// Everything the model takes from the table `p` (see [`from_part21`]).
+fn read_table(
+    p: &part21::Part21,
+    file: &str,
+    opt: crate::io::ReadOptions,
+) -> Result<TableRead, StepError> {
     let (unit, angle_scale) = unit(p);
     let r = Reader {
         p,
@@ -137,17 +188,17 @@ fn from_part21(
     };
     let faces: Vec<(u64, u64)> = p
         .entities
-        .iter()
+        .insts()
         .filter_map(|(id, e)| {
             let a = e.part("ADVANCED_FACE").or_else(|| e.part("FACE_SURFACE"))?;
-            Some((*id, a.get(2)?.reference()?))
+            Some((id, a.get(2)?.reference()?))
         })
         .collect();
     // Entities referenced by a surface entity (a bare patch set's surfaces are the ones no
     // other surface uses, e.g. not the basis of an offset surface).
     let mut referenced = BTreeSet::new();
     if faces.is_empty() {
-        for e in p.entities.values() {
+        for (_, e) in p.entities.insts() {
             if SURFACE_TYPES
                 .iter()
                 .chain(&UNSUPPORTED_SURFACES)
@@ -161,9 +212,9 @@ fn from_part21(
         faces.iter().map(|(f, s)| (Some(*f), *s)).collect()
     } else {
         p.entities
-            .iter()
+            .insts()
             .filter(|(id, e)| SURFACE_TYPES.iter().any(|t| e.is(t)) && !referenced.contains(id))
-            .map(|(id, _)| (None, *id))
+            .map(|(id, _)| (None, id))
             .collect()
     };
     // Surface entities of a bare patch set that this reader cannot convert: named, not
@@ -172,13 +223,13 @@ fn from_part21(
     // What became of each visited surface and curve instance (the model's accounts).
     let mut outcomes: BTreeMap<u64, Outcome> = BTreeMap::new();
     if faces.is_empty() {
-        for (id, e) in &p.entities {
+        for (id, e) in p.entities.insts() {
             if let Some(t) = UNSUPPORTED_SURFACES.iter().find(|t| e.is(t))
                 && !SURFACE_TYPES.iter().any(|t| e.is(t))
-                && !referenced.contains(id)
+                && !referenced.contains(&id)
             {
-                skipped.entry(t.to_string()).or_default().push(*id);
-                outcomes.insert(*id, Outcome::Unsupported(account::NOT_CONVERTED.into()));
+                skipped.entry(t.to_string()).or_default().push(id);
+                outcomes.insert(id, Outcome::Unsupported(account::NOT_CONVERTED.into()));
             }
         }
     }
@@ -208,7 +259,7 @@ fn from_part21(
                 }
                 outcomes.insert(sid, Outcome::Converted);
                 let reversed = face
-                    .and_then(|f| p.entities.get(&f))
+                    .and_then(|f| p.entities.inst(f))
                     .and_then(|e| e.part("ADVANCED_FACE").or_else(|| e.part("FACE_SURFACE")))
                     .and_then(|a| a.get(3))
                     .and_then(|v| v.enumeration())
@@ -239,81 +290,79 @@ fn from_part21(
         model.warnings.extend(brep.report.warning_lines());
         model.brep = Some(brep);
         crate::brep::seams::warn(&mut model);
-        if let Some(tree) = assembly::read(&r) {
-            occurrences::apply(&mut model, tree);
-        }
     }
+    // The assembly is placed once the table is dropped (`TableRead::finish`).
+    let tree = if faces.is_empty() {
+        None
+    } else {
+        assembly::read(&r)
+    };
     let lengths = units::context_lengths(p);
-    if lengths.len() > 1 && model.brep.as_ref().is_none_or(|b| b.occurrences.is_empty()) {
-        model.warnings.push(format!(
-            "the representation contexts use {} length units ({} m); no product structure places them, so every item keeps its file numbers in the model's unit",
-            lengths.len(),
-            lengths.iter().map(|m| format!("{m:e}")).collect::<Vec<_>>().join(", ")
-        ));
-    }
     // Free B-spline curves (not referenced by edges or surfaces are still listed); one
     // that cannot be read is reported with its id and reason.
     let mut bad_curves = Vec::new();
-    for (id, e) in &p.entities {
+    for (id, e) in p.entities.insts() {
         if e.is(account::CURVE) {
-            match r.bspline_curve(*id, e) {
+            match r.bspline_curve(id, e) {
                 Ok(c) => {
                     model.curves.push(Curve {
                         name: format!("#{id}"),
                         geometry: CurveGeometry::Space(c),
                     });
-                    outcomes.insert(*id, Outcome::Converted);
+                    outcomes.insert(id, Outcome::Converted);
                 }
                 Err(e) => {
-                    outcomes.insert(*id, Outcome::Invalid(e.reason.clone()));
+                    outcomes.insert(id, Outcome::Invalid(e.reason.clone()));
                     bad_curves.push(format!("{}: {}", e.location, e.reason))
                 }
             }
         }
     }
+    let mut later = Vec::new();
     for (k, ids) in skipped {
-        model.warnings.push(format!(
+        later.push(format!(
             "{} surface(s) of type {k} not supported, skipped: {}",
             ids.len(),
             crate::model::list_ids(ids.iter().map(|i| format!("#{i}")))
         ));
     }
     for f in invalid_faces {
-        model
-            .warnings
-            .push(format!("invalid {f}: skipped (--skip-invalid)"));
+        later.push(format!("invalid {f}: skipped (--skip-invalid)"));
     }
     for b in bad_curves {
-        model
-            .warnings
-            .push(format!("invalid B-spline curve skipped: {b}"));
+        later.push(format!("invalid B-spline curve skipped: {b}"));
     }
     model.accounts = account::account(p, &outcomes, model.brep.as_ref().map(|b| &b.report));
-    let degenerate = model.degeneracy_warnings();
-    model.warnings.extend(degenerate);
-    for e in p.entities.values() {
-        let name = match e {
-            Entity::Simple(n, _) => n.to_string(),
-            Entity::Complex(parts) => format!(
-                "({})",
-                parts.iter().map(|x| &*x.0).collect::<Vec<_>>().join(" ")
-            ),
+    for (_, e) in p.entities.insts() {
+        let name = if e.is_complex() {
+            format!("({})", e.parts().map(|x| x.0).collect::<Vec<_>>().join(" "))
+        } else {
+            e.name().to_string()
         };
         *model.source_entities.entry(name).or_insert(0) += 1;
     }
-    Ok(model)
+    Ok(TableRead {
+        model,
+        tree,
+        lengths,
+        later,
+    })
 }
 
 /// Read a STEP file.
 pub fn read(path: &std::path::Path) -> Result<Model, StepError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| StepError {
-        file: name.clone(),
-        location: "(file)".into(),
-        reason: e.to_string(),
-    })?;
-    // The text is dropped once parsed: the table holds its own copies of every string.
-    let p = parse_text(&String::from_utf8_lossy(&bytes), &name)?;
-    drop(bytes);
-    from_part21(&p, &name, crate::io::ReadOptions::current())
+    // Read and parsed piece by piece: the file's text is not held beside its table.
+    let p = std::fs::File::open(path)
+        .map_err(part21::ReadFault::Io)
+        .and_then(part21::read)
+        .map_err(|e| match e {
+            part21::ReadFault::Syntax(e) => syntax(e, &name),
+            part21::ReadFault::Io(e) => StepError {
+                file: name.clone(),
+                location: "(file)".into(),
+                reason: e.to_string(),
+            },
+        })?;
+    from_part21(p, &name, crate::io::ReadOptions::current())
 }

@@ -2,6 +2,10 @@
 //! map from instance id to entity — simple `TYPE(args)` or complex `(TYPE1(args) TYPE2(…))`.
 //! Comments `/* … */`, multi-line instances, strings with `''`, enumerations, typed
 //! parameters and `$`/`*` are handled; any syntax fault is a typed error with its line.
+//!
+//! The parse writes each instance straight into the table's compact storage
+//! ([`table`](Table)); a file can be parsed from its whole text ([`parse`]) or read piece by
+//! piece, without holding its text (`stream`).
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -11,11 +15,20 @@ use std::sync::Arc;
 /// instance that uses it (one allocation per distinct name in a file).
 pub type Name = Arc<str>;
 
+mod lexer;
+mod lines;
+mod stream;
 mod table;
 mod values;
+mod view;
 
-pub use table::Table;
-pub use values::{Entity, ListRefs, Value};
+use lexer::Lexer;
+use lines::Lines;
+pub(super) use stream::{ReadFault, read};
+pub use table::{Iter, Table};
+use table::{Store, header};
+pub use values::{Entity, Value};
+pub use view::{Args, ArgsIter, Inst, ListRefs, Parts, Val};
 
 /// A parsed STEP file.
 #[derive(Clone, Debug, Default)]
@@ -57,354 +70,225 @@ impl Hasher for Fnv {
     }
 }
 
-struct Lexer<'a> {
-    text: &'a str,
-    s: &'a [u8],
-    i: usize,
+/// What the parse keeps from one instance to the next (and from one piece of the text to the
+/// next, see `stream`).
+struct Parser {
     line: usize,
-    /// Names met so far, by their spelling in the file.
-    names: HashMap<&'a [u8], Name, BuildHasherDefault<Fnv>>,
-    /// Items of the lists being read (see [`Lexer::value`]).
-    stack: Vec<Value>,
+    /// Names met so far, by their spelling in the file: their index in the store.
+    names: HashMap<Box<[u8]>, u64, BuildHasherDefault<Fnv>>,
+    /// Items of the lists being read (see [`Lexer::close`]).
+    stack: Vec<u64>,
+    store: Store,
+    /// `(id, row word)` of the instances read, in file order.
+    rows: Vec<(u64, u64)>,
+    /// The line of each instance, in file order. Ids usually ascend, and only once they do
+    /// not is a map of every id's line built, to name both places when an id is defined twice.
+    lines: Lines,
+    defined: Option<HashMap<u64, usize>>,
 }
 
-impl<'a> Lexer<'a> {
-    fn err<T>(&self, reason: impl Into<String>) -> Result<T, SyntaxError> {
-        Err(SyntaxError {
-            line: self.line,
-            reason: reason.into(),
-        })
+/// How a piece of text ended ([`Parser::statements`]).
+enum Step {
+    /// At `ENDSEC`.
+    Done,
+    /// Out of text at byte `.0` (an instance's start, or where the text ends): the next
+    /// piece continues from there.
+    More(usize),
+}
+
+impl Parser {
+    fn new(line: usize) -> Parser {
+        Parser {
+            line,
+            names: HashMap::default(),
+            stack: Vec::new(),
+            store: Store::default(),
+            rows: Vec::new(),
+            lines: Lines::default(),
+            defined: None,
+        }
     }
-    fn skip_ws(&mut self) {
+    /// Read the instances of `text` up to `ENDSEC`. `last`: whether `text` holds the rest of
+    /// the file. Otherwise an instance that cannot be read is reported as [`Step::More`] at
+    /// its start, with what it added undone: it may be cut off by the end of the text (its
+    /// fault, if it has one, is found again with more text). An instance read, or `ENDSEC`,
+    /// never looked at the end of the text (every scan that meets it leaves the cursor
+    /// there, and an instance ends with a `;` read after it), so it reads as in the whole
+    /// text.
+    fn statements(&mut self, text: &str, last: bool) -> Result<Step, SyntaxError> {
+        let mut lx = Lexer {
+            text,
+            s: text.as_bytes(),
+            i: 0,
+            p: self,
+        };
         loop {
-            while let Some(&c) = self.s.get(self.i)
-                && c.is_ascii_whitespace()
-            {
-                if c == b'\n' {
-                    self.line += 1;
+            let (start, line) = (lx.i, lx.p.line);
+            let (mark, lines) = (lx.p.store.mark(), lx.p.lines.mark());
+            let mut undo = None;
+            let fault = match lx.peek() {
+                None if !last => {
+                    lx.p.line = line;
+                    return Ok(Step::More(start));
                 }
-                self.i += 1;
-            }
-            if self.s[self.i..].starts_with(b"/*") {
-                match self.s[self.i + 2..].windows(2).position(|w| w == b"*/") {
-                    Some(p) => {
-                        self.line += self.s[self.i..self.i + 2 + p]
-                            .iter()
-                            .filter(|&&c| c == b'\n')
-                            .count();
-                        self.i += p + 4;
+                None => lx.err("missing ENDSEC"),
+                Some(b'#') => lx.statement(&mut undo),
+                Some(_) => {
+                    let k = lx.keyword();
+                    let k = lx.p.store.name(k);
+                    if k == "ENDSEC" && (last || lx.i < lx.s.len()) {
+                        return Ok(Step::Done);
                     }
-                    None => self.i = self.s.len(),
+                    lx.err(format!("unexpected '{k}' in DATA section"))
                 }
-            } else {
-                return;
-            }
-        }
-    }
-    fn peek(&mut self) -> Option<u8> {
-        self.skip_ws();
-        self.s.get(self.i).copied()
-    }
-    fn eat(&mut self, c: u8) -> Result<(), SyntaxError> {
-        match self.peek() {
-            Some(x) if x == c => {
-                self.i += 1;
-                Ok(())
-            }
-            Some(x) => self.err(format!("expected '{}', found '{}'", c as char, x as char)),
-            None => self.err(format!("expected '{}', found end of file", c as char)),
-        }
-    }
-    /// A keyword (letters, digits, `_`, `!`), upper-cased and interned; empty if none.
-    fn keyword(&mut self) -> Name {
-        self.skip_ws();
-        let st = self.i;
-        while let Some(&c) = self.s.get(self.i)
-            && (c.is_ascii_alphanumeric() || c == b'_' || c == b'!')
-        {
-            self.i += 1;
-        }
-        let raw = &self.s[st..self.i];
-        if let Some(n) = self.names.get(raw) {
-            return n.clone();
-        }
-        // ASCII only, so the slice is on character boundaries.
-        let n: Name = self.text[st..self.i].to_ascii_uppercase().into();
-        // Real schemas use a few hundred names; past the cap new names are not kept, so a file
-        // made of many names whose hashes collide cannot make the table's probing quadratic.
-        if self.names.len() < MAX_INTERNED {
-            self.names.insert(raw, n.clone());
-        }
-        n
-    }
-    /// The digits at the cursor as an id or reference; `None` if there are none or too many.
-    fn digits(&mut self) -> Option<u64> {
-        let st = self.i;
-        let mut v: u64 = 0;
-        while let Some(&c) = self.s.get(self.i)
-            && c.is_ascii_digit()
-        {
-            v = v.checked_mul(10)?.checked_add(u64::from(c - b'0'))?;
-            self.i += 1;
-        }
-        (self.i > st).then_some(v)
-    }
-    /// A quoted string (`'` doubled inside), the cursor after the opening quote.
-    fn string(&mut self) -> Result<String, SyntaxError> {
-        let st = self.i;
-        let mut escaped = false;
-        loop {
-            let Some(p) = self.s[self.i..].iter().position(|&c| c == b'\'') else {
-                return self.err("unterminated string");
             };
-            self.i += p + 1;
-            if self.s.get(self.i) == Some(&b'\'') {
-                escaped = true;
-                self.i += 1;
-            } else {
-                break;
-            }
-        }
-        let body = &self.text[st..self.i - 1];
-        self.line += body.bytes().filter(|&c| c == b'\n').count();
-        Ok(if escaped {
-            body.replace("''", "'")
-        } else {
-            body.to_owned()
-        })
-    }
-    fn value(&mut self, depth: usize) -> Result<Value, SyntaxError> {
-        if depth > 64 {
-            return self.err("lists nested too deeply");
-        }
-        match self.peek() {
-            Some(b'(') => {
-                self.i += 1;
-                if self.peek() == Some(b')') {
-                    self.i += 1;
-                    return Ok(Value::List(Box::default()));
+            if let Err(e) = fault {
+                if last {
+                    return Err(e);
                 }
-                // The items go on one stack shared by every open list, and a closed list takes
-                // its own items off it in one allocation of their exact number (no growing
-                // vector per list: most lists are short and kept for the whole read). A fault
-                // ends the parse, so items left on the stack then are never read.
-                let base = self.stack.len();
-                loop {
-                    let v = self.value(depth + 1)?;
-                    self.stack.push(v);
-                    match self.peek() {
-                        Some(b',') => self.i += 1,
-                        Some(b')') => {
-                            self.i += 1;
-                            // Nested lists of reals or of references are kept as plain
-                            // numbers (argument lists stay lists of values).
-                            if depth > 0 {
-                                let items = &self.stack[base..];
-                                let reals: Option<Vec<f64>> = items
-                                    .iter()
-                                    .map(|v| match v {
-                                        Value::Real(x) => Some(*x),
-                                        _ => None,
-                                    })
-                                    .collect();
-                                if let Some(r) = reals {
-                                    self.stack.truncate(base);
-                                    return Ok(Value::Reals(r.into_boxed_slice()));
-                                }
-                                let refs: Option<Vec<u64>> =
-                                    items.iter().map(Value::reference).collect();
-                                if let Some(r) = refs {
-                                    self.stack.truncate(base);
-                                    return Ok(Value::Refs(r.into_boxed_slice()));
-                                }
-                            }
-                            let items: Vec<Value> = self.stack.drain(base..).collect();
-                            return Ok(Value::List(items.into_boxed_slice()));
-                        }
-                        _ => return self.err("expected ',' or ')' in a list"),
-                    }
+                let p = &mut *lx.p;
+                p.line = line;
+                p.store.cut(mark);
+                p.lines.truncate(lines);
+                p.stack.clear();
+                if let (Some((id, was)), Some(map)) = (undo, p.defined.as_mut()) {
+                    match was {
+                        Some(l) => map.insert(id, l),
+                        None => map.remove(&id),
+                    };
                 }
+                return Ok(Step::More(start));
             }
-            Some(b'#') => {
-                self.i += 1;
-                match self.digits() {
-                    Some(r) => Ok(Value::Ref(r)),
-                    None => self.err("malformed reference"),
-                }
-            }
-            Some(b'\'') => {
-                self.i += 1;
-                Ok(Value::Str(self.string()?.into_boxed_str()))
-            }
-            Some(b'.') => {
-                self.i += 1;
-                let k = self.keyword();
-                self.eat(b'.')?;
-                Ok(Value::Enum(k))
-            }
-            Some(b'$') | Some(b'*') => {
-                self.i += 1;
-                Ok(Value::Unset)
-            }
-            Some(b'"') => {
-                // Binary: keep as a string of hex digits.
-                self.i += 1;
-                let st = self.i;
-                while self.i < self.s.len() && self.s[self.i] != b'"' {
-                    self.i += 1;
-                }
-                let v: Box<str> = self.text[st..self.i].into();
-                self.eat(b'"')?;
-                Ok(Value::Str(v))
-            }
-            Some(c) if c == b'-' || c == b'+' || c.is_ascii_digit() => {
-                let st = self.i;
-                self.i += 1;
-                let mut real = false;
-                while let Some(&c) = self.s.get(self.i) {
-                    match c {
-                        b'0'..=b'9' | b'-' | b'+' => {}
-                        b'.' | b'E' | b'e' => real = true,
-                        _ => break,
-                    }
-                    self.i += 1;
-                }
-                let t = &self.text[st..self.i];
-                if !real && let Ok(i) = t.parse::<i64>() {
-                    return Ok(Value::Int(i));
-                }
-                // Rust's float syntax takes the Part 21 forms `1.` and `1.E5` as they are.
-                match t.parse::<f64>() {
-                    Ok(x) if x.is_finite() => Ok(Value::Real(x)),
-                    _ => self.err(format!("malformed number '{t}'")),
-                }
-            }
-            Some(c) if c.is_ascii_alphabetic() || c == b'!' => {
-                let k = self.keyword();
-                self.eat(b'(')?;
-                self.i -= 1;
-                match self.value(depth + 1)? {
-                    Value::List(v) => Ok(Value::Typed(Box::new((k, v)))),
-                    Value::Reals(v) => Ok(Value::Typed(Box::new((
-                        k,
-                        v.iter().map(|x| Value::Real(*x)).collect(),
-                    )))),
-                    Value::Refs(v) => Ok(Value::Typed(Box::new((
-                        k,
-                        v.iter().map(|x| Value::Ref(*x)).collect(),
-                    )))),
-                    _ => self.err("expected arguments"),
-                }
-            }
-            Some(c) => self.err(format!("unexpected character '{}'", c as char)),
-            None => self.err("unexpected end of file"),
         }
     }
-    fn args(&mut self) -> Result<Box<[Value]>, SyntaxError> {
-        match self.value(0)? {
-            Value::List(v) => Ok(v),
-            _ => self.err("expected an argument list"),
-        }
+    /// The table of the instances read.
+    fn finish(self) -> Table {
+        Table::from_parts(self.rows, self.store)
     }
-    /// One instance after its `#id=`: simple `NAME(args)` or complex `(NAME(args) …)`, and `;`.
-    fn instance(&mut self, id: u64) -> Result<Entity, SyntaxError> {
-        let e = if self.peek() == Some(b'(') {
+}
+
+impl Lexer<'_, '_> {
+    /// An argument list (its items onto the stack).
+    fn args(&mut self) -> Result<(), SyntaxError> {
+        if self.peek() == Some(b'(') {
             self.i += 1;
-            let mut parts = Vec::new();
+            self.items(0)
+        } else {
+            self.value(0)?;
+            self.err("expected an argument list")
+        }
+    }
+    /// A (partial) entity `k` of instance `id`: its header and arguments onto the stack.
+    fn part(&mut self, id: u64, k: u64) -> Result<(), SyntaxError> {
+        let at = self.p.stack.len();
+        self.p.stack.push(0);
+        self.args()?;
+        match header(k as usize, self.p.stack.len() - at - 1) {
+            Some(h) => self.p.stack[at] = h,
+            None => return self.err(format!("#{id}: too many attributes")),
+        }
+        Ok(())
+    }
+    /// One instance after its `#id=`: simple `NAME(args)` or complex `(NAME(args) …)`, and
+    /// `;`. Its row word ([`Store::record`]).
+    fn instance(&mut self, id: u64) -> Result<u64, SyntaxError> {
+        let complex = self.peek() == Some(b'(');
+        let mut parts = 0;
+        if complex {
+            self.i += 1;
             while self.peek() != Some(b')') {
                 let k = self.keyword();
-                if k.is_empty() {
+                if self.p.store.name(k).is_empty() {
                     return self.err(format!("#{id}: expected a partial entity name"));
                 }
-                parts.push((k, self.args()?));
+                self.part(id, k)?;
+                parts += 1;
             }
             self.i += 1;
-            Entity::Complex(parts.into_boxed_slice())
         } else {
             let k = self.keyword();
-            if k.is_empty() {
+            if self.p.store.name(k).is_empty() {
                 return self.err(format!("#{id}: expected an entity name"));
             }
-            Entity::Simple(k, self.args()?)
-        };
+            self.part(id, k)?;
+        }
         self.eat(b';')?;
-        Ok(e)
+        let p = &mut *self.p;
+        let row = p.store.record(&p.stack, complex, parts);
+        p.stack.clear();
+        row.map_or_else(|| self.err("file too large"), Ok)
+    }
+    /// An instance from its `#`; `undo`: the id entered in the map of ids and the line it
+    /// replaced there, if any.
+    fn statement(&mut self, undo: &mut Option<(u64, Option<usize>)>) -> Result<(), SyntaxError> {
+        self.i += 1;
+        let Some(id) = self.digits() else {
+            return self.err("malformed instance id");
+        };
+        let p = &mut *self.p;
+        let ascending = p.defined.is_none() && p.rows.last().is_none_or(|l| l.0 < id);
+        if !ascending {
+            let (rows, lines) = (&p.rows, &p.lines);
+            let map = p
+                .defined
+                .get_or_insert_with(|| rows.iter().map(|x| x.0).zip(lines.iter()).collect());
+            let first = map.insert(id, p.line);
+            *undo = Some((id, first));
+            if let Some(first) = first {
+                // A second `#N=` would silently replace the first instance and every
+                // reference to it: the file is ambiguous.
+                return self.err(format!(
+                    "#{id} is defined twice (first on line {first}); instance ids must be unique"
+                ));
+            }
+        }
+        p.lines.push(p.line);
+        self.eat(b'=')?;
+        let at = self.instance(id)?;
+        self.p.rows.push((id, at));
+        Ok(())
+    }
+}
+
+/// The schema names of the text from `FILE_SCHEMA` on: its quoted strings up to the first
+/// `;`.
+fn schema_of(from_file_schema: &str) -> Vec<String> {
+    let end = from_file_schema.find(';').unwrap_or(from_file_schema.len());
+    from_file_schema[..end]
+        .split('\'')
+        .skip(1)
+        .step_by(2)
+        .map(|s| s.to_string())
+        .collect()
+}
+
+/// The fault of a text without a DATA section.
+fn no_data() -> SyntaxError {
+    SyntaxError {
+        line: 1,
+        reason: "no DATA section (not an ISO 10303-21 file?)".into(),
     }
 }
 
 /// Parse a whole STEP file.
 pub fn parse(text: &str) -> Result<Part21, SyntaxError> {
-    let mut lx = Lexer {
-        text,
-        s: text.as_bytes(),
-        i: 0,
-        line: 1,
-        names: HashMap::default(),
-        stack: Vec::new(),
-    };
-    let mut out = Part21::default();
     // Header: find FILE_SCHEMA's strings, then DATA;
-    if let Some(p) = text.find("FILE_SCHEMA") {
-        let rest = &text[p..];
-        let end = rest.find(';').unwrap_or(rest.len());
-        out.schema = rest[..end]
-            .split('\'')
-            .skip(1)
-            .step_by(2)
-            .map(|s| s.to_string())
-            .collect();
-    }
+    let schema = text
+        .find("FILE_SCHEMA")
+        .map_or(vec![], |p| schema_of(&text[p..]));
     let Some(d) = text.find("DATA;") else {
-        return Err(SyntaxError {
-            line: 1,
-            reason: "no DATA section (not an ISO 10303-21 file?)".into(),
-        });
+        return Err(no_data());
     };
-    lx.line += text[..d].matches('\n').count();
-    lx.i = d + 5;
-    // Instances with their lines, in file order; ids usually ascend, and only once they do not
-    // is a map of every id's line built, to name both places when an id is defined twice.
-    let mut found: Vec<(u64, Entity)> = Vec::new();
-    let mut lines: Vec<usize> = Vec::new();
-    let mut defined: Option<HashMap<u64, usize>> = None;
-    loop {
-        match lx.peek() {
-            None => return lx.err("missing ENDSEC"),
-            Some(b'#') => {
-                lx.i += 1;
-                let Some(id) = lx.digits() else {
-                    return lx.err("malformed instance id");
-                };
-                let ascending = defined.is_none() && found.last().is_none_or(|l| l.0 < id);
-                if !ascending {
-                    let map = defined.get_or_insert_with(|| {
-                        found
-                            .iter()
-                            .map(|x| x.0)
-                            .zip(lines.iter().copied())
-                            .collect()
-                    });
-                    if let Some(first) = map.insert(id, lx.line) {
-                        // A second `#N=` would silently replace the first instance and every
-                        // reference to it: the file is ambiguous.
-                        return lx.err(format!(
-                            "#{id} is defined twice (first on line {first}); instance ids must be unique"
-                        ));
-                    }
-                }
-                lines.push(lx.line);
-                lx.eat(b'=')?;
-                let e = lx.instance(id)?;
-                found.push((id, e));
-            }
-            Some(_) => {
-                let k = lx.keyword();
-                if &*k == "ENDSEC" {
-                    out.entities = Table::new(found);
-                    return Ok(out);
-                }
-                return lx.err(format!("unexpected '{k}' in DATA section"));
-            }
-        }
+    let mut p = Parser::new(1 + text[..d].matches('\n').count());
+    match p.statements(&text[d + 5..], true)? {
+        Step::Done => Ok(Part21 {
+            schema,
+            entities: p.finish(),
+        }),
+        // Not returned for the last piece of a text.
+        Step::More(_) => Err(SyntaxError {
+            line: p.line,
+            reason: "missing ENDSEC".into(),
+        }),
     }
 }

@@ -3,7 +3,7 @@
 //! `oriented_face`s), `manifold_solid_brep` and `brep_with_voids` (`oriented_closed_shell`
 //! voids). Faults are reported per instance, as for faces.
 
-use super::part21::{Entity, Value};
+use super::part21::Inst;
 use super::topology::{TopologyReader, type_of};
 use crate::brep::{IssueKind, Shell, Solid};
 
@@ -13,12 +13,12 @@ impl TopologyReader<'_> {
             return *s;
         }
         self.shells.insert(id, None);
-        let e = self.r.p.entities.get(&id)?;
+        let e = self.r.p.entities.inst(id)?;
         let ty = type_of(e, &["CLOSED_SHELL", "OPEN_SHELL"]);
         let Some(list) = e
             .part(&ty)
             .and_then(|a| a.get(1))
-            .and_then(Value::list_refs)
+            .and_then(|v| v.list_refs())
         else {
             self.invalid(
                 id,
@@ -47,10 +47,10 @@ impl TopologyReader<'_> {
                 None,
             )?;
             let (target, orientation) = if fty == "ORIENTED_FACE" {
-                let a = fe.part("ORIENTED_FACE").unwrap_or(&[]);
+                let a = fe.part("ORIENTED_FACE").unwrap_or_default();
                 match (
-                    a.get(2).and_then(Value::reference),
-                    a.get(3).and_then(Value::enumeration),
+                    a.get(2).and_then(|v| v.reference()),
+                    a.get(3).and_then(|v| v.enumeration()),
                 ) {
                     (Some(t), Some(o)) => {
                         self.converted(fid, "ORIENTED_FACE");
@@ -85,7 +85,7 @@ impl TopologyReader<'_> {
                                 .r
                                 .p
                                 .entities
-                                .get(&target)
+                                .inst(target)
                                 .map_or("(missing)", |e| e.name())
                                 .to_string(),
                         },
@@ -105,7 +105,7 @@ impl TopologyReader<'_> {
         Some(i)
     }
 
-    pub(super) fn solid(&mut self, id: u64, e: &Entity) {
+    pub(super) fn solid(&mut self, id: u64, e: Inst) {
         let ty = type_of(e, &["BREP_WITH_VOIDS", "MANIFOLD_SOLID_BREP"]);
         let outer = e
             .part("MANIFOLD_SOLID_BREP")

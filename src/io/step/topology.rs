@@ -10,7 +10,7 @@
 mod edges;
 
 use super::entities::Reader;
-use super::part21::{Entity, Value};
+use super::part21::Inst;
 use crate::brep::{Brep, Face, IssueKind, Loop, LoopKind};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -55,7 +55,7 @@ pub(super) struct TopologyReader<'a> {
 
 /// The type name of an instance for the report (the first of `names` it contains, else its
 /// own name).
-pub(super) fn type_of(e: &Entity, names: &[&str]) -> String {
+pub(super) fn type_of(e: Inst, names: &[&str]) -> String {
     names
         .iter()
         .find(|n| e.is(n))
@@ -108,8 +108,8 @@ impl<'a> TopologyReader<'a> {
         attribute: &str,
         types: &[&str],
         face: Option<u64>,
-    ) -> Option<(&'a Entity, String)> {
-        let Some(e) = self.r.p.entities.get(&id) else {
+    ) -> Option<(Inst<'a>, String)> {
+        let Some(e) = self.r.p.entities.inst(id) else {
             self.invalid(
                 owner.0,
                 owner.1,
@@ -147,30 +147,30 @@ impl<'a> TopologyReader<'a> {
         no_surface: &BTreeMap<u64, IssueKind>,
     ) -> Brep {
         let p = self.r.p;
-        for (id, e) in &p.entities {
+        for (id, e) in p.entities.insts() {
             if e.is("ADVANCED_FACE") || e.is("FACE_SURFACE") {
-                self.face(*id, e, surface_of.get(id).copied(), no_surface.get(id));
+                self.face(id, e, surface_of.get(&id).copied(), no_surface.get(&id));
             }
         }
-        for (id, e) in &p.entities {
+        for (id, e) in p.entities.insts() {
             if e.is("CLOSED_SHELL") || e.is("OPEN_SHELL") {
-                self.shell(*id);
+                self.shell(id);
             }
         }
-        for (id, e) in &p.entities {
+        for (id, e) in p.entities.insts() {
             if e.is("MANIFOLD_SOLID_BREP") || e.is("BREP_WITH_VOIDS") {
-                self.solid(*id, e);
+                self.solid(id, e);
             } else if let Some(a) = e.part("SHELL_BASED_SURFACE_MODEL") {
                 // A set of shells, each read above.
                 let ok = a
                     .get(1)
-                    .and_then(Value::list_refs)
+                    .and_then(|v| v.list_refs())
                     .is_some_and(|mut l| l.all(|v| v.is_some()));
                 if ok {
-                    self.converted(*id, "SHELL_BASED_SURFACE_MODEL");
+                    self.converted(id, "SHELL_BASED_SURFACE_MODEL");
                 } else {
                     self.invalid(
-                        *id,
+                        id,
                         "SHELL_BASED_SURFACE_MODEL",
                         None,
                         IssueKind::Malformed("sbsm_boundary is not a list of references".into()),
@@ -179,8 +179,8 @@ impl<'a> TopologyReader<'a> {
             }
         }
         // Topology instances nothing reached: listed, not dropped silently.
-        for (id, e) in &p.entities {
-            if self.seen.contains(id) {
+        for (id, e) in p.entities.insts() {
+            if self.seen.contains(&id) {
                 continue;
             }
             if let Some(t) = TOPOLOGY_TYPES.iter().find(|t| e.is(t)) {
@@ -199,18 +199,12 @@ impl<'a> TopologyReader<'a> {
         self.brep
     }
 
-    fn face(
-        &mut self,
-        id: u64,
-        e: &Entity,
-        surface: Option<usize>,
-        no_surface: Option<&IssueKind>,
-    ) {
+    fn face(&mut self, id: u64, e: Inst, surface: Option<usize>, no_surface: Option<&IssueKind>) {
         let ty = type_of(e, &["ADVANCED_FACE", "FACE_SURFACE"]);
-        let a = e.part(&ty).unwrap_or(&[]);
+        let a = e.part(&ty).unwrap_or_default();
         let (Some(bounds), Some(sid)) = (
-            a.get(1).and_then(Value::list_refs),
-            a.get(2).and_then(Value::reference),
+            a.get(1).and_then(|v| v.list_refs()),
+            a.get(2).and_then(|v| v.reference()),
         ) else {
             self.invalid(
                 id,
@@ -246,7 +240,7 @@ impl<'a> TopologyReader<'a> {
             source: format!("#{id}"),
             surface,
             surface_source: format!("#{sid}"),
-            same_sense: a.get(3).and_then(Value::enumeration) != Some("F"),
+            same_sense: a.get(3).and_then(|v| v.enumeration()) != Some("F"),
             loops,
         });
     }
@@ -259,8 +253,8 @@ impl<'a> TopologyReader<'a> {
             &["FACE_OUTER_BOUND", "FACE_BOUND"],
             Some(face),
         )?;
-        let a = e.part(&ty).unwrap_or(&[]);
-        let Some(lid) = a.get(1).and_then(Value::reference) else {
+        let a = e.part(&ty).unwrap_or_default();
+        let Some(lid) = a.get(1).and_then(|v| v.reference()) else {
             self.invalid(
                 bid,
                 &ty,
@@ -269,7 +263,7 @@ impl<'a> TopologyReader<'a> {
             );
             return None;
         };
-        let orientation = a.get(2).and_then(Value::enumeration) != Some("F");
+        let orientation = a.get(2).and_then(|v| v.enumeration()) != Some("F");
         let (le, lty) = self.referenced(
             (bid, &ty),
             lid,
@@ -296,7 +290,7 @@ impl<'a> TopologyReader<'a> {
                 let list = le
                     .part("EDGE_LOOP")
                     .and_then(|a| a.get(1))
-                    .and_then(Value::list_refs)
+                    .and_then(|v| v.list_refs())
                     .unwrap_or_default();
                 let mut es = Vec::with_capacity(list.len());
                 for v in list {

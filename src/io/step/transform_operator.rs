@@ -23,7 +23,7 @@
 
 use super::StepError;
 use super::entities::Reader;
-use super::part21::Value;
+use super::part21::Val;
 use crate::brep::place::Motion;
 use crate::geom::{cross, dot, norm};
 
@@ -37,7 +37,7 @@ impl Reader<'_> {
     /// an error names the instance and the fault (missing origin, axes that are parallel or
     /// zero, a scale that is not positive).
     pub(super) fn transformation_operator(&self, id: u64) -> R<Motion> {
-        let Some(a) = self.p.entities.get(&id).and_then(|e| e.part(NAME)) else {
+        let Some(a) = self.p.entities.inst(id).and_then(|e| e.part(NAME)) else {
             return self.fail(id, format!("expected a {NAME}"));
         };
         let off = match a.len() {
@@ -45,22 +45,24 @@ impl Reader<'_> {
             7 => 2,
             n => return self.fail(id, format!("{n} attributes (6 or 7 expected)")),
         };
-        let dir = |v: &Value| -> R<Option<[f64; 3]>> {
-            match v {
-                Value::Unset => Ok(None),
-                _ => match v.reference() {
-                    Some(r) => self.direction(r).map(Some),
-                    None => self.fail(id, "an axis is neither a DIRECTION nor unset"),
-                },
+        // Every attribute is there: the count was checked.
+        let at = |i: usize| a.get(off + i).unwrap_or_default();
+        let dir = |v: Val| -> R<Option<[f64; 3]>> {
+            if v.is_unset() {
+                return Ok(None);
+            }
+            match v.reference() {
+                Some(r) => self.direction(r).map(Some),
+                None => self.fail(id, "an axis is neither a DIRECTION nor unset"),
             }
         };
-        let (axis1, axis2, axis3) = (dir(&a[off])?, dir(&a[off + 1])?, dir(&a[off + 4])?);
-        let Some(origin) = a[off + 2].reference() else {
+        let (axis1, axis2, axis3) = (dir(at(0))?, dir(at(1))?, dir(at(4))?);
+        let Some(origin) = at(2).reference() else {
             return self.fail(id, "local_origin is not a reference");
         };
         let origin = self.point(origin)?;
-        let scale = match &a[off + 3] {
-            Value::Unset => 1.0,
+        let scale = match at(3) {
+            v if v.is_unset() => 1.0,
             v => match v.num() {
                 Some(s) if s > 0.0 && s.is_finite() => s,
                 _ => return self.fail(id, "scale is not a positive number"),

@@ -1,15 +1,15 @@
 //! Length and plane-angle units of a STEP file: the units the representation context
 //! assigns (GLOBAL_UNIT_ASSIGNED_CONTEXT), SI with prefix or conversion-based.
 
-use super::part21::{Entity, Part21, Value};
+use super::part21::{Args, Inst, Part21};
 
 /// `(length unit, factor turning plane angles into radians)`.
 pub fn unit(p: &Part21) -> (Option<String>, f64) {
     let mut length = None;
     let mut angle = 1.0;
-    let units: Vec<&Entity> = unit_candidates(p)
+    let units: Vec<Inst> = unit_candidates(p)
         .iter()
-        .filter_map(|id| p.entities.get(id))
+        .filter_map(|id| p.entities.inst(*id))
         .collect();
     for e in units {
         // The first length unit: where representations differ (an assembly of parts in other
@@ -30,7 +30,7 @@ pub fn unit(p: &Part21) -> (Option<String>, f64) {
                     .to_string(),
                 );
             } else if let Some(cb) = e.part("CONVERSION_BASED_UNIT")
-                && let Some(Value::Str(n)) = cb.first()
+                && let Some(n) = cb.first().and_then(|v| v.str())
             {
                 length = Some(crate::model::normalize_unit(n));
             }
@@ -38,7 +38,7 @@ pub fn unit(p: &Part21) -> (Option<String>, f64) {
         if e.is("PLANE_ANGLE_UNIT")
             && e.part("CONVERSION_BASED_UNIT")
                 .and_then(|a| a.first())
-                .is_some_and(|v| matches!(v, Value::Str(n) if n.eq_ignore_ascii_case("degree")))
+                .is_some_and(|v| v.str().is_some_and(|n| n.eq_ignore_ascii_case("degree")))
         {
             angle = std::f64::consts::PI / 180.0;
         }
@@ -55,12 +55,12 @@ pub(super) fn metres_per_unit(p: &Part21, id: u64) -> Option<f64> {
 }
 
 fn metres_at(p: &Part21, id: u64, depth: usize) -> Option<f64> {
-    let e = p.entities.get(&id)?;
+    let e = p.entities.inst(id)?;
     if let Some(si) = e.part("SI_UNIT") {
-        if si.get(1).and_then(Value::enumeration) != Some("METRE") {
+        if si.get(1).and_then(|v| v.enumeration()) != Some("METRE") {
             return None;
         }
-        let prefix = si.first().and_then(Value::enumeration).unwrap_or("");
+        let prefix = si.first().and_then(|v| v.enumeration()).unwrap_or("");
         let f = match prefix {
             "" => 1.0,
             "EXA" => 1e18,
@@ -86,7 +86,7 @@ fn metres_at(p: &Part21, id: u64, depth: usize) -> Option<f64> {
     let cb = e.part("CONVERSION_BASED_UNIT")?;
     let factor = (depth < 8)
         .then(|| {
-            let m = p.entities.get(&cb.get(1)?.reference()?)?;
+            let m = p.entities.inst(cb.get(1)?.reference()?)?;
             let a = m
                 .part("LENGTH_MEASURE_WITH_UNIT")
                 .filter(|a| a.len() >= 2)
@@ -96,8 +96,8 @@ fn metres_at(p: &Part21, id: u64, depth: usize) -> Option<f64> {
             Some(v * base).filter(|x| *x > 0.0 && x.is_finite())
         })
         .flatten();
-    factor.or_else(|| match cb.first() {
-        Some(Value::Str(n)) => match crate::model::normalize_unit(n).as_str() {
+    factor.or_else(|| match cb.first().and_then(|v| v.str()) {
+        Some(n) => match crate::model::normalize_unit(n).as_str() {
             "inch" => Some(0.0254),
             "foot" => Some(0.3048),
             "m" => Some(1.0),
@@ -115,16 +115,16 @@ fn metres_at(p: &Part21, id: u64, depth: usize) -> Option<f64> {
 /// attribute, through the context's `global_unit_assigned_context`); `None` when the
 /// representation, its context or a length unit there is missing.
 pub(super) fn rep_metres(p: &Part21, rep: u64) -> Option<f64> {
-    let ctx = representation_context(p.entities.get(&rep)?)?;
-    let units = p.entities.get(&ctx)?.part("GLOBAL_UNIT_ASSIGNED_CONTEXT")?;
+    let ctx = representation_context(p.entities.inst(rep)?)?;
+    let units = p.entities.inst(ctx)?.part("GLOBAL_UNIT_ASSIGNED_CONTEXT")?;
     unit_ids(units)
         .into_iter()
-        .find(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
+        .find(|id| p.entities.inst(*id).is_some_and(|e| e.is("LENGTH_UNIT")))
         .and_then(|id| metres_per_unit(p, id))
 }
 
 /// The `context_of_items` of a representation instance (simple or complex).
-fn representation_context(e: &Entity) -> Option<u64> {
+fn representation_context(e: Inst) -> Option<u64> {
     // The first such part with a context (a complex instance's subtype parts are empty).
     e.parts().find_map(|(n, a)| {
         n.ends_with("REPRESENTATION")
@@ -134,7 +134,7 @@ fn representation_context(e: &Entity) -> Option<u64> {
 }
 
 /// The unit instances a `global_unit_assigned_context`'s arguments name.
-fn unit_ids(args: &[Value]) -> Vec<u64> {
+fn unit_ids(args: Args) -> Vec<u64> {
     let mut ids = vec![];
     args.iter().for_each(|v| v.refs(&mut ids));
     ids
@@ -143,8 +143,8 @@ fn unit_ids(args: &[Value]) -> Vec<u64> {
 /// The unit instances every representation context assigns, in table order.
 fn assigned(p: &Part21) -> Vec<u64> {
     p.entities
-        .values()
-        .filter_map(|e| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
+        .insts()
+        .filter_map(|(_, e)| e.part("GLOBAL_UNIT_ASSIGNED_CONTEXT"))
         .flat_map(unit_ids)
         .collect()
 }
@@ -166,7 +166,7 @@ pub(super) fn model_metres(p: &Part21) -> Option<f64> {
     unit_candidates(p)
         .into_iter()
         .find(|id| {
-            p.entities.get(id).is_some_and(|e| {
+            p.entities.inst(*id).is_some_and(|e| {
                 e.is("LENGTH_UNIT") && (e.is("SI_UNIT") || e.is("CONVERSION_BASED_UNIT"))
             })
         })
@@ -179,7 +179,7 @@ pub(super) fn context_lengths(p: &Part21) -> Vec<f64> {
     let mut out: Vec<f64> = vec![];
     for m in assigned(p)
         .into_iter()
-        .filter(|id| p.entities.get(id).is_some_and(|e| e.is("LENGTH_UNIT")))
+        .filter(|id| p.entities.inst(*id).is_some_and(|e| e.is("LENGTH_UNIT")))
         .filter_map(|id| metres_per_unit(p, id))
     {
         if !out.contains(&m) {

@@ -6,7 +6,7 @@
 
 use super::{CTO, MAX_DEPTH, Walker};
 use crate::brep::place::Motion;
-use crate::io::step::part21::Value;
+use crate::io::step::part21::Args;
 
 impl Walker<'_> {
     /// Model units per length unit of representation `rep`: 1 where the units agree or
@@ -31,9 +31,9 @@ impl Walker<'_> {
     }
 
     /// [`Walker::factor`] of the representation at attribute `i` of a relationship.
-    fn rep_factor(&mut self, rr: &[Value], i: usize) -> f64 {
+    fn rep_factor(&mut self, rr: Args, i: usize) -> f64 {
         rr.get(i)
-            .and_then(Value::reference)
+            .and_then(|v| v.reference())
             .map_or(1.0, |r| self.factor(r))
     }
 
@@ -71,7 +71,7 @@ impl Walker<'_> {
     /// placed by `m`: its representation placed by `m ∘ B ∘ A⁻¹` (or `m ∘ T ∘ A⁻¹`).
     pub(super) fn mapped(
         &mut self,
-        (id, a): (u64, &[Value]),
+        (id, a): (u64, Args),
         k: f64,
         m: Motion,
         depth: usize,
@@ -79,17 +79,17 @@ impl Walker<'_> {
     ) {
         let map = a
             .get(1)
-            .and_then(Value::reference)
-            .and_then(|r| self.r.p.entities.get(&r)?.part("REPRESENTATION_MAP"));
-        let (Some(map), Some(target)) = (map, a.get(2).and_then(Value::reference)) else {
+            .and_then(|v| v.reference())
+            .and_then(|r| self.r.p.entities.inst(r)?.part("REPRESENTATION_MAP"));
+        let (Some(map), Some(target)) = (map, a.get(2).and_then(|v| v.reference())) else {
             self.warnings.push(format!(
                 "assembly: MAPPED_ITEM #{id}: mapping_source is not a REPRESENTATION_MAP or mapping_target not a reference; not placed"
             ));
             return;
         };
         let (Some(origin), Some(rep)) = (
-            map.first().and_then(Value::reference),
-            map.get(1).and_then(Value::reference),
+            map.first().and_then(|v| v.reference()),
+            map.get(1).and_then(|v| v.reference()),
         ) else {
             self.warnings.push(format!(
                 "assembly: MAPPED_ITEM #{id}: its REPRESENTATION_MAP is malformed; not placed"
@@ -103,7 +103,7 @@ impl Walker<'_> {
             return;
         }
         let km = self.factor(rep);
-        let to_target = if self.r.p.entities.get(&target).is_some_and(|e| e.is(CTO)) {
+        let to_target = if self.r.p.entities.inst(target).is_some_and(|e| e.is(CTO)) {
             // `T ∘ A⁻¹`: the origin frame onto the operator's image of the world frame.
             self.operator(target, k)
                 .and_then(|t| Ok(t.then_after(&self.frame(origin, km)?.inverse_rigid())))
@@ -128,7 +128,7 @@ impl Walker<'_> {
             return Motion::IDENTITY;
         };
         let p = self.r.p;
-        let e = p.entities.get(&srr);
+        let e = p.entities.inst(srr);
         let rr = e.and_then(|e| e.part("REPRESENTATION_RELATIONSHIP"));
         let wt = e.and_then(|e| e.part("REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION"));
         let (Some(rr), Some(wt)) = (rr, wt) else {
@@ -137,8 +137,8 @@ impl Walker<'_> {
             ));
             return Motion::IDENTITY;
         };
-        let op = wt.first().and_then(Value::reference);
-        if let Some(op) = op.filter(|o| p.entities.get(o).is_some_and(|e| e.is(CTO))) {
+        let op = wt.first().and_then(|v| v.reference());
+        if let Some(op) = op.filter(|o| p.entities.inst(*o).is_some_and(|e| e.is(CTO))) {
             // A functionally defined transformation maps rep_1's coordinates to rep_2's.
             let k2 = self.rep_factor(rr, 3);
             return match self.operator(op, k2) {
@@ -152,7 +152,7 @@ impl Walker<'_> {
             };
         }
         let idt =
-            op.and_then(|t| Some((t, p.entities.get(&t)?.part("ITEM_DEFINED_TRANSFORMATION")?)));
+            op.and_then(|t| Some((t, p.entities.inst(t)?.part("ITEM_DEFINED_TRANSFORMATION")?)));
         let Some((tid, idt)) = idt else {
             self.warnings.push(format!(
                 "assembly: #{srr} (placing #{nauo}): the transformation is neither an ITEM_DEFINED_TRANSFORMATION nor a {CTO} (not supported); placed without motion"
@@ -160,8 +160,8 @@ impl Walker<'_> {
             return Motion::IDENTITY;
         };
         let (Some(a), Some(b)) = (
-            idt.get(2).and_then(Value::reference),
-            idt.get(3).and_then(Value::reference),
+            idt.get(2).and_then(|v| v.reference()),
+            idt.get(3).and_then(|v| v.reference()),
         ) else {
             self.warnings.push(format!(
                 "assembly: ITEM_DEFINED_TRANSFORMATION #{tid}: items are not references; #{nauo} placed without motion"
@@ -188,15 +188,15 @@ impl Walker<'_> {
         srr: u64,
         nauo: u64,
         child: u64,
-        rr: &[Value],
+        rr: Args,
         t: Motion,
         inverse: fn(&Motion) -> Option<Motion>,
     ) -> Motion {
         let child_reps: Vec<u64> = self.reps.get(&child).map_or(vec![], |v| {
             v.iter().flat_map(|&r| self.closure(r)).collect()
         });
-        let rep1 = rr.get(2).and_then(Value::reference);
-        let rep2 = rr.get(3).and_then(Value::reference);
+        let rep1 = rr.get(2).and_then(|v| v.reference());
+        let rep2 = rr.get(3).and_then(|v| v.reference());
         if rep1.is_some_and(|r| child_reps.contains(&r)) {
             t
         } else if rep2.is_some_and(|r| child_reps.contains(&r)) {

@@ -6,7 +6,7 @@
 use super::{R, Reader};
 use crate::geom::Point;
 use crate::io::step::StepError;
-use crate::io::step::part21::Value;
+use crate::io::step::part21::Args;
 use crate::model::SurfaceKind;
 use crate::spline::construct::{self, Frame};
 use crate::spline::{NurbsCurve, NurbsSurface};
@@ -21,7 +21,7 @@ impl Reader<'_> {
         let mut stack: Vec<u64> = self
             .p
             .entities
-            .get(&face)
+            .inst(face)
             .and_then(|e| e.part(e.name()))
             .and_then(|a| a.get(1))
             .map(|v| {
@@ -34,7 +34,7 @@ impl Reader<'_> {
             if !seen.insert(id) || seen.len() > 100_000 {
                 continue;
             }
-            let Some(e) = self.p.entities.get(&id) else {
+            let Some(e) = self.p.entities.inst(id) else {
                 continue;
             };
             if e.is("CARTESIAN_POINT") {
@@ -203,7 +203,7 @@ impl Reader<'_> {
     fn rectangular_trimmed(
         &self,
         id: u64,
-        a: &[Value],
+        a: Args,
     ) -> R<Option<(NurbsSurface<f64, 3>, SurfaceKind)>> {
         let basis = self.reference(id, a, 1)?;
         let [u1, u2, v1, v2] = [2, 3, 4, 5].map(|i| self.num(id, a, i));

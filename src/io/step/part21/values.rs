@@ -1,6 +1,8 @@
-//! The values and instances of a Part 21 table (see the parent module).
+//! The typed form of a Part 21 table's values and instances ([`Value`], [`Entity`]): what
+//! [`super::Table::get`] gives, and what [`super::Table::new`] stores.
 
-use super::Name;
+use super::table::{Store, header, tag, word};
+use super::{ListRefs, Name};
 
 /// A parameter value.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,38 +103,6 @@ impl Value {
     }
 }
 
-/// The items of a list as references ([`Value::list_refs`]).
-#[derive(Clone, Debug)]
-pub enum ListRefs<'a> {
-    Ids(std::slice::Iter<'a, u64>),
-    Values(std::slice::Iter<'a, Value>),
-}
-
-impl Iterator for ListRefs<'_> {
-    type Item = Option<u64>;
-    fn next(&mut self) -> Option<Option<u64>> {
-        match self {
-            ListRefs::Ids(i) => i.next().map(|r| Some(*r)),
-            ListRefs::Values(i) => i.next().map(Value::reference),
-        }
-    }
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        match self {
-            ListRefs::Ids(i) => i.size_hint(),
-            ListRefs::Values(i) => i.size_hint(),
-        }
-    }
-}
-
-impl ExactSizeIterator for ListRefs<'_> {}
-
-impl Default for ListRefs<'_> {
-    /// No items.
-    fn default() -> Self {
-        ListRefs::Ids([].iter())
-    }
-}
-
 /// One entity instance.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Entity {
@@ -181,4 +151,63 @@ impl Entity {
         }
         out
     }
+}
+
+/// The word of `v` in `s` (its lists' items appended to the words).
+fn encode_value(s: &mut Store, v: &Value) -> u64 {
+    let list = |s: &mut Store, t, items: &[u64]| s.list(t, items).unwrap_or(word(tag::UNSET, 0));
+    match v {
+        Value::Int(i) => s.int(*i),
+        Value::Real(x) if x.is_finite() => x.to_bits(),
+        // Not a parsed value (those are finite): its bits could be a tagged word's.
+        Value::Real(x) => {
+            s.big.push(x.to_bits());
+            word(tag::BIG_REAL, s.big.len() as u64 - 1)
+        }
+        Value::Str(x) => s.string(x),
+        Value::Enum(n) => word(tag::ENUM, name(s, n)),
+        Value::Ref(r) => s.reference(*r),
+        Value::List(v) => {
+            let items: Vec<u64> = v.iter().map(|x| encode_value(s, x)).collect();
+            list(s, tag::LIST, &items)
+        }
+        Value::Reals(v) => {
+            let items: Vec<u64> = v.iter().map(|x| x.to_bits()).collect();
+            list(s, tag::REALS, &items)
+        }
+        Value::Refs(v) => list(s, tag::REFS, v),
+        Value::Typed(t) => {
+            let mut items = vec![name(s, &t.0)];
+            items.extend(t.1.iter().map(|x| encode_value(s, x)));
+            list(s, tag::TYPED, &items)
+        }
+        Value::Unset => word(tag::UNSET, 0),
+    }
+}
+
+/// The index of a new name `n` in `s`.
+fn name(s: &mut Store, n: &Name) -> u64 {
+    s.names.push(n.clone());
+    s.names.len() as u64 - 1
+}
+
+/// The record of `e` in `s`: its row word ([`Store::record`]).
+pub(super) fn encode(s: &mut Store, e: &Entity) -> u64 {
+    let mut parts = Vec::new();
+    let mut count = 0;
+    for (n, a) in e.parts() {
+        let n = name(s, &n.into());
+        let args: Vec<u64> = a.iter().map(|v| encode_value(s, v)).collect();
+        // Past 2³¹ arguments (beyond any memory) the instance is kept without them.
+        match header(n as usize, args.len()) {
+            Some(h) => {
+                parts.push(h);
+                parts.extend(args);
+            }
+            None => parts.push(header(n as usize, 0).unwrap_or(0)),
+        }
+        count += 1;
+    }
+    let complex = matches!(e, Entity::Complex(_));
+    s.record(&parts, complex, count).unwrap_or(0)
 }

@@ -5,7 +5,7 @@
 use super::TopologyReader;
 use crate::brep::{Edge, IssueKind, OrientedEdge, Vertex};
 use crate::io::step::edge_curve::{self, CurveFault, Found, MAX_DEPTH};
-use crate::io::step::part21::{Entity, Value};
+use crate::io::step::part21::Inst;
 
 impl TopologyReader<'_> {
     /// An `oriented_edge` (possibly of another oriented edge, orientations composed).
@@ -35,10 +35,10 @@ impl TopologyReader<'_> {
                 }
                 return Some(OrientedEdge { edge, forward });
             }
-            let a = e.part("ORIENTED_EDGE").unwrap_or(&[]);
+            let a = e.part("ORIENTED_EDGE").unwrap_or_default();
             let (Some(next), Some(o)) = (
-                a.get(3).and_then(Value::reference),
-                a.get(4).and_then(Value::enumeration),
+                a.get(3).and_then(|v| v.reference()),
+                a.get(4).and_then(|v| v.enumeration()),
             ) else {
                 self.invalid(
                     id,
@@ -109,16 +109,16 @@ impl TopologyReader<'_> {
         }
     }
 
-    fn edge(&mut self, id: u64, e: &Entity, face: u64) -> Option<usize> {
+    fn edge(&mut self, id: u64, e: Inst, face: u64) -> Option<usize> {
         if let Some(i) = self.edges.get(&id) {
             return *i;
         }
         self.edges.insert(id, None);
-        let a = e.part("EDGE_CURVE").unwrap_or(&[]);
+        let a = e.part("EDGE_CURVE").unwrap_or_default();
         let (Some(v0), Some(v1), Some(g)) = (
-            a.get(1).and_then(Value::reference),
-            a.get(2).and_then(Value::reference),
-            a.get(3).and_then(Value::reference),
+            a.get(1).and_then(|v| v.reference()),
+            a.get(2).and_then(|v| v.reference()),
+            a.get(3).and_then(|v| v.reference()),
         ) else {
             self.invalid(
                 id,
@@ -141,7 +141,7 @@ impl TopologyReader<'_> {
             );
             return None;
         };
-        let same_sense = a.get(4).and_then(Value::enumeration) != Some("F");
+        let same_sense = a.get(4).and_then(|v| v.enumeration()) != Some("F");
         let (p0, p1) = (
             self.brep.vertices[start].point,
             self.brep.vertices[end].point,
@@ -176,6 +176,8 @@ impl TopologyReader<'_> {
             }
         };
         self.converted(id, "EDGE_CURVE");
+        // Most edges have two pcurves: not the four places a first push makes.
+        found.pcurves.shrink_to_fit();
         let i = self.brep.edges.len();
         self.brep.edges.push(Edge {
             source: format!("#{id}"),
