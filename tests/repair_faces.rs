@@ -321,6 +321,33 @@ fn a_cube_written_face_by_face_is_sewn_as_open_cascade_sews_it() {
     }
 }
 
+/// A fault made in a B-rep.
+type Fault = fn(&mut vericad::brep::Brep);
+
+#[test]
+fn malformed_b_reps_are_refused_with_the_reference_named() {
+    let m = cube(1e-4, false, 0.5);
+    let faults: [(&str, Fault); 4] = [
+        ("edge", |b| b.edges[0].end = 999),
+        ("a loop", |b| {
+            if let vericad::brep::LoopKind::Edges(oes) = &mut b.faces[0].loops[0].kind {
+                oes[0].edge = 999;
+            }
+        }),
+        ("shell", |b| b.shells[0].faces.push((999, true))),
+        ("not finite", |b| b.vertices[0].point[0] = f64::NAN),
+    ];
+    for (what, fault) in faults {
+        let mut bad = m.clone();
+        fault(bad.brep.as_mut().unwrap());
+        let e = repair_faces(&bad, &RepairParams::default(), &|_: &str| {}).unwrap_err();
+        assert!(e.to_string().contains(what), "{what}: {e}");
+    }
+    // A u1 so small that the vertex grid's cells overflow: no panic.
+    let r = repaired(&m, 1e-300, 1e-3);
+    assert_eq!(r.report.free_edges_after, 8);
+}
+
 /// The public files whose shells are closed as read (Open CASCADE counts 0 free edges in
 /// each, and reads vericad's repaired STEP back with 0: `scripts/occt_repair_faces.py`):
 /// nothing is sewn, every shell stays closed, and the result passes its invariants.
@@ -376,13 +403,31 @@ fn an_edge_met_in_its_middle_is_split_and_sewn() {
     assert_eq!(rep.free_edges_after, 0, "{:?}", rep.free_edges);
     assert_eq!(r.brep.edges.len(), 15);
     assert!(rep.shells[0].closed);
-    for e in rep.edges.iter().filter(|e| e.edge.contains("(part ")) {
+    // The four edges between a top half and a long side. Where the side's piece (at z = 1)
+    // is the edge kept, the top's boundary (its projection onto z = 1 + δ) is δ from the
+    // side's; where the top's edge (at z = 1 + δ) is kept, it lies in the side's plane too,
+    // and both boundaries are that edge: gap 0.
+    let long: Vec<_> = rep
+        .edges
+        .iter()
+        .filter(|e| {
+            e.faces.iter().any(|f| is_top(f)) && e.faces.iter().any(|f| f == "y0" || f == "y1")
+        })
+        .collect();
+    assert_eq!(long.len(), 4);
+    let pieces = long.iter().filter(|e| e.edge.contains("(part ")).count();
+    assert_eq!(pieces, 2);
+    for e in long {
         let g = e.gap_bound_proven.unwrap();
-        assert!(
-            g >= delta * (1.0 - 1e-9) && g <= 1.01 * delta,
-            "{}: {g}",
-            e.edge
-        );
+        if e.edge.contains("(part ") {
+            assert!(
+                g >= delta * (1.0 - 1e-9) && g <= 1.01 * delta,
+                "{}: {g}",
+                e.edge
+            );
+        } else {
+            assert!(is_top(&e.edge) && g <= 1e-12, "{}: {g}", e.edge);
+        }
     }
     // Below the lift nothing is split or sewn at the top.
     let r = repaired(&m, 5e-5, 1e-3);

@@ -43,6 +43,8 @@ pub enum RepairError {
     Empty,
     #[error("no faces to repair: the model has no B-rep")]
     NoFaces,
+    #[error("B-rep: {0}")]
+    Brep(String),
     #[error(
         "feature override [{0}, {1}] names no patch edge (patches 0..{2}, edges 0 south, 1 east, 2 north, 3 west)"
     )]

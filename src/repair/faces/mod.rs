@@ -111,6 +111,13 @@ pub struct FacesResult {
     pub brep: Brep,
 }
 
+/// The figure an edge's gap is judged by: the smaller of the proven bound (when there is
+/// one) and the evidence. An edge is left open when it is at or above `u2`, and the repaired
+/// B-rep's tolerance is the largest below `u2`.
+pub fn gap_figure(proven: Option<f64>, evidence: f64) -> f64 {
+    proven.map_or(evidence, |p| p.min(evidence))
+}
+
 fn free_count(b: &Brep) -> usize {
     angles::edge_uses(b)
         .values()
@@ -134,6 +141,9 @@ pub fn repair_faces(
     let mut b = m.brep.clone().ok_or(RepairError::NoFaces)?;
     if b.faces.is_empty() {
         return Err(RepairError::NoFaces);
+    }
+    if let Some(why) = check::dangling(&b, m.surfaces.len()) {
+        return Err(RepairError::Brep(why));
     }
     let natural = crate::brep::natural::natural_faces(&b, m);
     let mut r = FacesReport {
@@ -193,14 +203,15 @@ pub fn repair_faces(
             [a, c] if a.face != c.face => {
                 let (sa, sc) = (side.get(&(e, a.face)), side.get(&(e, c.face)));
                 let proven = match (sa.and_then(|x| x.0), sc.and_then(|x| x.0)) {
-                    (Some(x), Some(y)) => Some(x + y),
+                    // Rounded up: the sum of two bounds is a bound.
+                    (Some(x), Some(y)) => Some((x + y).next_up()),
                     _ => None,
                 };
                 let evidence =
                     sa.map_or(f64::INFINITY, |x| x.1) + sc.map_or(f64::INFINITY, |x| x.1);
                 let angle = angles::normal_angle(&b, m, &mut feet, e, [a, c]);
                 let feature = angle.is_some_and(|x| x > prm.feature_angle_deg);
-                if proven.map_or(evidence, |p| p.min(evidence)) >= prm.u2 {
+                if gap_figure(proven, evidence) >= prm.u2 {
                     r.gaps_left.push(source.clone());
                 }
                 r.edges.push(EdgeGap {
@@ -236,7 +247,7 @@ pub fn repair_faces(
     b.tolerance = r
         .edges
         .iter()
-        .map(|e| e.gap_bound_proven.unwrap_or(e.gap_evidence))
+        .map(|e| gap_figure(e.gap_bound_proven, e.gap_evidence))
         .filter(|g| *g < prm.u2)
         .fold(source_tolerance, f64::max);
     r.tolerance = b.tolerance;

@@ -8,7 +8,8 @@
 //! records the larger distance in its `vertex_gap`.
 //!
 //! Two vertices are never clustered when an edge joins their clusters (that edge would
-//! collapse). Shells that sewn edges connect become one shell (the lowest-numbered; solids
+//! collapse). Clustering links vertices within `u1` of a member (single linkage): a chain of
+//! such steps can span more than `u1`. Shells that sewn edges connect become one shell (the lowest-numbered; solids
 //! and occurrences that named the others name it).
 
 use crate::brep::sew::same_curve;
@@ -118,7 +119,12 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    if let Some(ws) = grid.get(&[k[0] + dx, k[1] + dy, k[2] + dz]) {
+                    let c = [
+                        k[0].saturating_add(dx),
+                        k[1].saturating_add(dy),
+                        k[2].saturating_add(dz),
+                    ];
+                    if let Some(ws) = grid.get(&c) {
                         near.extend(
                             ws.iter()
                                 .copied()
@@ -171,12 +177,7 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
         }
     }
     // T-junctions: free edges split where another free edge ends on their interior.
-    let roots: Vec<usize> = {
-        let mut r: Vec<usize> = members.keys().copied().collect();
-        r.dedup();
-        r
-    };
-    out.t_splits = super::t_split::split_at_vertices(b, &free, &roots, u1);
+    out.t_splits = super::t_split::split_at_vertices(b, &free, u1);
     let (free, _) = if out.t_splits > 0 {
         owners(b)
     } else {
@@ -291,14 +292,20 @@ fn join_shells(b: &mut Brep, pairs: &[(usize, usize)]) -> usize {
     });
     for s in b.solids.iter_mut() {
         s.outer = to(s.outer);
+        let outer = s.outer;
         for v in s.voids.iter_mut() {
             *v = to(*v);
         }
+        // A void joined to the outer shell or to another void is that shell.
+        s.voids.retain(|v| *v != outer);
+        s.voids.sort_unstable();
+        s.voids.dedup();
     }
     for o in b.occurrences.iter_mut() {
         for s in o.shells.iter_mut() {
             *s = to(*s);
         }
+        o.shells.sort_unstable();
         o.shells.dedup();
     }
     kept.iter().filter(|k| !**k).count()

@@ -1,7 +1,7 @@
 //! T-connectivity on trimmed faces (Algorithm 1's T-junctions, Fig. 5, with edges in place of
 //! patch borders): where the end vertex of one free edge lies within `u1` of the interior of
-//! another free edge — one face's edge running along two edges of its neighbours — that
-//! edge is split there, so that each piece can be sewn to its partner. The split point's
+//! another free edge and its other end within `u1` of that edge too — one face's edge running
+//! along two edges of its neighbours — that edge is split there, so that each piece can be sewn to its partner. The split point's
 //! parameter is the closest point on the edge's curve (Newton from samples: evidence); the
 //! pieces are the exact parts of the curve (knot insertion in homogeneous form) and end at the
 //! vertex itself. The pieces drop the edge's pcurves (they are made again by projection
@@ -13,15 +13,19 @@ use crate::spline::NurbsCurve;
 use crate::spline::project::CurveFoot;
 use std::collections::BTreeMap;
 
-/// Split the free edges (edge → its face, `free`) of `b` at the vertices `ends` that lie
-/// within `u1` of their interiors (farther than `u1` from both ends). Returns the number of
-/// splits.
-pub fn split_at_vertices(
-    b: &mut Brep,
-    free: &BTreeMap<usize, usize>,
-    ends: &[usize],
-    u1: f64,
-) -> usize {
+/// Split the free edges (edge → its face, `free`) of `b` at the end vertices of other free
+/// edges that lie within `u1` of their interiors (farther than `u1` from both ends), where
+/// that other edge's far end lies within `u1` of the edge too (it runs along it: a partner
+/// for one of the pieces). Returns the number of splits.
+pub fn split_at_vertices(b: &mut Brep, free: &BTreeMap<usize, usize>, u1: f64) -> usize {
+    // Each free edge's ends, each with the edge's other end.
+    let tips: Vec<(usize, usize, usize)> = free
+        .keys()
+        .flat_map(|&f| {
+            let (s, t) = (b.edges[f].start, b.edges[f].end);
+            [(f, s, t), (f, t, s)]
+        })
+        .collect();
     let mut splits = 0;
     for (&e, &face) in free {
         let Some(c) = b.edges[e].curve.as_ref().map(|c| c.nurbs.clone()) else {
@@ -34,16 +38,17 @@ pub fn split_at_vertices(
         let (ps, pe) = (ps.point, pe.point);
         let foot = CurveFoot::new(&c);
         let (t0, t1) = c.hom.domain();
-        let mut at: Vec<(f64, usize)> = ends
+        let mut at: Vec<(f64, usize)> = tips
             .iter()
-            .filter(|v| **v != start && **v != end)
-            .filter_map(|&v| {
+            .filter(|(f, v, _)| *f != e && *v != start && *v != end)
+            .filter_map(|&(_, v, w)| {
                 let p = b.vertices[v].point;
                 if dist(&p, &ps) <= u1 || dist(&p, &pe) <= u1 {
                     return None;
                 }
                 let (t, _, d) = foot.closest(&p);
-                (d <= u1 && t > t0 && t < t1).then_some((t, v))
+                let along = foot.closest(&b.vertices[w].point).2 <= u1;
+                (d <= u1 && along && t > t0 && t < t1).then_some((t, v))
             })
             .collect();
         if at.is_empty() {
