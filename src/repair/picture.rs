@@ -6,8 +6,8 @@ use super::RepairResult;
 use super::edges::{arc_length_samples, edge_curve};
 use crate::io::picture::{BORDER, NOT_PROVEN, PAGE, Rgb, Scene, View, render};
 
-/// Patch colours, in turn.
-const PALETTE: [Rgb; 8] = [
+/// Patch colours, in turn (faces' too: [`super::faces::picture`]).
+pub(super) const PALETTE: [Rgb; 8] = [
     [166, 190, 222],
     [232, 196, 150],
     [170, 214, 170],
@@ -17,8 +17,8 @@ const PALETTE: [Rgb; 8] = [
     [214, 178, 150],
     [190, 176, 222],
 ];
-const FEATURE: Rgb = [20, 20, 20];
-const GAP: Rgb = NOT_PROVEN;
+pub(super) const FEATURE: Rgb = [20, 20, 20];
+pub(super) const GAP: Rgb = NOT_PROVEN;
 /// Grid steps per direction of a patch.
 const GRID: usize = 12;
 /// Samples along an edge curve.

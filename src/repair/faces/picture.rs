@@ -5,21 +5,11 @@
 
 use super::FacesResult;
 use crate::brep::Brep;
-use crate::io::picture::{NOT_PROVEN, PAGE, Rgb, Scene, View, render};
+use crate::io::picture::{PAGE, Rgb, Scene, View, render};
+use crate::repair::picture::{FEATURE, GAP, PALETTE};
 use crate::tessellate::BrepMesh;
 
-/// Face colours, in turn.
-const PALETTE: [Rgb; 6] = [
-    [166, 190, 222],
-    [232, 196, 150],
-    [170, 214, 170],
-    [222, 170, 196],
-    [200, 200, 150],
-    [160, 206, 214],
-];
-const FEATURE: Rgb = [20, 20, 20];
 const FREE: Rgb = [240, 140, 20];
-const GAP: Rgb = NOT_PROVEN;
 /// Points along an edge curve.
 const SAMPLES: usize = 32;
 
