@@ -52,14 +52,26 @@ fn ends(c: &NurbsCurve<f64, 3>) -> ([f64; 3], [f64; 3]) {
     (c.eval(&a), c.eval(&b))
 }
 
-/// Whether `a` and `b` are the same curve within `tol` (seven interior points each way).
-pub fn same_curve(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>, tol: f64) -> bool {
-    let inside = |x: &NurbsCurve<f64, 3>, y: &NurbsCurve<f64, 3>| {
+/// The larger of the two one-way distances between `a` and `b` measured at seven interior
+/// points of each (closest points by [`CurveFoot`]: evidence); infinite where a distance is
+/// not a number.
+pub fn curve_distance(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>) -> f64 {
+    let one_way = |x: &NurbsCurve<f64, 3>, y: &NurbsCurve<f64, 3>| {
         let (t0, t1) = x.hom.domain();
         let foot = CurveFoot::new(y);
-        (1..8).all(|i| foot.closest(&x.eval(&(t0 + (t1 - t0) * i as f64 / 8.0))).2 <= tol)
+        (1..8)
+            .map(|i| foot.closest(&x.eval(&(t0 + (t1 - t0) * i as f64 / 8.0))).2)
+            .fold(
+                0.0,
+                |m: f64, d| if d.is_nan() { f64::INFINITY } else { m.max(d) },
+            )
     };
-    inside(a, b) && inside(b, a)
+    one_way(a, b).max(one_way(b, a))
+}
+
+/// Whether `a` and `b` are the same curve within `tol` ([`curve_distance`]).
+fn same_curve(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>, tol: f64) -> bool {
+    curve_distance(a, b) <= tol
 }
 
 /// Vertices merged within a tolerance (a hash grid of cells twice the tolerance).

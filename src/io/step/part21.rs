@@ -8,7 +8,6 @@
 //! piece, without holding its text (`stream`).
 
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::sync::Arc;
 
 /// An entity, partial entity, typed-parameter or enumeration name: upper case, shared by every
@@ -48,34 +47,14 @@ pub struct SyntaxError {
 /// Distinct names kept for sharing (see [`Lexer::keyword`]).
 const MAX_INTERNED: usize = 4096;
 
-/// FNV-1a: names are short and come from the file itself; the default SipHash would cost more
-/// than the parse of the instance around them.
-#[derive(Default)]
-struct Fnv(u64);
-
-impl Hasher for Fnv {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        let mut h = if self.0 == 0 {
-            0xcbf2_9ce4_8422_2325
-        } else {
-            self.0
-        };
-        for &b in bytes {
-            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-        self.0 = h;
-    }
-}
-
 /// What the parse keeps from one instance to the next (and from one piece of the text to the
 /// next, see `stream`).
 struct Parser {
     line: usize,
     /// Names met so far, by their spelling in the file: their index in the store.
-    names: HashMap<Box<[u8]>, u64, BuildHasherDefault<Fnv>>,
+    /// (Fx hashing: names are short and come from the file itself; the default SipHash
+    /// would cost more than the parse of the instance around them.)
+    names: rustc_hash::FxHashMap<Box<[u8]>, u64>,
     /// Items of the lists being read (see [`Lexer::close`]).
     stack: Vec<u64>,
     store: Store,

@@ -12,10 +12,9 @@
 //! such steps can span more than `u1`. Shells that sewn edges connect become one shell (the lowest-numbered; solids
 //! and occurrences that named the others name it).
 
-use crate::brep::sew::same_curve;
+use crate::brep::sew::curve_distance;
 use crate::brep::{Brep, LoopKind};
 use crate::geom::dist;
-use crate::spline::project::CurveFoot;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
 
@@ -69,20 +68,12 @@ fn owners(b: &Brep) -> (BTreeMap<usize, usize>, Vec<Option<usize>>) {
             }
         }
     }
-    let mut used: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for (fi, f) in b.faces.iter().enumerate() {
-        for l in &f.loops {
-            if let LoopKind::Edges(oes) = &l.kind {
-                for oe in oes {
-                    used.entry(oe.edge).or_default().push(fi);
-                }
-            }
-        }
-    }
-    let free = used
+    let free = super::angles::edge_uses(b)
         .into_iter()
-        .filter(|(_, fs)| fs.len() == 1)
-        .map(|(e, fs)| (e, fs[0]))
+        .filter_map(|(e, us)| match us[..] {
+            [u] => Some((e, u.face)),
+            _ => None,
+        })
         .collect();
     (free, shell_of)
 }
@@ -106,11 +97,19 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
         v.dedup();
         v
     };
-    let joins = |cl: &mut Clusters, b: &Brep, x: usize, y: usize| {
-        b.edges.iter().any(|e| {
-            let (s, t) = (cl.root(e.start), cl.root(e.end));
-            (s == x && t == y) || (s == y && t == x)
-        })
+    // Per cluster root, the vertices its members are joined to by an edge (merged with the
+    // clusters), so that whether an edge joins two clusters is a look at one list.
+    let mut joined: HashMap<usize, Vec<usize>> = HashMap::new();
+    for e in &b.edges {
+        if e.start < b.vertices.len() && e.end < b.vertices.len() && e.start != e.end {
+            joined.entry(e.start).or_default().push(e.end);
+            joined.entry(e.end).or_default().push(e.start);
+        }
+    }
+    let joins = |cl: &mut Clusters, joined: &HashMap<usize, Vec<usize>>, x: usize, y: usize| {
+        joined
+            .get(&x)
+            .is_some_and(|vs| vs.iter().any(|v| cl.root(*v) == y))
     };
     for &v in &ends {
         let p = b.vertices[v].point;
@@ -136,8 +135,11 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
         }
         for w in near {
             let (rv, rw) = (cl.root(v), cl.root(w));
-            if rv != rw && !joins(&mut cl, b, rv, rw) {
+            if rv != rw && !joins(&mut cl, &joined, rv, rw) {
                 cl.0[rw] = rv;
+                if let Some(vs) = joined.remove(&rw) {
+                    joined.entry(rv).or_default().extend(vs);
+                }
             }
         }
         grid.entry(k).or_default().push(v);
@@ -203,7 +205,8 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
                 let (Some(ca), Some(cc)) = (&b.edges[a].curve, &b.edges[c].curve) else {
                     continue;
                 };
-                if !same_curve(&ca.nurbs, &cc.nurbs, u1) {
+                let d = curve_distance(&ca.nurbs, &cc.nurbs);
+                if d > u1 {
                     continue;
                 }
                 let (fa, fc) = (free[&a], free[&c]);
@@ -221,7 +224,7 @@ pub fn sew_free_edges(b: &mut Brep, u1: f64) -> Sewing {
                     kept: b.edges[a].source.clone(),
                     removed: b.edges[c].source.clone(),
                     faces: [b.faces[fa].source.clone(), b.faces[fc].source.clone()],
-                    distance_evidence: curve_distance(&ca.nurbs, &cc.nurbs),
+                    distance_evidence: d,
                 });
                 replace.insert(c, (a, same_way));
                 break;
@@ -323,21 +326,6 @@ fn quarter_agrees(
     };
     let q = at(c, 0.25);
     dist(&at(a, 0.25), &q) <= dist(&at(a, 0.75), &q)
-}
-
-/// Largest distance of seven interior points of each curve from the other (closest points).
-fn curve_distance(
-    a: &crate::spline::NurbsCurve<f64, 3>,
-    c: &crate::spline::NurbsCurve<f64, 3>,
-) -> f64 {
-    let one_way = |x: &crate::spline::NurbsCurve<f64, 3>, y: &crate::spline::NurbsCurve<f64, 3>| {
-        let (t0, t1) = x.hom.domain();
-        let foot = CurveFoot::new(y);
-        (1..8)
-            .map(|i| foot.closest(&x.eval(&(t0 + (t1 - t0) * i as f64 / 8.0))).2)
-            .fold(0.0, f64::max)
-    };
-    one_way(a, c).max(one_way(c, a))
 }
 
 /// Drop the edges no loop uses any more and the vertices no edge or vertex loop uses,
