@@ -321,6 +321,61 @@ fn repair_job_reports_patches_in_and_out() {
     assert!(repaired >= 5, "{rs:?}");
 }
 
+/// The `repair` job picks the repair as `vericad repair` does: gmsh-t20 (15 of its 21 faces
+/// cut out of larger surfaces) gets the faces repair, with its trims; the fuselage (8 natural
+/// B-spline faces) the patch-set repair. `--repair-mode patches` forces the patch-set repair
+/// on t20, which then counts the trims it ignored.
+#[test]
+fn repair_job_picks_the_faces_repair_for_trimmed_faces() {
+    let d = tmp("repair-mode");
+    let t20 = format!("{}/gmsh-t20_data.step", data("public"));
+    let fuselage = format!("{}/occt-bug28366_fuselage.stp", data("public"));
+    let run = |extra: &[&str], name: &str| {
+        let out = d.join(name);
+        let mut args = vec![
+            t20.clone(),
+            fuselage.clone(),
+            "--job".into(),
+            "repair".into(),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        let (code, stderr) = batch(&args, &out);
+        let rs = records(&out);
+        let get = |p: &str| {
+            rs.iter()
+                .find(|r| r.path.ends_with(p))
+                .cloned()
+                .unwrap_or_else(|| panic!("{p}: {rs:?}"))
+        };
+        (
+            code,
+            stderr,
+            get("gmsh-t20_data.step"),
+            get("occt-bug28366_fuselage.stp"),
+        )
+    };
+    let (code, stderr, t, f) = run(&[], "auto.jsonl");
+    assert_eq!(code, 0, "{stderr}");
+    let (t, f) = (t.repair.unwrap(), f.repair.unwrap());
+    assert_eq!(t.mode, "faces", "{t:?}");
+    assert_eq!((t.patches_in, t.patches_out, t.trims_ignored), (21, 21, 0));
+    assert_eq!(t.free_edges_after, Some(0), "t20 is a closed solid: {t:?}");
+    assert_eq!(t.gap_proven, Some(true), "{t:?}");
+    assert_eq!(f.mode, "patches", "{f:?}");
+    assert_eq!((f.free_edges_after, f.gap_proven), (None, None));
+    let (code, stderr, t, _) = run(&["--repair-mode", "patches"], "patches.jsonl");
+    assert_eq!(code, 0, "{stderr}");
+    let t = t.repair.unwrap();
+    assert_eq!(t.mode, "patches", "{t:?}");
+    assert_eq!(t.trims_ignored, 15, "{t:?}");
+    // Forced faces: the fuselage's bare surfaces have no B-rep, which its record says.
+    let (code, _, t, f) = run(&["--repair-mode", "faces"], "faces.jsonl");
+    assert_eq!(code, 3);
+    assert_eq!(t.repair.map(|r| r.mode).as_deref(), Some("faces"));
+    assert_eq!(f.status, Status::BadInput);
+    assert!(f.error.unwrap().message.contains("no B-rep"));
+}
+
 #[test]
 fn bad_arguments_exit_2_with_a_clear_message() {
     let d = tmp("args");
@@ -336,6 +391,10 @@ fn bad_arguments_exit_2_with_a_clear_message() {
             "--time-limit-per-model",
         ),
         (vec![&p, "--job", "ssi", "--tol", "-1"], "--tol"),
+        (
+            vec![&p, "--job", "repair", "--repair-mode", "trims"],
+            "--repair-mode",
+        ),
         (vec!["@/nonexistent/list.txt", "--job", "info"], "list"),
     ];
     for (args, word) in cases {

@@ -507,12 +507,7 @@ fn repair(
     use vericad::repair::job;
     let r = detached(py, || {
         let view = vericad::io::picture::View::parse(&view).map_err(bad)?;
-        let mode = match mode.as_str() {
-            "auto" => Mode::Auto,
-            "patches" => Mode::Patches,
-            "faces" => Mode::Faces,
-            _ => return Err(bad(format!("mode {mode:?}: one of auto, patches, faces"))),
-        };
+        let mode: Mode = mode.parse().map_err(bad)?;
         let prm = vericad::repair::RepairParams {
             u1,
             u2,
@@ -713,7 +708,10 @@ fn batch_job(job: &str, tol: f64, time_limit: Option<f64>) -> Result<vericad::ba
     let j = match job {
         "info" => Job::Info,
         "ssi" => Job::Ssi { tol, time_limit },
-        "repair" => Job::Repair(vericad::repair::RepairParams::default()),
+        "repair" => Job::Repair(
+            vericad::repair::RepairParams::default(),
+            vericad::repair::faces::job::Mode::Auto,
+        ),
         other => {
             return Err(bad(format!(
                 "job must be `info`, `ssi` or `repair`, not `{other}`"

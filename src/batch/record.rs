@@ -100,16 +100,33 @@ pub struct SsiFigures {
 /// `--job repair`: the repair report's headline figures.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RepairFigures {
+    /// Which repair ran: `patches` (the paper's patch-set repair on the untrimmed surfaces)
+    /// or `faces` (the B-rep's faces with their trims; then patches in and out are the faces).
+    #[serde(default = "patches")]
+    pub mode: String,
     pub patches_in: usize,
     pub patches_out: usize,
-    /// Candidate edge pairs left disconnected (gap of at least u2).
+    /// Patches: candidate edge pairs left disconnected (gap of at least u2). Faces: shared
+    /// edges whose gap (proven, else evidence) is at least u2.
     pub pairs_left: usize,
+    /// Patches: edges connected. Faces: free edges sewn into shared ones.
     pub edges_connected: usize,
+    /// The largest gap after the repair (faces: proven when `gap_proven`, else evidence).
     pub gap_max_after: f64,
+    /// Faces: whether `gap_max_after` is a proven bound (every shared edge has one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gap_proven: Option<bool>,
+    /// Faces: edges still used by one face.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub free_edges_after: Option<usize>,
     /// Trimmed faces whose trims the patch-set repair ignored (it works on the untrimmed
     /// surfaces; `vericad repair` repairs such models' faces instead).
     #[serde(default)]
     pub trims_ignored: usize,
+}
+
+fn patches() -> String {
+    "patches".into()
 }
 
 /// One model's line in the output.

@@ -24,15 +24,17 @@ pub enum Job {
         /// Per-model limit in seconds: the run stops starting new pairs and is `timeout`.
         time_limit: Option<f64>,
     },
-    /// Repair the model's faces as one patch set ([`crate::repair::repair`]).
-    Repair(crate::repair::RepairParams),
+    /// Repair the model: its faces as one patch set ([`crate::repair::repair`]) or, by the
+    /// mode ([`crate::repair::faces::job::faces_chosen`]), its B-rep's faces with their trims
+    /// ([`crate::repair::faces::repair_faces`]).
+    Repair(crate::repair::RepairParams, crate::repair::faces::job::Mode),
 }
 
 impl Job {
     /// Check the job's parameters before any model runs.
     pub fn validate(&self) -> Result<(), BatchError> {
         match self {
-            Job::Info | Job::Repair(_) => Ok(()),
+            Job::Info | Job::Repair(..) => Ok(()),
             Job::Ssi { .. } => self
                 .ssi_params()
                 .validate()
@@ -102,22 +104,51 @@ impl Job {
                     Err(e) => error(Status::BadInput, "ssi", e),
                 }
             }
-            Job::Repair(prm) => {
-                let patches = m.surfaces.iter().map(|s| s.nurbs.clone()).collect();
-                let overrides = crate::repair::features::FeatureOverrides::default();
-                match crate::repair::repair(patches, prm, &overrides, &|_| {}) {
-                    Ok(r) => Outcome::Repair(RepairFigures {
-                        patches_in: r.report.patches_in,
-                        patches_out: r.report.patches_out,
-                        pairs_left: r.report.gaps_left.len(),
-                        edges_connected: r.report.edges_connected,
-                        gap_max_after: r.report.gap_max_after,
-                        trims_ignored: crate::repair::job::trims_ignored(&m).len(),
-                    }),
-                    Err(e) => error(Status::BadInput, "repair", e),
-                }
-            }
+            Job::Repair(prm, mode) => repair(&m, prm, *mode),
         }
+    }
+}
+
+/// The `repair` job on the model `m`: the figures of the repair `mode` chooses.
+fn repair(
+    m: &crate::model::Model,
+    prm: &crate::repair::RepairParams,
+    mode: crate::repair::faces::job::Mode,
+) -> Outcome {
+    if crate::repair::faces::job::faces_chosen(m, mode) {
+        return match crate::repair::faces::repair_faces(m, prm, &|_| {}) {
+            Ok(r) => {
+                let r = r.report;
+                Outcome::Repair(RepairFigures {
+                    mode: "faces".into(),
+                    patches_in: r.faces,
+                    patches_out: r.faces,
+                    pairs_left: r.gaps_left.len(),
+                    edges_connected: r.sewing.edges_sewn.len(),
+                    gap_max_after: r.gap_max_proven.unwrap_or(r.gap_max_evidence),
+                    gap_proven: Some(r.gap_max_proven.is_some()),
+                    free_edges_after: Some(r.free_edges_after),
+                    trims_ignored: 0,
+                })
+            }
+            Err(e) => error(Status::BadInput, "repair", e),
+        };
+    }
+    let patches = m.surfaces.iter().map(|s| s.nurbs.clone()).collect();
+    let overrides = crate::repair::features::FeatureOverrides::default();
+    match crate::repair::repair(patches, prm, &overrides, &|_| {}) {
+        Ok(r) => Outcome::Repair(RepairFigures {
+            mode: "patches".into(),
+            patches_in: r.report.patches_in,
+            patches_out: r.report.patches_out,
+            pairs_left: r.report.gaps_left.len(),
+            edges_connected: r.report.edges_connected,
+            gap_max_after: r.report.gap_max_after,
+            gap_proven: None,
+            free_edges_after: None,
+            trims_ignored: crate::repair::job::trims_ignored(m).len(),
+        }),
+        Err(e) => error(Status::BadInput, "repair", e),
     }
 }
 

@@ -10,7 +10,7 @@ pub struct BatchArgs {
     #[arg(required = true)]
     pub inputs: Vec<String>,
     /// Job run on every model: `info` (counts), `ssi` (one-file intersection, certified or
-    /// not) or `repair` (patches in and out, pairs left).
+    /// not) or `repair` (which repair, patches in and out, gaps left).
     #[arg(long)]
     pub job: String,
     /// JSONL output, one record per model, appended as models finish; models it already has
@@ -24,6 +24,10 @@ pub struct BatchArgs {
     /// record is `timeout`).
     #[arg(long, allow_hyphen_values = true)]
     pub time_limit_per_model: Option<f64>,
+    /// Which repair the `repair` job runs: `auto` (the faces repair on a B-rep with trimmed
+    /// faces, the patch-set repair otherwise, as `vericad repair`), `patches` or `faces`.
+    #[arg(long, default_value = "auto")]
+    pub repair_mode: String,
     /// Tolerance of the `ssi` job (model units).
     #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
     pub tol: f64,
@@ -69,7 +73,10 @@ pub fn run(a: BatchArgs) -> i32 {
             tol: a.tol,
             time_limit: a.time_limit_per_model,
         },
-        "repair" => Job::Repair(crate::repair::RepairParams::default()),
+        "repair" => match a.repair_mode.parse() {
+            Ok(mode) => Job::Repair(crate::repair::RepairParams::default(), mode),
+            Err(e) => return super::bad(format!("--repair-mode: {e}")),
+        },
         other => {
             return super::bad(format!(
                 "--job must be `info`, `ssi` or `repair`, not `{other}`"

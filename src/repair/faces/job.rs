@@ -55,6 +55,33 @@ impl Repaired {
     }
 }
 
+/// Whether `mode` gives the model `m` the faces repair: asked for, or (`Auto`) the model has
+/// a B-rep with a trimmed face ([`crate::brep::natural`]).
+pub fn faces_chosen(m: &crate::model::Model, mode: Mode) -> bool {
+    match mode {
+        Mode::Patches => false,
+        Mode::Faces => true,
+        Mode::Auto => m
+            .brep
+            .as_ref()
+            .is_some_and(|b| crate::brep::natural::natural_faces(b, m).contains(&false)),
+    }
+}
+
+impl std::str::FromStr for Mode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Mode, String> {
+        match s {
+            "auto" => Ok(Mode::Auto),
+            "patches" => Ok(Mode::Patches),
+            "faces" => Ok(Mode::Faces),
+            other => Err(format!(
+                "the repair mode must be `auto`, `patches` or `faces`, not `{other}`"
+            )),
+        }
+    }
+}
+
 fn write_err(p: &Path, e: impl std::fmt::Display) -> JobError {
     JobError::Write(p.display().to_string(), e.to_string())
 }
@@ -68,15 +95,7 @@ pub fn run(
     mode: Mode,
 ) -> Result<Repaired, JobError> {
     let m = crate::repair::job::read(input, &out)?;
-    let faces = match mode {
-        Mode::Patches => false,
-        Mode::Faces => true,
-        Mode::Auto => m
-            .brep
-            .as_ref()
-            .is_some_and(|b| crate::brep::natural::natural_faces(b, &m).contains(&false)),
-    };
-    if !faces {
+    if !faces_chosen(&m, mode) {
         return crate::repair::job::run_on(&m, prm, features, out).map(Repaired::Patches);
     }
     if features.is_some() {
