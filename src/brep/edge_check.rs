@@ -111,6 +111,15 @@ pub fn edge_faces(b: &Brep, m: &Model, tolerance: f64) -> Vec<EdgeFace> {
                     out.push(pair);
                     continue;
                 };
+                // The face's own pcurve (source or plane, rational ones too) first: proven
+                // within the tolerance, it decides without a projection.
+                if let Some((origin, Ok(d))) = pcs.own_bound(oe.edge, fi, tolerance)
+                    && d <= tolerance
+                {
+                    (pair.bound, pair.unproven, pair.pcurve) = (Some(d), None, Some(origin));
+                    out.push(pair);
+                    continue;
+                }
                 let pc = pcs.polynomial(oe.edge, fi, 0);
                 (pair.bound, pair.unproven) = match pc.as_ref().map(|p| &p.bound) {
                     Some(Ok(d)) => (Some(*d), None),

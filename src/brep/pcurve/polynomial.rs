@@ -101,4 +101,36 @@ impl Pcurves<'_> {
             }
         }
     }
+
+    /// The source's or a plane's pcurve of edge `e` on face `fi`, polynomial or rational, with
+    /// the proven bound on the distance between its image and the edge (the same composition
+    /// as for the polynomial ones, [`crate::spline::pcurve_bound`], which takes rational
+    /// pcurves with positive weights); `None` where the face has no such pcurve or uses the
+    /// edge more than once (a seam: one pcurve per side, [`Pcurves::polynomial`]). A bound
+    /// needs no polynomial pcurve, so no projection is made for it.
+    pub fn own_bound(
+        &mut self,
+        e: usize,
+        fi: usize,
+        target: f64,
+    ) -> Option<(PcurveOrigin, Result<f64, String>)> {
+        let (b, m) = (self.b, self.m);
+        let face = b.faces.get(fi)?;
+        let surface = m.surfaces.get(face.surface?)?;
+        let arc = &b.edges.get(e)?.curve.as_ref()?.nurbs;
+        let uses: usize = face
+            .loops
+            .iter()
+            .map(|l| match &l.kind {
+                LoopKind::Edges(oes) => oes.iter().filter(|o| o.edge == e).count(),
+                LoopKind::Vertex(_) => 0,
+            })
+            .sum();
+        if uses != 1 {
+            return None;
+        }
+        let (c, origin) = super::own_pcurve(b, e, face, surface)?;
+        let projector = self.face_projector(fi)?.1;
+        Some((origin, projector.check(&c, arc, target)))
+    }
 }
