@@ -169,30 +169,40 @@ fn binom(n: usize, k: usize) -> f64 {
     r as f64
 }
 
-/// Product of two polynomials in Bernstein form on `[0, 1]`, enclosed:
-/// `c_k = Σ_{i+j=k} C(m,i) C(n,j) / C(m+n,k) f_i g_j`.
+/// Product of two polynomials in *scaled* Bernstein form on `[0, 1]` — the coefficient `k`
+/// of a polynomial of degree `n` kept as `C(n, k) f_k` — enclosed: in that form the product's
+/// coefficients are the plain convolution `c̃_k = Σ_{i+j=k} f̃_i g̃_j`, since
+/// `C(m,i) C(n,j) B_i^m B_j^n = C(m+n,k) B_k^{m+n}` with `k = i + j` (the usual product
+/// formula `c_k = Σ C(m,i) C(n,j) / C(m+n,k) f_i g_j`, multiplied through by `C(m+n,k)`).
 fn mul(f: &[I], g: &[I]) -> Vec<I> {
-    let (m, n) = (f.len() - 1, g.len() - 1);
-    let mut c = vec![I::point(0.0); m + n + 1];
-    let gs: Vec<I> = g
-        .iter()
-        .enumerate()
-        .map(|(j, gj)| I::point(binom(n, j)) * *gj)
-        .collect();
+    let mut c = vec![I::point(0.0); f.len() + g.len() - 1];
     for (i, fi) in f.iter().enumerate() {
-        let fs = I::point(binom(m, i)) * *fi;
-        for (ck, gj) in c[i..].iter_mut().zip(&gs) {
-            *ck = *ck + fs * *gj;
+        for (ck, gj) in c[i..].iter_mut().zip(g) {
+            *ck = *ck + *fi * *gj;
         }
-    }
-    for (k, ck) in c.iter_mut().enumerate() {
-        // A binomial is a positive point: the quotient always exists.
-        *ck = ck.checked_div(I::point(binom(m + n, k))).unwrap_or(*ck);
     }
     c
 }
 
-/// `x^0, …, x^k` in Bernstein form.
+/// Bernstein coefficients into the scaled form of [`mul`] (`f_k C(n, k)`, enclosed).
+fn scaled(f: impl ExactSizeIterator<Item = I>) -> Vec<I> {
+    let n = f.len().saturating_sub(1);
+    f.enumerate()
+        .map(|(k, x)| x * I::point(binom(n, k)))
+        .collect()
+}
+
+/// The scaled form of [`mul`] back to Bernstein coefficients (`f̃_k / C(n, k)`, enclosed; a
+/// binomial is a positive point, so the quotient always exists).
+fn unscaled(f: &[I]) -> Vec<I> {
+    let n = f.len().saturating_sub(1);
+    f.iter()
+        .enumerate()
+        .map(|(k, x)| x.checked_div(I::point(binom(n, k))).unwrap_or(*x))
+        .collect()
+}
+
+/// `x^0, …, x^k`, all in the scaled form of [`mul`] (`x` given in it).
 fn powers(x: &[I], k: usize) -> Vec<Vec<I>> {
     let mut out = vec![vec![I::point(1.0)]];
     for i in 1..=k {
@@ -434,18 +444,21 @@ fn cell_bound(patch: &EnclosedPatch, pp: &[[I; 3]], cp: &[[I; 4]]) -> Result<f64
     };
     let (xh, aw) = local(0, u0, u1).ok_or(Unproven::Extraction)?;
     let (yh, bw) = local(1, v0, v1).ok_or(Unproven::Extraction)?;
+    // Every polynomial from here on is in the scaled form of [`mul`] (products are then
+    // convolutions), back to Bernstein coefficients only where a convex hull is read.
+    let sc = |v: Vec<I>| scaled(v.into_iter());
     let (xp, ap, yp, bp) = (
-        powers(&xh, p),
-        powers(&aw, p),
-        powers(&yh, q),
-        powers(&bw, q),
+        powers(&sc(xh), p),
+        powers(&sc(aw), p),
+        powers(&sc(yh), q),
+        powers(&sc(bw), q),
     );
-    let scaled = |v: Vec<I>, s: f64| -> Vec<I> { v.into_iter().map(|x| x * I::point(s)).collect() };
+    let times = |v: Vec<I>, s: f64| -> Vec<I> { v.into_iter().map(|x| x * I::point(s)).collect() };
     let bx: Vec<Vec<I>> = (0..=p)
-        .map(|i| scaled(mul(&xp[i], &ap[p - i]), binom(p, i)))
+        .map(|i| times(mul(&xp[i], &ap[p - i]), binom(p, i)))
         .collect();
     let by: Vec<Vec<I>> = (0..=q)
-        .map(|j| scaled(mul(&yp[j], &bp[q - j]), binom(q, j)))
+        .map(|j| times(mul(&yp[j], &bp[q - j]), binom(q, j)))
         .collect();
     let mut nsum = vec![[I::point(0.0); 4]; (p + q) * d + 1];
     for (i, bxi) in bx.iter().enumerate() {
@@ -460,22 +473,25 @@ fn cell_bound(patch: &EnclosedPatch, pp: &[[I; 3]], cp: &[[I; 4]]) -> Result<f64
         }
     }
     let nw: Vec<I> = nsum.iter().map(|x| x[3]).collect();
-    let cw: Vec<I> = cp.iter().map(|x| x[3]).collect();
+    let cw = scaled(cp.iter().map(|x| x[3]));
     let min_lo = |v: &[I]| v.iter().map(|x| x.lo).fold(f64::INFINITY, f64::min);
-    let (nw_min, cw_min) = (min_lo(&nw), min_lo(&cw));
+    let (nw_min, cw_min) = (
+        min_lo(&unscaled(&nw)),
+        min_lo(&cp.iter().map(|x| x[3]).collect::<Vec<_>>()),
+    );
     if !(nw_min > 0.0 && cw_min > 0.0) {
         return Err(Unproven::Weight { t: 0.0 });
     }
     let mut sq = vec![I::point(0.0); deg + 1];
     for c in 0..3 {
         let nc: Vec<I> = nsum.iter().map(|x| x[c]).collect();
-        let xc: Vec<I> = cp.iter().map(|x| x[c]).collect();
+        let xc = scaled(cp.iter().map(|x| x[c]));
         let e: Vec<I> = mul(&nc, &cw)
             .into_iter()
             .zip(mul(&xc, &nw))
             .map(|(a, b)| a - b)
             .collect();
-        for (s, ek) in sq.iter_mut().zip(&e) {
+        for (s, ek) in sq.iter_mut().zip(&unscaled(&e)) {
             *s = *s + ek.sqr();
         }
     }

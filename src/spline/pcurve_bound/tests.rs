@@ -143,3 +143,50 @@ fn circles_on_a_sphere_are_bounded_soundly_and_tightly() {
     }
     assert!(last < 1e-6, "33 samples: {last}");
 }
+
+/// De Casteljau's value of Bernstein coefficients `c` at `s` (f64).
+fn bernstein_at(c: &[f64], s: f64) -> f64 {
+    let mut b = c.to_vec();
+    for r in 1..b.len() {
+        for k in 0..b.len() - r {
+            b[k] = (1.0 - s) * b[k] + s * b[k + 1];
+        }
+    }
+    b[0]
+}
+
+/// The scaled form's product, back in Bernstein form, is the product polynomial: at every
+/// sample its value (by de Casteljau on the enclosures' midpoints) is `f(s) g(s)`, and the
+/// enclosures are narrow (degrees 3 × 4, then 7 × 2).
+#[test]
+fn scaled_products_are_the_product_polynomial() {
+    let f = [0.3, -1.2, 2.5, 0.7];
+    let g = [1.1, 0.4, -0.9, 2.0, -0.3];
+    let pts = |v: &[f64]| v.iter().map(|x| I::point(*x)).collect::<Vec<_>>();
+    let fg = unscaled(&mul(
+        &scaled(pts(&f).into_iter()),
+        &scaled(pts(&g).into_iter()),
+    ));
+    assert_eq!(fg.len(), 8);
+    let h = [2.0, -1.0, 0.5];
+    let fgh = unscaled(&mul(
+        &scaled(fg.clone().into_iter()),
+        &scaled(pts(&h).into_iter()),
+    ));
+    assert_eq!(fgh.len(), 10);
+    for i in 0..=20 {
+        let s = i as f64 / 20.0;
+        let mid = |v: &[I]| v.iter().map(|x| 0.5 * (x.lo + x.hi)).collect::<Vec<_>>();
+        let want = bernstein_at(&f, s) * bernstein_at(&g, s);
+        assert!(
+            (bernstein_at(&mid(&fg), s) - want).abs() <= 1e-13,
+            "s = {s}"
+        );
+        let want = want * bernstein_at(&h, s);
+        assert!(
+            (bernstein_at(&mid(&fgh), s) - want).abs() <= 1e-13,
+            "s = {s}"
+        );
+    }
+    assert!(fgh.iter().all(|x| x.hi - x.lo <= 1e-14));
+}
