@@ -80,7 +80,14 @@ fn scan_min(e: &dyn Fn(f64) -> f64) -> f64 {
 #[test]
 fn sphere_sections_in_cubic_pieces() {
     let tol = 1e-7;
-    for (seed, h) in [(1u64, 0.3), (2, 1.5), (3, -1.9), (4, 1.99), (5, 1.999)] {
+    for (seed, h) in [
+        (1u64, 0.3),
+        (2, 1.5),
+        (3, -1.9),
+        (4, 1.99),
+        (5, 1.999),
+        (6, 0.0),
+    ] {
         let f = rotated(seed);
         let s = sphere(&f, 2.0).unwrap();
         let p = cut(&f, h, 3.0);
@@ -121,6 +128,29 @@ fn sphere_sections_in_cubic_pieces() {
         assert!(fit.control_points.len() <= 3 * b.points.len() + 1);
         assert_eq!(fit.control_points.len() % 3, 1);
     }
+}
+
+/// The equator of the sphere's net lies in a plane through its centre: a border of the net's
+/// pieces runs along the loop. Its parts are decided against the loop's cubic pieces whole
+/// (`along`), not in parts short enough for straight segments: the coverage is certified with
+/// under a fifth of the border-crossing boxes of the same run in chords.
+#[test]
+fn a_border_along_the_loop_is_decided_along_the_pieces() {
+    let f = rotated(6);
+    let (s, p) = (sphere(&f, 2.0).unwrap(), cut(&f, 0.0, 3.0));
+    let cubic = run(&s, &p, 1e-7, Pieces::Cubic);
+    let chords = run(&s, &p, 1e-7, Pieces::Chords);
+    let boxes = |r: &PairOut| {
+        let c = r.coverage.as_ref().unwrap();
+        assert!(c.no_missed_branches);
+        c.crossing_boxes
+    };
+    assert_eq!(cubic.branches.len(), 1);
+    let (b, c) = (boxes(&cubic), boxes(&chords));
+    assert!(
+        5 * b < c,
+        "{b} crossing boxes in cubic pieces, {c} in chords"
+    );
 }
 
 /// A torus (3, 1) in a rotated frame cut by z' = 0.5: two circles of radii 3 ± √0.75. Both

@@ -40,6 +40,7 @@ pub mod mobius;
 pub mod nurbs;
 pub mod pcurve_bound;
 pub mod project;
+pub mod scaled_bernstein;
 pub mod sides;
 #[cfg(test)]
 pub(crate) mod test_params;

@@ -282,6 +282,11 @@ impl Piece {
     /// Distance (3D) from `x` to the piece, by Newton's method on `τ` from the best of nine
     /// samples, with both ends (a measurement: a local minimum of a smooth function).
     pub fn dist(&self, x: &[f64; 3]) -> f64 {
+        self.foot(x).0
+    }
+
+    /// [`Piece::dist`] with the parameter `τ ∈ [0, 1]` where it is taken.
+    pub fn foot(&self, x: &[f64; 3]) -> (f64, f64) {
         let at = |t: f64| {
             let h = self.eval(t);
             norm(&[h[0] - x[0], h[1] - x[1], h[2] - x[2]])
@@ -306,7 +311,7 @@ impl Piece {
                 best = (d, t);
             }
         }
-        best.0
+        best
     }
 }
 

@@ -7,6 +7,7 @@ use crate::geom::{Point, cross, dot};
 use crate::spline::construct::{Frame, arc, bilinear, sphere};
 use crate::spline::interpolate::interpolate_with_parameters;
 use crate::spline::project::project;
+use crate::spline::scaled_bernstein::{mul, scaled, unscaled};
 
 fn line2(a: [f64; 2], b: [f64; 2]) -> NurbsCurve<f64, 2> {
     NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0; 2]).unwrap()

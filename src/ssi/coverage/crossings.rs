@@ -1,9 +1,11 @@
 //! Border crossings: every point where a border curve of one piece meets the other piece is
 //! enclosed, by subdividing the curve and the piece together, in boxes that are either proven
 //! empty (disjoint control-point boxes: convex hull property) or proven to lie within the
-//! match distance of the output (see [`super::near`]). What neither can be shown for, down
+//! match distance of the output (see [`super::near`]; a curve part along one of the output's
+//! cubic pieces, by `coverage::along`). What neither can be shown for, down
 //! to the depth limit, is returned as a *possible crossing away from the output*.
 
+use super::along::Along;
 use super::crossing_newton::{Crossings, PatchJet, crossings, patch_jet};
 use super::near::Near;
 use super::patch::{Box3, ICurve, IPatch, V, apart, box_of, diagonal, disjoint, meet, range_along};
@@ -60,12 +62,12 @@ impl Piece {
 }
 
 /// Search `curve` against the piece `patch`: subdivide both until every part is empty, within `d` of
-/// the output `near` or inside a tube (within its reach of its polyline); stop at `max_depth`
-/// levels or `max_boxes` boxes.
+/// the output (`near`, or `along` one of its cubic pieces) or inside a tube (within its reach
+/// of its polyline); stop at `max_depth` levels or `max_boxes` boxes.
 pub(crate) fn search(
     curve: &ICurve,
     patch: &Rc<Piece>,
-    (near, d): (&Near, f64),
+    (near, along, d): (&Near, &Along, f64),
     tubes: &[(Near, f64)],
     max_depth: u32,
     max_boxes: usize,
@@ -103,7 +105,10 @@ pub(crate) fn search(
         let m = meet(&hc, hs);
         // The box test is skipped where the common part is the curve part's whole box: that
         // box holds the hull the net test has just failed on (skipping a test never decides).
-        if near.net_within_hinted(&pc, d, &hint) || (m != hc && near.box_within(&m, d)) {
+        if near.net_within_hinted(&pc, d, &hint)
+            || (m != hc && near.box_within(&m, d))
+            || along.curve_within(&c, &hc, diagonal(&hc), d)
+        {
             out.near_output += 1;
             continue;
         }

@@ -58,6 +58,7 @@
 //! labels of pieces (for reports) are rounded midpoints; the pieces themselves are exact
 //! halves.
 
+mod along;
 pub mod cones;
 mod crossing_newton;
 pub mod crossings;
@@ -246,6 +247,12 @@ pub fn coverage(
 ) -> CoverageOut {
     let t0 = Instant::now();
     let (near, slack) = output_set(branches, touches, prm.match_distance);
+    let along = along::Along::new(
+        branches
+            .iter()
+            .filter(|b| !b.tangents.is_empty())
+            .flat_map(|b| b.pieces()),
+    );
     // Every nearness test is against the output set: within `d` of it is within
     // `match_distance` of the output (a slack as large as the match distance leaves no
     // distance to decide with: what is not free is then listed uncertified).
@@ -357,7 +364,7 @@ pub fn coverage(
                     let s = search(
                         &from.patch.edge(side),
                         &piece,
-                        (&near, d),
+                        (&near, &along, d),
                         &tubes,
                         prm.max_crossing_depth,
                         left,
