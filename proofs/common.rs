@@ -1,12 +1,12 @@
-//! Shared oracle and input generators of the harnesses: exact rationals (`BigRational`, with
+//! Shared oracle and input generators of the harnesses: exact rationals (`Rational`, with
 //! `f64` lifted exactly by `vericad::scalar::lift`), a reproducible xorshift generator and
 //! pools of adversarial `f64` values.
 
 #![allow(dead_code)]
 
-pub use num_rational::BigRational as Q;
-use num_traits::{One, Signed, Zero};
-use vericad::scalar::lift;
+pub use vericad::scalar::Rational as Q;
+use vericad::scalar::Scalar;
+pub use vericad::scalar::{lift, ratio};
 
 /// The exact value of a finite `f64`.
 /// Cases to run: `small` by default, `large` with `VERICAD_LARGE` set.
@@ -23,15 +23,15 @@ pub fn q(x: f64) -> Q {
 }
 
 pub fn qi(n: i64) -> Q {
-    Q::from_integer(n.into())
+    Q::from(n)
 }
 
 pub fn zero() -> Q {
-    Q::zero()
+    Q::ZERO
 }
 
 pub fn one() -> Q {
-    Q::one()
+    Q::ONE
 }
 
 /// `x <= y` where `y` may be `+inf` / `-inf` (an extended-real end point).
@@ -62,7 +62,7 @@ pub fn in_ext(x: &Q, lo: f64, hi: f64) -> bool {
 }
 
 pub fn abs(x: &Q) -> Q {
-    x.abs()
+    Scalar::abs(x)
 }
 
 pub type Q3 = [Q; 3];
@@ -155,8 +155,8 @@ impl Rng {
         match self.below(8) {
             0 => zero(),
             1 => one(),
-            2 => Q::new(1.into(), 3.into()),
-            _ => Q::new((self.below(65) as i64).into(), 64.into()),
+            2 => ratio(1, 3),
+            _ => ratio(self.below(65) as i64, 64),
         }
     }
     /// An exact point of `[lo, hi]` (an end point or a random interior rational).

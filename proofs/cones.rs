@@ -3,7 +3,6 @@
 //! the "transversal" class of the coverage certificate rests.
 
 use crate::common::*;
-use num_traits::Zero;
 use vericad::scalar::Interval;
 use vericad::ssi::coverage::cones::{cones_separated, normal_generators, separation};
 use vericad::ssi::coverage::patch::{IPatch, V};

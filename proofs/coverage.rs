@@ -8,7 +8,7 @@
 //! crossings) would let such a run through.
 
 use crate::common::*;
-use num_traits::{Signed, ToPrimitive, Zero};
+use vericad::scalar::Scalar;
 use vericad::spline::NurbsSurface;
 use vericad::ssi::coverage::{CoverageParams, coverage};
 use vericad::ssi::report::TouchOut;
@@ -116,13 +116,13 @@ fn meets_plane(s: &NurbsSurface<f64, 3>) -> bool {
     let (mut pos, mut neg) = (false, false);
     for i in 0..=8 {
         for j in 0..=8 {
-            let (u, v) = (Q::new(i.into(), 8.into()), Q::new(j.into(), 8.into()));
+            let (u, v) = (ratio(i, 8), ratio(j, 8));
             let z = eval_surface_exact(s, &u, &v)[2].clone(); // w > 0: the sign of z is that of w z
             if z.is_zero() {
                 return true;
             }
-            pos |= z.is_positive();
-            neg |= z.is_negative();
+            pos |= z > Q::ZERO;
+            neg |= z < Q::ZERO;
         }
     }
     pos && neg
@@ -216,18 +216,15 @@ fn missing_branches_between_random_patches() {
             *x = [x[0], x[2], x[1]];
         }
         let a = bezier(pa, qa, ptsa, vec![1.0; (pa + 1) * (qa + 1)]);
-        let (s, t) = (
-            Q::new(rng.int(0, 4).into(), 4.into()),
-            Q::new(rng.int(0, 4).into(), 4.into()),
-        );
-        let half = Q::new(1.into(), 2.into());
+        let (s, t) = (ratio(rng.int(0, 4), 4), ratio(rng.int(0, 4), 4));
+        let half = ratio(1, 2);
         let pa_ = eval_surface_exact(&a, &half, &half);
         let b0 = bezier(pb, qb, ptsb.clone(), vec![1.0; ptsb.len()]);
         let pb_ = eval_surface_exact(&b0, &s, &t);
         let shift: Vec<f64> = (0..3)
             .map(|k| {
                 let d = &pa_[k] - &pb_[k];
-                let f = d.to_f64().expect("finite");
+                let f = Scalar::to_f64(&d);
                 assert_eq!(q(f), d, "the shift is dyadic and small: exact in f64");
                 f
             })

@@ -64,14 +64,9 @@ pub fn prop_find_span_brackets(inner: [i8; 3], t2: i8) {
 /// the value is attained at some `t* ∈ [0, 1]`, and `f'(t*) = 0` (interior), `f'(0) >= 0`
 /// (at `a`) or `f'(1) <= 0` (at `b`).
 pub fn prop_segment_distance_is_the_minimum(p: [i8; 2], a: [i8; 2], b: [i8; 2]) {
-    use num_rational::BigRational as Q;
     use vericad::curve_on_surface::hausdorff::dist2_point_segment;
-    let q = |x: [i8; 2]| {
-        [
-            Q::from_integer((x[0] as i64).into()),
-            Q::from_integer((x[1] as i64).into()),
-        ]
-    };
+    use vericad::scalar::{Rational as Q, ratio};
+    let q = |x: [i8; 2]| [Q::from(x[0] as i64), Q::from(x[1] as i64)];
     let d2 = dist2_point_segment(&q(p), &q(a), &q(b));
     let (px, py, ax, ay, bx, by) = (
         p[0] as i64,
@@ -86,26 +81,24 @@ pub fn prop_segment_distance_is_the_minimum(p: [i8; 2], a: [i8; 2], b: [i8; 2]) 
     // f(t) = |p-a|² - 2 t (p-a)·e + t² |e|²; f'(t) = 2 (t |e|² - (p-a)·e).
     let pa2 = (px - ax).pow(2) + (py - ay).pow(2);
     let dot = (px - ax) * ex + (py - ay) * ey;
-    let f = |t: Q| -> Q {
-        Q::from_integer(pa2.into()) - Q::from_integer((2 * dot).into()) * t.clone()
-            + Q::from_integer(len2.into()) * t.clone() * t
-    };
+    let f =
+        |t: Q| -> Q { Q::from(pa2) - Q::from(2 * dot) * t.clone() + Q::from(len2) * t.clone() * t };
     if len2 == 0 {
-        assert_eq!(d2, Q::from_integer(pa2.into()));
+        assert_eq!(d2, Q::from(pa2));
         return;
     }
     let t_star = if dot <= 0 {
-        Q::from_integer(0.into())
+        Q::ZERO
     } else if dot >= len2 {
-        Q::from_integer(1.into())
+        Q::ONE
     } else {
-        Q::new(dot.into(), len2.into())
+        ratio(dot, len2)
     };
     // Attained at t*, with the optimality conditions.
     assert_eq!(d2, f(t_star.clone()), "{p:?} {a:?} {b:?}");
-    let fp = |t: &Q| Q::from_integer(len2.into()) * t.clone() - Q::from_integer(dot.into());
-    let zero = Q::from_integer(0.into());
-    let one = Q::from_integer(1.into());
+    let fp = |t: &Q| Q::from(len2) * t.clone() - Q::from(dot);
+    let zero = Q::ZERO;
+    let one = Q::ONE;
     if t_star == zero {
         assert!(fp(&zero) >= zero);
     } else if t_star == one {
@@ -220,7 +213,7 @@ pub fn prop_theorem1(p: [[i8; 2]; 4], k: u8) -> Option<Theorem1> {
     let m = lerp(b1, b2);
     let left = [k4(c[0], 64), k4(a1, 16), k4(b1, 4), m];
     let right = [m, k4(b2, 4), k4(a3, 16), k4(c[3], 64)];
-    let big = |x: i128| num_bigint::BigInt::from(x);
+    let big = |x: i128| vericad::scalar::BigInt::from(x);
     let le = |x: (i128, i128), y: (i128, i128)| big(x.0) * big(y.1) <= big(y.0) * big(x.1);
     // Curve points at t = j/64, scaled by 64³.
     const S3: i128 = 262_144;

@@ -39,7 +39,7 @@ pub fn prop_densify_within_bound(h: &Piece, delta: f64, cap: usize, m: i64) {
         let (a, b) = (q3(&pts[i]), q3(&pts[i + 1]));
         for j in 0..=m {
             // ℓ at fraction s = j/m of the chord, τ = (i + s) / n.
-            let s = Q::new(j.into(), m.into());
+            let s = ratio(j, m);
             let t = (qi(i as i64) + &s) / qi(n as i64);
             let l = add3(&a, &scale3(&sub3(&b, &a), &s));
             let e = sub3(&exact(h, &t), &l);

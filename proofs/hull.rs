@@ -5,7 +5,6 @@
 //! wrongly. Oracle: exact rationals.
 
 use crate::common::*;
-use num_traits::Zero;
 use vericad::scalar::Interval;
 use vericad::ssi::coverage::near::{Near, dist_upper};
 use vericad::ssi::coverage::patch::{Box3, ICurve, IPatch, V, hull_box, separated_along};
@@ -384,7 +383,7 @@ fn halve_exact(row: &[Q]) -> (Vec<Q>, Vec<Q>) {
     let n = row.len() - 1;
     let mut x = row.to_vec();
     let (mut l, mut r) = (vec![x[0].clone(); n + 1], vec![x[n].clone(); n + 1]);
-    let half = Q::new(1.into(), 2.into());
+    let half = ratio(1, 2);
     for level in 1..=n {
         for k in 0..=n - level {
             x[k] = (&x[k] + &x[k + 1]) * &half;

@@ -23,8 +23,7 @@
 //! circle of samples across the disc. For the cup with `c > 0` no witness can exist (`f ≥ c`
 //! exactly), and for `c = 0` the touching point must lie in the disc, decided exactly.
 
-use crate::common::{Q, Rng, cases, q, qi};
-use num_traits::{Signed, Zero};
+use crate::common::{Q, Rng, cases, q, qi, ratio};
 use vericad::spline::NurbsSurface;
 use vericad::ssi::certify::ExactSurface;
 use vericad::ssi::sign_change::{SignChangeFail, certify_by_sign_change};
@@ -78,7 +77,7 @@ impl Quadric {
         };
         let (bu, bv) = (bern(&u), bern(&v));
         let pts = self.control();
-        let mut z = Q::zero();
+        let mut z = Q::ZERO;
         for i in 0..3 {
             for j in 0..3 {
                 z += &bu[i] * &bv[j] * q(pts[i * 3 + j][2]);
@@ -92,8 +91,8 @@ impl Quadric {
         [(-1, 1), (0, 1), (1, 3), (-3, 4), (5, 8)]
             .iter()
             .all(|&(n, d)| {
-                let x = Q::new(n.into(), d.into());
-                let y = Q::new((-n).into(), (d + 1).into());
+                let x = ratio(n, d);
+                let y = ratio(-n, d + 1);
                 let dx = &x - q(self.x0);
                 let dy = &y - q(self.y0);
                 let direct = q(self.a) * &dx * &dx + q(self.s * self.b) * &dy * &dy + q(self.c);
@@ -128,7 +127,7 @@ pub enum Verdict {
 /// The oracle for the claim "a common point lies within `r` of `p`" (module comment).
 pub fn judge(f: &Quadric, p: &[f64; 3], r: f64, corners: &[[f64; 2]]) -> Verdict {
     let rho2 = q(r) * q(r) - q(p[2]) * q(p[2]);
-    if rho2.is_negative() {
+    if rho2 < Q::ZERO {
         return Verdict::Refuted;
     }
     let (px, py) = (q(p[0]), q(p[1]));
@@ -173,8 +172,8 @@ pub fn judge(f: &Quadric, p: &[f64; 3], r: f64, corners: &[[f64; 2]]) -> Verdict
             continue;
         }
         let z = f.f(x, y);
-        pos |= !z.is_negative();
-        neg |= !z.is_positive();
+        pos |= z >= Q::ZERO;
+        neg |= z <= Q::ZERO;
         if pos && neg {
             return Verdict::Confirmed;
         }
@@ -188,8 +187,7 @@ trait Lossy {
 
 impl Lossy for Q {
     fn to_f64_lossy(&self) -> f64 {
-        use num_traits::ToPrimitive;
-        self.to_f64().unwrap_or(f64::INFINITY)
+        vericad::scalar::Scalar::to_f64(self)
     }
 }
 

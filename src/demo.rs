@@ -1,15 +1,15 @@
 //! The demo job on the embedded default model (Yang et al., Table 2 data): load and
 //! validate, classify the domain curve against its chord exactly, compose it exactly with
-//! the biquadratic surface (degree 8, 9 control points) in `BigRational`, and prove the
+//! the biquadratic surface (degree 8, 9 control points) in `Rational`, and prove the
 //! composition equal to `S(C(t))` at rational parameters.
 
 use crate::geom::{Hom, Point, lift_point, to_f64_point};
 use crate::model::info::{ModelInfo, summarize};
 use crate::model::{Curve, CurveGeometry, Model, json};
 use crate::predicates::{Sidedness, single_sided};
+use crate::scalar::{Rational, ratio};
 use crate::spline::compose::compose;
 use crate::spline::{BezierCurve, BezierSurface, NurbsCurve};
-use num_rational::BigRational;
 use serde::Serialize;
 
 /// The embedded default model.
@@ -24,7 +24,7 @@ pub struct CompositionReport {
     pub control_points: Vec<[f64; 3]>,
     /// Rational parameters at which the composed curve was compared with `S(C(t))`.
     pub parameters_checked: usize,
-    /// How many of them agreed exactly (BigRational equality).
+    /// How many of them agreed exactly (Rational equality).
     pub exact_agreements: usize,
     /// Largest coordinate difference between the same composition run in f64 and the exact
     /// control points (measured).
@@ -86,19 +86,19 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
     let info = summarize(&model);
     let (surf_h, curve_h) = bezier_parts(&model)?;
     // The demo's domain curve and surface are polynomial (unit weights): use the Cartesian
-    // parts. Every f64 lifts exactly into BigRational.
+    // parts. Every f64 lifts exactly into Rational.
     let curve: Vec<[f64; 2]> = curve_h.control.iter().map(|h| h.wp).collect();
     let surf = surf_h.map(|h| h.wp);
     let sidedness = single_sided(&curve);
 
-    let q_curve = BezierCurve::new(curve.iter().map(lift_point::<BigRational, 2>).collect())
+    let q_curve = BezierCurve::new(curve.iter().map(lift_point::<Rational, 2>).collect())
         .ok_or(DemoError::Shape)?;
-    let q_surf = surf.map(lift_point::<BigRational, 3>);
+    let q_surf = surf.map(lift_point::<Rational, 3>);
     let exact = compose(&q_surf, &q_curve);
     let n_check = 50;
     let mut agree = 0;
     for k in 0..n_check {
-        let t = BigRational::new(k.into(), (n_check - 1).into());
+        let t = ratio(k, n_check - 1);
         let uv = q_curve.eval(&t);
         if exact.eval(&t) == q_surf.eval(&uv[0], &uv[1]) {
             agree += 1;
@@ -114,7 +114,7 @@ pub fn run(model_text: &str, out_dir: &std::path::Path) -> Result<DemoReport, De
         .iter()
         .zip(&exact.control)
         .flat_map(|(a, e)| {
-            let d = lift_point::<BigRational, 3>(a).sub(e);
+            let d = lift_point::<Rational, 3>(a).sub(e);
             d.into_iter()
                 .map(|x| crate::scalar::Scalar::to_f64(&crate::scalar::Scalar::abs(&x)))
         })
@@ -220,7 +220,7 @@ impl std::fmt::Display for DemoReport {
         let c = &self.composition;
         writeln!(
             f,
-            "\nExact curve on the surface S(C(t)) (BigRational, DeRose composition)"
+            "\nExact curve on the surface S(C(t)) (Rational, DeRose composition)"
         )?;
         writeln!(
             f,

@@ -1,10 +1,10 @@
 //! Curves on B-spline surfaces (Yang et al. 2008): Table 2 reproduction and a Table 1–style
 //! experiment, plus the scaling of eq. (12) and the error cases.
 
-use num_rational::BigRational;
 use vericad::curve_on_surface::{Bound, CosError, Params, approximate};
 use vericad::geom::{Point, lift_point};
 use vericad::model::{CurveGeometry, json};
+use vericad::scalar::{Rational, ratio};
 use vericad::spline::{NurbsCurve, NurbsSurface};
 
 fn table2() -> (NurbsSurface<f64, 3>, NurbsCurve<f64, 2>) {
@@ -110,7 +110,7 @@ fn table2_reproduction() {
     assert!(r.evidence.max_distance_sampled <= r.certificate.hausdorff_bound);
     assert!(r.bspline.joints_exact);
     // Distance to S exactly 0: every exact segment equals S(chord(t)) at rational t.
-    let net: Vec<[BigRational; 3]> = s
+    let net: Vec<[Rational; 3]> = s
         .hom
         .net
         .iter()
@@ -118,11 +118,11 @@ fn table2_reproduction() {
         .collect();
     let sq = vericad::spline::BezierSurface::new(2, 2, net).unwrap();
     for seg in &r.segments {
-        let a: [BigRational; 2] = lift_point(&seg.domain[0]);
-        let b: [BigRational; 2] = lift_point(&seg.domain[1]);
+        let a: [Rational; 2] = lift_point(&seg.domain[0]);
+        let b: [Rational; 2] = lift_point(&seg.domain[1]);
         let exact = vericad::spline::compose::compose_line(&sq, &a, &b);
         for k in 0..=10i64 {
-            let t = BigRational::new(k.into(), 10.into());
+            let t = ratio(k, 10);
             let uv = a.lerp(&b, &t);
             assert_eq!(exact.eval(&t), sq.eval(&uv[0], &uv[1]));
         }

@@ -8,15 +8,14 @@
 //!
 //! proptest drives the f64 path; quickcheck drives the exact path on smaller cases.
 
-use num_rational::BigRational;
 use proptest::prelude::*;
 use vericad::curve_on_surface::cells::Cells;
 use vericad::curve_on_surface::{Arithmetic, CurveOnSurface, Params, approximate};
-use vericad::scalar::{Scalar, lift};
+use vericad::scalar::{Rational, Scalar, lift};
 use vericad::spline::compose::compose_line;
 use vericad::spline::{BSplineSurface, NurbsCurve, NurbsSurface};
 
-type Q = BigRational;
+type Q = Rational;
 
 /// Clamped knots on [0, 1] for `n` control points of degree `p`: interior knots from
 /// `cuts` (sorted, distinct, in (0, 1)) with multiplicities from `mults` (1..=p), trimmed so
@@ -150,8 +149,8 @@ fn check(s: &NurbsSurface<f64, 3>, r: &CurveOnSurface, prm: &Params) -> Result<(
         }
         let [a, b] = seg.domain;
         let mid: [Q; 2] = [
-            (lift::<Q>(a[0]) + lift::<Q>(b[0])) / Q::from_integer(2.into()),
-            (lift::<Q>(a[1]) + lift::<Q>(b[1])) / Q::from_integer(2.into()),
+            (lift::<Q>(a[0]) + lift::<Q>(b[0])) / Q::from(2),
+            (lift::<Q>(a[1]) + lift::<Q>(b[1])) / Q::from(2),
         ];
         let cell = cells.locate(&mid).ok_or("chord outside the domain")?;
         let exact = compose_line(
@@ -165,7 +164,7 @@ fn check(s: &NurbsSurface<f64, 3>, r: &CurveOnSurface, prm: &Params) -> Result<(
                 if d > lift::<Q>(round) {
                     return Err(format!(
                         "control point off the exact blossom by {}",
-                        d.to_f64()
+                        Scalar::to_f64(&d)
                     ));
                 }
             }

@@ -233,7 +233,7 @@ fn scaled_weights_certify_the_same_surface() {
     );
 }
 
-/// The exact arithmetic (BigRational throughout, the reference) certifies rational surfaces
+/// The exact arithmetic (Rational throughout, the reference) certifies rational surfaces
 /// too, under the same closed-form checks.
 #[test]
 fn exact_arithmetic_on_the_sphere() {

@@ -1,28 +1,25 @@
 //! Knot insertion, Bézier extraction and sub-patch extraction leave the shape unchanged:
-//! checked exactly in BigRational on random splines (property tests).
+//! checked exactly in Rational on random splines (property tests).
 
-use num_rational::BigRational;
 use proptest::prelude::*;
 use vericad::geom::lift_point;
-use vericad::scalar::lift;
+use vericad::scalar::{Rational, lift, ratio};
 use vericad::spline::{BSplineCurve, BSplineSurface};
 
-type Q = BigRational;
+type Q = Rational;
 
 fn knots(p: usize, n: usize, inner: &[u8]) -> Vec<Q> {
     // Interior knots on a 1/16 grid of [0, 1] (repeats allowed up to the validator's limit).
     let mut v: Vec<u8> = inner.iter().map(|x| 1 + x % 15).take(n - p - 1).collect();
     v.sort();
-    let mut k = vec![Q::from_integer(0.into()); p + 1];
-    k.extend(v.iter().map(|&x| Q::new((x as i64).into(), 16.into())));
-    k.extend(vec![Q::from_integer(1.into()); p + 1]);
+    let mut k = vec![Q::ZERO; p + 1];
+    k.extend(v.iter().map(|&x| ratio(x as i64, 16)));
+    k.extend(vec![Q::ONE; p + 1]);
     k
 }
 
 fn params(m: usize) -> Vec<Q> {
-    (0..=m)
-        .map(|i| Q::new((i as i64).into(), (m as i64).into()))
-        .collect()
+    (0..=m).map(|i| ratio(i as i64, m as i64)).collect()
 }
 
 proptest! {
@@ -42,7 +39,7 @@ proptest! {
         let c = BSplineCurve::new(k, p, ctrl).unwrap();
         let mut c2 = c.clone();
         for (t, r) in &ins {
-            c2 = c2.insert_knot(&Q::new((*t as i64).into(), 64.into()), *r);
+            c2 = c2.insert_knot(&ratio(*t as i64, 64), *r);
         }
         let pieces = c.bezier_pieces();
         for t in params(40) {
@@ -70,7 +67,7 @@ proptest! {
             .collect();
         let s = BSplineSurface::new(ku, p, kv, q, nu, nv, net).unwrap();
         let patches = s.bezier_patches();
-        let (lo, hi) = (Q::new((a as i64).into(), 16.into()), Q::new((b as i64).into(), 16.into()));
+        let (lo, hi) = (ratio(a as i64, 16), ratio(b as i64, 16));
         let sub = s.sub_patch(&lo, &hi, &lo, &hi).unwrap();
         for u in params(8) {
             for v in params(8) {

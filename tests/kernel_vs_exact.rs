@@ -1,5 +1,5 @@
 //! Differential property tests: each f64 kernel routine against the same generic code run
-//! on BigRational (inputs lifted exactly), within a stated forward error bound.
+//! on Rational (inputs lifted exactly), within a stated forward error bound.
 //!
 //! Bounds, with `u = 2^-53` the unit roundoff and `M` the largest control-point coordinate
 //! magnitude (the Euclidean-free, per-coordinate form):
@@ -15,18 +15,17 @@
 //! These are first-order bounds (terms in `u²` are negligible at these degrees); the tests
 //! check them on random, non-uniform data.
 
-use num_rational::BigRational;
 use proptest::prelude::*;
 use vericad::geom::{Hom, Point, lift_point};
-use vericad::scalar::{Scalar, lift};
+use vericad::scalar::{Rational, Scalar, lift};
 use vericad::spline::compose::compose;
 use vericad::spline::{BSplineCurve, BSplineSurface, BezierCurve, BezierSurface};
 
 const U: f64 = f64::EPSILON / 2.0;
 
-fn maxerr<const D: usize>(a: &[f64; D], e: &[BigRational; D]) -> f64 {
+fn maxerr<const D: usize>(a: &[f64; D], e: &[Rational; D]) -> f64 {
     (0..D)
-        .map(|i| (lift::<BigRational>(a[i]) - e[i].clone()).abs().to_f64())
+        .map(|i| Scalar::to_f64(&(lift::<Rational>(a[i]) - e[i].clone()).abs()))
         .fold(0.0, f64::max)
 }
 
@@ -76,7 +75,7 @@ proptest! {
     fn bspline_curve_eval_within_bound((p, k, pts, s) in curve_case()) {
         prop_assume!(valid_knots(&k, p, pts.len()));
         let c = BSplineCurve::new(k.clone(), p, pts.clone()).unwrap();
-        let q = c.map(|x| lift::<BigRational>(*x), lift_point);
+        let q = c.map(|x| lift::<Rational>(*x), lift_point);
         let (a, b) = c.domain();
         let t = a + s * (b - a);
         let e = q.eval(&lift(t));
@@ -88,7 +87,7 @@ proptest! {
     fn knot_insertion_within_bound((p, k, pts, s) in curve_case(), r in 1usize..4) {
         prop_assume!(valid_knots(&k, p, pts.len()));
         let c = BSplineCurve::new(k.clone(), p, pts.clone()).unwrap();
-        let q = c.map(|x| lift::<BigRational>(*x), lift_point);
+        let q = c.map(|x| lift::<Rational>(*x), lift_point);
         let (a, b) = c.domain();
         let t = a + s * (b - a);
         let cf = c.insert_knot(&t, r);
@@ -106,7 +105,7 @@ proptest! {
         t in 0.0f64..1.0,
     ) {
         let c = BezierCurve::new(pts.clone()).unwrap();
-        let q = c.map(lift_point::<BigRational, 2>);
+        let q = c.map(lift_point::<Rational, 2>);
         let n = c.degree() as f64;
         let bound = 6.0 * n * U * mag(&pts);
         prop_assert!(maxerr(&c.eval(&t), &q.eval(&lift(t))) <= bound);
@@ -128,7 +127,7 @@ proptest! {
         // A net from the two random point lists (outer sum), non-trivial in every coordinate.
         let net: Vec<[f64; 3]> = (0..nu * nv).map(|k| rows[k / nv].add(&cols[k % nv])).collect();
         let sf = BSplineSurface::new(ku, p, kv, q, nu, nv, net.clone()).unwrap();
-        let sq = sf.map(|x| lift::<BigRational>(*x), lift_point);
+        let sq = sf.map(|x| lift::<Rational>(*x), lift_point);
         let (u0, u1, v0, v1) = sf.domain();
         let (u, v) = (u0 + s * (u1 - u0), v0 + t * (v1 - v0));
         let bound = 8.0 * (p + q + 2) as f64 * U * mag(&net);
@@ -137,11 +136,11 @@ proptest! {
         let d = sf.derivatives(&u, &v, 1);
         let dq = sq.derivatives(&lift(u), &lift(v), 1);
         for (k, l) in [(1, 0), (0, 1)] {
-            let exact_mag = dq[k][l].iter().map(|x| x.abs().to_f64()).fold(0.0, f64::max);
+            let exact_mag = dq[k][l].iter().map(|x| Scalar::to_f64(&x.abs())).fold(0.0, f64::max);
             // A derivative scales control differences by p / (knot span): bound them by the
             // derivative spline's own control net, computed exactly.
             let dnet = if k == 1 { sq.derivative_u() } else { sq.derivative_v() };
-            let dm = dnet.map(|s| s.net.iter().flat_map(|p| p.iter()).map(|x| x.abs().to_f64()).fold(0.0, f64::max)).unwrap_or(exact_mag);
+            let dm = dnet.map(|s| s.net.iter().flat_map(|p| p.iter()).map(|x| Scalar::to_f64(&x.abs())).fold(0.0, f64::max)).unwrap_or(exact_mag);
             let dbound = 16.0 * (p + q + 2) as f64 * U * dm.max(mag(&net));
             prop_assert!(maxerr(&d[k][l], &dq[k][l]) <= dbound, "d{k}{l}");
         }
@@ -155,7 +154,7 @@ proptest! {
     ) {
         let k = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
         let sf = vericad::spline::NurbsSurface::new(k.clone(), 2, k, 2, 3, 3, pts.clone(), ws.clone()).unwrap();
-        let sq = vericad::spline::NurbsSurface { hom: sf.hom.map(|x| lift::<BigRational>(*x), |h| Hom { wp: lift_point(&h.wp), w: lift(h.w) }) };
+        let sq = vericad::spline::NurbsSurface { hom: sf.hom.map(|x| lift::<Rational>(*x), |h| Hom { wp: lift_point(&h.wp), w: lift(h.w) }) };
         let wr = ws.iter().cloned().fold(0.0, f64::max) / ws.iter().cloned().fold(f64::INFINITY, f64::min);
         let bound = 8.0 * 6.0 * U * mag(&pts) * wr * 4.0;
         prop_assert!(maxerr(&sf.eval(&s, &t), &sq.eval(&lift(s), &lift(t))) <= bound);
@@ -169,7 +168,7 @@ proptest! {
         let s = BezierSurface::new(2, 2, net.clone()).unwrap();
         let c = BezierCurve::new(curve.clone()).unwrap();
         let f = compose(&s, &c);
-        let e = compose(&s.map(lift_point::<BigRational, 3>), &c.map(lift_point::<BigRational, 2>));
+        let e = compose(&s.map(lift_point::<Rational, 3>), &c.map(lift_point::<Rational, 2>));
         // Each control point is a sum of net points times products of Bernstein products of
         // degree (p+q)d: bound 16 (p+q) d u M · (number of net points).
         let d = c.degree() as f64;

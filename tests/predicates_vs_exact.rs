@@ -1,16 +1,16 @@
 //! Differential tests: every predicate on f64 (adaptive exact, Shewchuk filters) against the
-//! same predicate on BigRational (f64 inputs lifted exactly), on random, nearly-degenerate,
+//! same predicate on Rational (f64 inputs lifted exactly), on random, nearly-degenerate,
 //! coplanar/collinear and integer-grid inputs. Zero disagreements are allowed.
 
 mod common;
 use common::*;
-use num_rational::BigRational;
 use vericad::geom::Point;
 use vericad::predicates::point_in_triangle::{point_in_triangle, point_in_triangle_3d};
 use vericad::predicates::segment_plane::segment_plane;
 use vericad::predicates::single_sided::single_sided;
 use vericad::predicates::tri_tri::{TriTriContact, construct, tri_tri};
 use vericad::predicates::{orient2d, orient3d};
+use vericad::scalar::{Rational, Scalar};
 
 /// One of four input families, chosen per case.
 fn pts2(r: &mut Rng, k: usize) -> [[f64; 2]; 3] {
@@ -196,7 +196,7 @@ fn tri_tri_agrees_with_exact_and_endpoints_are_certified() {
                 let exact = exact_point(&qa, &qb, cp);
                 let d: f64 = (0..3)
                     .map(|i| {
-                        let x: BigRational = vericad::scalar::lift(c.p[i]);
+                        let x: Rational = vericad::scalar::lift(c.p[i]);
                         vericad::Scalar::to_f64(&vericad::Scalar::abs(&(x - exact[i].clone())))
                     })
                     .sum();
@@ -212,14 +212,14 @@ fn tri_tri_agrees_with_exact_and_endpoints_are_certified() {
     assert!(kinds.len() >= 5, "families too narrow: {kinds:?}");
 }
 
-/// Exact end point of a contact, constructed independently in BigRational.
+/// Exact end point of a contact, constructed independently in Rational.
 fn exact_point(
-    a: &[[BigRational; 3]; 3],
-    b: &[[BigRational; 3]; 3],
+    a: &[[Rational; 3]; 3],
+    b: &[[Rational; 3]; 3],
     cp: vericad::predicates::tri_tri::ContactPoint,
-) -> [BigRational; 3] {
+) -> [Rational; 3] {
     use vericad::predicates::tri_tri::ContactPoint::*;
-    let seg = |p: &[BigRational; 3], q: &[BigRational; 3], t: &[[BigRational; 3]; 3]| {
+    let seg = |p: &[Rational; 3], q: &[Rational; 3], t: &[[Rational; 3]; 3]| {
         let n = vericad::geom::cross(&t[1].sub(&t[0]), &t[2].sub(&t[0]));
         let op = vericad::geom::dot(&n, &p.sub(&t[0]));
         let oq = vericad::geom::dot(&n, &q.sub(&t[0]));
@@ -286,7 +286,7 @@ fn single_sided_agrees_with_exact() {
             }
         };
         let f = single_sided(&ctrl);
-        let qc: Vec<[BigRational; 2]> = ctrl.iter().map(q2).collect();
+        let qc: Vec<[Rational; 2]> = ctrl.iter().map(q2).collect();
         let e = single_sided(&qc);
         assert_eq!(f, e, "case {k}: {ctrl:?}");
         if matches!(
@@ -306,12 +306,12 @@ fn single_sided_agrees_with_exact() {
 
 /// The point where a segment crosses a triangle's plane, on segments lying in the plane up
 /// to rounding (where the interval filter fails and the exact construction runs): the point
-/// computed independently in BigRational, `a + o_a / (o_a − o_b) · (b − a)`, lies within the
+/// computed independently in Rational, `a + o_a / (o_a − o_b) · (b − a)`, lies within the
 /// returned bound of the returned point, and the bound is a few ulps.
 #[test]
 fn segment_plane_points_near_the_plane_are_within_their_bound() {
     use vericad::predicates::tri_tri::segment_plane_point;
-    let q = |x: f64| BigRational::from_float(x).unwrap();
+    let q = |x: f64| Rational::try_from(x).unwrap();
     let mut r = Rng(7);
     let mut exact_runs = 0;
     for k in 0..400 {
@@ -326,22 +326,22 @@ fn segment_plane_points_near_the_plane_are_within_their_bound() {
         let c = segment_plane_point(&a, &b, &t);
         let (qa, qb) = (a.map(q), b.map(q));
         let qt = t.map(|p| p.map(q));
-        let d = |x: &[BigRational; 3], y: &[BigRational; 3]| -> [BigRational; 3] {
+        let d = |x: &[Rational; 3], y: &[Rational; 3]| -> [Rational; 3] {
             std::array::from_fn(|i| x[i].clone() - y[i].clone())
         };
         let (u, v) = (d(&qt[1], &qt[0]), d(&qt[2], &qt[0]));
-        let n: [BigRational; 3] = [
+        let n: [Rational; 3] = [
             u[1].clone() * v[2].clone() - u[2].clone() * v[1].clone(),
             u[2].clone() * v[0].clone() - u[0].clone() * v[2].clone(),
             u[0].clone() * v[1].clone() - u[1].clone() * v[0].clone(),
         ];
-        let o = |x: &[BigRational; 3]| -> BigRational {
+        let o = |x: &[Rational; 3]| -> Rational {
             let w = d(x, &qt[0]);
             n[0].clone() * w[0].clone() + n[1].clone() * w[1].clone() + n[2].clone() * w[2].clone()
         };
         let (oa, ob) = (o(&qa), o(&qb));
         let den = oa.clone() - ob;
-        let exact: [BigRational; 3] = if num_traits::Zero::is_zero(&den) {
+        let exact: [Rational; 3] = if den.is_zero() {
             qa.clone()
         } else {
             std::array::from_fn(|i| {
@@ -350,7 +350,7 @@ fn segment_plane_points_near_the_plane_are_within_their_bound() {
         };
         let dist2: f64 = (0..3)
             .map(|i| {
-                let e = num_traits::ToPrimitive::to_f64(&(exact[i].clone() - q(c.p[i]))).unwrap();
+                let e = Scalar::to_f64(&(exact[i].clone() - q(c.p[i])));
                 e * e
             })
             .sum();

@@ -6,20 +6,18 @@
 
 mod common;
 use common::shapes::exact_sphere;
-use num_bigint::BigInt;
-use num_rational::BigRational;
-use num_traits::{Signed, Zero};
 use proptest::prelude::*;
 use vericad::model::{Model, Surface, SurfaceKind};
+use vericad::scalar::{Rational, Scalar, ratio};
 use vericad::spline::NurbsSurface;
 use vericad::spline::construct::{Frame, cylinder};
 use vericad::ssi::krawczyk::{Uncertified, certify_on_curve};
 use vericad::ssi::{PairOut, SsiParams, intersect_models, intersect_pair_canonical};
 
-type Q = BigRational;
+type Q = Rational;
 
 fn q(x: f64) -> Q {
-    Q::from_float(x).expect("finite")
+    Q::try_from(x).expect("finite")
 }
 
 fn run(a: &NurbsSurface<f64, 3>, b: &NurbsSurface<f64, 3>, tol: f64) -> PairOut {
@@ -109,7 +107,7 @@ fn tilted(th: f64, bicubic: bool) -> NurbsSurface<f64, 3> {
 
 /// Exact: the segment {(x, 0, 0) : |x| ≤ 2} meets the ball of radius r about p.
 fn near_x_axis(p: &[f64; 3], r: f64) -> bool {
-    let ex = (q(p[0]).abs() - q(2.0)).max(Q::zero());
+    let ex = (q(p[0]).abs() - q(2.0)).max(Q::ZERO);
     let d2 = ex.clone() * ex + q(p[1]) * q(p[1]) + q(p[2]) * q(p[2]);
     d2 <= q(r) * q(r)
 }
@@ -251,12 +249,9 @@ fn exact_sphere_is_a_sphere() {
     };
     for i in 0..7 {
         for j in 0..7 {
-            let (u, v) = (
-                Q::new(BigInt::from(i), BigInt::from(6)),
-                Q::new(BigInt::from(j * j), BigInt::from(36)),
-            );
+            let (u, v) = (ratio(i, 6), ratio(j * j, 36));
             let p = e.eval(&u, &v);
-            let n2 = p.iter().fold(Q::zero(), |a, c| a + c.clone() * c.clone());
+            let n2 = p.iter().fold(Q::ZERO, |a, c| a + c.clone() * c.clone());
             assert_eq!(n2, q(4.0), "({i}, {j})");
         }
     }
@@ -276,11 +271,11 @@ fn near_circle(p: &[f64; 3], r: f64, big_r: f64, h: f64) -> bool {
     let a = q(p[0]) * q(p[0]) + q(p[1]) * q(p[1]);
     let c = q(p[2]) - q(h);
     let s = q(r) * q(r) - c.clone() * c;
-    if s.is_negative() {
+    if s < Q::ZERO {
         return false;
     }
     let l = a.clone() + rho2.clone() - s;
-    !l.is_positive() || l.clone() * l <= Q::from_integer(BigInt::from(4)) * a * rho2
+    l <= Q::ZERO || l.clone() * l <= Q::from(4) * a * rho2
 }
 
 fn sphere_and_plane(h: f64, tol: f64) -> (usize, usize, f64) {
@@ -337,10 +332,10 @@ fn switched_off_certificates_are_reported_as_such() {
     // |‖p‖ − 2| ≤ d_a (sphere) and |z − h| ≤ d_b (plane), exactly.
     let (da, db) = (q(b.dist_a_max), q(b.dist_b_max));
     for p in &b.points {
-        let n2 = p.iter().fold(Q::zero(), |a, c| a + q(*c) * q(*c));
+        let n2 = p.iter().fold(Q::ZERO, |a, c| a + q(*c) * q(*c));
         let (lo, hi) = (q(2.0) - da.clone(), q(2.0) + da.clone());
         assert!(
-            !lo.is_positive() || lo.clone() * lo <= n2,
+            lo <= Q::ZERO || lo.clone() * lo <= n2,
             "{p:?} inside by more than {da}"
         );
         assert!(n2 <= hi.clone() * hi, "{p:?} outside by more than {da}");
@@ -437,7 +432,7 @@ fn paraboloid(lift: f64) -> NurbsSurface<f64, 3> {
 }
 
 fn near_point(p: &[f64; 3], r: f64, c: &[f64; 3]) -> bool {
-    let d2 = (0..3).fold(Q::zero(), |acc, k| {
+    let d2 = (0..3).fold(Q::ZERO, |acc, k| {
         let d = q(p[k]) - q(c[k]);
         acc + d.clone() * d
     });

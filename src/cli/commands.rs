@@ -302,7 +302,7 @@ pub enum Command {
     Completions(shell::CompletionsArgs),
     /// Print the man page, or write one page per command with `--out DIR`.
     Man(shell::ManArgs),
-    /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (BigRational).
+    /// Evaluate a surface at (u,v) or a curve at t, in f64 and exactly (Rational).
     Eval {
         /// Model file: native JSON, STEP or IGES.
         file: PathBuf,

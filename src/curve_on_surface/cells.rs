@@ -4,11 +4,10 @@
 use super::g1::F64Patch;
 use super::tolerance::{lipschitz_bound, sqrt_up, tolerance_2d};
 use crate::geom::{Point, lift_point};
-use crate::scalar::{Scalar, lift};
+use crate::scalar::{Rational, Scalar, lift};
 use crate::spline::{BSplineSurface, BezierSurface};
-use num_rational::BigRational;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// One Bézier patch of S.
 #[derive(Clone, Debug)]
@@ -112,16 +111,16 @@ impl Cells {
                 .map(|(p, w)| [lift(p[0]), lift(p[1]), lift(p[2]), lift(*w)])
                 .collect(),
         };
-        let zero = Q::from_integer(0.into());
+        let zero = Q::ZERO;
         hom.bezier_patches()
             .into_iter()
             .map(|bp| {
                 let h = &bp.patch;
                 let rect = [
-                    bp.u0.to_f64(),
-                    bp.u1.to_f64(),
-                    bp.v0.to_f64(),
-                    bp.v1.to_f64(),
+                    Scalar::to_f64(&bp.u0),
+                    Scalar::to_f64(&bp.u1),
+                    Scalar::to_f64(&bp.v0),
+                    Scalar::to_f64(&bp.v1),
                 ];
                 let w_lo_q = h.net.iter().map(|x| x[3].clone()).min().ok_or(rect)?;
                 if w_lo_q <= zero {
@@ -135,11 +134,11 @@ impl Cells {
                 let center: [Q; 3] = std::array::from_fn(|c| {
                     let lo = pts
                         .iter()
-                        .map(|p| p[c].to_f64())
+                        .map(|p| Scalar::to_f64(&p[c]))
                         .fold(f64::INFINITY, f64::min);
                     let hi = pts
                         .iter()
-                        .map(|p| p[c].to_f64())
+                        .map(|p| Scalar::to_f64(&p[c]))
                         .fold(f64::NEG_INFINITY, f64::max);
                     lift(0.5 * lo + 0.5 * hi)
                 });
@@ -148,7 +147,7 @@ impl Cells {
                     .map(|p| sqrt_up(&crate::geom::norm2(&p.sub(&center))))
                     .fold(0.0, f64::max);
                 let w_lo = {
-                    let f = w_lo_q.to_f64();
+                    let f = Scalar::to_f64(&w_lo_q);
                     if lift::<Q>(f) > w_lo_q {
                         f.next_down()
                     } else {
@@ -173,16 +172,16 @@ impl Cells {
                     w_lo,
                 };
                 let (du, dv) = (
-                    bp.u1.to_f64() - bp.u0.to_f64(),
-                    bp.v1.to_f64() - bp.v0.to_f64(),
+                    Scalar::to_f64(&bp.u1) - Scalar::to_f64(&bp.u0),
+                    Scalar::to_f64(&bp.v1) - Scalar::to_f64(&bp.v0),
                 );
                 let lipschitz =
                     r.lipschitz(lipschitz_bound(&q, du, dv), lipschitz_bound(&r.w, du, dv));
                 Ok(Cell {
-                    u0: bp.u0.to_f64(),
-                    u1: bp.u1.to_f64(),
-                    v0: bp.v0.to_f64(),
-                    v1: bp.v1.to_f64(),
+                    u0: Scalar::to_f64(&bp.u0),
+                    u1: Scalar::to_f64(&bp.u1),
+                    v0: Scalar::to_f64(&bp.v0),
+                    v1: Scalar::to_f64(&bp.v1),
                     hodo_u: q.hodograph_u(),
                     hodo_v: q.hodograph_v(),
                     patch_f64: q.map(crate::geom::to_f64_point),

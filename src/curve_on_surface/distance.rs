@@ -6,10 +6,10 @@ use super::hausdorff::{farthest_parameter, hausdorff_bound};
 use super::segments::Seg;
 use super::tolerance::local_lipschitz;
 use super::{Bound, CosError};
+use crate::scalar::Rational;
 use crate::spline::BezierCurve;
-use num_rational::BigRational;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// The Lipschitz constant used for a segment: eq. (12) per patch, or the local refinement
 /// on the segment's bounding rectangle (local patch coordinates, clamped to the patch).

@@ -1,5 +1,5 @@
 //! The exact path of the curve-on-surface computation (Yang et al., CAD 2008): steps 1–6 run
-//! in BigRational throughout — Bézier patches and splitting, single-sided pieces, the
+//! in Rational throughout — Bézier patches and splitting, single-sided pieces, the
 //! distance bound, the ε_T pass and the exact mapping by blossoming (rational surfaces by the
 //! centring of `float::rational`, in exact arithmetic) — the reference against
 //! which the f64 path ([`super::float`]) is checked, and its fallback when an enclosure
@@ -8,7 +8,7 @@
 use super::{Chain, ChainSegment, CosError, Params, cells, distance, g1, map, sidedness, split};
 use crate::spline::{BSplineCurve, BSplineSurface};
 
-/// The steps in exact arithmetic (BigRational throughout).
+/// The steps in exact arithmetic (Rational throughout).
 pub(super) fn exact_chain(
     s: &BSplineSurface<[f64; 3]>,
     weights: Option<&[f64]>,
@@ -91,6 +91,6 @@ pub(super) fn exact_chain(
             .iter()
             .map(|c| c.d)
             .fold(f64::INFINITY, f64::min),
-        arithmetic: "exact (BigRational)".into(),
+        arithmetic: "exact (Rational)".into(),
     })
 }

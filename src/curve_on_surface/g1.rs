@@ -12,10 +12,10 @@ use super::cells::Cells;
 use super::hausdorff::farthest_parameter;
 use super::segments::Seg;
 use crate::geom::{dot, norm};
+use crate::scalar::Rational;
 use crate::spline::{BezierCurve, BezierSurface};
-use num_rational::BigRational;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// Smallest parameter length (relative to the piece) a segment is split down to for ε_T.
 const MIN_PARAM_LEN: f64 = 1e-10;

@@ -7,17 +7,16 @@ use super::cells::Cells;
 use super::segments::Seg;
 use crate::curve_on_surface::CosInternal;
 use crate::geom::{Point, to_f64_point};
-use crate::scalar::Scalar;
+use crate::scalar::{Rational, Scalar};
 use crate::spline::BezierCurve;
 use crate::spline::compose::compose_line;
-use num_rational::BigRational;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// A mapped segment.
 #[derive(Clone, Debug)]
 pub struct MappedSegment {
-    /// Exact control points (BigRational): the image of the chord, exactly.
+    /// Exact control points (Rational): the image of the chord, exactly.
     pub exact: BezierCurve<[Q; 3]>,
     /// The same, rounded to f64.
     pub control_points: Vec<[f64; 3]>,
@@ -31,8 +30,8 @@ pub struct MappedSegment {
 
 /// Map every segment; also returns the largest coordinate rounding error of the f64 output.
 pub fn map_segments(segs: &[Seg], cells: &Cells) -> Result<(Vec<MappedSegment>, f64), CosError> {
-    let zero = Q::from_integer(0.into());
-    let one = Q::from_integer(1.into());
+    let zero = Q::ZERO;
+    let one = Q::ONE;
     let mut out = Vec::with_capacity(segs.len());
     let mut rounding = 0.0f64;
     for s in segs {
@@ -63,16 +62,14 @@ pub fn map_segments(segs: &[Seg], cells: &Cells) -> Result<(Vec<MappedSegment>, 
         let mut delta = 0.0f64;
         for (r, e) in cps.iter().zip(&exact.control) {
             for i in 0..3 {
-                let d = (crate::scalar::lift::<Q>(r[i]) - e[i].clone())
-                    .abs()
-                    .to_f64()
+                let d = Scalar::to_f64(&(crate::scalar::lift::<Q>(r[i]) - e[i].clone()).abs())
                     .next_up();
                 delta = delta.max(d);
             }
         }
         let weights = hom_w
             .as_ref()
-            .map(|w| w.iter().map(|x| x.to_f64()).collect::<Vec<f64>>());
+            .map(|w| w.iter().map(Scalar::to_f64).collect::<Vec<f64>>());
         let bound = match (&hom_w, &weights) {
             (Some(w), Some(wf)) => rational_rounding(&exact.control, w, wf, delta),
             _ => delta,
@@ -97,7 +94,7 @@ fn rational_rounding(pts: &[[Q; 3]], w: &[Q], wf: &[f64], delta: f64) -> f64 {
     let mut eps = 0.0f64;
     for (e, r) in w.iter().zip(wf) {
         let rel = ((crate::scalar::lift::<Q>(*r) - e.clone()) / e.clone()).abs();
-        eps = eps.max(rel.to_f64().next_up());
+        eps = eps.max(Scalar::to_f64(&rel).next_up());
     }
     let reach = pts
         .iter()

@@ -17,7 +17,7 @@
 //! Two arithmetics run these steps ([`Arithmetic`]): [`float`] — f64 with every certified
 //! quantity enclosed in interval arithmetic and the sign decisions made by exact predicates,
 //! falling back to the exact path whenever an enclosure cannot decide — and the exact path
-//! (BigRational throughout), the reference. Both certify the same object: the exact curve on
+//! (Rational throughout), the reference. Both certify the same object: the exact curve on
 //! S given by blossoming S on each chord of the f64 domain polyline.
 
 pub mod casteljau;
@@ -103,7 +103,7 @@ pub enum Arithmetic {
     /// f64 with interval enclosures for every certified quantity and exact predicates for
     /// the decisions; reruns exactly when an enclosure cannot decide.
     Float,
-    /// BigRational throughout (the reference; control points are the exact blossoms).
+    /// Rational throughout (the reference; control points are the exact blossoms).
     Exact,
 }
 

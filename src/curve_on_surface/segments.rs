@@ -3,11 +3,10 @@
 
 use super::cells::Cells;
 use crate::geom::{Point, lift_point};
-use crate::scalar::Scalar;
+use crate::scalar::{Rational, Scalar, ratio};
 use crate::spline::BezierCurve;
-use num_rational::BigRational;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// A piece of the domain curve, `pieces[piece]` restricted to local `[t0, t1]`, with its
 /// chord `a → b` (f64) in cell `cell`. `ea`/`eb`: proven distance from `a`/`b` to the curve
@@ -36,7 +35,7 @@ pub fn offset(v: &[f64; 2], exact: &[Q; 2]) -> f64 {
 
 /// Round an exact point to f64.
 pub fn round(p: &[Q; 2]) -> [f64; 2] {
-    [p[0].to_f64(), p[1].to_f64()]
+    [Scalar::to_f64(&p[0]), Scalar::to_f64(&p[1])]
 }
 
 impl Seg {
@@ -50,8 +49,8 @@ impl Seg {
     pub fn split(&self, s: &Q, pieces: &[BezierCurve<[Q; 2]>], cells: &Cells) -> (Seg, Seg) {
         // The split location is a choice, not a claim: take the nearest k/256 of the
         // segment (1 <= k <= 255), which keeps the exact parameters short.
-        let k = (s.to_f64() * 256.0).round().clamp(1.0, 255.0) as i64;
-        let s = Q::new(k.into(), 256.into());
+        let k = (Scalar::to_f64(s) * 256.0).round().clamp(1.0, 255.0) as i64;
+        let s = ratio(k, 256);
         let t = self.t0.clone() + (self.t1.clone() - self.t0.clone()) * s;
         let exact = pieces[self.piece].eval(&t);
         let v = cells.clamp(self.cell, &round(&exact));

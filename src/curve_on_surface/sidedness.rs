@@ -7,10 +7,10 @@ use super::cells::Cells;
 use super::segments::Seg;
 use crate::predicates::single_sided;
 use crate::predicates::single_sided::{Sidedness, split_parameters};
+use crate::scalar::{Rational, ratio};
 use crate::spline::BezierCurve;
-use num_rational::BigRational;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// Counts for the report.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
@@ -46,7 +46,7 @@ pub fn make_single_sided(
                 Sidedness::DegenerateChord => {
                     stats.closed_split += 1;
                     changed = true;
-                    let (l, r) = s.split(&Q::new(1.into(), 2.into()), pieces, cells);
+                    let (l, r) = s.split(&ratio(1, 2), pieces, cells);
                     out.push(l);
                     out.push(r);
                 }
@@ -60,14 +60,13 @@ pub fn make_single_sided(
                     changed = true;
                     let roots: Vec<Q> = split_parameters(&c.control, 2f64.powi(-40))
                         .into_iter()
-                        .map(|(lo, hi)| (lo + hi) / Q::from_integer(2.into()))
+                        .map(|(lo, hi)| (lo + hi) / Q::from(2))
                         .collect();
                     // Split at each root, left to right (re-expressing later roots locally).
                     let mut rest = s;
-                    let mut consumed = Q::from_integer(0.into());
+                    let mut consumed = Q::ZERO;
                     for r in roots {
-                        let local = (r.clone() - consumed.clone())
-                            / (Q::from_integer(1.into()) - consumed.clone());
+                        let local = (r.clone() - consumed.clone()) / (Q::ONE - consumed.clone());
                         let (l, rr) = rest.split(&local, pieces, cells);
                         out.push(l);
                         rest = rr;

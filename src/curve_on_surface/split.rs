@@ -13,33 +13,33 @@ use crate::predicates::poly::{
     Poly, certify_squarefree, deflate_ends, descartes_isolate, integer_bernstein,
     integer_power_from_bernstein, isolate_roots, negative_on_unit_interval,
 };
-use crate::scalar::{Scalar, lift};
+use crate::scalar::{Rational, Scalar, lift, pow2};
 use crate::spline::{BSplineCurve, BezierCurve};
-use num_rational::BigRational;
+use dashu_int::ops::BitTest;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// Depth of crossing isolation: crossings are located within `2^-CROSSING_DEPTH` in `t`.
 const CROSSING_DEPTH: u32 = 48;
 
 /// Parameters in `(0,1)` where the polynomial with Bernstein coefficients `b` changes sign.
 fn sign_changes(b: &[Q]) -> Vec<Q> {
-    if b.iter().all(|x| x.sign() == crate::Sign::Positive)
-        || b.iter().all(|x| x.sign() == crate::Sign::Negative)
+    if b.iter().all(|x| Scalar::sign(x) == crate::Sign::Positive)
+        || b.iter().all(|x| Scalar::sign(x) == crate::Sign::Negative)
     {
         return vec![];
     }
     if b.iter().all(|x| x.is_zero()) {
         return vec![];
     }
-    let two = Q::from_integer(2.into());
+    let two = Q::from(2);
     let ib = integer_bernstein(b);
     let g = deflate_ends(integer_power_from_bernstein(&ib));
     if g.len() <= 1 {
         return vec![];
     }
     let roots: Vec<(Q, Q)> = if certify_squarefree(&g) {
-        let bits = ib.iter().map(|x| x.bits()).max().unwrap_or(0) as u32;
+        let bits = ib.iter().map(|x| x.bit_len()).max().unwrap_or(0) as u32;
         let cap = 64 + (ib.len() as u32) * (bits + 2 * ib.len() as u32);
         match descartes_isolate(&ib, cap, CROSSING_DEPTH) {
             Some(r) => r.into_iter().map(|x| (x.lo, x.hi)).collect(),
@@ -47,13 +47,8 @@ fn sign_changes(b: &[Q]) -> Vec<Q> {
         }
     } else {
         let odd = Poly::from_bernstein(b).odd_multiplicity_part();
-        let w = Q::new(1.into(), num_bigint::BigInt::from(1u8) << CROSSING_DEPTH);
-        isolate_roots(
-            &odd,
-            &Q::from_integer(0.into()),
-            &Q::from_integer(1.into()),
-            &w,
-        )
+        let w = pow2(-i64::from(CROSSING_DEPTH));
+        isolate_roots(&odd, &Q::ZERO, &Q::ONE, &w)
     };
     roots
         .into_iter()
@@ -89,7 +84,8 @@ pub fn split(curve: &BSplineCurve<[f64; 2]>, cells: &Cells) -> Result<Split, Cos
     ];
     for bp in bz {
         let c = bp.curve;
-        let g = |t: &Q| (bp.t0.clone() + (bp.t1.clone() - bp.t0.clone()) * t.clone()).to_f64();
+        let g =
+            |t: &Q| Scalar::to_f64(&(bp.t0.clone() + (bp.t1.clone() - bp.t0.clone()) * t.clone()));
         // Inside the domain, exactly: each edge function (u - u0, u1 - u, v - v0, v1 - v)
         // is >= 0 on the whole piece. Crossing parameters alone miss a piece that touches an
         // edge from outside (a double root, no sign change).
@@ -132,7 +128,7 @@ pub fn split(curve: &BSplineCurve<[f64; 2]>, cells: &Cells) -> Result<Split, Cos
         }
         cuts.sort_by(|x, y| x.0.cmp(&y.0));
         // Vertices: the piece's end points and every crossing.
-        let mut ts: Vec<(Q, Snap)> = vec![(Q::from_integer(0.into()), Snap::None)];
+        let mut ts: Vec<(Q, Snap)> = vec![(Q::ZERO, Snap::None)];
         for (t, s) in cuts {
             let last = ts.len() - 1;
             if ts[last].0 == t {
@@ -144,10 +140,10 @@ pub fn split(curve: &BSplineCurve<[f64; 2]>, cells: &Cells) -> Result<Split, Cos
                 ts.push((t, s));
             }
         }
-        if ts.last().is_some_and(|x| x.0 == Q::from_integer(1.into())) {
+        if ts.last().is_some_and(|x| x.0 == Q::ONE) {
             ts.pop();
         }
-        ts.push((Q::from_integer(1.into()), Snap::None));
+        ts.push((Q::ONE, Snap::None));
         let exact: Vec<[Q; 2]> = ts.iter().map(|(t, _)| c.eval(t)).collect();
         let mut verts: Vec<[f64; 2]> = ts
             .iter()
@@ -167,10 +163,11 @@ pub fn split(curve: &BSplineCurve<[f64; 2]>, cells: &Cells) -> Result<Split, Cos
         let mut cell_of = Vec::with_capacity(ts.len() - 1);
         for w in 0..ts.len() - 1 {
             let (t0, t1) = (&ts[w].0, &ts[w + 1].0);
-            let mid = c.eval(&((t0.clone() + t1.clone()) / Q::from_integer(2.into())));
+            let mid = c.eval(&((t0.clone() + t1.clone()) / Q::from(2)));
             let cell = cells.locate(&mid).ok_or_else(|| {
-                let g =
-                    |t: &Q| (bp.t0.clone() + (bp.t1.clone() - bp.t0.clone()) * t.clone()).to_f64();
+                let g = |t: &Q| {
+                    Scalar::to_f64(&(bp.t0.clone() + (bp.t1.clone() - bp.t0.clone()) * t.clone()))
+                };
                 CosError::OutOfDomain {
                     t0: g(t0),
                     t1: g(t1),

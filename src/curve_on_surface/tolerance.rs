@@ -18,19 +18,18 @@
 //! the true tolerance: never optimistic.
 
 use crate::geom::Point;
-use crate::scalar::Scalar;
+use crate::scalar::{Rational, Scalar};
 use crate::spline::BezierSurface;
-use num_rational::BigRational;
 
 /// Upper bound (f64) of `sqrt(x)` for an exact non-negative rational `x`.
-pub fn sqrt_up(x: &BigRational) -> f64 {
-    let f = x.to_f64();
+pub fn sqrt_up(x: &Rational) -> f64 {
+    let f = Scalar::to_f64(x);
     let f = if f.is_finite() { f.next_up() } else { f };
     f.max(0.0).sqrt().next_up()
 }
 
 /// `max_{i,h,k} |P_{i+1,h} - P_{i,k}|` (first index is u): an upper bound, rounded up.
-fn a_u(s: &BezierSurface<[BigRational; 3]>) -> f64 {
+fn a_u(s: &BezierSurface<[Rational; 3]>) -> f64 {
     let mut best = 0.0f64;
     for i in 0..s.p {
         for h in 0..=s.q {
@@ -44,7 +43,7 @@ fn a_u(s: &BezierSurface<[BigRational; 3]>) -> f64 {
 }
 
 /// `max_{i,h,k} |P_{h,i+1} - P_{k,i}|` (second index is v).
-fn a_v(s: &BezierSurface<[BigRational; 3]>) -> f64 {
+fn a_v(s: &BezierSurface<[Rational; 3]>) -> f64 {
     let mut best = 0.0f64;
     for i in 0..s.q {
         for h in 0..=s.p {
@@ -59,7 +58,7 @@ fn a_v(s: &BezierSurface<[BigRational; 3]>) -> f64 {
 
 /// Upper bound on `n·A_v/(e-c) + m·A_u/(b-a)`: the constant `K` with
 /// `|S(x) - S(y)| ≤ K |x - y|` on the patch (global parameters).
-pub fn lipschitz_bound(s: &BezierSurface<[BigRational; 3]>, du: f64, dv: f64) -> f64 {
+pub fn lipschitz_bound(s: &BezierSurface<[Rational; 3]>, du: f64, dv: f64) -> f64 {
     let m = s.p as f64;
     let n = s.q as f64;
     // du, dv are exact span widths (differences of f64 knots may round: bound below).
@@ -86,13 +85,13 @@ pub fn tolerance_2d(eps_d: f64, lipschitz: f64) -> f64 {
 /// restricted to `R` (blossoming; convex hull property), scaled by `1 / span` to global
 /// parameters (the chain rule, as in [`lipschitz_bound`]).
 pub fn local_lipschitz(
-    hodo_u: Option<&BezierSurface<[BigRational; 3]>>,
-    hodo_v: Option<&BezierSurface<[BigRational; 3]>>,
-    r: [BigRational; 4],
+    hodo_u: Option<&BezierSurface<[Rational; 3]>>,
+    hodo_v: Option<&BezierSurface<[Rational; 3]>>,
+    r: [Rational; 4],
     du: f64,
     dv: f64,
 ) -> f64 {
-    let sup = |h: Option<&BezierSurface<[BigRational; 3]>>| -> f64 {
+    let sup = |h: Option<&BezierSurface<[Rational; 3]>>| -> f64 {
         match h {
             None => 0.0,
             Some(h) => h

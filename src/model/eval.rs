@@ -2,9 +2,8 @@
 
 use super::{CurveGeometry, Model};
 use crate::geom::{Hom, Point, lift_point, to_f64_point};
-use crate::scalar::{Scalar, lift};
+use crate::scalar::{Rational, Scalar, lift};
 use crate::spline::{BSplineCurve, BSplineSurface};
-use num_rational::BigRational;
 use serde::Serialize;
 
 /// What `vericad eval` reports.
@@ -14,7 +13,7 @@ pub struct EvalReport {
     pub parameter: Vec<f64>,
     /// f64 evaluation.
     pub point: Vec<f64>,
-    /// Exact (BigRational) evaluation at the same f64 parameter, rounded to nearest.
+    /// Exact (Rational) evaluation at the same f64 parameter, rounded to nearest.
     pub exact_point: Vec<f64>,
     /// Largest coordinate difference |f64 − exact| (exact arithmetic, rounded up).
     pub f64_error: f64,
@@ -37,7 +36,7 @@ pub enum EvalError {
     NotFinite,
 }
 
-fn lift_surface(s: &BSplineSurface<Hom<f64, 3>>) -> BSplineSurface<Hom<BigRational, 3>> {
+fn lift_surface(s: &BSplineSurface<Hom<f64, 3>>) -> BSplineSurface<Hom<Rational, 3>> {
     s.map(
         |k| lift(*k),
         |h| Hom {
@@ -47,7 +46,7 @@ fn lift_surface(s: &BSplineSurface<Hom<f64, 3>>) -> BSplineSurface<Hom<BigRation
     )
 }
 
-fn lift_curve<const D: usize>(c: &BSplineCurve<Hom<f64, D>>) -> BSplineCurve<Hom<BigRational, D>> {
+fn lift_curve<const D: usize>(c: &BSplineCurve<Hom<f64, D>>) -> BSplineCurve<Hom<Rational, D>> {
     c.map(
         |k| lift(*k),
         |h| Hom {
@@ -58,10 +57,10 @@ fn lift_curve<const D: usize>(c: &BSplineCurve<Hom<f64, D>>) -> BSplineCurve<Hom
 }
 
 /// Largest `|a_i − e_i|`, rounded up; infinite where the f64 evaluation overflowed.
-fn err_of<const D: usize>(a: &[f64; D], e: &[BigRational; D]) -> f64 {
+fn err_of<const D: usize>(a: &[f64; D], e: &[Rational; D]) -> f64 {
     (0..D)
-        .map(|i| match BigRational::from_f64(a[i]) {
-            Ok(x) => (x - e[i].clone()).abs().to_f64().next_up(),
+        .map(|i| match Rational::from_f64(a[i]) {
+            Ok(x) => Scalar::to_f64(&(x - e[i].clone()).abs()).next_up(),
             Err(_) => f64::INFINITY,
         })
         .fold(0.0, f64::max)
@@ -163,7 +162,7 @@ impl std::fmt::Display for EvalReport {
         writeln!(f, "  point        {:?}", self.point)?;
         writeln!(
             f,
-            "  exact point  {:?} (BigRational, rounded)",
+            "  exact point  {:?} (Rational, rounded)",
             self.exact_point
         )?;
         writeln!(

@@ -2,28 +2,27 @@
 //! integer-scaled coefficients (additions and shifts only), and the modular certificate of
 //! square-freeness that guarantees its termination.
 
-use num_bigint::BigInt;
-use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use crate::scalar::{BigInt, BigUint, Rational, Scalar, int_sign, ratio};
+use dashu_int::ops::Gcd;
 
 /// Exact integer Bernstein coefficients proportional (by one positive factor) to `b`.
-pub fn integer_bernstein(b: &[BigRational]) -> Vec<BigInt> {
-    use num_integer::Integer;
-    let l = b.iter().fold(BigInt::one(), |acc, x| acc.lcm(x.denom()));
-    b.iter().map(|x| x.numer() * (&l / x.denom())).collect()
+pub fn integer_bernstein(b: &[Rational]) -> Vec<BigInt> {
+    // The least common multiple of the (positive) denominators.
+    let l = b.iter().fold(BigUint::ONE, |acc, x| {
+        let d = x.denominator();
+        let g = (&acc).gcd(d);
+        acc / g * d
+    });
+    b.iter()
+        .map(|x| x.numerator() * BigInt::from(&l / x.denominator()))
+        .collect()
 }
 
 fn variations(c: &[BigInt]) -> usize {
     let mut last = 0i8;
     let mut v = 0;
     for x in c {
-        let s = if x.is_positive() {
-            1
-        } else if x.is_negative() {
-            -1
-        } else {
-            0
-        };
+        let s = int_sign(x).as_i8();
         if s != 0 {
             if last != 0 && s != last {
                 v += 1;
@@ -57,12 +56,12 @@ fn halve(c: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
 /// A root isolated in `[lo, hi]` (`lo == hi` when the root is exactly a dyadic point).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RootInterval {
-    pub lo: BigRational,
-    pub hi: BigRational,
+    pub lo: Rational,
+    pub hi: Rational,
 }
 
-fn dyadic(k: &BigInt, d: u32) -> BigRational {
-    BigRational::new(k.clone(), BigInt::one() << d)
+fn dyadic(k: &BigInt, d: u32) -> Rational {
+    ratio(k.clone(), BigInt::ONE << d as usize)
 }
 
 /// Roots in the open interval `(0, 1)` of the polynomial with integer Bernstein coefficients
@@ -80,7 +79,7 @@ pub fn descartes_isolate(
     min_depth: u32,
 ) -> Option<Vec<RootInterval>> {
     let mut out = Vec::new();
-    let mut stack = vec![(c.to_vec(), BigInt::zero(), 0u32)];
+    let mut stack = vec![(c.to_vec(), BigInt::ZERO, 0u32)];
     while let Some((cc, k, d)) = stack.pop() {
         let v = variations(&cc);
         if v == 0 || (v == 1 && d >= min_depth) {
@@ -116,7 +115,7 @@ pub fn descartes_isolate(
 /// `b` (exact: `a_k = Σ_{i<=k} b_i C(n,i) C(n-i,k-i) (-1)^{k-i}`).
 pub fn integer_power_from_bernstein(b: &[BigInt]) -> Vec<BigInt> {
     let n = b.len().saturating_sub(1);
-    let mut a = vec![BigInt::zero(); n + 1];
+    let mut a = vec![BigInt::ZERO; n + 1];
     for (i, bi) in b.iter().enumerate() {
         for k in i..=n {
             let w = BigInt::from(crate::scalar::binomial_i64(n, i))
@@ -140,10 +139,10 @@ pub fn deflate_ends(mut a: Vec<BigInt>) -> Vec<BigInt> {
     while a.len() > 1 && a[0].is_zero() {
         a.remove(0);
     }
-    while a.len() > 1 && a.iter().fold(BigInt::zero(), |s, x| s + x).is_zero() {
+    while a.len() > 1 && a.iter().fold(BigInt::ZERO, |s, x| s + x).is_zero() {
         // a(t) = (t - 1) q(t): q_{n-1} = a_n, q_{k-1} = a_k + q_k.
         let n = a.len() - 1;
-        let mut q = vec![BigInt::zero(); n];
+        let mut q = vec![BigInt::ZERO; n];
         q[n - 1] = a[n].clone();
         for k in (1..n).rev() {
             q[k - 1] = &a[k] + &q[k];
@@ -233,7 +232,7 @@ pub fn certify_squarefree(a: &[BigInt]) -> bool {
 }
 
 /// Sign of the polynomial with Bernstein coefficients `b` at the rational `t` (exact).
-pub fn bernstein_sign_at(b: &[BigRational], t: &BigRational) -> i8 {
+pub fn bernstein_sign_at(b: &[Rational], t: &Rational) -> i8 {
     let mut v = b.to_vec();
     let n = v.len();
     for level in 1..n {
@@ -241,13 +240,7 @@ pub fn bernstein_sign_at(b: &[BigRational], t: &BigRational) -> i8 {
             v[i] = &v[i] + (&v[i + 1] - &v[i]) * t;
         }
     }
-    if v[0].is_positive() {
-        1
-    } else if v[0].is_negative() {
-        -1
-    } else {
-        0
-    }
+    Scalar::sign(&v[0]).as_i8()
 }
 
 #[cfg(test)]
@@ -269,18 +262,12 @@ mod descartes_tests {
         let mut decided = 0;
         for _ in 0..3000 {
             let n = 3 + (next().unsigned_abs() as usize % 5);
-            let b: Vec<BigRational> = (0..=n)
-                .map(|_| BigRational::from_integer(next().into()))
-                .collect();
+            let b: Vec<Rational> = (0..=n).map(|_| Rational::from(next())).collect();
             let p = Poly::from_bernstein(&b);
             if p.is_zero() {
                 continue;
             }
-            let sturm = count_roots(
-                &p.odd_multiplicity_part(),
-                &BigRational::zero(),
-                &BigRational::one(),
-            );
+            let sturm = count_roots(&p.odd_multiplicity_part(), &Rational::ZERO, &Rational::ONE);
             let ib = integer_bernstein(&b);
             let sqf = certify_squarefree(&integer_power_from_bernstein(&ib));
             if sqf {

@@ -1,28 +1,26 @@
-//! Exact univariate polynomials over `BigRational`: Bernstein→power conversion, square-free
+//! Exact univariate polynomials over `Rational`: Bernstein→power conversion, square-free
 //! decomposition (Yun), Sturm sequences, and root isolation on an interval. Used where a
 //! *sign* of a polynomial on an interval must be decided exactly (the single-sided test of
 //! Yang et al. §3) and where its sign changes must be located (splitting a double-sided
 //! piece at the roots of `(C(t)-P0)×(Pn-P0)`).
 
-use num_bigint::BigInt;
-use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use crate::scalar::{BigInt, Rational, Scalar, ratio};
 
 pub use super::descartes::*;
 
 /// Power-basis polynomial `Σ c_i t^i` with exact rational coefficients; no trailing zeros.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Poly {
-    pub c: Vec<BigRational>,
+    pub c: Vec<Rational>,
 }
 
-fn binom(n: usize, k: usize) -> BigRational {
-    BigRational::from_integer(BigInt::from(crate::scalar::binomial_i64(n, k)))
+fn binom(n: usize, k: usize) -> Rational {
+    Rational::from(crate::scalar::binomial_i64(n, k))
 }
 
 impl Poly {
     /// Normalize (strip trailing zero coefficients).
-    pub fn new(mut c: Vec<BigRational>) -> Poly {
+    pub fn new(mut c: Vec<Rational>) -> Poly {
         while c.last().is_some_and(|x| x.is_zero()) {
             c.pop();
         }
@@ -37,9 +35,9 @@ impl Poly {
     }
     /// From Bernstein coefficients on `[0,1]`:
     /// `Σ_i b_i C(n,i) t^i (1-t)^{n-i} = Σ_k t^k Σ_{i<=k} b_i C(n,i) C(n-i,k-i) (-1)^{k-i}`.
-    pub fn from_bernstein(b: &[BigRational]) -> Poly {
+    pub fn from_bernstein(b: &[Rational]) -> Poly {
         let n = b.len().saturating_sub(1);
-        let mut c = vec![BigRational::zero(); n + 1];
+        let mut c = vec![Rational::ZERO; n + 1];
         for (i, bi) in b.iter().enumerate() {
             if bi.is_zero() {
                 continue;
@@ -57,8 +55,8 @@ impl Poly {
         Poly::new(c)
     }
     /// Value at `t` (Horner).
-    pub fn eval(&self, t: &BigRational) -> BigRational {
-        let mut acc = BigRational::zero();
+    pub fn eval(&self, t: &Rational) -> Rational {
+        let mut acc = Rational::ZERO;
         for ci in self.c.iter().rev() {
             acc = acc * t + ci;
         }
@@ -71,7 +69,7 @@ impl Poly {
                 .iter()
                 .enumerate()
                 .skip(1)
-                .map(|(i, ci)| ci * BigRational::from_integer(BigInt::from(i)))
+                .map(|(i, ci)| ci * Rational::from(i))
                 .collect(),
         )
     }
@@ -84,7 +82,7 @@ impl Poly {
         if n <= dd {
             return (Poly::new(vec![]), self.clone());
         }
-        let mut q = vec![BigRational::zero(); n - dd];
+        let mut q = vec![Rational::ZERO; n - dd];
         for k in (0..n - dd).rev() {
             let coef = &r[k + dd] / &lead;
             if !coef.is_zero() {
@@ -117,7 +115,7 @@ impl Poly {
     /// polynomial whose real roots are exactly the roots at which `self` changes sign.
     pub fn odd_multiplicity_part(&self) -> Poly {
         if self.degree().unwrap_or(0) == 0 {
-            return Poly::new(vec![BigRational::one()]);
+            return Poly::new(vec![Rational::ONE]);
         }
         let f = self.monic();
         let fp = f.derivative();
@@ -126,7 +124,7 @@ impl Poly {
         let mut c = fp.div_rem(&a).0;
         let mut d = c_minus(&c, &b.derivative());
         let mut k = 1usize;
-        let mut odd = Poly::new(vec![BigRational::one()]);
+        let mut odd = Poly::new(vec![Rational::ONE]);
         loop {
             let ak = b.gcd(&d);
             if k % 2 == 1 {
@@ -149,7 +147,7 @@ impl Poly {
         if self.is_zero() || o.is_zero() {
             return Poly::new(vec![]);
         }
-        let mut c = vec![BigRational::zero(); self.c.len() + o.c.len() - 1];
+        let mut c = vec![Rational::ZERO; self.c.len() + o.c.len() - 1];
         for (i, a) in self.c.iter().enumerate() {
             for (j, b) in o.c.iter().enumerate() {
                 c[i + j] += a * b;
@@ -183,18 +181,12 @@ fn c_minus(a: &Poly, b: &Poly) -> Poly {
     )
 }
 
-fn sign_changes(seq: &[Poly], t: &BigRational) -> usize {
+fn sign_changes(seq: &[Poly], t: &Rational) -> usize {
     let mut last = 0i8;
     let mut n = 0;
     for p in seq {
         let v = p.eval(t);
-        let s = if v.is_positive() {
-            1
-        } else if v.is_negative() {
-            -1
-        } else {
-            0
-        };
+        let s = Scalar::sign(&v).as_i8();
         if s != 0 {
             if last != 0 && s != last {
                 n += 1;
@@ -210,10 +202,10 @@ fn sign_changes(seq: &[Poly], t: &BigRational) -> usize {
 /// root exactly) of width at most `width`. Exact (Sturm's theorem).
 pub fn isolate_roots(
     p: &Poly,
-    a: &BigRational,
-    b: &BigRational,
-    width: &BigRational,
-) -> Vec<(BigRational, BigRational)> {
+    a: &Rational,
+    b: &Rational,
+    width: &Rational,
+) -> Vec<(Rational, Rational)> {
     if p.degree().unwrap_or(0) == 0 {
         return vec![];
     }
@@ -235,7 +227,7 @@ pub fn isolate_roots(
             out.push((lo, hi));
             continue;
         }
-        let mid = (&lo + &hi) / BigRational::from_integer(BigInt::from(2));
+        let mid = (&lo + &hi) / Rational::from(2);
         if p.eval(&mid).is_zero() {
             out.push((mid.clone(), mid.clone()));
         }
@@ -247,7 +239,7 @@ pub fn isolate_roots(
 }
 
 /// Number of distinct real roots of the square-free `p` in the open interval `(a, b)`.
-pub fn count_roots(p: &Poly, a: &BigRational, b: &BigRational) -> usize {
+pub fn count_roots(p: &Poly, a: &Rational, b: &Rational) -> usize {
     if p.degree().unwrap_or(0) == 0 {
         return 0;
     }
@@ -271,8 +263,8 @@ pub fn count_roots(p: &Poly, a: &BigRational, b: &BigRational) -> usize {
 /// distinct points (a non-zero polynomial of degree `n` has at most `n` roots). A double
 /// root — a curve touching a line from one side — is therefore no sign change but is still
 /// classified by the side it lies on.
-pub fn negative_on_unit_interval(b: &[BigRational]) -> Option<BigRational> {
-    let zero = BigRational::zero();
+pub fn negative_on_unit_interval(b: &[Rational]) -> Option<Rational> {
+    let zero = Rational::ZERO;
     if b.iter().all(|x| *x >= zero) {
         return None;
     }
@@ -281,16 +273,16 @@ pub fn negative_on_unit_interval(b: &[BigRational]) -> Option<BigRational> {
         return Some(zero);
     }
     if b[n] < zero {
-        return Some(BigRational::one());
+        return Some(Rational::ONE);
     }
     let g = Poly::from_bernstein(b);
     if g.is_zero() {
         return None;
     }
-    let (lo, hi) = (zero.clone(), BigRational::one());
+    let (lo, hi) = (zero.clone(), Rational::ONE);
     let odd = g.odd_multiplicity_part();
     if count_roots(&odd, &lo, &hi) > 0 {
-        let width = BigRational::new(BigInt::one(), BigInt::one() << 32);
+        let width = crate::scalar::pow2(-32);
         let roots = isolate_roots(&odd, &lo, &hi, &width);
         for (a, c) in &roots {
             for t in [a, c] {
@@ -299,15 +291,12 @@ pub fn negative_on_unit_interval(b: &[BigRational]) -> Option<BigRational> {
                 }
             }
         }
-        let two = BigRational::from_integer(BigInt::from(2));
-        return Some(roots.first().map_or(
-            BigRational::new(BigInt::one(), BigInt::from(2)),
-            |(a, c)| (a + c) / two,
-        ));
+        let two = Rational::from(2);
+        return Some(roots.first().map_or(ratio(1, 2), |(a, c)| (a + c) / two));
     }
     let den = BigInt::from(n as u64 + 2);
     for j in 1..=n as u64 + 1 {
-        let t = BigRational::new(BigInt::from(j), den.clone());
+        let t = ratio(BigInt::from(j), den.clone());
         let v = g.eval(&t);
         if !v.is_zero() {
             return (v < zero).then_some(t);
@@ -319,8 +308,8 @@ pub fn negative_on_unit_interval(b: &[BigRational]) -> Option<BigRational> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    fn r(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
+    fn r(n: i64, d: i64) -> Rational {
+        ratio(n, d)
     }
     fn p(c: &[i64]) -> Poly {
         Poly::new(c.iter().map(|&x| r(x, 1)).collect())
@@ -366,22 +355,18 @@ mod tests {
 
     #[test]
     fn negative_on_unit_interval_sees_touches_and_interior_dips() {
-        let q = |v: &[i64]| -> Vec<BigRational> {
-            v.iter()
-                .map(|x| BigRational::from_integer(BigInt::from(*x)))
-                .collect()
-        };
+        let q = |v: &[i64]| -> Vec<Rational> { v.iter().map(|x| Rational::from(*x)).collect() };
         let neg = |v: &[i64]| negative_on_unit_interval(&q(v));
         // (1 - 2t)^2: touches zero at 1/2 from above.
         assert_eq!(neg(&[1, -1, 1]), None);
         // -(1 - 2t)^2: below zero except at 1/2 (negative at the ends).
-        assert_eq!(neg(&[-1, 1, -1]), Some(BigRational::zero()));
+        assert_eq!(neg(&[-1, 1, -1]), Some(Rational::ZERO));
         // -2t(1 - t): zero at both ends, negative inside, no sign change in (0, 1).
         let t = neg(&[0, -1, 0]).unwrap();
-        assert!(Poly::from_bernstein(&q(&[0, -1, 0])).eval(&t) < BigRational::zero());
+        assert!(Poly::from_bernstein(&q(&[0, -1, 0])).eval(&t) < Rational::ZERO);
         // 6t^2 - 6t + 1: two sign changes.
         let t = neg(&[1, -2, 1]).unwrap();
-        assert!(Poly::from_bernstein(&q(&[1, -2, 1])).eval(&t) < BigRational::zero());
+        assert!(Poly::from_bernstein(&q(&[1, -2, 1])).eval(&t) < Rational::ZERO);
         assert_eq!(neg(&[0, 0, 0]), None);
         assert_eq!(neg(&[0, 1, 0]), None);
     }

@@ -7,7 +7,7 @@
 //! iff `f` does not change sign on `(0, 1)`. Decided exactly, never with a tolerance:
 //! 1. all `b_i` on one closed side (signs by the exact `orient2d`) ⇒ single-sided
 //!    (Bernstein polynomials are non-negative on `[0,1]`);
-//! 2. otherwise the coefficients are formed exactly in `BigRational` and `f` is tested for a
+//! 2. otherwise the coefficients are formed exactly in `Rational` and `f` is tested for a
 //!    root of odd multiplicity in `(0, 1)`: Yun's square-free decomposition, then Sturm's
 //!    theorem on the odd-multiplicity part.
 //!
@@ -19,9 +19,8 @@ use super::poly::{
     integer_power_from_bernstein, isolate_roots,
 };
 use crate::geom::Point;
-use crate::scalar::{Scalar, Sign};
-use num_rational::BigRational;
-use num_traits::{One, Zero};
+use crate::scalar::{Rational, Scalar, Sign, pow2};
+use dashu_int::ops::BitTest;
 
 /// Outcome of the single-sided test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -53,10 +52,10 @@ impl std::fmt::Display for Sidedness {
 }
 
 /// Exact Bernstein coefficients of `f(t) = (C(t) - P_0) × (P_n - P_0)`.
-pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<BigRational> {
-    let q: Vec<[BigRational; 2]> = ctrl
+pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<Rational> {
+    let q: Vec<[Rational; 2]> = ctrl
         .iter()
-        .map(|p| [p[0].to_big_rational(), p[1].to_big_rational()])
+        .map(|p| [p[0].to_rational(), p[1].to_rational()])
         .collect();
     let n = q.len() - 1;
     let chord = q[n].sub(&q[0]);
@@ -68,7 +67,7 @@ pub fn chord_cross_coefficients<S: Scalar>(ctrl: &[[S; 2]]) -> Vec<BigRational> 
 /// Exact crossings of the curve with its chord in `(0, 1)`, isolated to width
 /// `2^-min_depth`: the Descartes path when square-freeness is certified (fast, integer
 /// arithmetic), otherwise Yun's square-free decomposition and Sturm sequences.
-fn crossings<S: Scalar>(ctrl: &[[S; 2]], min_depth: u32) -> Vec<(BigRational, BigRational)> {
+fn crossings<S: Scalar>(ctrl: &[[S; 2]], min_depth: u32) -> Vec<(Rational, Rational)> {
     let b = chord_cross_coefficients(ctrl);
     let ib = integer_bernstein(&b);
     let g = deflate_ends(integer_power_from_bernstein(&ib));
@@ -78,7 +77,7 @@ fn crossings<S: Scalar>(ctrl: &[[S; 2]], min_depth: u32) -> Vec<(BigRational, Bi
         return vec![];
     }
     if certify_squarefree(&g) {
-        let bits = ib.iter().map(|x| x.bits()).max().unwrap_or(0) as u32;
+        let bits = ib.iter().map(|x| x.bit_len()).max().unwrap_or(0) as u32;
         let n = ib.len() as u32;
         // Generous cap above the root-separation depth of a square-free integer polynomial
         // (Mahler: about n·(bits + log n)); reached only if the certificate were wrong.
@@ -88,13 +87,8 @@ fn crossings<S: Scalar>(ctrl: &[[S; 2]], min_depth: u32) -> Vec<(BigRational, Bi
         }
     }
     let odd = odd_crossing_polynomial(ctrl);
-    let w = BigRational::new(1.into(), num_bigint::BigInt::from(1u8) << min_depth);
-    isolate_roots(
-        &odd,
-        &<BigRational as Zero>::zero(),
-        &<BigRational as One>::one(),
-        &w,
-    )
+    let w = pow2(-i64::from(min_depth));
+    isolate_roots(&odd, &Rational::ZERO, &Rational::ONE, &w)
 }
 
 /// Classify a planar Bézier curve (at least 2 control points) against its chord.
@@ -131,7 +125,7 @@ pub fn single_sided<S: Scalar>(ctrl: &[[S; 2]]) -> Sidedness {
 fn odd_crossing_polynomial<S: Scalar>(ctrl: &[[S; 2]]) -> Poly {
     let f = Poly::from_bernstein(&chord_cross_coefficients(ctrl));
     if f.is_zero() {
-        return Poly::new(vec![<BigRational as One>::one()]);
+        return Poly::new(vec![Rational::ONE]);
     }
     f.odd_multiplicity_part()
 }
@@ -140,7 +134,7 @@ fn odd_crossing_polynomial<S: Scalar>(ctrl: &[[S; 2]]) -> Poly {
 /// of `f`), each isolated in an exact rational interval of width ≤ `width` (a point when
 /// exact), ascending. Splitting there leaves pieces that are single-sided (the paper's `t_1`
 /// for cubics).
-pub fn split_parameters<S: Scalar>(ctrl: &[[S; 2]], width: f64) -> Vec<(BigRational, BigRational)> {
+pub fn split_parameters<S: Scalar>(ctrl: &[[S; 2]], width: f64) -> Vec<(Rational, Rational)> {
     let n = ctrl.len() - 1;
     if ctrl[0] == ctrl[n] {
         return vec![];

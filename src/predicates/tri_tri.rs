@@ -275,22 +275,22 @@ pub fn segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> Con
 /// numerators `a_i (o_a − o_b) + (b_i − a_i) o_a` are exact big integers (no fraction is
 /// reduced on the way); each coordinate is then the quotient by `o_a − o_b` rounded to f64,
 /// with its rounding error bounded from the exact remainder (the remainder's quotient, rounded
-/// to nearest by num-rational's conversion, then one ulp up).
+/// to nearest by the exact rational's conversion, then one ulp up).
 fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> ConstructedPoint {
-    use num_bigint::{BigInt, Sign as BigSign};
-    use num_traits::{Float, Signed, ToPrimitive, Zero};
+    use crate::scalar::{BigInt, Rational};
+    use dashu_int::ops::{Abs, UnsignedAbs};
     let all = [a, b, &t[0], &t[1], &t[2]];
     let e0 = all
         .iter()
         .flat_map(|p| p.iter())
         .filter(|x| **x != 0.0)
-        .map(|x| Float::integer_decode(*x).1)
+        .map(|x| integer_decode(*x).1)
         .min()
         .unwrap_or(0);
     let big = |x: f64| -> BigInt {
-        let (m, e, sign) = Float::integer_decode(x);
+        let (m, e, sign) = integer_decode(x);
         if m == 0 {
-            return BigInt::zero();
+            return BigInt::ZERO;
         }
         let v = BigInt::from(m) << ((e - e0) as usize);
         if sign < 0 { -v } else { v }
@@ -318,7 +318,7 @@ fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> C
             exact_fallback: true,
         };
     }
-    let flip = den.sign() == BigSign::Minus;
+    let flip = den < BigInt::ZERO;
     let oa = if flip { -oa } else { oa };
     if flip {
         den = -den;
@@ -334,15 +334,15 @@ fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> C
         } else {
             d <<= (-e0) as usize;
         }
-        let x = ToPrimitive::to_f64(&num_rational::Ratio::new_raw(num.clone(), d.clone()))
-            .unwrap_or(f64::NAN);
+        // `d > 0`: the quotient rounded to nearest (±inf beyond the range).
+        let x = Scalar::to_f64(&Rational::from_parts(num.clone(), (&d).unsigned_abs()));
         p[i] = x;
         if !x.is_finite() {
             err = f64::INFINITY;
             continue;
         }
         // |exact - x| = |num - X·2^k·d| / d with x = X·2^k; both sides to the power 2^s.
-        let (m, k, sign) = Float::integer_decode(x);
+        let (m, k, sign) = integer_decode(x);
         let xm = if sign < 0 {
             -BigInt::from(m)
         } else {
@@ -353,8 +353,7 @@ fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> C
         let rhs = (xm * &d) << ((k - s) as usize);
         let rem = (lhs - rhs).abs();
         let d2 = d << ((-s) as usize);
-        let r =
-            ToPrimitive::to_f64(&num_rational::Ratio::new_raw(rem, d2)).unwrap_or(f64::INFINITY);
+        let r = Scalar::to_f64(&Rational::from_parts(rem, d2.unsigned_abs()));
         err = (err + r.next_up()).next_up();
     }
     ConstructedPoint {
@@ -362,6 +361,21 @@ fn exact_segment_plane_point(a: &[f64; 3], b: &[f64; 3], t: &[[f64; 3]; 3]) -> C
         err,
         exact_fallback: true,
     }
+}
+
+/// `x = sign · m · 2^e` for a finite `x`, with the significand `m` as an integer (subnormals
+/// as `m · 2^-1075` with `m` even; `m = 0` for zero).
+fn integer_decode(x: f64) -> (u64, i16, i8) {
+    let bits = x.to_bits();
+    let sign: i8 = if bits >> 63 == 0 { 1 } else { -1 };
+    let exp = ((bits >> 52) & 0x7ff) as i16;
+    let frac = bits & ((1u64 << 52) - 1);
+    let m = if exp == 0 {
+        frac << 1
+    } else {
+        frac | (1u64 << 52)
+    };
+    (m, exp - 1075, sign)
 }
 
 /// Coordinates of a contact point of `tri_tri(a, b)` with a rigorous error bound.

@@ -1,8 +1,7 @@
 //! `f64`: the fast path. Predicates are Shewchuk's adaptive exact ones (crate `robust`):
 //! a floating-point filter answers when the sign is clear, exact expansions when not.
 
-use super::{NotFinite, RealScalar, Scalar, Sign};
-use num_rational::BigRational;
+use super::{NotFinite, Rational, RealScalar, Scalar, Sign};
 
 /// Shewchuk's predicates are exact only when no intermediate product overflows or
 /// underflows. With every non-zero coordinate magnitude in `[2^-200, 2^200]`, coordinate
@@ -20,8 +19,8 @@ fn safe(xs: &[f64]) -> bool {
     })
 }
 
-fn exact<const D: usize>(p: &[f64; D]) -> [BigRational; D] {
-    std::array::from_fn(|i| p[i].to_big_rational())
+fn exact<const D: usize>(p: &[f64; D]) -> [Rational; D] {
+    std::array::from_fn(|i| p[i].to_rational())
 }
 
 impl Scalar for f64 {
@@ -62,10 +61,10 @@ impl Scalar for f64 {
             Sign::Zero
         }
     }
-    fn to_big_rational(&self) -> num_rational::BigRational {
+    fn to_rational(&self) -> Rational {
         // Finite by construction of every f64 the kernel accepts; NaN/inf map to 0 here and
         // are rejected at the input boundary (model validation).
-        num_rational::BigRational::from_float(*self).unwrap_or_default()
+        Rational::try_from(*self).unwrap_or_default()
     }
     #[inline(always)]
     fn abs(&self) -> Self {
@@ -77,7 +76,7 @@ impl Scalar for f64 {
     #[inline]
     fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
         if !safe(&[a[0], a[1], b[0], b[1], c[0], c[1]]) {
-            return BigRational::orient2d(&exact(a), &exact(b), &exact(c));
+            return Rational::orient2d(&exact(a), &exact(b), &exact(c));
         }
         let c2 = |p: &[f64; 2]| robust::Coord { x: p[0], y: p[1] };
         robust::orient2d(c2(a), c2(b), c2(c)).sign()
@@ -90,7 +89,7 @@ impl Scalar for f64 {
         if !safe(&[
             a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2],
         ]) {
-            return BigRational::orient3d(&exact(a), &exact(b), &exact(c), &exact(d));
+            return Rational::orient3d(&exact(a), &exact(b), &exact(c), &exact(d));
         }
         let c3 = |p: &[f64; 3]| robust::Coord3D {
             x: p[0],

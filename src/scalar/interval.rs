@@ -365,10 +365,10 @@ impl Mul for Interval {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
+    use crate::scalar::Rational;
 
-    fn r(x: f64) -> BigRational {
-        BigRational::from_float(x).unwrap()
+    fn r(x: f64) -> Rational {
+        Rational::try_from(x).unwrap()
     }
 
     #[test]

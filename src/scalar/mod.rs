@@ -3,7 +3,8 @@
 //! Every kernel routine is generic over [`Scalar`] and is instantiated for
 //! * `f64` — the fast path: `Copy` values, no allocation, static dispatch, and
 //!   adaptive exact predicates (Shewchuk's filters via the `robust` crate);
-//! * [`BigRational`](num_rational::BigRational) — the exact reference;
+//! * [`Rational`] — the exact reference: an arbitrary-precision rational in lowest terms
+//!   (dashu's `RBig`, pure Rust);
 //! * `rug::Rational` and [`BigFloat<P>`](self::rug_backend::BigFloat) — GMP/MPFR backends
 //!   behind the non-default feature `rug`.
 //!
@@ -15,17 +16,35 @@
 //! Sign questions (orientation of points) are associated functions, so each backend picks
 //! its own implementation: the f64 one is filtered and adaptive, the exact ones evaluate the
 //! plain determinant exactly.
+//!
+//! The exact types are named in this module only: [`Rational`], and the integers
+//! [`BigInt`] (its numerators) and [`BigUint`] (its denominators). The rest of the crate
+//! uses these names, so the exact backend is chosen here. [`Rational`]'s conversion from
+//! `f64` is exact and its conversion to `f64` correctly rounded (to nearest, ties to even).
+//! `Rational` also has inherent `sign` and `to_f64` methods (dashu's, returning dashu's
+//! types), which method-call syntax prefers to the trait's: on a concrete `Rational` write
+//! `Scalar::sign(&x)` and `Scalar::to_f64(&x)`. Generic code (`S: Scalar`) is unaffected.
 
+mod dashu_backend;
 mod f64_backend;
 pub mod interval;
-mod rational_backend;
 #[cfg(feature = "rug")]
 pub mod rug_backend;
 
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+pub use dashu_backend::{int_sign, pow2, ratio};
 pub use interval::Interval;
+
+/// The exact rational type of the crate (dashu's `RBig`): every value is kept in lowest
+/// terms with a positive denominator. Division by zero panics (a logic error: kernel code
+/// checks its denominators first).
+pub type Rational = dashu_ratio::RBig;
+/// Arbitrary-precision signed integer: the numerators of [`Rational`].
+pub type BigInt = dashu_int::IBig;
+/// Arbitrary-precision non-negative integer: the denominators of [`Rational`].
+pub type BigUint = dashu_int::UBig;
 
 /// The sign of an exactly decided quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
@@ -110,8 +129,8 @@ pub trait Scalar:
     fn to_f64(&self) -> f64;
     /// Exact sign.
     fn sign(&self) -> Sign;
-    /// The exact value as a `BigRational` (every backend holds rationals; none rounds here).
-    fn to_big_rational(&self) -> num_rational::BigRational;
+    /// The exact value as a [`Rational`] (every backend holds rationals; none rounds here).
+    fn to_rational(&self) -> Rational;
 
     fn is_zero(&self) -> bool {
         self.sign() == Sign::Zero
@@ -208,7 +227,7 @@ pub fn binomial_i64(n: usize, k: usize) -> i64 {
 }
 
 /// Convert between backends through `f64` when the source is rounded, exactly otherwise.
-/// Used to lift f64 input into an exact backend: `lift::<BigRational>(x)` is exact.
+/// Used to lift f64 input into an exact backend: `lift::<Rational>(x)` is exact.
 pub fn lift<S: Scalar>(x: f64) -> S {
     S::from_f64(x).expect("lift: caller guarantees a finite value")
 }

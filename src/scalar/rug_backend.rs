@@ -14,11 +14,17 @@ fn sign_of(o: Option<Ordering>) -> Sign {
     }
 }
 
-fn rug_to_big(r: &Rational) -> num_rational::BigRational {
+fn rug_to_big(r: &Rational) -> super::Rational {
     let conv = |i: &rug::Integer| {
-        num_bigint::BigInt::parse_bytes(i.to_string_radix(16).as_bytes(), 16).unwrap_or_default()
+        super::BigInt::from_str_radix(&i.to_string_radix(16), 16).unwrap_or_default()
     };
-    num_rational::BigRational::new(conv(r.numer()), conv(r.denom()))
+    // The denominator is positive (rug keeps it so); a failed parse, which cannot happen,
+    // would give a zero denominator: fall back to zero rather than divide by it.
+    let (n, d) = (conv(r.numer()), conv(r.denom()));
+    if d.is_zero() {
+        return super::Rational::ZERO;
+    }
+    super::Rational::from_parts_signed(n, d)
 }
 
 impl Scalar for Rational {
@@ -43,7 +49,7 @@ impl Scalar for Rational {
     fn sign(&self) -> Sign {
         Sign::of_ordering(self.cmp0())
     }
-    fn to_big_rational(&self) -> num_rational::BigRational {
+    fn to_rational(&self) -> super::Rational {
         rug_to_big(self)
     }
 }
@@ -61,7 +67,7 @@ impl<const P: u32> BigFloat<P> {
         let _ = Self::CHECK;
         BigFloat(f)
     }
-    fn to_rational(&self) -> Rational {
+    fn to_rug_rational(&self) -> Rational {
         self.0.to_rational().unwrap_or_default()
     }
 }
@@ -89,7 +95,7 @@ impl<const P: u32> Neg for BigFloat<P> {
 }
 
 fn rat_pt<const P: u32, const D: usize>(p: &[BigFloat<P>; D]) -> [Rational; D] {
-    std::array::from_fn(|i| p[i].to_rational())
+    std::array::from_fn(|i| p[i].to_rug_rational())
 }
 
 impl<const P: u32> Scalar for BigFloat<P> {
@@ -118,8 +124,8 @@ impl<const P: u32> Scalar for BigFloat<P> {
     fn sign(&self) -> Sign {
         sign_of(self.0.cmp0())
     }
-    fn to_big_rational(&self) -> num_rational::BigRational {
-        rug_to_big(&self.to_rational())
+    fn to_rational(&self) -> super::Rational {
+        rug_to_big(&self.to_rug_rational())
     }
     /// Exact: the operands are converted to rationals without rounding.
     fn orient2d(a: &[Self; 2], b: &[Self; 2], c: &[Self; 2]) -> Sign {

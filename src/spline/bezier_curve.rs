@@ -150,8 +150,8 @@ pub fn bernstein<S: Scalar>(n: usize, i: usize, t: &S) -> S {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
-    type Q = BigRational;
+    use crate::scalar::Rational;
+    type Q = Rational;
     fn q(x: f64) -> Q {
         crate::scalar::lift(x)
     }

@@ -120,8 +120,8 @@ impl<P: Point> BezierSurface<P> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
-    type Q = BigRational;
+    use crate::scalar::Rational;
+    type Q = Rational;
     fn q(x: f64) -> Q {
         crate::scalar::lift(x)
     }

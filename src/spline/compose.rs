@@ -169,8 +169,8 @@ pub fn compose_line<P: Point>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
-    type Q = BigRational;
+    use crate::scalar::Rational;
+    type Q = Rational;
     fn q(x: f64) -> Q {
         crate::scalar::lift(x)
     }

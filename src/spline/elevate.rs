@@ -206,8 +206,8 @@ pub fn refine_surface_to<P: Point>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
-    type Q = BigRational;
+    use crate::scalar::Rational;
+    type Q = Rational;
     fn q(x: f64) -> Q {
         crate::scalar::lift(x)
     }

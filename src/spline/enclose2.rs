@@ -308,15 +308,15 @@ mod tests {
         }
     }
 
-    /// Exact rational second derivatives (the same surface lifted to `BigRational`, The NURBS
+    /// Exact rational second derivatives (the same surface lifted to `Rational`, The NURBS
     /// Book A4.4) lie in the enclosures over boxes, across knot lines and the seam too (in the
     /// enclosure of one of the pieces there).
     #[test]
     fn enclosures_hold_exact_derivatives() {
         use crate::geom::{Hom, lift_point};
+        use crate::scalar::Rational as Q;
         use crate::scalar::lift;
-        use num_rational::BigRational as Q;
-        let q = |x: f64| Q::from_float(x).unwrap();
+        let q = |x: f64| Q::try_from(x).unwrap();
         let within = |x: &Q, i: I| q(i.lo) <= *x && *x <= q(i.hi);
         for s in [
             torus(&frame(), 2.0, 0.7).unwrap(),

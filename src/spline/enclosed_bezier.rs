@@ -129,10 +129,10 @@ pub fn enclosed_bezier_patches(s: &NurbsSurface<f64, 3>) -> Option<Vec<EnclosedP
 mod tests {
     use super::*;
     use crate::geom::lift_point;
+    use crate::scalar::Rational;
     use crate::scalar::lift;
-    use num_rational::BigRational;
 
-    /// The enclosures contain the exact rational extraction (knot insertion in BigRational,
+    /// The enclosures contain the exact rational extraction (knot insertion in Rational,
     /// an independent algorithm), for a rational surface with non-uniform, repeated knots.
     #[test]
     fn enclosures_contain_the_exact_extraction() {
@@ -158,7 +158,7 @@ mod tests {
             hom: BSplineSurface { ku, kv, net },
         };
         let enc = enclosed_bezier_patches(&s).unwrap();
-        type Q = BigRational;
+        type Q = Rational;
         let exact = s.hom.map(
             |k| lift::<Q>(*k),
             |h| Hom {

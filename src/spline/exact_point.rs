@@ -21,10 +21,8 @@
 
 use super::knots::KnotVector;
 use super::nurbs::NurbsSurface;
-use crate::scalar::Interval;
-use num_bigint::{BigInt, Sign};
-use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use crate::scalar::{BigInt, Interval, Rational, pow2, ratio};
+use dashu_int::ops::{BitTest, UnsignedAbs};
 
 /// A surface point `S_k = x_k · 2^shift / w` exactly (`w ≠ 0`).
 #[derive(Clone, Debug, PartialEq)]
@@ -81,22 +79,22 @@ fn basis_numerators(knots: &[f64], p: usize, span: usize, t: f64) -> Vec<BigInt>
         BigInt::from(m) << ((e - e0).max(0) as usize)
     };
     let ti = int(t);
-    let mut left = vec![BigInt::zero(); p + 1];
-    let mut right = vec![BigInt::zero(); p + 1];
+    let mut left = vec![BigInt::ZERO; p + 1];
+    let mut right = vec![BigInt::ZERO; p + 1];
     for j in 1..=p {
         left[j] = &ti - int(knots[span + 1 - j]);
         right[j] = int(knots[span + j]) - &ti;
     }
-    let mut n = vec![BigInt::one()];
+    let mut n = vec![BigInt::ONE];
     for j in 1..=p {
         let d: Vec<BigInt> = (0..j).map(|r| &right[r + 1] + &left[j - r]).collect();
         // `Π_{s≠r} d_s` from prefix and suffix products.
-        let mut suffix = vec![BigInt::one(); j + 1];
+        let mut suffix = vec![BigInt::ONE; j + 1];
         for r in (0..j).rev() {
             suffix[r] = &suffix[r + 1] * &d[r];
         }
-        let mut prefix = BigInt::one();
-        let mut saved = BigInt::zero();
+        let mut prefix = BigInt::ONE;
+        let mut saved = BigInt::ZERO;
         for r in 0..j {
             let temp = &n[r] * (&prefix * &suffix[r + 1]);
             n[r] = saved + &right[r + 1] * &temp;
@@ -159,13 +157,13 @@ impl ExactEvaluator {
             BigInt::from(m) << ((e - e0) as usize)
         };
         let mut xs: [BigInt; 3] = Default::default();
-        let mut w = BigInt::zero();
+        let mut w = BigInt::ZERO;
         for i in 0..=p {
             if a[i].is_zero() {
                 continue;
             }
             let mut row: [BigInt; 3] = Default::default();
-            let mut roww = BigInt::zero();
+            let mut roww = BigInt::ZERO;
             for j in 0..=q {
                 if b[j].is_zero() {
                     continue;
@@ -198,14 +196,9 @@ impl ExactEvaluator {
 
 impl ExactPoint {
     /// The coordinates as exact rationals (reference answers).
-    pub fn rational(&self) -> [BigRational; 3] {
-        let two = BigRational::from_integer(BigInt::from(2));
-        let scale = if self.shift >= 0 {
-            num_traits::pow(two, self.shift as usize)
-        } else {
-            num_traits::pow(two, (-self.shift) as usize).recip()
-        };
-        std::array::from_fn(|k| BigRational::new(self.x[k].clone(), self.w.clone()) * &scale)
+    pub fn rational(&self) -> [Rational; 3] {
+        let scale = pow2(self.shift);
+        std::array::from_fn(|k| ratio(self.x[k].clone(), self.w.clone()) * &scale)
     }
 
     /// The coordinates of `self − other`, each rounded outward to an `f64` interval (`None`
@@ -266,10 +259,10 @@ pub fn ratio_enclosed(n: &BigInt, d: &BigInt, e: i64) -> Option<Interval> {
     if n.is_zero() {
         return Some(Interval::point(0.0));
     }
-    let neg = (n.sign() == Sign::Minus) != (d.sign() == Sign::Minus);
-    let (na, da) = (n.abs(), d.abs());
+    let neg = (*n < BigInt::ZERO) != (*d < BigInt::ZERO);
+    let (na, da) = (n.unsigned_abs(), d.unsigned_abs());
     // q = ⌊na · 2^k / da⌋ with at least 64 significant bits: na 2^k / da ∈ [q, q + 1).
-    let k = 66 + da.bits() as i64 - na.bits() as i64;
+    let k = 66 + da.bit_len() as i64 - na.bit_len() as i64;
     let q = if k >= 0 {
         (na << (k as usize)) / da
     } else {
@@ -277,8 +270,8 @@ pub fn ratio_enclosed(n: &BigInt, d: &BigInt, e: i64) -> Option<Interval> {
     };
     // q has 65–67 bits: q and q + 1 round to f64 within one ulp (and above 2^64, so
     // `to_f64` is finite); one more ulp outward for safety.
-    let lo = q.to_f64()?.next_down().next_down();
-    let hi = (q + 1u32).to_f64()?.next_up().next_up();
+    let lo = q.to_f64().value().next_down().next_down();
+    let hi = (q + 1u32).to_f64().value().next_up().next_up();
     let (lo, hi) = scale_outward(lo, hi, e - k)?;
     Some(if neg {
         Interval::new(-hi, -lo)

@@ -118,8 +118,8 @@ pub fn interpolate_cubic<S: RealScalar, const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_rational::BigRational;
-    type Q = BigRational;
+    use crate::scalar::Rational;
+    type Q = Rational;
 
     #[test]
     fn interpolates_exactly_in_rationals() {

@@ -351,8 +351,8 @@ impl<S: RealScalar> NurbsSurface<S, 3> {
 mod tests {
     use super::*;
     use crate::geom::norm2;
-    use num_rational::BigRational;
-    type Q = BigRational;
+    use crate::scalar::{Rational, ratio};
+    type Q = Rational;
     fn q(x: f64) -> Q {
         crate::scalar::lift(x)
     }
@@ -370,7 +370,7 @@ mod tests {
         )
         .unwrap();
         for i in 0..=64 {
-            let t = Q::new(i.into(), 64.into());
+            let t = ratio(i, 64);
             let p = c.eval(&t);
             assert_eq!(norm2(&p), q(1.0), "point {i} off the circle");
             // On a circle: C·C' = 0 and C·C'' = -|C'|² (differentiate |C|² = 1 twice).
@@ -384,7 +384,7 @@ mod tests {
     /// weights (1, 1/3, 1/3, 1) (Piegl & Tiller, §7.5).
     #[test]
     fn rational_cubic_semicircle_is_exact() {
-        let third = Q::new(1.into(), 3.into());
+        let third = ratio(1, 3);
         let c = NurbsCurve::<Q, 2>::new(
             [0., 0., 0., 0., 1., 1., 1., 1.]
                 .iter()
@@ -401,7 +401,7 @@ mod tests {
         )
         .unwrap();
         for i in 0..=50 {
-            let p = c.eval(&Q::new(i.into(), 50.into()));
+            let p = c.eval(&ratio(i, 50));
             assert_eq!(norm2(&p), q(1.0), "point {i} off the circle");
         }
     }
@@ -429,12 +429,12 @@ mod tests {
         let s = NurbsSurface::<Q, 3>::new(k.clone(), 2, k, 2, 3, 3, pts, ws).unwrap();
         for i in 0..=12 {
             for j in 0..=12 {
-                let p = s.eval(&Q::new(i.into(), 12.into()), &Q::new(j.into(), 12.into()));
+                let p = s.eval(&ratio(i, 12), &ratio(j, 12));
                 assert_eq!(norm2(&p), q(1.0), "({i},{j}) off the sphere");
             }
         }
         // The normal is radial: n × p = 0 exactly.
-        let (u, v) = (Q::new(1.into(), 3.into()), Q::new(2.into(), 7.into()));
+        let (u, v) = (ratio(1, 3), ratio(2, 7));
         let n = s.normal(&u, &v);
         let p = s.eval(&u, &v);
         assert_eq!(cross(&n, &p), [q(0.), q(0.), q(0.)]);
@@ -458,7 +458,7 @@ mod tests {
                 "{t}"
             );
         }
-        let q: NurbsCurve<num_rational::BigRational, 2> = NurbsCurve {
+        let q: NurbsCurve<crate::scalar::Rational, 2> = NurbsCurve {
             hom: c.hom.map(
                 |k| crate::scalar::lift(*k),
                 |h| crate::geom::Hom {
@@ -468,8 +468,8 @@ mod tests {
             ),
         };
         let rq = q.reversed();
-        let t = crate::scalar::lift::<num_rational::BigRational>(1.3);
-        let five = crate::scalar::lift::<num_rational::BigRational>(5.0);
+        let t = crate::scalar::lift::<crate::scalar::Rational>(1.3);
+        let five = crate::scalar::lift::<crate::scalar::Rational>(5.0);
         assert_eq!(rq.eval(&t), q.eval(&(five - t.clone())));
     }
 }

@@ -13,11 +13,9 @@
 
 use super::enclose::enclose_point;
 use crate::geom::{Point, lift_point};
-use crate::scalar::{Interval, Scalar, lift};
+use crate::scalar::{Interval, Rational, Scalar, lift};
 use crate::spline::NurbsSurface;
 use crate::spline::exact_point::{ExactEvaluator, ExactPoint};
-use num_rational::BigRational;
-use num_traits::{Signed, ToPrimitive};
 
 /// A surface with its exact evaluator (knots lifted into rationals once).
 pub struct ExactSurface {
@@ -72,7 +70,7 @@ impl ExactSurface {
             return Some(b);
         }
         let p = self.exact_point(uv)?.rational();
-        let d = lift_point::<BigRational, 3>(x).sub(&p);
+        let d = lift_point::<Rational, 3>(x).sub(&p);
         let q = crate::geom::dot(&d, &d);
         Some(sqrt_upper(&q))
     }
@@ -87,20 +85,18 @@ impl ExactSurface {
 }
 
 /// Smallest `f64` `r` tried with `r² >= q` (proven in rationals).
-pub fn sqrt_upper(q: &BigRational) -> f64 {
+pub fn sqrt_upper(q: &Rational) -> f64 {
     if q.is_zero() {
         return 0.0;
     }
-    let approx = ToPrimitive::to_f64(&Signed::abs(q))
-        .unwrap_or(f64::MAX)
-        .sqrt();
+    let approx = Scalar::to_f64(&Scalar::abs(q)).sqrt();
     let mut r = if approx > 0.0 {
         approx
     } else {
         f64::MIN_POSITIVE
     };
     for _ in 0..64 {
-        let rq: BigRational = lift(r);
+        let rq: Rational = lift(r);
         if rq.clone() * rq >= *q {
             return r;
         }

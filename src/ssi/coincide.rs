@@ -14,12 +14,11 @@
 //! refuse where the normals are parallel, and [`super::overlap`] measures the overlap.
 
 use crate::predicates::orient::orient3d;
-use crate::scalar::{Scalar, Sign, lift};
+use crate::scalar::{Rational, Scalar, Sign, lift};
 use crate::spline::NurbsSurface;
-use num_rational::BigRational;
 use serde::Serialize;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// How two faces coincide.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -136,7 +135,7 @@ pub fn coincidence(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> Opti
     let pb = cartesian_exact(sb)?;
     let p0 = pa[0].clone();
     let p1 = pa.iter().find(|p| **p != p0)?.clone();
-    let zero = <Q as num_traits::Zero>::zero();
+    let zero = Q::ZERO;
     let p2 = pa
         .iter()
         .find(|p| {
@@ -153,11 +152,11 @@ pub fn coincidence(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> Opti
         return None;
     }
     let n = cross(&sub(&p1, &p0), &sub(&p2, &p0));
-    let nf: [f64; 3] = std::array::from_fn(|k| n[k].to_f64());
+    let nf: [f64; 3] = std::array::from_fn(|k| Scalar::to_f64(&n[k]));
     let l = (nf[0] * nf[0] + nf[1] * nf[1] + nf[2] * nf[2]).sqrt();
     Some(CoincidenceOut {
         kind: CoincidenceKind::Coplanar,
-        plane_point: Some(std::array::from_fn(|k| p0[k].to_f64())),
+        plane_point: Some(std::array::from_fn(|k| Scalar::to_f64(&p0[k]))),
         plane_normal: (l > 0.0 && l.is_finite()).then(|| nf.map(|c| c / l)),
         overlap: None,
     })

@@ -95,7 +95,7 @@ fn edge(v: &[u32; 3], i: usize) -> Feature {
 /// is zero only when the operands are equal, so a component whose products are both zero
 /// without underflow is exactly zero. Anything else — a component the filter cannot decide,
 /// operands small enough for products to underflow, overflow — goes to the exact
-/// (BigRational) computation.
+/// (Rational) computation.
 fn cross_dot_d(q0: &[f64; 3], q1: &[f64; 3], p0: &[f64; 3], p1: &[f64; 3]) -> Sign {
     filtered_cross_dot_d(q0, q1, p0, p1).unwrap_or_else(|| exact_cross_dot_d(q0, q1, p0, p1))
 }
@@ -134,8 +134,8 @@ fn filtered_cross_dot_d(
 /// [`cross_dot_d`] in exact rational arithmetic.
 fn exact_cross_dot_d(q0: &[f64; 3], q1: &[f64; 3], p0: &[f64; 3], p1: &[f64; 3]) -> Sign {
     use crate::geom::{Point, cross, lift_point};
-    use num_rational::BigRational;
-    let l = |p: &[f64; 3]| -> [BigRational; 3] { lift_point(p) };
+    use crate::scalar::Rational;
+    let l = |p: &[f64; 3]| -> [Rational; 3] { lift_point(p) };
     let w = l(q1).sub(&l(q0));
     let x = l(p1).sub(&l(p0));
     let c = cross(&w, &x);

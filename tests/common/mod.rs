@@ -10,8 +10,8 @@ pub mod reparam;
 pub mod scan;
 pub mod shapes;
 
-use num_rational::BigRational;
 use vericad::geom::lift_point;
+use vericad::scalar::Rational;
 
 /// SplitMix64: small, deterministic, good enough for test inputs.
 pub struct Rng(pub u64);
@@ -74,9 +74,9 @@ pub fn cases() -> usize {
     }
 }
 
-pub fn q2(p: &[f64; 2]) -> [BigRational; 2] {
+pub fn q2(p: &[f64; 2]) -> [Rational; 2] {
     lift_point(p)
 }
-pub fn q3(p: &[f64; 3]) -> [BigRational; 3] {
+pub fn q3(p: &[f64; 3]) -> [Rational; 3] {
     lift_point(p)
 }

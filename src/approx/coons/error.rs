@@ -21,10 +21,9 @@ use super::discrete::Grid;
 use super::project::OriginalMesh;
 use crate::geom::{Point, dot, norm};
 use crate::model::Model;
+use crate::scalar::{Rational, Scalar};
 use crate::spline::NurbsSurface;
 use crate::spline::project::{descend, point_d1};
-use num_rational::BigRational;
-use num_traits::{ToPrimitive, Zero};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -230,35 +229,36 @@ pub fn measure(
     (samples, ev)
 }
 
-fn q(x: f64) -> BigRational {
-    BigRational::from_float(x).unwrap_or_else(BigRational::zero)
+fn q(x: f64) -> Rational {
+    Rational::try_from(x).unwrap_or_default()
 }
 
 /// Exact squared distance from `p` to segment `ab`.
-fn seg_dist2_exact(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> BigRational {
+fn seg_dist2_exact(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> Rational {
     let (p, a, b) = (p.map(q), a.map(q), b.map(q));
-    let ab: Vec<BigRational> = (0..3).map(|k| &b[k] - &a[k]).collect();
-    let ap: Vec<BigRational> = (0..3).map(|k| &p[k] - &a[k]).collect();
-    let l2: BigRational = ab.iter().map(|x| x * x).sum();
-    let dot: BigRational = ab.iter().zip(&ap).map(|(x, y)| x * y).sum();
-    let t = if l2.is_zero() || dot <= BigRational::zero() {
-        BigRational::zero()
+    let ab: Vec<Rational> = (0..3).map(|k| &b[k] - &a[k]).collect();
+    let ap: Vec<Rational> = (0..3).map(|k| &p[k] - &a[k]).collect();
+    let l2 = ab.iter().fold(Rational::ZERO, |s, x| s + x * x);
+    let dot = ab
+        .iter()
+        .zip(&ap)
+        .fold(Rational::ZERO, |s, (x, y)| s + x * y);
+    let t = if l2.is_zero() || dot <= Rational::ZERO {
+        Rational::ZERO
     } else if dot >= l2 {
-        BigRational::from_integer(1.into())
+        Rational::ONE
     } else {
         dot / l2
     };
-    (0..3)
-        .map(|k| {
-            let d = &ap[k] - &t * &ab[k];
-            &d * &d
-        })
-        .sum()
+    (0..3).fold(Rational::ZERO, |s, k| {
+        let d = &ap[k] - &t * &ab[k];
+        s + &d * &d
+    })
 }
 
 /// An `f64` at least `sqrt(x)`: each rounding checked exactly and bumped up if short.
-fn sqrt_up(x: &BigRational) -> f64 {
-    let mut f = x.to_f64().unwrap_or(f64::INFINITY);
+fn sqrt_up(x: &Rational) -> f64 {
+    let mut f = Scalar::to_f64(x);
     while f.is_finite() && q(f) < *x {
         f = f.next_up();
     }
@@ -278,7 +278,7 @@ pub fn prove(s: &NurbsSurface<f64, 3>, y: &Grid<[f64; 3]>) -> Proven {
     let interpolates = w.iter().all(|w| *w == 1.0)
         && (0..=m).all(|i| (0..=n).all(|j| pts[3 * i * cv + 3 * j] == *y.at(i, j)));
     let at = |i: usize, j: usize| pts[i * cv + j];
-    let mut worst = BigRational::zero();
+    let mut worst = Rational::ZERO;
     let mut piece = |b: [[f64; 3]; 4]| {
         for inner in [b[1], b[2]] {
             let d = seg_dist2_exact(&inner, &b[0], &b[3]);

@@ -295,13 +295,13 @@ pub fn mid<const D: usize>(x: &IP<D>) -> [f64; D] {
 pub(crate) mod tests {
     use super::*;
     use crate::curve_on_surface::float::midpatch::IPatch;
+    use crate::scalar::Rational;
     use crate::spline::{BSplineCurve, BezierSurface, KnotVector};
-    use num_rational::BigRational;
 
-    fn q(x: f64) -> BigRational {
+    fn q(x: f64) -> Rational {
         crate::scalar::lift(x)
     }
-    fn contains(x: &I, e: &BigRational) -> bool {
+    fn contains(x: &I, e: &Rational) -> bool {
         q(x.lo) <= *e && *e <= q(x.hi)
     }
 
@@ -312,7 +312,7 @@ pub(crate) mod tests {
             .map(|i| [i as f64 * 0.37 - 1.0, ((i * 7) % 5) as f64 * 0.11])
             .collect();
         let c = BSplineCurve::new(knots.clone(), 3, ctrl.clone()).unwrap();
-        let cq: BSplineCurve<[BigRational; 2]> = c.map(|k| q(*k), crate::geom::lift_point);
+        let cq: BSplineCurve<[Rational; 2]> = c.map(|k| q(*k), crate::geom::lift_point);
         let exact = cq.bezier_pieces();
         let kv = KnotVector::new(knots.clone(), 3, 8).unwrap();
         let ictrl: Vec<IP<2>> = ctrl.iter().map(ip).collect();
@@ -346,7 +346,7 @@ pub(crate) mod tests {
             })
             .collect();
         let s = BezierSurface::new(3, 2, net.clone()).unwrap();
-        let sq = s.map(crate::geom::lift_point::<BigRational, 3>);
+        let sq = s.map(crate::geom::lift_point::<Rational, 3>);
         let (a, b) = ([0.1, 0.7], [0.9, 0.2]);
         let exact = crate::spline::compose::compose_line(
             &sq,
@@ -395,7 +395,7 @@ pub(crate) mod tests {
         }
     }
 
-    pub(crate) fn q_(x: f64) -> BigRational {
+    pub(crate) fn q_(x: f64) -> Rational {
         crate::scalar::lift(x)
     }
 
@@ -407,7 +407,7 @@ pub(crate) mod tests {
             let ctrl: Vec<[f64; 2]> = (0..=n).map(|_| [r(), r()]).collect();
             let exact = crate::spline::BezierCurve::new(
                 ctrl.iter()
-                    .map(crate::geom::lift_point::<BigRational, 2>)
+                    .map(crate::geom::lift_point::<Rational, 2>)
                     .collect(),
             )
             .unwrap();

@@ -355,9 +355,8 @@ mod tests {
     use super::*;
     use crate::curve_on_surface::float::ibez::ip;
     use crate::curve_on_surface::float::ibez::tests::{q_, rng};
-    use crate::scalar::Scalar;
+    use crate::scalar::{Rational, Scalar};
     use crate::spline::BezierSurface;
-    use num_rational::BigRational;
 
     #[test]
     fn mid_patch_compose_and_sup_are_within_their_bounds() {
@@ -369,7 +368,7 @@ mod tests {
                 p,
                 q,
                 net.iter()
-                    .map(crate::geom::lift_point::<BigRational, 3>)
+                    .map(crate::geom::lift_point::<Rational, 3>)
                     .collect(),
             )
             .unwrap();

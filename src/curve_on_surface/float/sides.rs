@@ -144,7 +144,7 @@ pub fn make_single_sided(
                         Some(r) => r,
                         None => split_parameters(&c, 2f64.powi(-40))
                             .into_iter()
-                            .map(|(lo, hi)| (lo.to_f64() + hi.to_f64()) / 2.0)
+                            .map(|(lo, hi)| (Scalar::to_f64(&lo) + Scalar::to_f64(&hi)) / 2.0)
                             .collect(),
                     }
                 }

@@ -1,14 +1,14 @@
 use super::*;
+use crate::scalar::Scalar;
 use crate::spline::construct::{Frame, sphere, torus};
 use crate::spline::test_params::rng;
-use num_traits::ToPrimitive;
 
-fn q(x: f64) -> BigRational {
-    BigRational::from_float(x).unwrap()
+fn q(x: f64) -> Rational {
+    Rational::try_from(x).unwrap()
 }
 
 /// `N_{i,p}(t)` by the Cox–de Boor recursion (triangular definition, not A2.2).
-fn basis(knots: &[f64], p: usize, i: usize, t: &BigRational) -> BigRational {
+fn basis(knots: &[f64], p: usize, i: usize, t: &Rational) -> Rational {
     let k = |j: usize| q(knots[j]);
     if p == 0 {
         // Half-open spans; the last non-empty span closed at the domain's end.
@@ -17,12 +17,12 @@ fn basis(knots: &[f64], p: usize, i: usize, t: &BigRational) -> BigRational {
         let inside = (k(i) <= *t && *t < k(i + 1))
             || (*t == q(end) && knots[i + 1] == end && knots[i] < end);
         return if inside {
-            BigRational::one()
+            Rational::ONE
         } else {
-            BigRational::zero()
+            Rational::ZERO
         };
     }
-    let mut r = BigRational::zero();
+    let mut r = Rational::ZERO;
     if knots[i + p] != knots[i] {
         r += (t - k(i)) / (k(i + p) - k(i)) * basis(knots, p - 1, i, t);
     }
@@ -34,13 +34,13 @@ fn basis(knots: &[f64], p: usize, i: usize, t: &BigRational) -> BigRational {
 
 /// The oracle: the same formula (eq. 4.9) summed term by term in reduced rationals, every
 /// basis function by the Cox–de Boor recursion written out here (not the crate's A2.2).
-fn oracle(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> [BigRational; 3] {
+fn oracle(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> [Rational; 3] {
     let h = &s.hom;
     let (ku, kv) = (h.ku.knots(), h.kv.knots());
     let (nu, nv) = (h.ku.n_ctrl(), h.kv.n_ctrl());
     let (tu, tv) = (q(u), q(v));
-    let mut num: [BigRational; 3] = Default::default();
-    let mut den = BigRational::zero();
+    let mut num: [Rational; 3] = Default::default();
+    let mut den = Rational::ZERO;
     for i in 0..nu {
         let a = basis(ku, h.ku.degree(), i, &tu);
         if a.is_zero() {
@@ -91,7 +91,7 @@ fn exact_points_equal_the_rational_sum() {
             let e = p.enclosed().unwrap();
             for c in 0..3 {
                 assert!(q(e[c].lo) <= want[c] && want[c] <= q(e[c].hi));
-                let f = want[c].to_f64().unwrap();
+                let f = Scalar::to_f64(&want[c]);
                 assert!(e[c].hi - e[c].lo <= 1e-15 * f.abs().max(1e-300));
             }
         }
@@ -117,7 +117,7 @@ fn differences_are_enclosed_relative_to_themselves() {
         for c in 0..3 {
             let exact = &wa[c] - &wb[c];
             assert!(q(d[c].lo) <= exact && exact <= q(d[c].hi), "{du} {c}");
-            let f = exact.to_f64().unwrap().abs();
+            let f = Scalar::to_f64(&exact).abs();
             assert!(
                 d[c].hi - d[c].lo <= 1e-15 * f + 4.0 * f64::MIN_POSITIVE,
                 "{du} {c}"
@@ -132,13 +132,12 @@ fn differences_are_enclosed_relative_to_themselves() {
 fn ratios_are_enclosed() {
     let mut r = rng(0x2545_f491_4f6c_dd1d);
     let mut big = |bits: usize| {
-        let mut x = BigInt::zero();
+        let mut x = BigInt::ZERO;
         for _ in 0..bits.div_ceil(50) {
             x = (x << 50usize) + BigInt::from((r() * (1u64 << 50) as f64) as u64);
         }
         x >> (bits.div_ceil(50) * 50 - bits)
     };
-    let two = BigRational::from_integer(BigInt::from(2));
     for k in 0..2000usize {
         let mut n = big(1 + k % 300) + 1u32;
         let mut d = big(1 + (k * 7) % 300) + 1u32;
@@ -149,12 +148,7 @@ fn ratios_are_enclosed() {
             d = -d;
         }
         let e = (k as i64 * 37) % 2400 - 1200;
-        let exact = BigRational::new(n.clone(), d.clone())
-            * if e >= 0 {
-                num_traits::pow(two.clone(), e as usize)
-            } else {
-                num_traits::pow(two.clone(), (-e) as usize).recip()
-            };
+        let exact = ratio(n.clone(), d.clone()) * pow2(e);
         match ratio_enclosed(&n, &d, e) {
             Some(i) => {
                 assert!(q(i.lo) <= exact && exact <= q(i.hi), "{n} {d} {e}: {i:?}");
@@ -166,10 +160,10 @@ fn ratios_are_enclosed() {
         }
     }
     assert_eq!(
-        ratio_enclosed(&BigInt::zero(), &BigInt::one(), 5),
+        ratio_enclosed(&BigInt::ZERO, &BigInt::ONE, 5),
         Some(Interval::point(0.0))
     );
-    assert_eq!(ratio_enclosed(&BigInt::one(), &BigInt::zero(), 5), None);
+    assert_eq!(ratio_enclosed(&BigInt::ONE, &BigInt::ZERO, 5), None);
 }
 
 #[test]
@@ -185,13 +179,7 @@ fn decode_is_exact() {
         0.1,
     ] {
         let (m, e) = decode(x);
-        let two = BigRational::from_integer(BigInt::from(2));
-        let s = if e >= 0 {
-            num_traits::pow(two, e as usize)
-        } else {
-            num_traits::pow(two, (-e) as usize).recip()
-        };
-        assert_eq!(BigRational::from_integer(BigInt::from(m)) * s, q(x), "{x}");
+        assert_eq!(Rational::from(m) * pow2(e), q(x), "{x}");
     }
 }
 
@@ -227,7 +215,7 @@ fn basis_numerators_are_the_basis_over_one_denominator() {
             assert!(!sum.is_zero(), "case {case}: zero denominator");
             for (i, ai) in a.iter().enumerate() {
                 let want = basis(&knots, p, span - p + i, &q(x));
-                let got = BigRational::new(ai.clone(), sum.clone());
+                let got = ratio(ai.clone(), sum.clone());
                 assert_eq!(got, want, "case {case} p {p} x {x:e} i {i}");
             }
             checked += 1;

@@ -216,8 +216,8 @@ mod tests {
     /// within a few ulps of zero, at magnitudes 1e-320 … 1e300; and it is not vacuous.
     #[test]
     fn positive_is_proven() {
-        use num_rational::BigRational;
-        let q = |x: f64| BigRational::from_float(x).unwrap();
+        use crate::scalar::Rational;
+        let q = |x: f64| Rational::try_from(x).unwrap();
         let mut r = crate::spline::test_params::rng(0x9e37_79b9_7f4a_7c15);
         let mut next = || r() - 0.5;
         let mut claimed = 0;
@@ -252,7 +252,7 @@ mod tests {
                         }
                     })
                     .collect();
-                let dot: BigRational = (0..3).map(|i| q(m[i]) * q(e[i])).sum();
+                let dot = (0..3).fold(Rational::ZERO, |s, i| s + q(m[i]) * q(e[i]));
                 assert!(dot > q(0.0), "{m:?} {v:?}: corner {corner} gives {dot}");
             }
         }

@@ -7,14 +7,13 @@ use super::cones::{cones_separated, normal_box, normal_generators};
 use super::crossings::Piece;
 use super::patch::{Box3, IPatch, V, box_of, diagonal};
 use crate::geom::{Hom, lift_point};
-use crate::scalar::{Interval, Scalar, lift};
+use crate::scalar::{Interval, Rational, Scalar, lift};
 use crate::spline::NurbsSurface;
 use crate::spline::enclosed_bezier::enclosed_bezier_patches;
-use num_rational::BigRational;
 use std::cell::OnceCell;
 use std::rc::Rc;
 
-type Q = BigRational;
+type Q = Rational;
 
 /// Pieces whose quarters are kept for reuse, per face pair (about 5 KB each for bicubic
 /// pieces: about 50 MB per face pair; abc-0000.step peaked at 3.7 GB before this bound, 0.39 GB
@@ -130,7 +129,7 @@ impl Cell {
 }
 
 fn outward(lo: &Q, hi: &Q) -> (f64, f64) {
-    let (mut a, mut b) = (lo.to_f64(), hi.to_f64());
+    let (mut a, mut b) = (Scalar::to_f64(lo), Scalar::to_f64(hi));
     if lift::<Q>(a) > *lo {
         a = a.next_down();
     }
@@ -195,10 +194,10 @@ pub(crate) fn roots_exact(s: &NurbsSurface<f64, 3>) -> Vec<Rc<Cell>> {
                 w: bp.patch.net.iter().map(|h| enclose(&h.w)).collect(),
             };
             let uv = [
-                bp.u0.to_f64(),
-                bp.u1.to_f64(),
-                bp.v0.to_f64(),
-                bp.v1.to_f64(),
+                Scalar::to_f64(&bp.u0),
+                Scalar::to_f64(&bp.u1),
+                Scalar::to_f64(&bp.v0),
+                Scalar::to_f64(&bp.v1),
             ];
             Cell::new(patch, uv, polynomial)
         })

@@ -1,9 +1,8 @@
 use super::*;
+use crate::scalar::{Rational, Scalar, ratio};
 use crate::spline::construct::{Frame, sphere, torus};
 use crate::spline::exact_point::ExactEvaluator;
 use crate::spline::test_params::rng;
-use num_rational::BigRational;
-use num_traits::ToPrimitive;
 
 /// A random rational surface: degrees 1–5, clamped knots with random interior knots
 /// (repeated ones included), control points of magnitude `scale` around an offset, weights
@@ -33,9 +32,9 @@ fn random_surface(r: &mut impl FnMut() -> f64, scale: f64) -> NurbsSurface<f64, 
     NurbsSurface::new(ku, p, kv, q, nu, nv, pts, w).unwrap()
 }
 
-fn contains(i: &Interval, x: &BigRational) -> bool {
-    (i.lo == f64::NEG_INFINITY || BigRational::from_float(i.lo).unwrap() <= *x)
-        && (i.hi == f64::INFINITY || *x <= BigRational::from_float(i.hi).unwrap())
+fn contains(i: &Interval, x: &Rational) -> bool {
+    (i.lo == f64::NEG_INFINITY || Rational::try_from(i.lo).unwrap() <= *x)
+        && (i.hi == f64::INFINITY || *x <= Rational::try_from(i.hi).unwrap())
 }
 
 /// The enclosure holds the exact value (fraction-free rational evaluation, an independent
@@ -182,8 +181,7 @@ fn products_below_the_normal_range() {
     let units: i64 = (0..36)
         .map(|k| (b[k / 6] * b[k % 6] * z[k / 6][k % 6]) as i64)
         .sum();
-    let exact =
-        BigRational::new(units.into(), 1024.into()) * BigRational::from_float(tiny).unwrap();
+    let exact = ratio(units, 1024) * Rational::try_from(tiny).unwrap();
     assert!(contains(&e[2], &exact), "{:?}", e[2]);
     assert!(e[2].hi - e[2].lo <= 1e-300);
 }
@@ -191,22 +189,21 @@ fn products_below_the_normal_range() {
 /// `N_{i,p}(x)` exactly, from the definition (the triangular recurrence
 /// `N_{i,k} = (x − t_i)/(t_{i+k} − t_i) N_{i,k−1} + (t_{i+k+1} − x)/(t_{i+k+1} − t_{i+1}) N_{i+1,k−1}`,
 /// terms with a zero knot difference dropped), in rationals.
-fn basis_exact(t: &[BigRational], span: usize, p: usize, x: &BigRational) -> Vec<BigRational> {
-    use num_traits::{One, Zero};
+fn basis_exact(t: &[Rational], span: usize, p: usize, x: &Rational) -> Vec<Rational> {
     let m = t.len() - 1;
-    let mut n: Vec<BigRational> = (0..m)
+    let mut n: Vec<Rational> = (0..m)
         .map(|i| {
             if i == span {
-                BigRational::one()
+                Rational::ONE
             } else {
-                BigRational::zero()
+                Rational::ZERO
             }
         })
         .collect();
     for k in 1..=p {
         n = (0..m - k)
             .map(|i| {
-                let mut v = BigRational::zero();
+                let mut v = Rational::ZERO;
                 let d1 = &t[i + k] - &t[i];
                 if !d1.is_zero() {
                     v += (x - &t[i]) / d1 * &n[i];
@@ -241,9 +238,9 @@ fn basis_f64_encloses_exact_basis() {
         let Ok(kv) = KnotVector::new(knots.clone(), p, knots.len() - p - 1) else {
             continue;
         };
-        let exact: Vec<BigRational> = knots
+        let exact: Vec<Rational> = knots
             .iter()
-            .map(|x| BigRational::from_float(*x).unwrap())
+            .map(|x| Rational::try_from(*x).unwrap())
             .collect();
         for trial in 0..4 {
             let (a, b) = (knots[p], knots[knots.len() - 1 - p]);
@@ -263,22 +260,22 @@ fn basis_f64_encloses_exact_basis() {
                 refused += 1;
             }
             let (c, w) = basis(&kv, span, x).unwrap();
-            let want = basis_exact(&exact, span, p, &BigRational::from_float(x).unwrap());
+            let want = basis_exact(&exact, span, p, &Rational::try_from(x).unwrap());
             for (i, n) in want.iter().enumerate() {
                 // The claim, checked exactly: |Ñ − N| ≤ w and 0 ≤ N ≤ Ñ + w.
                 let (cr, wr) = (
-                    BigRational::from_float(c[i]).unwrap(),
-                    BigRational::from_float(w[i]).unwrap(),
+                    Rational::try_from(c[i]).unwrap(),
+                    Rational::try_from(w[i]).unwrap(),
                 );
                 let off = &cr - n;
                 assert!(
-                    off <= wr && -off <= wr && *n >= BigRational::from_float(0.0).unwrap(),
+                    off <= wr && -off <= wr && *n >= Rational::try_from(0.0).unwrap(),
                     "case {case} trial {trial}: N_{i} = {} not within {} of {}",
-                    n.to_f64().unwrap(),
+                    Scalar::to_f64(n),
                     w[i],
                     c[i]
                 );
-                let v = n.to_f64().unwrap();
+                let v = Scalar::to_f64(n);
                 assert!(
                     f64_run.is_none() || w[i] <= 1e-13 * v.abs(),
                     "case {case}: N_{i} radius {} at {v}",

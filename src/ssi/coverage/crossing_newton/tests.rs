@@ -152,16 +152,15 @@ fn crossings_of_lines_with_a_bicubic_graph() {
 /// (exact rational de Casteljau at the same `f64` parameters), for random rational rows.
 #[test]
 fn cut_rows_enclose_the_exact_sub_curve() {
+    use crate::scalar::Rational as Q;
     use crate::scalar::lift;
-    use num_rational::BigRational as Q;
-    use num_traits::One;
     let split_q = |xs: &[Q], t: &Q, left: bool| -> Vec<Q> {
         let mut x = xs.to_vec();
         let n = x.len() - 1;
         let mut out = vec![if left { x[0].clone() } else { x[n].clone() }; n + 1];
         for level in 1..=n {
             for k in 0..=n - level {
-                x[k] = x[k].clone() * (Q::one() - t) + x[k + 1].clone() * t;
+                x[k] = x[k].clone() * (Q::ONE - t) + x[k + 1].clone() * t;
             }
             if left {
                 out[level] = x[0].clone();

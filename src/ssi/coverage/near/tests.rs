@@ -21,8 +21,8 @@ fn box_near_a_polyline() {
 /// included; a point box is a ball of radius 0.
 #[test]
 fn ball_holds_its_box() {
-    use num_rational::BigRational;
-    let q = |x: f64| BigRational::from_float(x).unwrap();
+    use crate::scalar::Rational;
+    let q = |x: f64| Rational::try_from(x).unwrap();
     let mut r = crate::spline::test_params::rng(0xba11);
     for k in 0..3000 {
         let scale = 10f64.powi((k % 61) * 10 - 300);
@@ -38,13 +38,11 @@ fn ball_holds_its_box() {
         let (c, rad) = ball(&p);
         let r2 = q(rad) * q(rad);
         for m in 0..8 {
-            let d2: BigRational = (0..3)
-                .map(|i| {
-                    let e = if m >> i & 1 == 0 { p[i].lo } else { p[i].hi };
-                    let v = q(e) - q(c[i]);
-                    &v * &v
-                })
-                .sum();
+            let d2 = (0..3).fold(Rational::ZERO, |s, i| {
+                let e = if m >> i & 1 == 0 { p[i].lo } else { p[i].hi };
+                let v = q(e) - q(c[i]);
+                s + &v * &v
+            });
             assert!(d2 <= r2, "{p:?}: corner {m} outside radius {rad} of {c:?}");
         }
     }
@@ -58,9 +56,8 @@ fn ball_holds_its_box() {
 /// 1e-14 of the coordinates' magnitude).
 #[test]
 fn dist_upper_is_an_upper_bound() {
-    use num_rational::BigRational;
-    use num_traits::{One, ToPrimitive, Zero};
-    let r = |x: f64| BigRational::from_float(x).unwrap();
+    use crate::scalar::Rational;
+    let r = |x: f64| Rational::try_from(x).unwrap();
     let mut x = 0x2545_f491_4f6c_dd1du64;
     let mut next = || {
         x ^= x << 13;
@@ -86,27 +83,25 @@ fn dist_upper_is_an_upper_bound() {
             continue;
         }
         let (pr, qr, cr) = (p.map(r), q.map(r), c.map(r));
-        let d: Vec<BigRational> = (0..3).map(|i| &qr[i] - &pr[i]).collect();
-        let e: Vec<BigRational> = (0..3).map(|i| &cr[i] - &pr[i]).collect();
-        let dd: BigRational = d.iter().map(|v| v * v).sum();
-        let ed: BigRational = (0..3).map(|i| &e[i] * &d[i]).sum();
+        let d: Vec<Rational> = (0..3).map(|i| &qr[i] - &pr[i]).collect();
+        let e: Vec<Rational> = (0..3).map(|i| &cr[i] - &pr[i]).collect();
+        let dd = d.iter().fold(Rational::ZERO, |s, v| s + v * v);
+        let ed = (0..3).fold(Rational::ZERO, |s, i| s + &e[i] * &d[i]);
         let tt = if dd.is_zero() {
-            BigRational::zero()
+            Rational::ZERO
         } else {
-            (ed / dd).max(BigRational::zero()).min(BigRational::one())
+            (ed / dd).max(Rational::ZERO).min(Rational::ONE)
         };
-        let dist2: BigRational = (0..3)
-            .map(|i| {
-                let v = &e[i] - &tt * &d[i];
-                &v * &v
-            })
-            .sum();
+        let dist2 = (0..3).fold(Rational::ZERO, |s, i| {
+            let v = &e[i] - &tt * &d[i];
+            s + &v * &v
+        });
         let ur = r(u);
         assert!(
             dist2 <= &ur * &ur,
             "{c:?} {p:?} {q:?}: bound {u} below the distance"
         );
-        let exact = dist2.to_f64().unwrap().sqrt();
+        let exact = crate::scalar::Scalar::to_f64(&dist2).sqrt();
         let m = c
             .iter()
             .chain(&p)
