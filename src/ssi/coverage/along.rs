@@ -40,7 +40,10 @@ const MIN_PART: f64 = 16.0;
 /// The output's cubic pieces, each with its enclosed Bernstein points and their box.
 #[derive(Default)]
 pub(crate) struct Along {
+    /// Sorted by their boxes' lower x.
     pieces: Vec<(Piece, [[I; 3]; 4], Box3)>,
+    /// The largest x extent of a piece's box.
+    wide: f64,
 }
 
 impl Along {
@@ -70,8 +73,14 @@ impl Along {
                     .all(|x| x.iter().all(|c| c.is_finite()))
                     .then_some((h, b, bx))
             })
-            .collect();
-        Along { pieces }
+            .collect::<Vec<_>>();
+        let mut pieces = pieces;
+        pieces.sort_by(|a, b| a.2.0[0].total_cmp(&b.2.0[0]));
+        let wide = pieces
+            .iter()
+            .map(|p| p.2.1[0] - p.2.0[0])
+            .fold(0.0, f64::max);
+        Along { pieces, wide }
     }
 
     /// Whether every point of the curve part `c` (its control points' box `cbox`, with a
@@ -80,7 +89,13 @@ impl Along {
         if self.pieces.is_empty() || !(diag > MIN_PART * d) {
             return false;
         }
-        self.pieces.iter().any(|(h, b, hb)| {
+        // A piece whose box, grown by `d`, holds the part's starts in x at or after
+        // `cbox.1[0] − d − wide` and at or before `cbox.0[0] + d` (sorted: a range).
+        let from = self
+            .pieces
+            .partition_point(|p| p.2.0[0] < cbox.1[0] - d - self.wide);
+        let to = self.pieces.partition_point(|p| p.2.0[0] <= cbox.0[0] + d);
+        self.pieces[from..to.max(from)].iter().any(|(h, b, hb)| {
             (0..3).all(|k| hb.0[k] - d <= cbox.0[k] && cbox.1[k] <= hb.1[k] + d)
                 && bound(h, b, c, d).is_some_and(|r| r <= d)
         })
