@@ -86,7 +86,9 @@ impl Along {
     /// Whether every point of the curve part `c` (its control points' box `cbox`, with a
     /// diagonal of `diag`) is proven within `d` of one output cubic piece (module comment).
     pub fn curve_within(&self, c: &ICurve, cbox: &Box3, diag: f64, d: f64) -> bool {
-        if self.pieces.is_empty() || !(diag > MIN_PART * d) {
+        if self.pieces.is_empty()
+            || diag.partial_cmp(&(MIN_PART * d)) != Some(std::cmp::Ordering::Greater)
+        {
             return false;
         }
         // A piece whose box, grown by `d`, holds the part's starts in x at or after
@@ -170,7 +172,7 @@ fn bound(h: &Piece, b: &[[I; 3]; 4], c: &ICurve, d: f64) -> Option<f64> {
     }
     debug_assert!(e.iter().all(|x| x.len() == n + 10));
     let w_min = c.w.iter().map(|x| x.lo).fold(f64::INFINITY, f64::min);
-    if !(w_min > 0.0) {
+    if w_min.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     let e_max = hull_norm(&e, w_min * d, HALVINGS);
