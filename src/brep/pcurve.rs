@@ -49,6 +49,17 @@ fn own_pcurve(
         .map(|pc| (pc, PcurveOrigin::Plane))
 }
 
+/// How many times the loops of `face` use edge `e` (twice: a seam).
+fn uses(face: &Face, e: usize) -> usize {
+    face.loops
+        .iter()
+        .map(|l| match &l.kind {
+            LoopKind::Edges(oes) => oes.iter().filter(|o| o.edge == e).count(),
+            LoopKind::Vertex(_) => 0,
+        })
+        .sum()
+}
+
 /// The pcurves one writer gives a B-rep's edges, projected ones included, with what the
 /// projections gave for its notes.
 pub struct Pcurves<'a> {
@@ -97,16 +108,7 @@ impl<'a> Pcurves<'a> {
         if let Some(made) = self.made.get(&(e, si)) {
             return made.as_ref().map(|x| x.0.clone());
         }
-        let twice = face
-            .loops
-            .iter()
-            .filter_map(|l| match &l.kind {
-                LoopKind::Edges(oes) => Some(oes.iter().filter(|o| o.edge == e).count()),
-                LoopKind::Vertex(_) => None,
-            })
-            .sum::<usize>()
-            > 1;
-        if twice {
+        if uses(face, e) > 1 {
             // A seam edge: one pcurve per side ([`Pcurves::seam_sides`]).
             return None;
         }

@@ -3,7 +3,6 @@
 //! which take polynomial domain curves (Yang et al. treat B-spline `D`).
 
 use super::Pcurves;
-use crate::brep::LoopKind;
 use crate::spline::NurbsCurve;
 
 /// Where a face's pcurve of an edge came from.
@@ -46,14 +45,7 @@ impl Pcurves<'_> {
         let surface = m.surfaces.get(face.surface?)?;
         let arc = &b.edges.get(e)?.curve.as_ref()?.nurbs;
         let target = self.fit.aim;
-        let uses: usize = face
-            .loops
-            .iter()
-            .map(|l| match &l.kind {
-                LoopKind::Edges(oes) => oes.iter().filter(|o| o.edge == e).count(),
-                LoopKind::Vertex(_) => 0,
-            })
-            .sum();
+        let uses = super::uses(face, e);
         if uses > 1
             && let Some(sides) = self.seam_sides(e, fi)
         {
@@ -118,14 +110,7 @@ impl Pcurves<'_> {
         let face = b.faces.get(fi)?;
         let surface = m.surfaces.get(face.surface?)?;
         let arc = &b.edges.get(e)?.curve.as_ref()?.nurbs;
-        let uses: usize = face
-            .loops
-            .iter()
-            .map(|l| match &l.kind {
-                LoopKind::Edges(oes) => oes.iter().filter(|o| o.edge == e).count(),
-                LoopKind::Vertex(_) => 0,
-            })
-            .sum();
+        let uses = super::uses(face, e);
         if uses != 1 {
             return None;
         }
