@@ -18,9 +18,11 @@
 //!
 //! a polynomial of degree `n + 9`, computed by Bernstein products
 //! ([`crate::spline::scaled_bernstein`]; `B_i³(σ) = C(3, i) σ^i (1 − σ)^{3−i}`). By the convex
-//! hull property of Bézier polynomials `‖E(s)‖ ≤ max_k ‖E_k‖` and `w(s) ≥ min_k w_k`; so when
-//! `min_k w_k > 0`, `r = max_k ‖E_k‖ / min_k w_k` bounds the distance from every point of the
-//! part to the output, and the part lies within `d` of it when `r ≤ d`. Every number is an
+//! hull property of Bézier polynomials `‖E(s)‖ ≤ max_k ‖E_k‖` (where that is above the target,
+//! the larger of the same bound on the two halves of `E`, split by de Casteljau at `1/2`, up to
+//! three halvings deep) and `w(s) ≥ min_k w_k`; so when `min_k w_k > 0`,
+//! `r = max_k ‖E_k‖ / min_k w_k` bounds the distance from every point of the part to the
+//! output, and the part lies within `d` of it when `r ≤ d`. Every number is an
 //! outward-rounded interval. `σ` interpolates the parameters of the closest points on `H` of
 //! `C(0)`, `C(1/3)`, `C(2/3)`, `C(1)` (f64): the fit decides only how small `r` comes out
 //! (the two parametrizations differ by terms of fourth order in the part's length), never
