@@ -177,3 +177,82 @@ fn small_parts_and_chords_are_left_to_the_segment_tests() {
     let q = [0.0, R, 0.0, 0.0, 0.0, 0.0, 0.0];
     assert!(Along::new([Piece::chord(&p, &q)]).pieces.is_empty());
 }
+
+/// Random arcs (radius, part of the quarter, offset off the circle) against pieces on their
+/// circle spanning the part's angles, widened at random: wherever a bound comes out, it is at
+/// least the distance the construction puts the part at (its offset less the piece's own
+/// deviation from the circle), and a part on its circle (offset 0) within `d` is decided.
+#[test]
+fn random_arcs_are_bounded_soundly() {
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut unit = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let d = 1e-6;
+    let (mut bounded, mut decided) = (0, 0);
+    for _ in 0..200 {
+        let r = 0.5 + 4.0 * unit();
+        let mut c = {
+            let w = std::f64::consts::FRAC_1_SQRT_2;
+            let iw = I::new(w.next_down(), w.next_up());
+            let rw = I::point(r) * iw;
+            ICurve {
+                x: vec![
+                    [I::point(r), I::point(0.0), I::point(0.0)],
+                    [rw, rw, I::point(0.0)],
+                    [I::point(0.0), I::point(r), I::point(0.0)],
+                ],
+                w: vec![I::point(1.0), iw, I::point(1.0)],
+            }
+        };
+        // A random part, four to six halvings deep.
+        for _ in 0..4 + (unit() * 3.0) as usize {
+            let (a, b) = c.halve();
+            c = if unit() < 0.5 { a } else { b };
+        }
+        let (a0, a1) = (angle(&c, 0.0), angle(&c, 1.0));
+        let widen = (a1 - a0) * 0.5 * unit();
+        let (h0, h1) = (a0 - widen * unit(), a1 + widen * unit());
+        let at = |t: f64| -> [f64; 7] { [r * t.cos(), r * t.sin(), 0.0, 0.0, 0.0, 0.0, 0.0] };
+        let jet = |t: f64| -> [f64; 7] { [-t.sin(), t.cos(), 0.0, 0.0, 0.0, 0.0, 0.0] };
+        let h = Piece::cubic(&at(h0), &jet(h0), &at(h1), &jet(h1)).unwrap();
+        let dev = (0..=4000)
+            .map(|i| {
+                let x = h.eval(i as f64 / 4000.0);
+                ((x[0] * x[0] + x[1] * x[1]).sqrt() - r).abs()
+            })
+            .fold(0.0, f64::max);
+        let along = Along::new([h]);
+        let (hh, hb, _) = &along.pieces[0];
+        let delta = if unit() < 0.3 {
+            0.0
+        } else {
+            (unit() - 0.5) * 40.0 * d
+        };
+        let s = I::point((r + delta) / r);
+        let moved = ICurve {
+            x: c.x.iter().map(|p| p.map(|v| v * s)).collect(),
+            w: c.w.clone(),
+        };
+        if let Some(b) = bound(hh, hb, &moved, 100.0 * d) {
+            bounded += 1;
+            assert!(
+                b >= delta.abs() - dev,
+                "bound {b} below {} (r {r}, δ {delta})",
+                delta.abs() - dev
+            );
+        }
+        let (mb, mdiag) = cbox(&moved);
+        if along.curve_within(&moved, &mb, mdiag, d) {
+            decided += 1;
+            assert!(delta.abs() - dev <= d, "decided within {d} at {delta} off");
+        }
+    }
+    assert!(
+        bounded > 100 && decided > 30,
+        "{bounded} bounded, {decided} decided"
+    );
+}
