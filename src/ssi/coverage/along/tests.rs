@@ -26,7 +26,12 @@ fn quarter(r: f64) -> ICurve {
 /// The cubic output piece on the circle of radius `R` from angle `a` to angle `b`: exact end
 /// points and unit tangents as the tracer's jets give them ([`Piece::cubic`]).
 fn piece(a: f64, b: f64) -> Piece {
-    let at = |t: f64| -> [f64; 7] { [R * t.cos(), R * t.sin(), 0.0, 0.0, 0.0, 0.0, 0.0] };
+    piece_on(R, a, b)
+}
+
+/// [`piece`] on the circle of radius `r`.
+fn piece_on(r: f64, a: f64, b: f64) -> Piece {
+    let at = |t: f64| -> [f64; 7] { [r * t.cos(), r * t.sin(), 0.0, 0.0, 0.0, 0.0, 0.0] };
     let jet = |t: f64| -> [f64; 7] { [-t.sin(), t.cos(), 0.0, 0.0, 0.0, 0.0, 0.0] };
     Piece::cubic(&at(a), &jet(a), &at(b), &jet(b)).unwrap()
 }
@@ -195,19 +200,7 @@ fn random_arcs_are_bounded_soundly() {
     let (mut bounded, mut decided) = (0, 0);
     for _ in 0..200 {
         let r = 0.5 + 4.0 * unit();
-        let mut c = {
-            let w = std::f64::consts::FRAC_1_SQRT_2;
-            let iw = I::new(w.next_down(), w.next_up());
-            let rw = I::point(r) * iw;
-            ICurve {
-                x: vec![
-                    [I::point(r), I::point(0.0), I::point(0.0)],
-                    [rw, rw, I::point(0.0)],
-                    [I::point(0.0), I::point(r), I::point(0.0)],
-                ],
-                w: vec![I::point(1.0), iw, I::point(1.0)],
-            }
-        };
+        let mut c = quarter(r);
         // A random part, four to six halvings deep.
         for _ in 0..4 + (unit() * 3.0) as usize {
             let (a, b) = c.halve();
@@ -216,9 +209,7 @@ fn random_arcs_are_bounded_soundly() {
         let (a0, a1) = (angle(&c, 0.0), angle(&c, 1.0));
         let widen = (a1 - a0) * 0.5 * unit();
         let (h0, h1) = (a0 - widen * unit(), a1 + widen * unit());
-        let at = |t: f64| -> [f64; 7] { [r * t.cos(), r * t.sin(), 0.0, 0.0, 0.0, 0.0, 0.0] };
-        let jet = |t: f64| -> [f64; 7] { [-t.sin(), t.cos(), 0.0, 0.0, 0.0, 0.0, 0.0] };
-        let h = Piece::cubic(&at(h0), &jet(h0), &at(h1), &jet(h1)).unwrap();
+        let h = piece_on(r, h0, h1);
         let dev = (0..=4000)
             .map(|i| {
                 let x = h.eval(i as f64 / 4000.0);
