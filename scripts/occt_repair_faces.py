@@ -55,7 +55,9 @@ def lifted_cube(path):
 
 
 def read(path):
-    r = o.STEPControl.STEPControl_Reader()
+    """The file's shape: IGES by its extension, STEP otherwise."""
+    iges = path.lower().endswith((".igs", ".iges"))
+    r = o.IGESControl.IGESControl_Reader() if iges else o.STEPControl.STEPControl_Reader()
     if r.ReadFile(path) != o.IFSelect.IFSelect_ReturnStatus.IFSelect_RetDone:
         raise SystemExit(f"Open CASCADE cannot read {path}")
     r.TransferRoots()
@@ -174,14 +176,9 @@ def main():
         if rep.get("mode") != "faces":
             continue
         t_v = min([rep["seconds"]] + [vericad(p, 1e-3, out)["seconds"] for _ in range(4)])
-        src = free_edges(read(p)) if name.endswith(".step") else "—"
+        shape = read(p)
+        src = free_edges(shape) if name.endswith(".step") else "—"
         back = free_edges(read(out))
-        shape = read(p) if name.endswith(".step") else None
-        if shape is None:
-            r = o.IGESControl.IGESControl_Reader()
-            r.ReadFile(p)
-            r.TransferRoots()
-            shape = r.OneShape()
         free_o, t_o = best(lambda: occt_sewing(shape, 1e-3 * unit_mm(p)))
         print(f"| {name} | {rep['faces']} ({len(rep['trimmed_faces'])}) | {src} / {back} | "
               f"{rep['free_edges_after']} | {free_o} | {t_v * 1e3:.1f} ms | {t_o * 1e3:.2f} ms | "
