@@ -10,6 +10,9 @@
 use crate::scalar::Interval;
 use crate::spline::{KnotVector, NurbsSurface};
 
+mod bezier;
+pub(crate) use bezier::bezier_jet;
+
 type I = Interval;
 type V = [I; 3];
 
