@@ -385,7 +385,12 @@ pub fn ssi_surfaces(data: &[u8]) -> usize {
     };
     if let Some(c) = &r.coverage {
         assert_eq!(
-            c.free + c.near_output + c.near_shared_edges + c.transversal + c.uncertified,
+            c.free
+                + c.near_output
+                + c.near_shared_edges
+                + c.transversal
+                + c.branch_point_regions
+                + c.uncertified,
             c.pairs
         );
         assert_eq!(c.no_missed_branches, c.uncertified == 0, "{c:?}");

@@ -245,7 +245,7 @@ pub fn intersect_models(
         } else if !prm.certify {
             "coverage: NOT computed (certificates switched off: --no-certify): a branch could be missing".to_string()
         } else if no_missed_branches {
-            format!("coverage: every branch of the true intersection (closed loop, open arc, touching point) comes within {matched:.3e} of the output, proven: every parameter-box pair is free (disjoint control-point boxes), within that distance of the output, or transversal (separated normal cones) with every border crossing within that distance of the output{tube_note}")
+            format!("coverage: every branch of the true intersection (closed loop, open arc, touching point) comes within {matched:.3e} of the output, proven: every parameter-box pair is free (disjoint control-point boxes), within that distance of the output, or transversal (separated normal cones) with every border crossing within that distance of the output, or inside the proven region of a branch point (one zero of the tangency system, one foot per point: no closed loop there but through the branch point){tube_note}")
         } else if uncertified == 0 && coincident_pairs > 0 {
             "coverage: not applicable to coincident face pairs (below); every other pair is certified".to_string()
         } else {

@@ -57,6 +57,9 @@
 //! directions). The theorem, its proof and the claim in full: docs/ssi.md, "Singular points".
 
 mod proof;
+mod region;
+
+pub use region::{BranchRegion, branch_region, disjoint_regions};
 
 use super::refine::domain;
 use super::report::{SingularKind, SingularOut, SingularReason};

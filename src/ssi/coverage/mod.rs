@@ -31,6 +31,10 @@
 //!    parallel to `n_A × n_B`, along which `w·x` is strictly monotone — impossible. So every
 //!    component of `I ∩ (α × β)` contains a border crossing, which lies within `d` of `O` or
 //!    in a tube.
+//! 3′. **in a branch-point region** — both pieces lie inside the region `W = W_x × W_y` of a
+//!    proven branch point `z*` whose point is within `d` of `O`
+//!    ([`crate::ssi::singular::BranchRegion`]; regions pairwise disjoint, none on trimmed
+//!    faces): every component of `I ∩ W` contains `z*` or meets `∂W_x × W_y`.
 //! 4. **uncertified** — none of the above within the budget; listed with the reason.
 //!
 //! **Claim.** Every connected component of `I` (every branch: closed loop, open arc, isolated
@@ -38,7 +42,9 @@
 //! listed uncertified pair. Proof: a component contains a point of some leaf pair; that pair
 //! is not free; in a pair near the output every point is within `d` of `O`, in a pair in a
 //! tube every point is in that tube; in a transversal pair the component's piece contains a
-//! border crossing within `d` of `O` or in a tube. Without tubes (every run but one-file runs
+//! border crossing within `d` of `O` or in a tube; in a region pair the component's part in
+//! `W` contains `z*` or a point of `∂W_x × W_y`, which lies in a pair in no region (pairs in
+//! a region lie strictly inside it), where the other cases apply. Without tubes (every run but one-file runs
 //! on a B-rep) the second case is empty. With them the claim says nothing of a component with a
 //! point in a tube, also where it runs on outside it: there the faces meet by construction, and what the B-rep's edge curve and the reach
 //! `r_e` rest on is evidence (see [`crate::ssi::shared_tubes`]); the tubes' polylines and
@@ -73,6 +79,7 @@ pub use outcome::{CoverageOut, Reason, RegionOut};
 pub(crate) use pieces::{Cell, roots};
 
 use super::report::{BranchOut, TouchOut};
+use super::singular::{BranchRegion, branch_region, disjoint_regions};
 use crate::spline::NurbsSurface;
 use cones::cones_separated;
 use crossings::search;
@@ -262,6 +269,16 @@ pub fn coverage(
         .iter()
         .map(|(segs, r)| (Near::new(segs.clone()), *r))
         .collect();
+    // Regions of proven branch points whose point is within `d` of the output (class 3′ of
+    // the module comment); none on trimmed faces.
+    let regions: Vec<BranchRegion> = touches
+        .iter()
+        .filter(|_| prm.outside.is_none())
+        .filter_map(|t| t.singular.as_ref())
+        .filter_map(|s| branch_region(sa, sb, s))
+        .filter(|r| near.box_within(&r.point, d))
+        .collect();
+    let regions = disjoint_regions(regions);
     let (ra, rb) = (roots(sa), roots(sb));
     let mut out = CoverageOut {
         boxes_a: ra.len(),
@@ -343,6 +360,14 @@ pub fn coverage(
             .any(|(t, r)| t.box_within(&m, *r) || t.net_within(pa, *r) || t.net_within(pb, *r))
         {
             out.near_shared_edges += 1;
+            continue;
+        }
+        if over {
+            uncertified(&mut out, &a, &b, Reason::Budget, Some(centre(&m)));
+            continue;
+        }
+        if regions.iter().any(|r| r.holds(&a.uv, &b.uv)) {
+            out.branch_point_regions += 1;
             continue;
         }
         if over {
@@ -433,8 +458,12 @@ pub fn coverage(
         }
         out.free_pairs_with_branch_points = Some(bad);
     }
-    out.pairs =
-        out.free + out.near_output + out.near_shared_edges + out.transversal + out.uncertified;
+    out.pairs = out.free
+        + out.near_output
+        + out.near_shared_edges
+        + out.transversal
+        + out.branch_point_regions
+        + out.uncertified;
     out.no_missed_branches = out.uncertified == 0;
     out.seconds = t0.elapsed().as_secs_f64();
     out

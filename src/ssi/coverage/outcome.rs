@@ -44,6 +44,10 @@ pub struct CoverageOut {
     pub free: usize,
     pub near_output: usize,
     pub transversal: usize,
+    /// Pairs inside the region of a proven branch point whose point is within the match
+    /// distance of the output, with every border crossing near the output
+    /// ([`crate::ssi::singular::BranchRegion`]).
+    pub branch_point_regions: usize,
     pub uncertified: usize,
     /// Pairs outside the faces (trim or B-rep loops), not examined further.
     pub outside_faces: usize,

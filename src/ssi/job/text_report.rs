@@ -137,24 +137,31 @@ impl std::fmt::Display for SsiResult {
             .filter_map(|p| p.coverage.as_ref())
             .collect();
         if !cov.is_empty() {
-            let (pairs, free, near, tube, tr, unc) = cov.iter().fold((0, 0, 0, 0, 0, 0), |a, c| {
-                (
-                    a.0 + c.pairs,
-                    a.1 + c.free,
-                    a.2 + c.near_output,
-                    a.3 + c.near_shared_edges,
-                    a.4 + c.transversal,
-                    a.5 + c.uncertified,
-                )
-            });
+            let (pairs, free, near, tube, tr, unc, reg) =
+                cov.iter().fold((0, 0, 0, 0, 0, 0, 0), |a, c| {
+                    (
+                        a.0 + c.pairs,
+                        a.1 + c.free,
+                        a.2 + c.near_output,
+                        a.3 + c.near_shared_edges,
+                        a.4 + c.transversal,
+                        a.5 + c.uncertified,
+                        a.6 + c.branch_point_regions,
+                    )
+                });
             let tube = if tube > 0 {
                 format!(", {tube} in the tube around a shared edge")
             } else {
                 String::new()
             };
+            let reg = if reg > 0 {
+                format!(", {reg} inside the proven region of a branch point")
+            } else {
+                String::new()
+            };
             writeln!(
                 f,
-                "  coverage: {pairs} parameter-box pairs: {free} proven free, {near} within the match distance of the output{tube}, {tr} transversal with every border crossing near the output, {unc} uncertified"
+                "  coverage: {pairs} parameter-box pairs: {free} proven free, {near} within the match distance of the output{tube}, {tr} transversal with every border crossing near the output{reg}, {unc} uncertified"
             )?;
         }
         if s.partial {
