@@ -11,6 +11,7 @@
 
 mod common;
 
+mod bezier_jet;
 mod cones;
 mod coverage;
 mod curve_on_surface;

@@ -11,7 +11,7 @@ use crate::scalar::Interval;
 use crate::spline::{KnotVector, NurbsSurface};
 
 mod bezier;
-pub(crate) use bezier::bezier_jet;
+pub use bezier::bezier_jet;
 
 type I = Interval;
 type V = [I; 3];

@@ -107,7 +107,7 @@ fn diff(net: &[H], p: usize, q: usize, along_u: bool) -> (Vec<H>, usize, usize) 
 
 /// The jet of the piece `e` over the box `[u0, u1] × [v0, v1]` (inside the piece's span
 /// rectangle `e.uv`); `None` outside it, for weights not proven positive, or on overflow.
-pub(crate) fn bezier_jet(e: &EnclosedPatch, u: I, v: I) -> Option<Jet2> {
+pub fn bezier_jet(e: &EnclosedPatch, u: I, v: I) -> Option<Jet2> {
     let [t0, t1, s0, s1] = e.uv;
     if !(t0 <= u.lo && u.hi <= t1 && s0 <= v.lo && v.hi <= s1 && u.lo < u.hi && v.lo < v.hi) {
         return None;
