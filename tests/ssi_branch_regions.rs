@@ -10,6 +10,7 @@
 //! region around the origin must keep out the nearest of them, and the coverage certificate
 //! must refuse when the oval is left out of the output.
 
+mod common;
 use vericad::spline::NurbsSurface;
 use vericad::spline::construct::bilinear;
 use vericad::ssi::coverage::{CoverageParams, coverage};
@@ -209,16 +210,7 @@ fn truth() -> (BranchOut, BranchOut, BranchOut) {
 }
 
 fn params(d: f64) -> CoverageParams {
-    CoverageParams {
-        match_distance: d,
-        max_pair_depth: 24,
-        max_crossing_depth: 96,
-        max_boxes: 400_000,
-        deadline: None,
-        cancel: None,
-        outside: None,
-        tubes: Default::default(),
-    }
+    common::coverage_params(d)
 }
 
 #[test]

@@ -19,16 +19,7 @@ fn big_plane() -> NurbsSurface<f64, 3> {
 }
 
 fn cparams(d: f64) -> CoverageParams {
-    CoverageParams {
-        match_distance: d,
-        max_pair_depth: 24,
-        max_crossing_depth: 96,
-        max_boxes: 400_000,
-        deadline: None,
-        cancel: None,
-        outside: None,
-        tubes: Default::default(),
-    }
+    common::coverage_params(d)
 }
 
 /// With nothing reported, a loop of any radius must leave the certificate refused, with an

@@ -133,20 +133,26 @@ pub(crate) fn piece2(
             a[5][m] = a[5][m] + bu[0][i] * r[2][m];
         }
     }
+    let s0: [Option<I>; 3] = std::array::from_fn(|m| a[0][m].checked_div(a[0][3]));
+    quotient([s0[0]?, s0[1]?, s0[2]?], &a)
+}
+
+/// The Cartesian jet of `S = X / w` from the homogeneous jet `a = [X, X_u, X_v, X_uu, X_uv,
+/// X_vv]` (4 components each, the last the weight) and an enclosure `s` of `S` itself (The
+/// NURBS Book eq. 4.20); `None` for a weight not proven non-zero or a non-finite result.
+pub(crate) fn quotient(s: V, a: &[[I; 4]; 6]) -> Option<Jet2> {
     let w = a[0][3];
     let (wu, wv, wuu, wuv, wvv) = (a[1][3], a[2][3], a[3][3], a[4][3], a[5][3]);
     let two = pt(2.0);
     let mut o = Jet2 {
-        s: [pt(0.0); 3],
+        s,
         su: [pt(0.0); 3],
         sv: [pt(0.0); 3],
         suu: [pt(0.0); 3],
         suv: [pt(0.0); 3],
         svv: [pt(0.0); 3],
     };
-    // The NURBS Book eq. 4.20: derivatives of S = X / w.
     for m in 0..3 {
-        o.s[m] = a[0][m].checked_div(w)?;
         o.su[m] = (a[1][m] - wu * o.s[m]).checked_div(w)?;
         o.sv[m] = (a[2][m] - wv * o.s[m]).checked_div(w)?;
         o.suu[m] = (a[3][m] - two * wu * o.su[m] - wuu * o.s[m]).checked_div(w)?;

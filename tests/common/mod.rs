@@ -80,3 +80,18 @@ pub fn q2(p: &[f64; 2]) -> [Rational; 2] {
 pub fn q3(p: &[f64; 3]) -> [Rational; 3] {
     lift_point(p)
 }
+
+/// Coverage budgets for tests that call `coverage` directly: match distance `d`, depths 24
+/// (pairs) and 96 (crossings), 400,000 boxes, no deadline, no faces, no tubes.
+pub fn coverage_params(d: f64) -> vericad::ssi::coverage::CoverageParams {
+    vericad::ssi::coverage::CoverageParams {
+        match_distance: d,
+        max_pair_depth: 24,
+        max_crossing_depth: 96,
+        max_boxes: 400_000,
+        deadline: None,
+        cancel: None,
+        outside: None,
+        tubes: Default::default(),
+    }
+}

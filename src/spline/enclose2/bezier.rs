@@ -166,28 +166,9 @@ pub fn bezier_jet(e: &EnclosedPatch, u: I, v: I) -> Option<Jet2> {
         }
         *sm = acc?;
     }
-    let (wu, wv, wuu, wuv, wvv) = (xu[3], xv[3], xuu[3], xuv[3], xvv[3]);
-    let two = pt(2.0);
-    let mut o = Jet2 {
-        s,
-        su: [pt(0.0); 3],
-        sv: [pt(0.0); 3],
-        suu: [pt(0.0); 3],
-        suv: [pt(0.0); 3],
-        svv: [pt(0.0); 3],
-    };
-    for m in 0..3 {
-        o.su[m] = (xu[m] - wu * o.s[m]).checked_div(w)?;
-        o.sv[m] = (xv[m] - wv * o.s[m]).checked_div(w)?;
-        o.suu[m] = (xuu[m] - two * wu * o.su[m] - wuu * o.s[m]).checked_div(w)?;
-        o.suv[m] = (xuv[m] - wu * o.sv[m] - wv * o.su[m] - wuv * o.s[m]).checked_div(w)?;
-        o.svv[m] = (xvv[m] - two * wv * o.sv[m] - wvv * o.s[m]).checked_div(w)?;
-    }
-    let ok = [o.s, o.su, o.sv, o.suu, o.suv, o.svv]
-        .iter()
-        .flatten()
-        .all(|x| x.is_finite());
-    ok.then_some(o)
+    let mut x0 = [pt(0.0); 4];
+    x0[3] = w;
+    super::quotient(s, &[x0, xu, xv, xuu, xuv, xvv])
 }
 
 #[cfg(test)]
