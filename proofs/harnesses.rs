@@ -11,6 +11,7 @@
 
 mod common;
 
+mod along;
 mod bezier_jet;
 mod cones;
 mod coverage;

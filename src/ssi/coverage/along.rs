@@ -106,6 +106,15 @@ impl Along {
     }
 }
 
+/// `r` of the module comment for the part `c` against the one piece `h` (`None` where no
+/// bound follows or the part is measured farther than `2d` from the piece): what
+/// [`Along::curve_within`] compares with `d`, for the proof harnesses.
+pub fn piece_bound(h: &Piece, c: &ICurve, d: f64) -> Option<f64> {
+    let a = Along::new([*h]);
+    let (h, b, _) = a.pieces.first()?;
+    bound(h, b, c, d)
+}
+
 /// The part's point at `s` from its control points' midpoints (de Casteljau in f64, for the
 /// fit of `σ` only).
 fn point_at(c: &ICurve, s: f64) -> Option<[f64; 3]> {

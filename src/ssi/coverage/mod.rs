@@ -75,6 +75,7 @@ pub mod patch;
 mod outcome;
 mod pieces;
 
+pub use along::piece_bound;
 pub use outcome::{CoverageOut, Reason, RegionOut};
 pub(crate) use pieces::{Cell, roots};
 
