@@ -21,11 +21,11 @@ fn bern(n: i64, i: i64, s: &Q) -> Q {
     }
     let mut v = c;
     for _ in 0..i {
-        v = v * s;
+        v *= s;
     }
     let r = one() - s;
     for _ in 0..(n - i) {
-        v = v * &r;
+        v *= &r;
     }
     v
 }
@@ -47,13 +47,10 @@ fn dbern(n: i64, i: i64, k: u32, s: &Q) -> Q {
 /// patch with f64 net `net` on the span `uv`, at `(u, v)`.
 fn exact_d(
     net: &[[f64; 4]],
-    p: usize,
-    qd: usize,
+    (p, qd): (usize, usize),
     uv: &[f64; 4],
-    u: &Q,
-    v: &Q,
-    a: u32,
-    b: u32,
+    (u, v): (&Q, &Q),
+    (a, b): (u32, u32),
 ) -> [Q; 4] {
     let (du, dv) = (q(uv[1]) - q(uv[0]), q(uv[3]) - q(uv[2]));
     let s = (u - q(uv[0])) / &du;
@@ -72,10 +69,10 @@ fn exact_d(
     // Chain rule: d/du = (1/du) d/dσ.
     let mut scale = one();
     for _ in 0..a {
-        scale = scale / &du;
+        scale /= &du;
     }
     for _ in 0..b {
-        scale = scale / &dv;
+        scale /= &dv;
     }
     out.map(|x| x * &scale)
 }
@@ -103,7 +100,7 @@ pub fn prop_bezier_jet_encloses(
         for b in 0..=m {
             let u = q(bx[0]) + (q(bx[1]) - q(bx[0])) * ratio(a, m);
             let v = q(bx[2]) + (q(bx[3]) - q(bx[2])) * ratio(b, m);
-            let x = |da: u32, db: u32| exact_d(net, p, qd, &uv, &u, &v, da, db);
+            let x = |da: u32, db: u32| exact_d(net, (p, qd), &uv, (&u, &v), (da, db));
             let (x0, xu, xv, xuu, xuv, xvv) =
                 (x(0, 0), x(1, 0), x(0, 1), x(2, 0), x(1, 1), x(0, 2));
             let w = &x0[3];

@@ -108,7 +108,7 @@ impl Along {
 
 /// `r` of the module comment for the part `c` against the one piece `h` (`None` where no
 /// bound follows or the part is measured farther than `2d` from the piece): what
-/// [`Along::curve_within`] compares with `d`, for the proof harnesses.
+/// the crossing search compares with `d`, for the proof harnesses.
 pub fn piece_bound(h: &Piece, c: &ICurve, d: f64) -> Option<f64> {
     let a = Along::new([*h]);
     let (h, b, _) = a.pieces.first()?;
