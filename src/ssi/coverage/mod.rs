@@ -363,10 +363,6 @@ pub fn coverage(
             out.near_shared_edges += 1;
             continue;
         }
-        if over {
-            uncertified(&mut out, &a, &b, Reason::Budget, Some(centre(&m)));
-            continue;
-        }
         if regions.iter().any(|r| r.holds(&a.uv, &b.uv)) {
             out.branch_point_regions += 1;
             continue;

@@ -45,8 +45,9 @@ pub struct CoverageOut {
     pub near_output: usize,
     pub transversal: usize,
     /// Pairs inside the region of a proven branch point whose point is within the match
-    /// distance of the output, with every border crossing near the output
-    /// ([`crate::ssi::singular::BranchRegion`]).
+    /// distance of the output ([`crate::ssi::singular::BranchRegion`]): decided without a
+    /// border search (every component of the intersection in the region runs through the
+    /// branch point or to the region's border, where pairs outside it decide).
     pub branch_point_regions: usize,
     pub uncertified: usize,
     /// Pairs outside the faces (trim or B-rep loops), not examined further.
