@@ -21,6 +21,43 @@ pub fn lerp<const D: usize>(a: &[I; D], b: &[I; D], t: I) -> [I; D] {
     std::array::from_fn(|i| s * a[i] + t * b[i])
 }
 
+/// De Casteljau's algorithm at the point parameter `t` on a row of enclosed points (`1 − t`
+/// enclosed): the rows of `[0, t]` and `[t, 1]`, each holding the exact parts of every row
+/// the enclosures hold.
+pub fn split_row<const D: usize>(row: &[[I; D]], t: f64) -> (Vec<[I; D]>, Vec<[I; D]>) {
+    let n = row.len() - 1;
+    let t = I::point(t);
+    let mut d = row.to_vec();
+    let (mut left, mut right) = (vec![d[0]; n + 1], vec![d[n]; n + 1]);
+    for level in 1..=n {
+        for k in 0..=n - level {
+            d[k] = lerp(&d[k], &d[k + 1], t);
+        }
+        left[level] = d[0];
+        right[n - level] = d[n - level];
+    }
+    (left, right)
+}
+
+/// The part of a row (parameter `[0, 1]`) covering at least `[a, b]`, `0 ≤ a ≤ b ≤ 1`: cut at
+/// `b`, then the left part at `s = a / b` rounded down, so the part kept is exactly
+/// `[s b, b] ⊇ [a, b]`. Returns the part and `s` (0 when `a = 0`); `None` for ends out of order.
+pub fn cut_row<const D: usize>(row: &[[I; D]], (a, b): (f64, f64)) -> Option<(Vec<[I; D]>, f64)> {
+    if !(0.0 <= a && a <= b && b <= 1.0) || row.is_empty() {
+        return None;
+    }
+    let left = if b < 1.0 {
+        split_row(row, b).0
+    } else {
+        row.to_vec()
+    };
+    if a == 0.0 {
+        return Some((left, 0.0));
+    }
+    let s = (a / b).next_down().max(0.0);
+    Some((split_row(&left, s).1, s))
+}
+
 /// Blossom of a B-spline curve of degree `p` (knots `knots`, control points `ctrl`) on span
 /// `s` (`knots[s] < knots[s + 1]`), at arguments `xs` (de Boor–Ramshaw recurrence).
 /// `None` when a knot difference is not certified positive (invalid knot vector) or the

@@ -12,48 +12,21 @@
 //!
 //! Soundness: every step is outward-rounded interval arithmetic. The cut uses point
 //! parameters rounded so that the cut-out part covers the box (`a′ ≤ a`, `b′ ≥ b`, the second
-//! cut at `s ≤ a′ / b′`), and the derivative scale uses that part's exact width, enclosed.
+//! cut at `s ≤ a′ / b′`: [`cut_row`], shared with the coverage's crossing test), and the
+//! derivative scale uses that part's exact width, enclosed.
 
 use super::{I, Jet2, V, pt};
-use crate::spline::enclosed_bezier::{EnclosedPatch, lerp};
+use crate::spline::enclosed_bezier::{EnclosedPatch, cut_row};
 
 type H = [I; 4];
 
-/// De Casteljau at the point parameter `t`: the two halves of a row of control points.
-fn split(row: &[H], t: I) -> (Vec<H>, Vec<H>) {
-    let n = row.len();
-    let mut d = row.to_vec();
-    let mut left = Vec::with_capacity(n);
-    let mut right = vec![d[n - 1]; n];
-    left.push(d[0]);
-    for r in 1..n {
-        for i in 0..n - r {
-            d[i] = lerp(&d[i], &d[i + 1], t);
-        }
-        left.push(d[0]);
-        right[n - 1 - r] = d[n - 1 - r];
-    }
-    (left, right)
-}
-
-/// The part of a row (local parameter `[0, 1]`) covering `[a, b]`, with its exact local
-/// width enclosed. `None` unless `0 ≤ a < b ≤ 1`.
+/// The part of a row (local parameter `[0, 1]`) covering `[a, b]` ([`cut_row`]), with its
+/// exact local width `b (1 − s)` enclosed. `None` unless `0 ≤ a < b ≤ 1`.
 fn cut(row: &[H], a: f64, b: f64) -> Option<(Vec<H>, I)> {
     if !(0.0 <= a && a < b && b <= 1.0) {
         return None;
     }
-    let (left, _) = if b < 1.0 {
-        split(row, pt(b))
-    } else {
-        (row.to_vec(), Vec::new())
-    };
-    // The second cut at s ≤ a / b: the part [s b, b] ⊇ [a, b].
-    let s = if a > 0.0 {
-        (pt(a).checked_div(pt(b))?.lo).max(0.0)
-    } else {
-        0.0
-    };
-    let part = if s > 0.0 { split(&left, pt(s)).1 } else { left };
+    let (part, s) = cut_row(row, (a, b))?;
     Some((part, pt(b) * (pt(1.0) - pt(s))))
 }
 

@@ -132,14 +132,7 @@ pub fn branch_region(
     let c: [f64; 4] = root.map(|i| i.mid());
     // The foot's derivative at the root steers W_y's size: dy/dx = −J12⁻¹ J11.
     let (_, j) = r.eval_f64(&c)?;
-    let det = j[0][2] * j[1][3] - j[0][3] * j[1][2];
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    let inv = [
-        [j[1][3] / det, -j[0][3] / det],
-        [-j[1][2] / det, j[0][2] / det],
-    ];
+    let inv = inverse2([[j[0][2], j[0][3]], [j[1][2], j[1][3]]])?;
     let dydx: [[f64; 2]; 2] = std::array::from_fn(|i| {
         std::array::from_fn(|k| -(inv[i][0] * j[0][k] + inv[i][1] * j[1][k]))
     });
@@ -232,10 +225,11 @@ fn proven(
     let Some(gz) = r.box_groups(&z) else {
         return false;
     };
-    let (Some((_, zb)), Some(za)) = (r.jets(&gz, &[0; 4], &z), bezier_jet(px, w[0], w[1])) else {
+    // The x-surface's jet over W_x is `ja` (above); the foot surface's at the point y_m.
+    let Some((_, zb)) = r.jets(&gz, &[0; 4], &z) else {
         return false;
     };
-    let (gz_direct, jz) = system(&za, &zb);
+    let (gz_direct, jz) = system(&ja, &zb);
     // G₁₂(W_x, y_m): the direct enclosure met with the mean-value form about `x_m`
     // (`G₁₂(x_m, y_m) + J₁₁(W_x, y_m) (W_x − x_m)`); both hold every value.
     let xm = [w[0].mid(), w[1].mid()];
@@ -256,18 +250,12 @@ fn proven(
             gz_direct[l]
         }
     });
-    let m = [
+    let Some(c2) = inverse2([
         [jw[0][2].mid(), jw[0][3].mid()],
         [jw[1][2].mid(), jw[1][3].mid()],
-    ];
-    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-    if det == 0.0 || !det.is_finite() {
+    ]) else {
         return false;
-    }
-    let c2 = [
-        [m[1][1] / det, -m[0][1] / det],
-        [-m[1][0] / det, m[0][0] / det],
-    ];
+    };
     for i in 0..2 {
         let mut k = pt(ym[i]);
         for l in 0..2 {
@@ -285,4 +273,14 @@ fn proven(
         }
     }
     true
+}
+
+/// Inverse of a real 2 × 2 matrix (an `f64` approximation: it steers, or preconditions a
+/// test that holds for any matrix); `None` when singular or not finite.
+fn inverse2(m: [[f64; 2]; 2]) -> Option<[[f64; 2]; 2]> {
+    let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+    (det != 0.0 && det.is_finite()).then_some([
+        [m[1][1] / det, -m[0][1] / det],
+        [-m[1][0] / det, m[0][0] / det],
+    ])
 }

@@ -27,6 +27,7 @@
 
 use super::patch::{Box3, ICurve, IPatch, V, cross, derivative_numerator};
 use crate::scalar::Interval;
+use crate::spline::enclosed_bezier::cut_row;
 
 type M3 = [[Interval; 3]; 3];
 
@@ -132,48 +133,18 @@ fn widen((a, b): (f64, f64)) -> (f64, f64) {
     (lo, hi)
 }
 
-/// Split a row of homogeneous interval points at `t` (de Casteljau, `1 − t` enclosed): the
-/// rows of `[0, t]` and `[t, 1]`.
-fn split_row(xs: &[V], ws: &[Interval], t: f64) -> (Row, Row) {
-    let (t, s) = (
-        Interval::point(t),
-        Interval::point(1.0) - Interval::point(t),
-    );
-    let n = xs.len() - 1;
-    let (mut x, mut w) = (xs.to_vec(), ws.to_vec());
-    let (mut lx, mut lw) = (vec![x[0]; n + 1], vec![w[0]; n + 1]);
-    let (mut rx, mut rw) = (vec![x[n]; n + 1], vec![w[n]; n + 1]);
-    for level in 1..=n {
-        for k in 0..=n - level {
-            x[k] = std::array::from_fn(|c| x[k][c] * s + x[k + 1][c] * t);
-            w[k] = w[k] * s + w[k + 1] * t;
-        }
-        lx[level] = x[0];
-        lw[level] = w[0];
-        rx[n - level] = x[n - level];
-        rw[n - level] = w[n - level];
-    }
-    ((lx, lw), (rx, rw))
-}
-
 type Row = (Vec<V>, Vec<Interval>);
 
-/// The row of a part covering at least `[a, b] ⊂ [0, 1]`: cut at `b`, then the left part at
-/// `a / b` rounded down (so the part kept starts at or before `a`).
-fn sub_row(xs: &[V], ws: &[Interval], (a, b): (f64, f64)) -> Option<Row> {
-    if !(0.0 <= a && a <= b && b <= 1.0) {
-        return None;
-    }
-    let left = if b < 1.0 {
-        split_row(xs, ws, b).0
-    } else {
-        (xs.to_vec(), ws.to_vec())
-    };
-    if a == 0.0 {
-        return Some(left);
-    }
-    let s = (a / b).next_down().max(0.0);
-    Some(split_row(&left.0, &left.1, s).1)
+/// The row of a part covering at least `[a, b] ⊂ [0, 1]`
+/// ([`crate::spline::enclosed_bezier::cut_row`] on the homogeneous points).
+fn sub_row(xs: &[V], ws: &[Interval], ab: (f64, f64)) -> Option<Row> {
+    let row: Vec<[Interval; 4]> = xs
+        .iter()
+        .zip(ws)
+        .map(|(x, w)| [x[0], x[1], x[2], *w])
+        .collect();
+    let (cut, _) = cut_row(&row, ab)?;
+    Some(cut.iter().map(|h| ([h[0], h[1], h[2]], h[3])).unzip())
 }
 
 /// The part of `s` covering at least `[u0, u1] × [v0, v1]`.
