@@ -41,13 +41,7 @@ fn box_jets_hold_every_point_jet_inside() {
         sphere(&frame(), 1.5).unwrap(),
         wavy(),
     ];
-    let mut seed = 12345u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = crate::spline::test_params::rng(12345);
     let mut checked = 0;
     for s in &surfaces {
         let pieces = enclosed_bezier_patches(s).unwrap();

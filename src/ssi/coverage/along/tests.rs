@@ -189,13 +189,7 @@ fn small_parts_and_chords_are_left_to_the_segment_tests() {
 /// deviation from the circle), and a part on its circle (offset 0) within `d` is decided.
 #[test]
 fn random_arcs_are_bounded_soundly() {
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut unit = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut unit = crate::spline::test_params::rng(0x2545_f491_4f6c_dd1d);
     let d = 1e-6;
     let (mut bounded, mut decided) = (0, 0);
     for _ in 0..200 {
