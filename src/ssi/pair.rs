@@ -4,7 +4,7 @@ use super::branch::{BranchNear, BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
 use super::coincide::coincidence;
 use super::control::CHECK_EVERY;
-use super::coverage::{CoverageParams, coverage};
+use super::coverage::{CoverageParams, coverage_in};
 use super::pair_meshes::meshes;
 use super::refine::RefineParams;
 use super::refine::Refined;
@@ -100,7 +100,10 @@ pub fn intersect_surfaces(
     // Faces proven to have no common point (pieces subdivided until all pairs are free):
     // nothing to trace, and the coverage certificate holds as it stands (reported when
     // asked for).
-    if let Some(c) = super::coverage::disjoint::proven_disjoint(sa, sb, &cp) {
+    // The Bézier pieces of both faces, extracted once for the disjointness test, the cone
+    // test and the coverage certificate.
+    let pieces = super::coverage::PairPieces::new(sa, sb);
+    if let Some(c) = super::coverage::disjoint::proven_disjoint_in(&pieces, &cp) {
         stats.proven_disjoint = true;
         return early(stats, true, coverage_on.then_some(c), None);
     }
@@ -109,7 +112,7 @@ pub fn intersect_surfaces(
     }
     // Where no normal of A is ever parallel to one of B (proven), there is no tangential
     // point to look for, and no near-tangency to mesh finely.
-    let transversal = super::coverage::normals_never_parallel(sa, sb);
+    let transversal = super::coverage::normals_never_parallel_in(&pieces);
     ctl.report(ids, "triangulate", 0, 2);
     let (ma, mb) = meshes(sa, sb, prm, transversal, &mut stats);
     stats.triangles_a = ma.triangles.len();
@@ -233,7 +236,7 @@ pub fn intersect_surfaces(
     }
     if out.complete && coverage_on {
         ctl.report(ids, "coverage", 0, 0);
-        out.coverage = Some(coverage(sa, sb, &out.branches, &out.touch_points, &cp));
+        out.coverage = Some(coverage_in(&pieces, &out.branches, &out.touch_points, &cp));
         super::regions::refine_undecided(&mut out, sa, sb, prm, &cp, deadline);
         let parallel = out.coverage.as_ref().is_some_and(|c| {
             c.uncertified_regions

@@ -18,10 +18,22 @@
 use super::patch::{IPatch, V, cross, derivative_numerator, hull_finite_v, zero_net};
 use crate::scalar::{Interval, binomial_i64};
 
-/// Bernstein product of scalar grid `f` (`fp × fq`) and vector grid `g` (`gp × gq`).
-fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) -> Option<Vec<V>> {
+/// The factors `C(fp,k) C(gp,l) C(fq,r) C(gq,s) / (C(p,k+l) C(q,r+s))` of the Bernstein
+/// product ([`product`]) for the degrees `(fp, fq, gp, gq)`, indexed
+/// `((k (fq+1) + r) (gp+1) + l) (gq+1) + s`, each enclosed (exact integers, one outward-rounded
+/// division); computed once per degrees and thread.
+fn product_factors(fp: usize, fq: usize, gp: usize, gq: usize) -> Option<std::rc::Rc<[Interval]>> {
+    type Table = std::collections::HashMap<[usize; 4], Option<std::rc::Rc<[Interval]>>>;
+    thread_local! {
+        static TABLES: std::cell::RefCell<Table> = Default::default();
+    }
+    let key = [fp, fq, gp, gq];
+    if let Some(t) = TABLES.with(|t| t.borrow().get(&key).cloned()) {
+        return t;
+    }
     let (p, q) = (fp + gp, fq + gq);
-    let mut net = zero_net((p + 1) * (q + 1));
+    let mut out = Vec::with_capacity((fp + 1) * (fq + 1) * (gp + 1) * (gq + 1));
+    let mut ok = true;
     for k in 0..=fp {
         for r in 0..=fq {
             for l in 0..=gp {
@@ -31,8 +43,31 @@ fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) 
                         * binomial_i64(fq, r)
                         * binomial_i64(gq, s)) as f64;
                     let den = (binomial_i64(p, k + l) * binomial_i64(q, r + s)) as f64;
-                    let c = Interval::point(num).checked_div(Interval::point(den))?
-                        * f[k * (fq + 1) + r];
+                    match Interval::point(num).checked_div(Interval::point(den)) {
+                        Some(c) => out.push(c),
+                        None => ok = false,
+                    }
+                }
+            }
+        }
+    }
+    let t: Option<std::rc::Rc<[Interval]>> = ok.then(|| out.into());
+    TABLES.with(|m| m.borrow_mut().insert(key, t.clone()));
+    t
+}
+
+/// Bernstein product of scalar grid `f` (`fp × fq`) and vector grid `g` (`gp × gq`).
+fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) -> Option<Vec<V>> {
+    let (p, q) = (fp + gp, fq + gq);
+    let factors = product_factors(fp, fq, gp, gq)?;
+    let mut net = zero_net((p + 1) * (q + 1));
+    let mut c_at = factors.iter();
+    for k in 0..=fp {
+        for r in 0..=fq {
+            let fkr = f[k * (fq + 1) + r];
+            for l in 0..=gp {
+                for s in 0..=gq {
+                    let c = *c_at.next()? * fkr;
                     let idx = (k + l) * (q + 1) + (r + s);
                     let gv = g[l * (gq + 1) + s];
                     net[idx] = std::array::from_fn(|c2| net[idx][c2] + gv[c2] * c);

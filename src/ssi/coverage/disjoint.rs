@@ -12,7 +12,7 @@
 //! intersected as usual. The test decides nothing else.
 
 use super::patch::{disjoint, separated_along};
-use super::{Cell, CoverageOut, CoverageParams, roots};
+use super::{Cell, CoverageOut, CoverageParams, PairPieces};
 use crate::spline::NurbsSurface;
 use std::rc::Rc;
 use std::time::Instant;
@@ -38,22 +38,28 @@ pub fn proven_disjoint(
     sb: &NurbsSurface<f64, 3>,
     prm: &CoverageParams,
 ) -> Option<CoverageOut> {
+    proven_disjoint_in(&PairPieces::new(sa, sb), prm)
+}
+
+/// [`proven_disjoint`] on a pair's shared pieces.
+pub(crate) fn proven_disjoint_in(pp: &PairPieces, prm: &CoverageParams) -> Option<CoverageOut> {
     let t0 = Instant::now();
+    let (sa, sb) = pp.surfaces();
     // The piece count from the knots first: no extraction for pairs past the budget.
     if pieces(sa).saturating_mul(pieces(sb)) > MAX_PAIRS {
         return None;
     }
-    let (ra, rb) = (roots(sa), roots(sb));
+    let (ra, rb) = (pp.a(), pp.b());
     let mut out = CoverageOut {
         boxes_a: ra.len(),
         boxes_b: rb.len(),
         match_distance: prm.match_distance,
         ..Default::default()
     };
-    let kept = std::cell::Cell::new(0usize);
+    let kept = pp.kept();
     let mut stack: Vec<(Rc<Cell>, Rc<Cell>)> = Vec::new();
-    for a in &ra {
-        for b in &rb {
+    for a in ra {
+        for b in rb {
             stack.push((a.clone(), b.clone()));
         }
     }
@@ -77,11 +83,11 @@ pub fn proven_disjoint(
         }
         // Quarter the larger piece.
         if a.diag() >= b.diag() {
-            for k in a.kids(&kept).iter() {
+            for k in a.kids(kept).iter() {
                 stack.push((k.clone(), b.clone()));
             }
         } else {
-            for k in b.kids(&kept).iter() {
+            for k in b.kids(kept).iter() {
                 stack.push((a.clone(), k.clone()));
             }
         }

@@ -77,7 +77,7 @@ mod pieces;
 
 pub use along::piece_bound;
 pub use outcome::{CoverageOut, Reason, RegionOut};
-pub(crate) use pieces::{Cell, roots};
+pub(crate) use pieces::{Cell, PairPieces, roots};
 
 use super::report::{BranchOut, TouchOut};
 use super::singular::{BranchRegion, branch_region, disjoint_regions};
@@ -154,13 +154,17 @@ const MAX_CONE_PIECES: usize = 64;
 /// intersection. `false` (no claim) when the test fails, a piece's cone cannot be enclosed,
 /// or a surface has more than `MAX_CONE_PIECES` pieces.
 pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 3>) -> bool {
-    let cone = |s: &NurbsSurface<f64, 3>| -> Option<Vec<V>> {
-        let pieces = roots(s);
+    normals_never_parallel_in(&PairPieces::new(sa, sb))
+}
+
+/// [`normals_never_parallel`] on a pair's shared pieces.
+pub(crate) fn normals_never_parallel_in(pp: &PairPieces) -> bool {
+    let cone = |pieces: &[Rc<Cell>]| -> Option<Vec<V>> {
         if pieces.len() > MAX_CONE_PIECES {
             return None;
         }
         let mut all = Vec::new();
-        for c in &pieces {
+        for c in pieces {
             let g = c.normals();
             if g.is_empty() {
                 return None;
@@ -169,7 +173,7 @@ pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 
         }
         Some(all)
     };
-    match (cone(sa), cone(sb)) {
+    match (cone(pp.a()), cone(pp.b())) {
         (Some(a), Some(b)) => cones_separated(&a, &b),
         _ => false,
     }
@@ -253,7 +257,18 @@ pub fn coverage(
     touches: &[TouchOut],
     prm: &CoverageParams,
 ) -> CoverageOut {
+    coverage_in(&PairPieces::new(sa, sb), branches, touches, prm)
+}
+
+/// [`coverage`] on a pair's shared pieces.
+pub(crate) fn coverage_in(
+    pp: &PairPieces,
+    branches: &[BranchOut],
+    touches: &[TouchOut],
+    prm: &CoverageParams,
+) -> CoverageOut {
     let t0 = Instant::now();
+    let (sa, sb) = pp.surfaces();
     let (near, slack) = output_set(branches, touches, prm.match_distance);
     let along = along::Along::new(
         branches
@@ -280,7 +295,7 @@ pub fn coverage(
         .filter(|r| near.box_within(&r.point, d))
         .collect();
     let regions = disjoint_regions(regions);
-    let (ra, rb) = (roots(sa), roots(sb));
+    let (ra, rb) = (pp.a(), pp.b());
     let mut out = CoverageOut {
         boxes_a: ra.len(),
         boxes_b: rb.len(),
@@ -289,13 +304,13 @@ pub fn coverage(
     };
     let mut free_leaves: Vec<([f64; 4], [f64; 4], f64)> = Vec::new();
     let mut stack: Vec<(Rc<Cell>, Rc<Cell>, u32, u32)> = Vec::new();
-    for a in &ra {
-        for b in &rb {
+    for a in ra {
+        for b in rb {
             stack.push((a.clone(), b.clone(), 0, 0));
         }
     }
     let mut boxes = 0usize;
-    let kept = std::cell::Cell::new(0usize);
+    let kept = pp.kept();
     let mut searched: rustc_hash::FxHashSet<[u64; 8]> = Default::default();
     let uncertified = |out: &mut CoverageOut, a: &Cell, b: &Cell, reason, point| {
         out.uncertified += 1;
@@ -421,11 +436,11 @@ pub fn coverage(
         let can_b = db < prm.max_pair_depth && b.diag() > 0.25 * d;
         let split_a = can_a && (!can_b || a.diag() >= b.diag());
         if split_a {
-            for k in a.kids(&kept).iter() {
+            for k in a.kids(kept).iter() {
                 stack.push((k.clone(), b.clone(), da + 1, db));
             }
         } else if can_b {
-            for k in b.kids(&kept).iter() {
+            for k in b.kids(kept).iter() {
                 stack.push((a.clone(), k.clone(), da, db + 1));
             }
         } else {

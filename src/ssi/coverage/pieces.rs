@@ -145,6 +145,48 @@ fn enclose(x: &Q) -> Interval {
     Interval { lo, hi }
 }
 
+/// The Bézier pieces of a face pair, extracted once, on first use, and shared by the pair's
+/// steps — the disjointness test, the whole-surface cone test and the coverage refinement —
+/// with the quarters, normal-cone generators and crossing pieces each [`Cell`] caches. Every
+/// step reads the same enclosures the separate extractions gave, so its decisions are those
+/// it made on its own extraction; only the work is shared. At most [`CACHED_CELLS`] cells are
+/// kept over all the steps together.
+pub(crate) struct PairPieces<'s> {
+    sa: &'s NurbsSurface<f64, 3>,
+    sb: &'s NurbsSurface<f64, 3>,
+    a: OnceCell<Vec<Rc<Cell>>>,
+    b: OnceCell<Vec<Rc<Cell>>>,
+    kept: std::cell::Cell<usize>,
+}
+
+impl<'s> PairPieces<'s> {
+    pub(crate) fn new(sa: &'s NurbsSurface<f64, 3>, sb: &'s NurbsSurface<f64, 3>) -> Self {
+        PairPieces {
+            sa,
+            sb,
+            a: OnceCell::new(),
+            b: OnceCell::new(),
+            kept: std::cell::Cell::new(0),
+        }
+    }
+    /// The surfaces, A and B.
+    pub(crate) fn surfaces(&self) -> (&'s NurbsSurface<f64, 3>, &'s NurbsSurface<f64, 3>) {
+        (self.sa, self.sb)
+    }
+    /// The pieces of A ([`roots`]).
+    pub(crate) fn a(&self) -> &[Rc<Cell>] {
+        self.a.get_or_init(|| roots(self.sa))
+    }
+    /// The pieces of B ([`roots`]).
+    pub(crate) fn b(&self) -> &[Rc<Cell>] {
+        self.b.get_or_init(|| roots(self.sb))
+    }
+    /// The count of cells whose children are kept, over every step of the pair.
+    pub(crate) fn kept(&self) -> &std::cell::Cell<usize> {
+        &self.kept
+    }
+}
+
 /// The Bézier pieces of a surface, enclosed: the interval de Boor–Ramshaw extraction
 /// ([`enclosed_bezier_patches`]: every enclosure contains the exact control point), or, where
 /// a knot difference cannot be certified positive in intervals, the exact rational extraction
