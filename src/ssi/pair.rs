@@ -143,7 +143,9 @@ pub fn intersect_surfaces(
     };
     let flat = prm.flatness.unwrap_or(net_diagonal(&[sa, sb]) * 2e-3);
     ctl.report(ids, "tangential points", 0, 0);
-    let singular = if transversal {
+    // Nor where every pair of pieces within `tol` of each other is proven to have normals
+    // never parallel (`coverage::apart`): there is no tangential point to look for either.
+    let singular = if transversal || super::coverage::no_tangential_points_in(&pieces, prm.tol) {
         Vec::new()
     } else {
         tangential_points(&g, flat, prm.tangent_angle_deg, &rp)

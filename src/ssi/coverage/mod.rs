@@ -65,6 +65,7 @@
 //! halves.
 
 mod along;
+mod apart;
 pub mod cones;
 mod crossing_newton;
 pub mod crossings;
@@ -76,6 +77,7 @@ mod outcome;
 mod pieces;
 
 pub use along::piece_bound;
+pub(crate) use apart::no_tangential_points_in;
 pub use outcome::{CoverageOut, Reason, RegionOut};
 pub(crate) use pieces::{Cell, PairPieces, roots};
 
@@ -157,12 +159,22 @@ pub fn normals_never_parallel(sa: &NurbsSurface<f64, 3>, sb: &NurbsSurface<f64, 
     normals_never_parallel_in(&PairPieces::new(sa, sb))
 }
 
-/// [`normals_never_parallel`] on a pair's shared pieces.
+/// [`normals_never_parallel`] on a pair's shared pieces. The test is tried first on the
+/// pieces' corner normals ([`Cell::corner_normals`], points of the two surfaces' normal sets,
+/// so inside the cones): where even those are not separated, the generators are not
+/// computed. That filter decides only how often the claim is made, never what it claims —
+/// `false` claims nothing.
 pub(crate) fn normals_never_parallel_in(pp: &PairPieces) -> bool {
+    if pp.a().len() > MAX_CONE_PIECES || pp.b().len() > MAX_CONE_PIECES {
+        return false;
+    }
+    let corners = |pieces: &[Rc<Cell>]| -> Vec<V> {
+        pieces.iter().flat_map(|c| c.corner_normals()).collect()
+    };
+    if !cones_separated(&corners(pp.a()), &corners(pp.b())) {
+        return false;
+    }
     let cone = |pieces: &[Rc<Cell>]| -> Option<Vec<V>> {
-        if pieces.len() > MAX_CONE_PIECES {
-            return None;
-        }
         let mut all = Vec::new();
         for c in pieces {
             let g = c.normals();

@@ -66,6 +66,51 @@ impl Cell {
         self.normals
             .get_or_init(|| normal_generators(&self.patch, self.polynomial))
     }
+    /// Approximate normals at the piece's four corners, `(P₁₀ − P₀₀) × (P₀₁ − P₀₀)` and alike
+    /// from the midpoints of the enclosed control points (the normal direction at a corner
+    /// of a Bézier patch with positive weights, up to rounding), as point intervals;
+    /// degenerate corners left out. Evidence for a quick filter, proves nothing.
+    pub(super) fn corner_normals(&self) -> Vec<V> {
+        let Some(pts) = self.pts.as_deref() else {
+            return Vec::new();
+        };
+        let (p, q) = (self.patch.p, self.patch.q);
+        if p == 0 || q == 0 || pts.len() != (p + 1) * (q + 1) {
+            return Vec::new();
+        }
+        let at = |i: usize, j: usize| -> [f64; 3] { pts[i * (q + 1) + j].map(|c| c.mid()) };
+        let sub = |x: [f64; 3], y: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| x[k] - y[k]) };
+        // Corner (i, j) with its neighbours along u (i ± 1) and v (j ± 1); the signs keep
+        // each product along `S_u × S_v`.
+        [
+            (0, 0, 1, 1),
+            (p, 0, p - 1, 1),
+            (0, q, 1, q - 1),
+            (p, q, p - 1, q - 1),
+        ]
+        .into_iter()
+        .filter_map(|(i, j, ni, nj)| {
+            let c = at(i, j);
+            let du = if ni > i {
+                sub(at(ni, j), c)
+            } else {
+                sub(c, at(ni, j))
+            };
+            let dv = if nj > j {
+                sub(at(i, nj), c)
+            } else {
+                sub(c, at(i, nj))
+            };
+            let n = [
+                du[1] * dv[2] - du[2] * dv[1],
+                du[2] * dv[0] - du[0] * dv[2],
+                du[0] * dv[1] - du[1] * dv[0],
+            ];
+            (n.iter().all(|x| x.is_finite()) && n.iter().any(|x| *x != 0.0))
+                .then(|| n.map(Interval::point))
+        })
+        .collect()
+    }
     /// The piece's normals as one interval vector ([`normal_box`]).
     fn normal_box(&self) -> Option<&V> {
         self.normal_box
