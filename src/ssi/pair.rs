@@ -113,8 +113,9 @@ pub fn intersect_surfaces(
     // Where no normal of A is ever parallel to one of B (proven), there is no tangential
     // point to look for, and no near-tangency to mesh finely.
     let transversal = super::coverage::normals_never_parallel_in(&pieces);
+    let no_tangency = transversal || super::coverage::no_tangential_points_in(&pieces, prm.tol);
     ctl.report(ids, "triangulate", 0, 2);
-    let (ma, mb) = meshes(sa, sb, prm, transversal, &mut stats);
+    let (ma, mb) = meshes(sa, sb, prm, no_tangency, &mut stats);
     stats.triangles_a = ma.triangles.len();
     stats.triangles_b = mb.triangles.len();
     stats.unresolved_cells_a = ma.unresolved_cells;
@@ -145,7 +146,7 @@ pub fn intersect_surfaces(
     ctl.report(ids, "tangential points", 0, 0);
     // Nor where every pair of pieces within `tol` of each other is proven to have normals
     // never parallel (`coverage::apart`): there is no tangential point to look for either.
-    let singular = if transversal || super::coverage::no_tangential_points_in(&pieces, prm.tol) {
+    let singular = if no_tangency {
         Vec::new()
     } else {
         tangential_points(&g, flat, prm.tangent_angle_deg, &rp)

@@ -2,9 +2,9 @@
 //!
 //! The normal `S_u × S_v` of a piece is a non-negative combination of the cross products
 //! `A_k × B_l` of the Bernstein coefficients of `A ∝ S_u` and `B ∝ S_v` (`A = w X_u − w_u X`,
-//! `B = w X_v − w_v X` for homogeneous `(X, w)`, the products taken in Bernstein form; the
-//! hodographs themselves for polynomial pieces; the positive factor `1/w²` does not change
-//! directions). These cross products, enclosed in intervals, are the cone's *generators*.
+//! `B = w X_v − w_v X` for homogeneous `(X, w)`, in Bernstein form of reduced degree,
+//! [`super::numerator`]; the hodographs themselves for polynomial pieces; the positive
+//! factor `1/w²` does not change directions). These cross products, enclosed in intervals, are the cone's *generators*.
 //!
 //! **Separation lemma.** If vectors `m`, `m'` satisfy `m·a > 0 > m·b` and `m'·a > 0`,
 //! `m'·b > 0` for every generator `a` of cone A and `b` of cone B, then for every non-zero
@@ -15,96 +15,25 @@
 //! the curve cannot close (Sederberg & Meyers 1988). Every sign is taken on an interval
 //! enclosure and counts only when the whole interval has it.
 
-use super::patch::{IPatch, V, cross, derivative_numerator, hull_finite_v, zero_net};
-use crate::scalar::{Interval, binomial_i64};
-
-/// The factors `C(fp,k) C(gp,l) C(fq,r) C(gq,s) / (C(p,k+l) C(q,r+s))` of the Bernstein
-/// product ([`product`]) for the degrees `(fp, fq, gp, gq)`, indexed
-/// `((k (fq+1) + r) (gp+1) + l) (gq+1) + s`, each enclosed (exact integers, one outward-rounded
-/// division); computed once per degrees and thread.
-fn product_factors(fp: usize, fq: usize, gp: usize, gq: usize) -> Option<std::rc::Rc<[Interval]>> {
-    type Table = std::collections::HashMap<[usize; 4], Option<std::rc::Rc<[Interval]>>>;
-    thread_local! {
-        static TABLES: std::cell::RefCell<Table> = Default::default();
-    }
-    let key = [fp, fq, gp, gq];
-    if let Some(t) = TABLES.with(|t| t.borrow().get(&key).cloned()) {
-        return t;
-    }
-    let (p, q) = (fp + gp, fq + gq);
-    let mut out = Vec::with_capacity((fp + 1) * (fq + 1) * (gp + 1) * (gq + 1));
-    let mut ok = true;
-    for k in 0..=fp {
-        for r in 0..=fq {
-            for l in 0..=gp {
-                for s in 0..=gq {
-                    let num = (binomial_i64(fp, k)
-                        * binomial_i64(gp, l)
-                        * binomial_i64(fq, r)
-                        * binomial_i64(gq, s)) as f64;
-                    let den = (binomial_i64(p, k + l) * binomial_i64(q, r + s)) as f64;
-                    match Interval::point(num).checked_div(Interval::point(den)) {
-                        Some(c) => out.push(c),
-                        None => ok = false,
-                    }
-                }
-            }
-        }
-    }
-    let t: Option<std::rc::Rc<[Interval]>> = ok.then(|| out.into());
-    TABLES.with(|m| m.borrow_mut().insert(key, t.clone()));
-    t
-}
-
-/// Bernstein product of scalar grid `f` (`fp × fq`) and vector grid `g` (`gp × gq`).
-fn product(f: &[Interval], fp: usize, fq: usize, g: &[V], gp: usize, gq: usize) -> Option<Vec<V>> {
-    let (p, q) = (fp + gp, fq + gq);
-    let factors = product_factors(fp, fq, gp, gq)?;
-    let mut net = zero_net((p + 1) * (q + 1));
-    let mut c_at = factors.iter();
-    for k in 0..=fp {
-        for r in 0..=fq {
-            let fkr = f[k * (fq + 1) + r];
-            for l in 0..=gp {
-                for s in 0..=gq {
-                    let c = *c_at.next()? * fkr;
-                    let idx = (k + l) * (q + 1) + (r + s);
-                    let gv = g[l * (gq + 1) + s];
-                    net[idx] = std::array::from_fn(|c2| net[idx][c2] + gv[c2] * c);
-                }
-            }
-        }
-    }
-    Some(net)
-}
+use super::numerator::derivative_numerator_net;
+use super::patch::{IPatch, V, cross, derivative_numerator, hull_finite_v};
+use crate::scalar::Interval;
 
 /// Normal-cone generators of a piece; empty when one may vanish or overflow (no cone is then
 /// claimed, and no separation can be shown).
 pub fn normal_generators(h: &IPatch, polynomial: bool) -> Vec<V> {
-    let (Some(hu), Some(hv)) = (h.hodograph(true), h.hodograph(false)) else {
-        return Vec::new();
-    };
     let (a, b) = if polynomial {
+        let (Some(hu), Some(hv)) = (h.hodograph(true), h.hodograph(false)) else {
+            return Vec::new();
+        };
         (hu.x, hv.x)
     } else {
-        let diff = |s: Option<Vec<V>>, t: Option<Vec<V>>| -> Option<Vec<V>> {
-            Some(
-                s?.iter()
-                    .zip(&t?)
-                    .map(|(x, y)| std::array::from_fn(|c| x[c] - y[c]))
-                    .collect(),
-            )
-        };
-        let a = diff(
-            product(&h.w, h.p, h.q, &hu.x, hu.p, hu.q),
-            product(&hu.w, hu.p, hu.q, &h.x, h.p, h.q),
-        );
-        let b = diff(
-            product(&h.w, h.p, h.q, &hv.x, hv.p, hv.q),
-            product(&hv.w, hv.p, hv.q, &h.x, h.p, h.q),
-        );
-        match (a, b) {
-            (Some(a), Some(b)) => (a, b),
+        // `w X_u − w_u X` and `w X_v − w_v X` in Bernstein form of reduced degree.
+        match (
+            derivative_numerator_net(h, true),
+            derivative_numerator_net(h, false),
+        ) {
+            (Some(a), Some(b)) => (a.2, b.2),
             _ => return Vec::new(),
         }
     };

@@ -71,6 +71,7 @@ mod crossing_newton;
 pub mod crossings;
 pub mod disjoint;
 pub mod near;
+pub mod numerator;
 pub mod patch;
 
 mod outcome;
