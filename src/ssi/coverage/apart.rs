@@ -97,3 +97,51 @@ pub(crate) fn no_tangential_points_in(pp: &PairPieces, margin: f64) -> bool {
     }
     true
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spline::construct::{Frame, bilinear, sphere};
+
+    fn plane_at(z: f64) -> crate::spline::NurbsSurface<f64, 3> {
+        bilinear(
+            [-2.0, -2.0, z],
+            [2.0, -2.0, z],
+            [-2.0, 2.0, z],
+            [2.0, 2.0, z],
+        )
+        .unwrap()
+    }
+
+    /// Ground truth from the construction: the unit sphere's normal at its pole `(0, 0, 1)` is
+    /// the plane `z = h`'s normal. Tangent (`h = 1`): no claim. A plane `0.5·10⁻⁶` above the
+    /// pole is within a margin of `10⁻⁶` of a point with a parallel normal: no claim with that
+    /// margin, while with margin 0 the claim holds (the margin is what excludes it). A plane
+    /// at `h = 0.5` crosses the sphere at 60° and the pole is 0.5 away: the claim is proven.
+    #[test]
+    fn tangency_and_near_tangency_are_never_claimed_absent() {
+        let s = sphere(&Frame::WORLD, 1.0).unwrap();
+        let tangent = plane_at(1.0);
+        assert!(!no_tangential_points_in(
+            &PairPieces::new(&s, &tangent),
+            0.0
+        ));
+        assert!(!no_tangential_points_in(
+            &PairPieces::new(&s, &tangent),
+            1e-6
+        ));
+        let above = plane_at(1.0 + 0.5e-6);
+        assert!(!no_tangential_points_in(&PairPieces::new(&s, &above), 1e-6));
+        assert!(no_tangential_points_in(&PairPieces::new(&s, &above), 0.0));
+        let crossing = plane_at(0.5);
+        assert!(no_tangential_points_in(
+            &PairPieces::new(&s, &crossing),
+            1e-6
+        ));
+        // Not a number: no claim.
+        assert!(!no_tangential_points_in(
+            &PairPieces::new(&s, &crossing),
+            f64::NAN
+        ));
+    }
+}
