@@ -4,13 +4,14 @@ use super::branch::{BranchNear, BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
 use super::coincide::coincidence;
 use super::control::CHECK_EVERY;
+use super::coverage::Suspects;
 use super::coverage::{CoverageParams, coverage_in};
 use super::pair_meshes::meshes;
 use super::refine::RefineParams;
 use super::refine::Refined;
 use super::report::{ContactOut, PairOut, PairStats, SingularKind};
 use super::topology::Topology;
-use super::touch::{region, tangential_points, touch_out};
+use super::touch::{region, tangential_points_in, touch_out};
 use super::trace::{check_invariants, trace};
 use super::tri_tri::intersect_pair;
 use super::tri_tri::{Feature, PointId};
@@ -113,9 +114,15 @@ pub fn intersect_surfaces(
     // Where no normal of A is ever parallel to one of B (proven), there is no tangential
     // point to look for, and no near-tangency to mesh finely.
     let transversal = super::coverage::normals_never_parallel_in(&pieces);
-    let no_tangency = transversal || super::coverage::no_tangential_points_in(&pieces, prm.tol);
+    // Where tangential points may lie (pairs of parameter boxes); none: proven absent.
+    let suspects = if transversal {
+        Some(Suspects::new(Vec::new()))
+    } else {
+        super::coverage::tangency_suspects(&pieces, prm.tol).map(Suspects::new)
+    };
+    let no_tangency = suspects.as_ref().is_some_and(Suspects::is_empty);
     ctl.report(ids, "triangulate", 0, 2);
-    let (ma, mb) = meshes(sa, sb, prm, no_tangency, &mut stats);
+    let (ma, mb) = meshes(sa, sb, prm, no_tangency, suspects.as_ref(), &mut stats);
     stats.triangles_a = ma.triangles.len();
     stats.triangles_b = mb.triangles.len();
     stats.unresolved_cells_a = ma.unresolved_cells;
@@ -149,7 +156,7 @@ pub fn intersect_surfaces(
     let singular = if no_tangency {
         Vec::new()
     } else {
-        tangential_points(&g, flat, prm.tangent_angle_deg, &rp)
+        tangential_points_in(&g, flat, prm.tangent_angle_deg, &rp, suspects.as_ref())
     };
     if stop() {
         return stopped(stats);

@@ -2,6 +2,7 @@
 //! refined where the meshes come close at a small angle (near tangency).
 
 use super::SsiParams;
+use super::coverage::Suspects;
 use super::pair::{net_diagonal, tree, tri, unit_normal};
 use super::report::PairStats;
 use super::triangulate::{
@@ -39,14 +40,16 @@ fn planar(s: &NurbsSurface<f64, 3>) -> bool {
 }
 
 /// Triangulate both surfaces, refining cells where the meshes come close at a small angle
-/// (near tangency), up to `rounds` times — none when `transversal` (no normal of one surface
-/// is ever parallel to one of the other, proven: the surfaces meet at no tangential point, so
-/// planes at a small angle get no finer mesh than planes at a large one).
+/// (near tangency), up to `rounds` times — none when `transversal` (no tangential point,
+/// proven: planes at a small angle get no finer mesh than planes at a large one), and only
+/// cells meeting the `suspects` (the parameter boxes where a tangential point may lie,
+/// `coverage::apart`) when those are known.
 pub(crate) fn meshes(
     sa: &NurbsSurface<f64, 3>,
     sb: &NurbsSurface<f64, 3>,
     prm: &SsiParams,
     transversal: bool,
+    suspects: Option<&Suspects>,
     stats: &mut PairStats,
 ) -> (SurfaceMesh, SurfaceMesh) {
     let diag = net_diagonal(&[sa, sb]).max(f64::MIN_POSITIVE);
@@ -81,7 +84,8 @@ pub(crate) fn meshes(
         for (ta, tb) in pairs {
             if let (Some(x), Some(y)) = (ua[ta as usize], ub[tb as usize]) {
                 let c = (x[0] * y[0] + x[1] * y[1] + x[2] * y[2]).abs();
-                if c > cos_t {
+                // Only where a tangential point may lie (`coverage::apart`), when known.
+                if c > cos_t && suspects.is_none_or(|s| s.meets(&ma.uv_box(ta), &mb.uv_box(tb))) {
                     fa.insert(ma.cells[ma.tri_cell[ta as usize] as usize]);
                     fb.insert(mb.cells[mb.tri_cell[tb as usize] as usize]);
                 }

@@ -11,6 +11,7 @@
 //! ([`super::singular`]): the search itself decides nothing.
 
 use super::branch::PairGeometry;
+use super::coverage::Suspects;
 use super::pair::tri;
 use super::pair_meshes::unit_normals;
 use super::refine::{RefineParams, RefineStatus, Refined, point_d1, tangential_point_until};
@@ -55,8 +56,24 @@ pub fn tangential_points(
     tangent_angle_deg: f64,
     prm: &RefineParams,
 ) -> Vec<Refined> {
+    tangential_points_in(g, flatness, tangent_angle_deg, prm, None)
+}
+
+/// [`tangential_points`] seeded only from triangle pairs meeting the `suspects` (the
+/// parameter boxes where a tangential point may lie, `coverage::apart`) when those are known:
+/// a scheduling choice, the search proposes points and decides nothing.
+pub(crate) fn tangential_points_in(
+    g: &PairGeometry,
+    flatness: f64,
+    tangent_angle_deg: f64,
+    prm: &RefineParams,
+    suspects: Option<&Suspects>,
+) -> Vec<Refined> {
     let cos_t = tangent_angle_deg.to_radians().cos();
-    let pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
+    let mut pairs = grown_tree(g.ma, flatness).overlapping_pairs(&grown_tree(g.mb, flatness));
+    if let Some(s) = suspects {
+        pairs.retain(|&(ta, tb)| s.meets(&g.ma.uv_box(ta), &g.mb.uv_box(tb)));
+    }
     let mut seeds: HashSet<(u32, u32)> = HashSet::default();
     let mut seed_tris = Vec::new();
     let (ua, ub) = (unit_normals(g.ma), unit_normals(g.mb));

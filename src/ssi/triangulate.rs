@@ -64,6 +64,16 @@ pub struct SurfaceMesh {
 }
 
 impl SurfaceMesh {
+    /// The parameter box `[u0, u1, v0, v1]` of triangle `t`'s vertices.
+    pub fn uv_box(&self, t: u32) -> [f64; 4] {
+        let v = self.triangles[t as usize].map(|i| self.uv[i as usize]);
+        [
+            v[0][0].min(v[1][0]).min(v[2][0]),
+            v[0][0].max(v[1][0]).max(v[2][0]),
+            v[0][1].min(v[1][1]).min(v[2][1]),
+            v[0][1].max(v[1][1]).max(v[2][1]),
+        ]
+    }
     /// Triangle `t` with topological vertex numbers.
     pub fn topo_triangle(&self, t: u32) -> [u32; 3] {
         self.triangles[t as usize].map(|v| self.topo_id[v as usize])

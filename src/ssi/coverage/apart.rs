@@ -51,11 +51,21 @@ fn grown(b: &Box3, d: f64) -> Box3 {
     )
 }
 
-/// Whether the claim of the module comment is proven with margin `margin` (within
-/// [`MAX_PAIRS`] pairs and [`MAX_DEPTH`] splits per piece; `false` claims nothing).
-pub(crate) fn no_tangential_points_in(pp: &PairPieces, margin: f64) -> bool {
+/// Most suspect pairs listed; past it, no list is given.
+pub const MAX_SUSPECTS: usize = 1024;
+
+/// The pairs of parameter boxes `[u0, u1, v0, v1]` (of A, of B) left undecided at
+/// [`MAX_DEPTH`]: every `(p, q)` with `|S_a(p) − S_b(q)| ≤ margin` and parallel (or
+/// antiparallel, or vanishing) normals has `p` in the first box and `q` in the second of one
+/// of them (the proof of the module comment: every other leaf pair is farther apart or has
+/// cones apart), up to the rounding of the boxes' labels (rounded midpoints of the exact
+/// halves): a scheduling guide for the tangential-point search and the meshes, which prove
+/// nothing. Empty: the claim of the module comment. `None` (no claim) past
+/// [`MAX_PAIRS`] pairs or [`MAX_SUSPECTS`] suspects, where an enclosure fails, or for a
+/// margin that is not a finite non-negative number.
+pub(crate) fn tangency_suspects(pp: &PairPieces, margin: f64) -> Option<Vec<([f64; 4], [f64; 4])>> {
     if !(margin >= 0.0 && margin.is_finite()) {
-        return false;
+        return None;
     }
     let mut stack: Vec<(Rc<Cell>, Rc<Cell>, u32, u32)> = Vec::new();
     for a in pp.a() {
@@ -63,16 +73,17 @@ pub(crate) fn no_tangential_points_in(pp: &PairPieces, margin: f64) -> bool {
             stack.push((a.clone(), b.clone(), 0, 0));
         }
     }
+    let mut suspects = Vec::new();
     let mut examined = 0usize;
     while let Some((a, b, da, db)) = stack.pop() {
         examined += 1;
         if examined > MAX_PAIRS {
-            return false;
+            return None;
         }
         let (Some(ha), Some(hb), Some(pa), Some(pb)) =
             (a.hull, b.hull, a.pts.as_deref(), b.pts.as_deref())
         else {
-            return false;
+            return None;
         };
         if disjoint(&grown(&ha, margin), &hb)
             || apart_along(pa, pb, &a.normal, margin)
@@ -92,16 +103,47 @@ pub(crate) fn no_tangential_points_in(pp: &PairPieces, margin: f64) -> bool {
                 stack.push((a.clone(), k.clone(), da, db + 1));
             }
         } else {
-            return false;
+            if suspects.len() >= MAX_SUSPECTS {
+                return None;
+            }
+            suspects.push((a.uv, b.uv));
         }
     }
-    true
+    Some(suspects)
+}
+
+/// The suspect pairs of [`tangency_suspects`] as a filter on parameter boxes (closed, grown by
+/// `10⁻⁹` of their size for the labels' rounding).
+pub(crate) struct Suspects(Vec<([f64; 4], [f64; 4])>);
+
+fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    let g = 1e-9 * (b[1] - b[0]).abs().max((b[3] - b[2]).abs());
+    a[0] <= b[1] + g && b[0] - g <= a[1] && a[2] <= b[3] + g && b[2] - g <= a[3]
+}
+
+impl Suspects {
+    pub(crate) fn new(pairs: Vec<([f64; 4], [f64; 4])>) -> Self {
+        Suspects(pairs)
+    }
+    /// No pair: no tangential point (with the margin it was found with).
+    pub(crate) fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+    /// Whether some suspect pair meets box `a` of A and box `b` of B.
+    pub(crate) fn meets(&self, a: &[f64; 4], b: &[f64; 4]) -> bool {
+        self.0.iter().any(|(x, y)| overlap(a, x) && overlap(b, y))
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::spline::construct::{Frame, bilinear, sphere};
+
+    /// The claim of the module comment, proven (no suspect pair left).
+    fn no_tangential_points_in(pp: &PairPieces, margin: f64) -> bool {
+        tangency_suspects(pp, margin).is_some_and(|s| s.is_empty())
+    }
 
     fn plane_at(z: f64) -> crate::spline::NurbsSurface<f64, 3> {
         bilinear(
@@ -138,6 +180,18 @@ mod tests {
             &PairPieces::new(&s, &crossing),
             1e-6
         ));
+        // The suspects hold the contact: the sphere's pole (v = 1, any u) against the
+        // plane's centre (u = v = 0.5).
+        let sus = tangency_suspects(&PairPieces::new(&s, &tangent), 1e-6).unwrap();
+        assert!(!sus.is_empty());
+        assert!(
+            sus.iter().any(|(a, b)| a[3] == 1.0
+                && b[0] <= 0.5
+                && 0.5 <= b[1]
+                && b[2] <= 0.5
+                && 0.5 <= b[3]),
+            "{sus:?}"
+        );
         // Not a number: no claim.
         assert!(!no_tangential_points_in(
             &PairPieces::new(&s, &crossing),

@@ -78,7 +78,7 @@ mod outcome;
 mod pieces;
 
 pub use along::piece_bound;
-pub(crate) use apart::no_tangential_points_in;
+pub(crate) use apart::{Suspects, tangency_suspects};
 pub use outcome::{CoverageOut, Reason, RegionOut};
 pub(crate) use pieces::{Cell, PairPieces, roots};
 
