@@ -23,8 +23,9 @@ use super::patch::{Box3, V, disjoint, range_along};
 use super::pieces::Cell;
 use std::rc::Rc;
 
-/// Pairs of pieces examined at most.
-pub const MAX_PAIRS: usize = 1 << 16;
+/// Pairs of pieces examined at most beyond the pairs of root pieces (the Bézier pieces
+/// themselves, each examined once).
+pub const MAX_PAIRS: usize = 4096;
 /// Splits of one piece at most.
 pub const MAX_DEPTH: u32 = 8;
 
@@ -51,8 +52,10 @@ fn grown(b: &Box3, d: f64) -> Box3 {
     )
 }
 
-/// Most suspect pairs listed; past it, no list is given.
-pub const MAX_SUSPECTS: usize = 1024;
+/// Most suspect pairs listed; past it, no list is given (a tangency along a curve, as
+/// between faces meeting along a tangent-continuous edge, gives many: the test stops early
+/// there, where it could not succeed).
+pub const MAX_SUSPECTS: usize = 64;
 
 /// The pairs of parameter boxes `[u0, u1, v0, v1]` (of A, of B) left undecided at
 /// [`MAX_DEPTH`]: every `(p, q)` with `|S_a(p) − S_b(q)| ≤ margin` and parallel (or
@@ -61,7 +64,7 @@ pub const MAX_SUSPECTS: usize = 1024;
 /// cones apart), up to the rounding of the boxes' labels (rounded midpoints of the exact
 /// halves): a scheduling guide for the tangential-point search and the meshes, which prove
 /// nothing. Empty: the claim of the module comment. `None` (no claim) past
-/// [`MAX_PAIRS`] pairs or [`MAX_SUSPECTS`] suspects, where an enclosure fails, or for a
+/// [`MAX_PAIRS`] pairs beyond the roots or [`MAX_SUSPECTS`] suspects, where an enclosure fails, or for a
 /// margin that is not a finite non-negative number.
 pub(crate) fn tangency_suspects(pp: &PairPieces, margin: f64) -> Option<Vec<([f64; 4], [f64; 4])>> {
     if !(margin >= 0.0 && margin.is_finite()) {
@@ -74,10 +77,11 @@ pub(crate) fn tangency_suspects(pp: &PairPieces, margin: f64) -> Option<Vec<([f6
         }
     }
     let mut suspects = Vec::new();
+    let roots = stack.len();
     let mut examined = 0usize;
     while let Some((a, b, da, db)) = stack.pop() {
         examined += 1;
-        if examined > MAX_PAIRS {
+        if examined > roots + MAX_PAIRS {
             return None;
         }
         let (Some(ha), Some(hb), Some(pa), Some(pb)) =
