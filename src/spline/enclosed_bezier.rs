@@ -104,6 +104,52 @@ pub fn bspline_span_bezier<const D: usize>(
         .collect()
 }
 
+/// The blossom's interpolation factors on span `s` for the Bézier points' arguments
+/// `(u_s^(p−k), u_{s+1}^k)`, `k = 0..=p`: every `alpha` [`bspline_blossom`] computes, in its
+/// order (k, then the recurrence's `r` and `j`). They depend on the knots only, so one table
+/// serves every row of a net; [`span_bezier_with`] applies it with the same operations, so the
+/// enclosures are those of [`bspline_span_bezier`], bit for bit.
+fn span_alphas(knots: &[f64], p: usize, s: usize) -> Option<Vec<I>> {
+    if p > super::MAX_DEGREE || s < p || knots.len() < s + p + 2 {
+        return None;
+    }
+    let (a, b) = (I::point(knots[s]), I::point(knots[s + 1]));
+    let mut out = Vec::with_capacity((p + 1) * p * (p + 1) / 2);
+    for k in 0..=p {
+        for r in 1..=p {
+            let x = if r <= p - k { a } else { b };
+            for j in (s - p + r..=s).rev() {
+                let (uj, ue) = (knots[j], knots[j + p + 1 - r]);
+                out.push((x - I::point(uj)).checked_div(I::point(ue) - I::point(uj))?);
+            }
+        }
+    }
+    Some(out)
+}
+
+/// The Bézier control points of a span from its `p + 1` B-spline control points `window`
+/// (`ctrl[s − p..=s]`) and its [`span_alphas`] table, into `out`.
+fn span_bezier_with<const D: usize>(
+    alphas: &[I],
+    p: usize,
+    window: &[[I; D]],
+    out: &mut Vec<[I; D]>,
+) {
+    out.clear();
+    let mut at = alphas.iter();
+    for _ in 0..=p {
+        let mut d: ArrayVec<[I; D], 32> = window.iter().copied().collect();
+        for r in 1..=p {
+            for k in (r..=p).rev() {
+                // The table holds one factor per step, in this order.
+                let alpha = at.next().copied().unwrap_or(I::point(f64::NAN));
+                d[k] = lerp(&d[k - 1], &d[k], alpha);
+            }
+        }
+        out.push(d[p]);
+    }
+}
+
 /// One Bézier piece of a surface with enclosed homogeneous control points.
 #[derive(Clone, Debug)]
 pub struct EnclosedPatch {
@@ -136,19 +182,29 @@ pub fn enclosed_bezier_patches(s: &NurbsSurface<f64, 3>) -> Option<Vec<EnclosedP
         [c.wp[0], c.wp[1], c.wp[2], c.w].map(I::point)
     };
     let (su, sv) = (spans(ku, p, nu), spans(kv, q, nv));
+    let alphas_v: Vec<Vec<I>> = sv
+        .iter()
+        .map(|&b| span_alphas(kv, q, b))
+        .collect::<Option<_>>()?;
     let mut out = Vec::with_capacity(su.len() * sv.len());
+    let mut window: Vec<[I; 4]> = Vec::with_capacity(p.max(q) + 1);
+    let mut bz: Vec<[I; 4]> = Vec::with_capacity(p.max(q) + 1);
     for &a in &su {
-        // Along u on every column j: the u-Bézier points of this span, (p + 1) × nv.
-        let mut cols: Vec<Vec<[I; 4]>> = Vec::with_capacity(nv);
+        let alphas_u = span_alphas(ku, p, a)?;
+        // Along u on every column j: the u-Bézier points of this span, (p + 1) per column.
+        let mut cols: Vec<[I; 4]> = Vec::with_capacity(nv * (p + 1));
         for j in 0..nv {
-            let col: Vec<[I; 4]> = (0..nu).map(|i| hom(i, j)).collect();
-            cols.push(bspline_span_bezier(ku, p, &col, a)?);
+            window.clear();
+            window.extend((a - p..=a).map(|i| hom(i, j)));
+            span_bezier_with(&alphas_u, p, &window, &mut bz);
+            cols.extend_from_slice(&bz);
         }
-        for &b in &sv {
+        for (&b, alphas) in sv.iter().zip(&alphas_v) {
             let mut net = vec![[I::point(0.0); 4]; (p + 1) * (q + 1)];
             for i in 0..=p {
-                let row: Vec<[I; 4]> = (0..nv).map(|j| cols[j][i]).collect();
-                let bz = bspline_span_bezier(kv, q, &row, b)?;
+                window.clear();
+                window.extend((b - q..=b).map(|j| cols[j * (p + 1) + i]));
+                span_bezier_with(alphas, q, &window, &mut bz);
                 net[i * (q + 1)..(i + 1) * (q + 1)].copy_from_slice(&bz);
             }
             out.push(EnclosedPatch {

@@ -184,18 +184,26 @@ mod tests {
             &PairPieces::new(&s, &crossing),
             1e-6
         ));
-        // The suspects hold the contact: the sphere's pole (v = 1, any u) against the
-        // plane's centre (u = v = 0.5).
-        let sus = tangency_suspects(&PairPieces::new(&s, &tangent), 1e-6).unwrap();
-        assert!(!sus.is_empty());
+        // A contact at a regular point: the plane y = 1 touches the sphere at (0, 1, 0), its
+        // parameters (0.25, 0.5) (a quarter turn, the equator); the plane's are (0.5, 0.5).
+        // The suspects are listed and hold it.
+        let side = bilinear(
+            [-2.0, 1.0, -2.0],
+            [2.0, 1.0, -2.0],
+            [-2.0, 1.0, 2.0],
+            [2.0, 1.0, 2.0],
+        )
+        .unwrap();
+        let sus = tangency_suspects(&PairPieces::new(&s, &side), 1e-6).unwrap();
+        let holds = |b: &[f64; 4], u: f64, v: f64| b[0] <= u && u <= b[1] && b[2] <= v && v <= b[3];
         assert!(
-            sus.iter().any(|(a, b)| a[3] == 1.0
-                && b[0] <= 0.5
-                && 0.5 <= b[1]
-                && b[2] <= 0.5
-                && 0.5 <= b[3]),
+            sus.iter()
+                .any(|(a, b)| holds(a, 0.25, 0.5) && holds(b, 0.5, 0.5)),
             "{sus:?}"
         );
+        // At the pole every piece around it holds the contact: more than `MAX_SUSPECTS`,
+        // so no list (and no claim).
+        assert!(tangency_suspects(&PairPieces::new(&s, &tangent), 1e-6).is_none());
         // Not a number: no claim.
         assert!(!no_tangential_points_in(
             &PairPieces::new(&s, &crossing),
