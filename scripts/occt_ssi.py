@@ -100,9 +100,12 @@ def certify_occt_lines(surfs, tmp):
         faces.append(p)
     out = subprocess.run([EXE, "certify-ssi", faces[0], faces[1], "--curves", lines, "--tol", str(TOL), "--json"],
                          capture_output=True, text=True)
-    if out.returncode != 0:
-        print("certify-ssi failed:", out.stderr.strip())
+    # Exit 0: every curve certified within tol and nothing missing; 3: a curve not within tol,
+    # partial or missing (the report says which); anything else is an error.
+    if out.returncode not in (0, 3):
+        print(f"certify-ssi failed (exit {out.returncode}):", out.stderr.strip())
         return
+    print(f"certify-ssi exit {out.returncode}")
     r = json.loads(out.stdout)
     print(f"OCCT lines certified by vericad (tol {TOL}): {len(r['curves'])} curves")
     for c in r["curves"]:
