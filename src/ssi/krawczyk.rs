@@ -42,7 +42,9 @@
 //! parameter held on that border. Where the curve leaves both domains at one point (a corner
 //! of both), the plane is moved along the curve by `±δ` (`δ` from `1e-12` to `1e-6` of the
 //! point's scale): any plane isolates *some* zero, and the radius is still measured from `p`,
-//! so it comes out about `δ` when that zero lies inside both domains.
+//! so it comes out about `δ` when that zero lies inside both domains. Where `p` lies on a
+//! proven seam (a closed surface's two borders one curve), the search on the moved planes
+//! also starts from the seam's other border, where the zero across it lies.
 //!
 //! **Hypotheses.** The surfaces are continuous (interior knot multiplicity at most the
 //! degree, enforced when a surface is built) and their weights do not vanish on the boxes
@@ -66,6 +68,7 @@ use super::refine::{domain, point_d1};
 use crate::geom::{cross, norm};
 use crate::scalar::Interval;
 use crate::spline::NurbsSurface;
+use crate::spline::closure::Closure;
 use serde::Serialize;
 use system::{Eval, Fourth, System, pt};
 
@@ -445,6 +448,7 @@ fn inside_near(
     p: &[f64; 3],
 ) -> Result<CurveCertificate, Uncertified> {
     let scale = 1.0 + p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let starts = seam_starts(sys, z0);
     for rel in [1e-12, 1e-10, 1e-9, 3e-9, 1e-8, 3e-8, 1e-7, 3e-7, 1e-6] {
         for sign in [1.0, -1.0] {
             let d = sign * rel * scale;
@@ -452,12 +456,46 @@ fn inside_near(
                 n,
                 p: std::array::from_fn(|k| p[k] + d * n[k]),
             };
-            if let Attempt::Done(c) = attempt(sys, z0, None) {
-                return Ok(c);
+            for z in &starts {
+                if let Attempt::Done(c) = attempt(sys, *z, None) {
+                    return Ok(c);
+                }
             }
         }
     }
     Err(Uncertified::OutsideDomain)
+}
+
+/// Starting points for [`inside_near`]: `z0`, and where a parameter lies on (within a
+/// relative 1e-6 of) a border of a direction whose two borders are one curve — a seam proven
+/// from the control net ([`Closure`]) — the same with that parameter on the other border (every
+/// combination): where the curve crosses a seam, the zero on a plane moved one way lies just
+/// across it. Only where the search starts: what is certified is checked as always (the
+/// zero's box inside both closed domains).
+fn seam_starts(sys: &System, z0: [f64; 4]) -> Vec<[f64; 4]> {
+    let (ca, cb) = (Closure::of(sys.sa), Closure::of(sys.sb));
+    let closed = [ca.seam_u, ca.seam_v, cb.seam_u, cb.seam_v];
+    let mut out = vec![z0];
+    for k in 0..4 {
+        let w = 1e-6 * (sys.hi[k] - sys.lo[k]);
+        let other = if !closed[k] {
+            None
+        } else if z0[k] - sys.lo[k] <= w {
+            Some(sys.hi[k])
+        } else if sys.hi[k] - z0[k] <= w {
+            Some(sys.lo[k])
+        } else {
+            None
+        };
+        if let Some(o) = other {
+            for i in 0..out.len() {
+                let mut z = out[i];
+                z[k] = o;
+                out.push(z);
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -169,3 +169,38 @@ fn a_run_shares_one_test() {
         assert!(c.radius >= off_circle(&off) - 1e-15, "{}", c.radius);
     }
 }
+
+/// Two cylinders whose intersection crosses both seams at one point: A of radius 1 about the
+/// z axis (seam at (1, 0, z)), B of radius 0.6 about the x axis through (−3, 0, 0), its frame's
+/// x axis along z (seam at (x, 0, 0.6)). At `(1, 0, 0.6)` the curve leaves both parameter
+/// domains at once; the domains are closed there (a proven seam each), so a true point just
+/// across, on the other side of either seam, is inside them. The certificate must find one:
+/// the curve point is exact, so the radius is tiny.
+#[test]
+fn a_point_on_both_seams_is_certified() {
+    use crate::spline::construct::cylinder;
+    let a = cylinder(&Frame::WORLD, 1.0, -3.0, 3.0).unwrap();
+    let fb = Frame {
+        o: [-3.0, 0.0, 0.0],
+        x: [0.0, 0.0, 1.0],
+        y: [0.0, -1.0, 0.0],
+        z: [1.0, 0.0, 0.0],
+    };
+    let b = cylinder(&fb, 0.6, 0.0, 6.0).unwrap();
+    let p = [1.0, 0.0, 0.6];
+    let (ua, ub) = (
+        crate::spline::project::SurfaceFoot::new(&a).closest(&p),
+        crate::spline::project::SurfaceFoot::new(&b).closest(&p),
+    );
+    for (s, uv) in [(&a, ua), (&b, ub)] {
+        let q = s.eval(&uv[0], &uv[1]);
+        assert!(crate::geom::dist(&q, &p) < 1e-12, "{uv:?} {q:?}");
+        let d = domain(s);
+        let on_seam = uv[0] <= d[0] + 1e-9 || uv[0] >= d[1] - 1e-9;
+        assert!(on_seam, "the construction puts p on the seam: {uv:?}");
+    }
+    for (x, y) in [(ua, ub), ([domain(&a)[1], ua[1]], [domain(&b)[1], ub[1]])] {
+        let c = certify_on_curve(&a, &b, &p, &x, &y).expect("certified");
+        assert!(c.radius < 1e-9, "{}", c.radius);
+    }
+}
