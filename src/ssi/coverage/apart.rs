@@ -2,9 +2,10 @@
 //! (Bézier pieces of the two surfaces, split as the coverage refinement splits them) either
 //! lies farther apart than a margin or has normal cones proven apart.
 //!
-//! **Claim.** If the test succeeds with margin `δ ≥ 0`, then for every point `p` of A and `q`
-//! of B with `|S_a(p) − S_b(q)| ≤ δ`, the normals `n_A(p)` and `n_B(q)` are neither parallel
-//! nor antiparallel, and neither vanishes. *Proof.* The leaves of the refinement partition
+//! **Claim.** If the test succeeds with margin `δ ≥ 0` ([`tangency_suspects`] leaves no
+//! suspect pair), then for every point `p` of A and `q` of B with `|S_a(p) − S_b(q)| ≤ δ`,
+//! the normals `n_A(p)` and `n_B(q)` are neither parallel nor antiparallel, and neither
+//! vanishes. *Proof.* The leaves of the refinement partition
 //! each parameter domain, so `p` lies in a leaf `α` and `q` in a leaf `β` (a point on a
 //! split line lies in the pieces on both sides; any one serves). `S_a(p)` lies in the box of
 //! `α`'s control points and `S_b(q)` in that of `β`'s (convex hull property, positive
@@ -63,9 +64,9 @@ pub const MAX_SUSPECTS: usize = 64;
 /// of them (the proof of the module comment: every other leaf pair is farther apart or has
 /// cones apart), up to the rounding of the boxes' labels (rounded midpoints of the exact
 /// halves): a scheduling guide for the tangential-point search and the meshes, which prove
-/// nothing. Empty: the claim of the module comment. `None` (no claim) past
-/// [`MAX_PAIRS`] pairs beyond the roots or [`MAX_SUSPECTS`] suspects, where an enclosure fails, or for a
-/// margin that is not a finite non-negative number.
+/// nothing. Empty: the claim of the module comment (the test succeeds). `None` (no claim)
+/// past [`MAX_PAIRS`] pairs beyond the roots or [`MAX_SUSPECTS`] suspects, where an
+/// enclosure fails, or for a margin that is not a finite non-negative number.
 pub(crate) fn tangency_suspects(pp: &PairPieces, margin: f64) -> Option<Vec<([f64; 4], [f64; 4])>> {
     if !(margin >= 0.0 && margin.is_finite()) {
         return None;
