@@ -253,3 +253,59 @@ fn one_file_mode() {
     assert_eq!(code, Some(3));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Two cylinders crossing, the true curve from the construction: A is `x² + y² = 1` (frame
+/// `f`, its seam along `f.at(1, 0, ·)`), B is `y² + z² = 0.36` about the frame's x axis with its
+/// seam along `f.at(·, 0, 0.6)`; the branch `x > 0` is `(√(1 − 0.36 sin²θ), 0.6 sin θ, 0.6 cos θ)`
+/// and crosses both seams at once at `θ = 0`, the point `(1, 0, 0.6)`; the branch `x < 0` is
+/// its mirror. Correct foreign polylines of both branches (2,048 chords each, sagitta below
+/// 1e-6) are accepted, every vertex certified on the curve (the vertex on both seams too),
+/// nothing missing, in the world frame and in a rotated one; with the `x < 0` branch left out
+/// it is reported missing; moved by 10 tol, the curve is rejected.
+#[test]
+fn a_curve_through_both_seams_is_accepted() {
+    use vericad::spline::construct::cylinder;
+    for f in [Frame::WORLD, rotated([0.3, 0.2, -0.4])] {
+        let fb = Frame {
+            o: f.at(-3.0, 0.0, 0.0),
+            x: f.z,
+            y: f.y.map(|c| -c),
+            z: f.x,
+        };
+        let (a, b) = (
+            model(vec![cylinder(&f, 1.0, -3.0, 3.0).unwrap()]),
+            model(vec![cylinder(&fb, 0.6, 0.0, 6.0).unwrap()]),
+        );
+        let n = 2048;
+        let curve = |sign: f64, shift: [f64; 3]| -> Vec<[f64; 3]> {
+            (0..=n)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / n as f64;
+                    let (s, c) = (0.6 * t.sin(), 0.6 * t.cos());
+                    let p = f.at(sign * (1.0 - s * s).sqrt(), s, c);
+                    std::array::from_fn(|i| p[i] + shift[i])
+                })
+                .collect()
+        };
+        let good = run(
+            &a,
+            &b,
+            vec![curve(1.0, [0.0; 3]), curve(-1.0, [0.0; 3])],
+            TOL,
+        );
+        for c in &good.curves {
+            assert_eq!(c.status, "within_tol", "{good}");
+            assert_eq!(c.points_on_curve, n + 1, "{good}");
+            assert!(c.curve_dist_max.unwrap() < 1e-9, "{good}");
+        }
+        assert_eq!(good.missing_branches, 0, "{good}");
+        assert!(good.certified, "{good}");
+        let one = run(&a, &b, vec![curve(1.0, [0.0; 3])], TOL);
+        assert_eq!(one.missing_branches, 1, "{one}");
+        assert!(!one.certified, "{one}");
+        let up: [f64; 3] = f.x.map(|x| 10.0 * TOL * x);
+        let off = run(&a, &b, vec![curve(1.0, up), curve(-1.0, up)], TOL);
+        assert!(off.curves.iter().all(|c| !c.within_tol), "{off}");
+        assert!(!off.certified, "{off}");
+    }
+}
