@@ -84,31 +84,11 @@ pub fn bspline_blossom<const D: usize>(
     Some(d[p])
 }
 
-/// The Bézier control points of span `s` of a B-spline curve: blossoms at
-/// `(u_s^(p-k), u_{s+1}^k)`, `k = 0..=p`.
-pub fn bspline_span_bezier<const D: usize>(
-    knots: &[f64],
-    p: usize,
-    ctrl: &[[I; D]],
-    s: usize,
-) -> Option<Vec<[I; D]>> {
-    let (a, b) = (I::point(*knots.get(s)?), I::point(*knots.get(s + 1)?));
-    let mut xs: ArrayVec<I, 32> = ArrayVec::new();
-    (0..=p)
-        .map(|k| {
-            xs.clear();
-            xs.extend(std::iter::repeat_n(a, p - k));
-            xs.extend(std::iter::repeat_n(b, k));
-            bspline_blossom(knots, p, ctrl, s, &xs)
-        })
-        .collect()
-}
-
 /// The blossom's interpolation factors on span `s` for the Bézier points' arguments
 /// `(u_s^(p−k), u_{s+1}^k)`, `k = 0..=p`: every `alpha` [`bspline_blossom`] computes, in its
 /// order (k, then the recurrence's `r` and `j`). They depend on the knots only, so one table
-/// serves every row of a net; [`span_bezier_with`] applies it with the same operations, so the
-/// enclosures are those of [`bspline_span_bezier`], bit for bit.
+/// serves every row of a net; [`span_bezier_with`] applies it with the operations of the
+/// recurrence, so the enclosures are the blossom's, bit for bit.
 fn span_alphas(knots: &[f64], p: usize, s: usize) -> Option<Vec<I>> {
     if p > super::MAX_DEGREE || s < p || knots.len() < s + p + 2 {
         return None;
@@ -148,6 +128,24 @@ fn span_bezier_with<const D: usize>(
         }
         out.push(d[p]);
     }
+}
+
+/// The Bézier control points of span `s` of a B-spline curve: blossoms at
+/// `(u_s^(p-k), u_{s+1}^k)`, `k = 0..=p` (the recurrence of [`bspline_blossom`], its factors
+/// tabled once for the span).
+pub fn bspline_span_bezier<const D: usize>(
+    knots: &[f64],
+    p: usize,
+    ctrl: &[[I; D]],
+    s: usize,
+) -> Option<Vec<[I; D]>> {
+    if s >= ctrl.len() {
+        return None;
+    }
+    let alphas = span_alphas(knots, p, s)?;
+    let mut out = Vec::with_capacity(p + 1);
+    span_bezier_with(&alphas, p, &ctrl[s - p..=s], &mut out);
+    Some(out)
 }
 
 /// One Bézier piece of a surface with enclosed homogeneous control points.

@@ -247,7 +247,7 @@ pub fn intersect_surfaces(
     if out.complete && coverage_on {
         ctl.report(ids, "coverage", 0, 0);
         out.coverage = Some(coverage_in(&pieces, &out.branches, &out.touch_points, &cp));
-        super::regions::refine_undecided(&mut out, sa, sb, prm, &cp, deadline);
+        super::regions::refine_undecided_in(&mut out, &pieces, prm, &cp, deadline);
         let parallel = out.coverage.as_ref().is_some_and(|c| {
             c.uncertified_regions
                 .iter()

@@ -30,7 +30,7 @@
 use super::SsiParams;
 use super::branch::{BranchNear, BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
-use super::coverage::{CoverageParams, Reason, RegionOut, coverage};
+use super::coverage::{CoverageParams, PairPieces, Reason, RegionOut, coverage_in};
 use super::pair::{build_topology, net_diagonal, tree, tri};
 use super::refine::{RefineParams, domain};
 use super::report::{BranchOut, PairOut, PairStats, TouchOut};
@@ -261,6 +261,19 @@ pub fn refine_undecided(
     cp: &CoverageParams,
     deadline: Option<Instant>,
 ) {
+    refine_undecided_in(out, &PairPieces::new(sa, sb), prm, cp, deadline);
+}
+
+/// [`refine_undecided`] on the pair's shared pieces (each round's coverage reuses their
+/// quarters and cones).
+pub(crate) fn refine_undecided_in(
+    out: &mut PairOut,
+    pp: &PairPieces,
+    prm: &SsiParams,
+    cp: &CoverageParams,
+    deadline: Option<Instant>,
+) {
+    let (sa, sb) = pp.surfaces();
     let t0 = Instant::now();
     let stop = || prm.control.stop(deadline);
     let Some(first) = out.coverage.as_ref() else {
@@ -325,7 +338,7 @@ pub fn refine_undecided(
         if runs == 0 || stop() {
             break;
         }
-        let cov2 = coverage(sa, sb, &branches, &touch_points, cp);
+        let cov2 = coverage_in(pp, &branches, &touch_points, cp);
         if cov2.uncertified >= before {
             break;
         }

@@ -101,11 +101,7 @@ impl Cell {
             } else {
                 sub(c, at(i, nj))
             };
-            let n = [
-                du[1] * dv[2] - du[2] * dv[1],
-                du[2] * dv[0] - du[0] * dv[2],
-                du[0] * dv[1] - du[1] * dv[0],
-            ];
+            let n = crate::geom::cross(&du, &dv);
             (n.iter().all(|x| x.is_finite()) && n.iter().any(|x| *x != 0.0))
                 .then(|| n.map(Interval::point))
         })
