@@ -35,6 +35,9 @@ pub(crate) struct Piece {
     normal: [f64; 3],
     range: Option<(f64, f64)>,
     jet: OnceCell<Option<PatchJet>>,
+    /// The two halves along the longer direction, made when first asked for and shared by
+    /// every later search against this piece (the split is a function of the piece alone).
+    halves: OnceCell<[Rc<Piece>; 2]>,
 }
 
 impl Piece {
@@ -57,6 +60,14 @@ impl Piece {
             normal,
             range,
             jet: OnceCell::new(),
+            halves: OnceCell::new(),
+        })
+    }
+    /// The piece halved along its longer parameter direction (made once).
+    fn halves(&self) -> &[Rc<Piece>; 2] {
+        self.halves.get_or_init(|| {
+            let (l, r) = self.s.halve(self.s.longer_in_u());
+            [Piece::new(l), Piece::new(r)]
         })
     }
 }
@@ -163,9 +174,9 @@ pub(crate) fn search(
             stack.push((l, sp.clone(), depth + 1));
             stack.push((r, sp, depth + 1));
         } else {
-            let (l, r) = s.halve(s.longer_in_u());
-            stack.push((c.clone(), Piece::new(l), depth + 1));
-            stack.push((c, Piece::new(r), depth + 1));
+            let [l, r] = sp.halves();
+            stack.push((c.clone(), l.clone(), depth + 1));
+            stack.push((c, r.clone(), depth + 1));
         }
     }
     out
