@@ -26,7 +26,23 @@ class W:
     def ax(s,o,z,x): return s.add("AXIS2_PLACEMENT_3D('',#%d,#%d,#%d)"%(s.pt(o),s.dr(z),s.dr(x)))
     def vtx(s,p): return s.add("VERTEX_POINT('',#%d)"%s.pt(p))
 
-def cyl_face(r=2.0, a0=0.3, a1=2.0, h0=0.5, h1=2.5, rot=None):
+def finish(w, faces, product=False):
+    """The file of an open shell of `faces` (ids) in a millimetre context; with `product`,
+    under a product definition (as Open CASCADE's reader needs to transfer it)."""
+    S=w.add("OPEN_SHELL('',(%s))"%",".join("#%d"%f for f in faces))
+    ctx=w.add("(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#%d,#%d,#%d)) REPRESENTATION_CONTEXT('',''))"%(
+        w.add("(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.))"),w.add("(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.))"),w.add("(NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT())")))
+    M=w.add("SHELL_BASED_SURFACE_MODEL('',(#%d))"%S)
+    rep=w.add("MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#%d),#%d)"%(M,ctx))
+    if product:
+        app=w.add("APPLICATION_CONTEXT('automotive design')")
+        prod=w.add("PRODUCT('face','face','',(#%d))"%w.add("PRODUCT_CONTEXT('',#%d,'mechanical')"%app))
+        pdf=w.add("PRODUCT_DEFINITION_FORMATION('','',#%d)"%prod)
+        pd=w.add("PRODUCT_DEFINITION('design','',#%d,#%d)"%(pdf,w.add("PRODUCT_DEFINITION_CONTEXT('part definition',#%d,'design')"%app)))
+        w.add("SHAPE_DEFINITION_REPRESENTATION(#%d,#%d)"%(w.add("PRODUCT_DEFINITION_SHAPE('','',#%d)"%pd),rep))
+    return step(w.e)
+
+def cyl_face(r=2.0, a0=0.3, a1=2.0, h0=0.5, h1=2.5, rot=None, product=False):
     w=W()
     # frame: rotated
     z=rot[2]; x=rot[0]; o=[0.3,-0.2,0.1]
@@ -47,12 +63,7 @@ def cyl_face(r=2.0, a0=0.3, a1=2.0, h0=0.5, h1=2.5, rot=None):
     L=w.add("EDGE_LOOP('',(%s))"%",".join("#%d"%x for x in OE))
     B=w.add("FACE_OUTER_BOUND('',#%d,.T.)"%L)
     F=w.add("ADVANCED_FACE('',(#%d),#%d,.T.)"%(B,surf))
-    S=w.add("OPEN_SHELL('',(#%d))"%F)
-    ctx=w.add("(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#%d,#%d,#%d)) REPRESENTATION_CONTEXT('',''))"%(
-        w.add("(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.))"),w.add("(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.))"),w.add("(NAMED_UNIT(*) SI_UNIT($,.STERADIAN.) SOLID_ANGLE_UNIT())")))
-    M=w.add("SHELL_BASED_SURFACE_MODEL('',(#%d))"%S)
-    w.add("MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#%d),#%d)"%(M,ctx))
-    return step(w.e), r*(a1-a0)*(h1-h0)
+    return finish(w, [F], product), r*(a1-a0)*(h1-h0)
 
 def rot(seed):
     import random; R=random.Random(seed)
@@ -60,7 +71,7 @@ def rot(seed):
     u=[R.gauss(0,1) for _ in range(3)]; d=sum(a*b for a,b in zip(u,z)); x=[a-d*b for a,b in zip(u,z)]; n=math.sqrt(sum(t*t for t in x)); x=[t/n for t in x]
     y=[z[1]*x[2]-z[2]*x[1], z[2]*x[0]-z[0]*x[2], z[0]*x[1]-z[1]*x[0]]
     return [x,y,z]
-import sys
-for k,(a0,a1) in enumerate([(0.3,2.0),(0.0,2.0),(-1.0,1.0),(0.5,5.5)]):
-    t,area=cyl_face(a0=a0,a1=a1,rot=rot(k))
-    open(f"cyl{k}.step","w").write(t); print(f"cyl{k}.step", repr(area))
+if __name__ == "__main__":
+    for k,(a0,a1) in enumerate([(0.3,2.0),(0.0,2.0),(-1.0,1.0),(0.5,5.5)]):
+        t,area=cyl_face(a0=a0,a1=a1,rot=rot(k))
+        open(f"cyl{k}.step","w").write(t); print(f"cyl{k}.step", repr(area))
