@@ -12,6 +12,7 @@ mod check;
 mod cut;
 mod polynomial;
 pub mod project;
+mod seam_sides;
 mod source;
 pub use affine::AffinePatch;
 pub use polynomial::{PcurveOrigin, PolynomialPcurve};

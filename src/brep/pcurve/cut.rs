@@ -72,13 +72,9 @@ impl Projector<'_> {
                 let part = NurbsCurve {
                     hom: arc.hom.sub_curve(&w[0], &w[1]).ok()?,
                 };
-                let mut p = self.project(&part, None, None, fit)?;
-                // The part is the arc's knot insertion in f64 (rounded): the bound is proven
-                // again against the arc itself over the part's range.
-                p.bound = self
-                    .check_on(&p.curve, arc, (w[0], w[1]), fit.aim)
-                    .ok()
-                    .filter(|r| *r <= fit.off);
+                // The part is the arc's knot insertion in f64 (rounded): its bounds are
+                // proven against the arc itself over the part's range.
+                let p = self.project_against(&part, arc, None, None, fit)?;
                 Some((part, p))
             })
             .collect()

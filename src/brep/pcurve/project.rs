@@ -50,6 +50,10 @@ pub(crate) struct Projected {
 pub(crate) struct Projector<'a> {
     pub chart: Chart<'a>,
     pub(super) cells: Option<SurfaceCells>,
+    /// Directions in which the surface is closed exactly (its two border rows of homogeneous
+    /// control points identical, [`Closure::of`]): `S(lo, ·) = S(hi, ·)` there, so a curve on
+    /// one side of the seam and its copy on the other have the same image.
+    pub(super) exact_seam: [bool; 2],
 }
 
 impl<'a> Projector<'a> {
@@ -59,6 +63,10 @@ impl<'a> Projector<'a> {
             // of the net's size count as a seam.
             chart: Chart::new(s, &Closure::within(s, 1e-7)),
             cells: SurfaceCells::new(s),
+            exact_seam: {
+                let c = Closure::of(s);
+                [c.seam_u, c.seam_v]
+            },
         }
     }
 
@@ -70,6 +78,20 @@ impl<'a> Projector<'a> {
     pub fn project(
         &self,
         arc: &NurbsCurve<f64, 3>,
+        from: Option<[f64; 2]>,
+        end: Option<[f64; 2]>,
+        fit: Fit,
+    ) -> Option<Projected> {
+        self.project_against(arc, arc, from, end, fit)
+    }
+
+    /// [`Projector::project`] of `arc`, with every bound proven against `against` over
+    /// `arc`'s domain instead: `arc` is a part of `against` cut out in `f64` (rounded), and the
+    /// bound wanted is to the edge itself.
+    pub fn project_against(
+        &self,
+        arc: &NurbsCurve<f64, 3>,
+        against: &NurbsCurve<f64, 3>,
         from: Option<[f64; 2]>,
         end: Option<[f64; 2]>,
         fit: Fit,
@@ -106,7 +128,7 @@ impl<'a> Projector<'a> {
             let cert = self
                 .cells
                 .as_ref()
-                .map(|x| x.bound(&l, arc, (t0, t1), fit.aim));
+                .map(|x| x.bound(&l, against, (t0, t1), fit.aim));
             match cert {
                 Some(Ok(r)) if r <= fit.aim => {
                     return Some(Projected {
@@ -173,7 +195,7 @@ impl<'a> Projector<'a> {
                     y
                 })
             };
-            let Some((pc, y, r)) = self.piece(arc, w[0].0, w[1].0, x, e, fit) else {
+            let Some((pc, y, r)) = self.piece((arc, against), w[0].0, w[1].0, x, e, fit) else {
                 return straight.map(as_straight);
             };
             bound = bound.zip(r).map(|(a, b)| a.max(b));
@@ -198,7 +220,7 @@ impl<'a> Projector<'a> {
                 let bound = if exact_join {
                     bound
                 } else {
-                    self.check(&curve, arc, fit.aim)
+                    self.check_on(&curve, against, (t0, t1), fit.aim)
                         .ok()
                         .filter(|r| *r <= fit.off)
                 };
@@ -209,53 +231,6 @@ impl<'a> Projector<'a> {
                 }
             }),
         }
-    }
-
-    /// The pcurves of `arc`, an edge along the seam of a closed direction, on both sides of
-    /// it (the projection with that parameter set to the end of the domain it lies at, and
-    /// the same curve at the other end), with the larger of their proven bounds. `None` when
-    /// the projection does not lie along a border, or either side is not proven within
-    /// `fit.off` of the edge (the other side: the surface is not closed there).
-    pub fn seam_sides(
-        &self,
-        arc: &NurbsCurve<f64, 3>,
-        fit: Fit,
-    ) -> Option<([NurbsCurve<f64, 2>; 2], f64)> {
-        let c = &self.chart;
-        let p = self.project(arc, None, None, fit)?;
-        // The direction whose parameter stays at one end of the domain (within 1e-6 of its
-        // length, as in `place_in_domain`), and that end; both sides are checked.
-        let (pts, w) = p.curve.points_weights();
-        let at_end = |d: usize, x: f64| pts.iter().all(|q| (q[d] - x).abs() <= 1e-6 * c.period(d));
-        // The surface need not be found closed ([`Closure`] compares the border rows
-        // exactly): the other side is accepted only with a proven bound.
-        let (d, here, other) = (0..2).find_map(|d| {
-            if at_end(d, c.lo[d]) {
-                Some((d, c.lo[d], c.hi[d]))
-            } else if at_end(d, c.hi[d]) {
-                Some((d, c.hi[d], c.lo[d]))
-            } else {
-                None
-            }
-        })?;
-        let put = |x: f64| -> Vec<[f64; 2]> {
-            pts.iter()
-                .map(|q| if d == 0 { [x, q[1]] } else { [q[0], x] })
-                .collect()
-        };
-        let knots = p.curve.hom.knots.knots().to_vec();
-        let deg = p.curve.hom.degree();
-        let one = NurbsCurve::new(knots.clone(), deg, put(here), w.clone()).ok()?;
-        let twin = NurbsCurve::new(knots, deg, put(other), w).ok()?;
-        let (t0, t1) = arc.hom.domain();
-        let bound = |pc: &NurbsCurve<f64, 2>| {
-            self.cells
-                .as_ref()
-                .and_then(|x| x.bound(pc, arc, (t0, t1), fit.aim).ok())
-                .filter(|r| *r <= fit.off)
-        };
-        let bound = bound(&one)?.max(bound(&twin)?);
-        Some(([one, twin], bound))
     }
 
     /// Moves unwrapped samples by whole periods into the domain; `None` where they span more
@@ -344,14 +319,15 @@ impl<'a> Projector<'a> {
     }
 
     /// The cubic pcurve of `arc` over `[a, b]` from `from`, pinned to `end` when given, with
-    /// its end and its proven bound (module comment). A doubling keeps the samples it has
+    /// its end and its proven bound to `against` over `[a, b]` (module comment; `against` is
+    /// `arc` or the edge `arc` was cut from). A doubling keeps the samples it has
     /// and adds the halfway ones. Doubling stops when the image, measured halfway between
     /// samples, is within `fit.aim` of the arc, or within `fit.off` and no longer halving
     /// (the arc lies off the surface by about that much, as edges of files with a coarse
     /// tolerance do), or at [`MAX_PIECE_SAMPLES`].
     fn piece(
         &self,
-        arc: &NurbsCurve<f64, 3>,
+        (arc, against): (&NurbsCurve<f64, 3>, &NurbsCurve<f64, 3>),
         a: f64,
         b: f64,
         from: [f64; 2],
@@ -419,7 +395,7 @@ impl<'a> Projector<'a> {
                 match self
                     .cells
                     .as_ref()
-                    .map(|x| x.bound(&pc, arc, (a, b), target))
+                    .map(|x| x.bound(&pc, against, (a, b), target))
                 {
                     Some(Ok(r)) if r <= fit.off => return Some((pc, fitted[n - 1], Some(r))),
                     Some(Ok(_)) => evidence = Some((pc, fitted[n - 1], None)),
