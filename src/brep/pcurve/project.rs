@@ -18,7 +18,7 @@
 //! parameter line).
 
 pub(crate) use super::chart::{Chart, segment, unwrap};
-use crate::spline::closure::Closure;
+use crate::spline::closure::{Closure, exact_seam};
 use crate::spline::interpolate::interpolate_with_parameters;
 use crate::spline::pcurve_bound::SurfaceCells;
 use crate::spline::project::{CurveFoot, project};
@@ -50,9 +50,10 @@ pub(crate) struct Projected {
 pub(crate) struct Projector<'a> {
     pub chart: Chart<'a>,
     pub(super) cells: Option<SurfaceCells>,
-    /// Directions in which the surface is closed exactly (its two border rows of homogeneous
-    /// control points identical, [`Closure::of`]): `S(lo, ·) = S(hi, ·)` there, so a curve on
-    /// one side of the seam and its copy on the other have the same image.
+    /// Directions in which the surface is closed exactly (clamped knots and its two border
+    /// rows of homogeneous control points identical, [`exact_seam`]; not [`Closure::of`],
+    /// which allows rounding): `S(lo, ·) = S(hi, ·)` there, so a curve on one side of the
+    /// seam and its copy on the other have the same image.
     pub(super) exact_seam: [bool; 2],
 }
 
@@ -63,10 +64,7 @@ impl<'a> Projector<'a> {
             // of the net's size count as a seam.
             chart: Chart::new(s, &Closure::within(s, 1e-7)),
             cells: SurfaceCells::new(s),
-            exact_seam: {
-                let c = Closure::of(s);
-                [c.seam_u, c.seam_v]
-            },
+            exact_seam: [exact_seam(s, 0), exact_seam(s, 1)],
         }
     }
 
