@@ -16,6 +16,19 @@ scripts/occt_natural_faces.py.
   trimmed-cylinder-partial       a cylinder between two arcs 0.3 .. 2.0 rad and two lines
   trimmed-cylinder-across-seam   the same from -1 to 1 rad (across the seam)
   trimmed-cylinder-almost-whole  the same from 0.5 to 0.5 + 2 pi - 0.01 rad
+  trimmed-cylinder-wavy-top      a whole circle below; above, a closed polyline on the
+                                 cylinder whose every other vertex lies on the top circle and
+                                 the others 0.2 below it (the edge touches the border only at
+                                 its vertices)
+  trimmed-cylinder-hole          two whole circles and a hole between them
+  natural-sphere-seam            a whole sphere bounded by one pole-to-pole meridian used twice
+                                 (as Open CASCADE writes a sphere)
+  natural-sphere-vnorth, -vboth  a whole sphere bounded by vertex loops at one pole or both
+  trimmed-sphere-cap             a cap above a circle of latitude
+  natural-cone-vapex, -seam      a cone from its apex (a vertex loop there, or a seam line
+                                 through it) to a circle
+  natural-torus-seams            a whole torus bounded by its two seam circles
+  trimmed-torus-hole             the same with a hole
 
 Usage: python3 scripts/make_natural_faces.py [DIR]
 """
@@ -72,6 +85,127 @@ def revolved(kind, seed, h0, h1, a0, a1, seam_edge=False, r=2.0, half_angle=0.3)
     return seam.finish(w, [face], product=True)
 
 
+# Faces on spheres, cones and tori, and cylinders with edges that only touch the border at
+# their vertices or holes inside, in one rotated frame (seed 21).
+x, y, z = seam.rot(21)
+o = [0.3, -0.2, 0.1]
+
+
+def add(p, *terms):
+    r = list(p)
+    for c, v in terms:
+        for k in range(3): r[k] += c * v[k]
+    return r
+neg = lambda v: [-t for t in v]
+
+def circle_edge(w, centre, axis, xdir, r, a=None):
+    c = w.add("CIRCLE('',#%d,%r)" % (w.ax(centre, axis, xdir), r))
+    ydir = [axis[1]*xdir[2]-axis[2]*xdir[1], axis[2]*xdir[0]-axis[0]*xdir[2], axis[0]*xdir[1]-axis[1]*xdir[0]]
+    v = w.vtx(add(centre, (r, xdir)))
+    return w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (v, v, c)), v
+
+def bspline1_edge(w, pts, closed=True):
+    n = len(pts)
+    ids = ",".join("#%d" % w.pt(p) for p in pts)
+    mult = [2] + [1] * (n - 2) + [2]
+    knots = list(range(n))
+    c = w.add("B_SPLINE_CURVE_WITH_KNOTS('',1,(%s),.UNSPECIFIED.,%s,.F.,(%s),(%s),.UNSPECIFIED.)" % (
+        ids, ".T." if closed else ".F.", ",".join(map(str, mult)), ",".join("%d." % k for k in knots)))
+    v0 = w.vtx(pts[0]); v1 = v0 if closed else w.vtx(pts[-1])
+    return w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (v0, v1, c))
+
+def loop(w, oes, outer=False):
+    l = w.add("EDGE_LOOP('',(%s))" % ",".join("#%d" % w.add("ORIENTED_EDGE('',*,*,#%d,%s)" % (e, ".T." if f else ".F.")) for e, f in oes))
+    return w.add("%s('',#%d,.T.)" % ("FACE_OUTER_BOUND" if outer else "FACE_BOUND", l))
+
+def face(w, bounds, surf):
+    ids = ",".join("#%d" % b for b in bounds)
+    return seam.finish(w, [w.add("ADVANCED_FACE('',(%s),#%d,.T.)" % (ids, surf))], product=True)
+
+R = 2.0
+P = lambda a, h, r=R: add(o, (r*math.cos(a), x), (r*math.sin(a), y), (h, z))
+
+def cyl(kind):
+    w = seam.W()
+    surf = w.add("CYLINDRICAL_SURFACE('',#%d,%r)" % (w.ax(o, z, x), R))
+    e0, _ = circle_edge(w, add(o, (0.0, z)), z, x, R)
+    b = [loop(w, [(e0, True)], outer=True)]
+    if kind == "wavy":
+        # top: degree-1 closed polygon through 16 points alternately at h=1 and h=0.8, all on the cylinder
+        pts = [P(i*math.pi/8, 1.0 if i % 2 == 0 else 0.8) for i in range(17)]
+        pts[16] = pts[0]
+        b.append(loop(w, [(bspline1_edge(w, pts), False)]))
+    elif kind == "hole":
+        e1, _ = circle_edge(w, add(o, (1.0, z)), z, x, R)
+        b.append(loop(w, [(e1, False)]))
+        pts = [P(2.0 + 0.2*math.cos(t), 0.5 + 0.2*math.sin(t)) for t in [i*2*math.pi/12 for i in range(13)]]
+        pts[12] = pts[0]
+        b.append(loop(w, [(bspline1_edge(w, pts), False)]))
+    elif kind == "partialtop":
+        # top: an open arc only (0 .. pi) -- invalid loop
+        c = w.add("CIRCLE('',#%d,%r)" % (w.ax(add(o, (1.0, z)), z, x), R))
+        va, vb = w.vtx(P(0.0, 1.0)), w.vtx(P(math.pi, 1.0))
+        e1 = w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (va, vb, c))
+        b.append(loop(w, [(e1, False)]))
+    return face(w, b, surf)
+
+def sphere(kind):
+    w = seam.W()
+    surf = w.add("SPHERICAL_SURFACE('',#%d,%r)" % (w.ax(o, z, x), R))
+    S, N = add(o, (-R, z)), add(o, (R, z))
+    if kind == "seam":
+        c = w.add("CIRCLE('',#%d,%r)" % (w.ax(o, neg(y), x), R))
+        vs, vn = w.vtx(S), w.vtx(N)
+        e = w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (vs, vn, c))
+        b = [loop(w, [(e, True), (e, False)], outer=True)]
+    elif kind in ("vnorth", "vboth", "vequator"):
+        pts = {"vnorth": [N], "vboth": [N, S], "vequator": [P(0.7, 0.0)]}[kind]
+        b = [w.add("FACE_OUTER_BOUND('',#%d,.T.)" % w.add("VERTEX_LOOP('',#%d)" % w.vtx(p))) for p in pts]
+    elif kind == "cap":
+        # circle at latitude h=1: trimmed
+        r = math.sqrt(R*R - 1)
+        e, _ = circle_edge(w, add(o, (1.0, z)), z, x, r)
+        b = [loop(w, [(e, True)], outer=True)]
+    return face(w, b, surf)
+
+def cone(kind):
+    w = seam.W()
+    al = 0.3
+    surf = w.add("CONICAL_SURFACE('',#%d,%r,%r)" % (w.ax(o, z, x), R, al))
+    ha = -R / math.tan(al)
+    apex = add(o, (ha, z))
+    rt = R + 1.0*math.tan(al)
+    e, vt = circle_edge(w, add(o, (1.0, z)), z, x, rt)
+    if kind == "vapex":
+        b = [loop(w, [(e, True)], outer=True), w.add("FACE_BOUND('',#%d,.T.)" % w.add("VERTEX_LOOP('',#%d)" % w.vtx(apex)))]
+    elif kind == "seam":
+        top = P(0.0, 1.0, rt)
+        d = [top[k]-apex[k] for k in range(3)]; n = math.sqrt(sum(t*t for t in d))
+        line = w.add("LINE('',#%d,#%d)" % (w.pt(apex), w.add("VECTOR('',#%d,1.)" % w.dr([t/n for t in d]))))
+        va = w.vtx(apex)
+        s = w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (va, vt, line))
+        b = [loop(w, [(s, True), (e, True), (s, False)], outer=True)]
+    elif kind == "circle":
+        b = [loop(w, [(e, True)], outer=True)]
+    return face(w, b, surf)
+
+def torus(kind):
+    w = seam.W()
+    Rm, rm = 3.0, 1.0
+    surf = w.add("TOROIDAL_SURFACE('',#%d,%r,%r)" % (w.ax(o, z, x), Rm, rm))
+    v = w.vtx(add(o, (Rm + rm, x)))
+    eq = w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (v, v, w.add("CIRCLE('',#%d,%r)" % (w.ax(o, z, x), Rm + rm))))
+    tube = w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (v, v, w.add("CIRCLE('',#%d,%r)" % (w.ax(add(o, (Rm, x)), neg(y), x), rm))))
+    b = [loop(w, [(eq, True), (tube, True), (eq, False), (tube, False)], outer=True)]
+    if kind == "hole":
+        pts = [add(o, ((Rm + rm*math.cos(1.0+0.2*math.cos(t)))*math.cos(2.0+0.2*math.sin(t)), x), ((Rm + rm*math.cos(1.0+0.2*math.cos(t)))*math.sin(2.0+0.2*math.sin(t)), y), (rm*math.sin(1.0+0.2*math.cos(t)), z)) for t in [i*2*math.pi/12 for i in range(13)]]
+        pts[12] = pts[0]
+        b.append(loop(w, [(bspline1_edge(w, pts), False)]))
+    elif kind == "eqonly":
+        b = [loop(w, [(eq, True)], outer=True)]
+    return face(w, b, surf)
+
+
 def cases():
     tau = 2 * math.pi
     yield "natural-cylinder-two-circles", revolved("cylinder", 11, 0.5, 2.5, 2.0, 4.5)
@@ -80,6 +214,16 @@ def cases():
     for name, (a0, a1), seed in (("partial", (0.3, 2.0), 14), ("across-seam", (-1.0, 1.0), 15),
                                  ("almost-whole", (0.5, 0.5 + tau - 0.01), 16)):
         yield "trimmed-cylinder-" + name, seam.cyl_face(a0=a0, a1=a1, rot=seam.rot(seed), product=True)[0]
+    yield "trimmed-cylinder-wavy-top", cyl("wavy")
+    yield "trimmed-cylinder-hole", cyl("hole")
+    yield "natural-sphere-seam", sphere("seam")
+    yield "natural-sphere-vnorth", sphere("vnorth")
+    yield "natural-sphere-vboth", sphere("vboth")
+    yield "trimmed-sphere-cap", sphere("cap")
+    yield "natural-cone-vapex", cone("vapex")
+    yield "natural-cone-seam", cone("seam")
+    yield "natural-torus-seams", torus("seams")
+    yield "trimmed-torus-hole", torus("hole")
 
 
 if __name__ == "__main__":

@@ -8,10 +8,12 @@
 //! edge may follow or not (a closed surface's whole face often has one loop per end and no
 //! seam edge: a cylinder between two circles). A loop inside the rectangle has edges off its
 //! border, so a face with a hole is trimmed. "Lies along the border" is decided
-//! at [`SAMPLES`] points of each edge's 3D curve, each taken to the surface's parameters by a
+//! at [`SAMPLES`] points of each edge's 3D curve and at its knot spans' ends and middles
+//! ([`sample_parameters`]), each taken to the surface's parameters by a
 //! closest-point search ([`crate::spline::project::SurfaceFoot`]) and compared with the
 //! border within [`RELATIVE`] of the rectangle's extent. On a closed surface a point on the
-//! seam may come out at either end of the closed direction: it counts on both seam sides,
+//! seam may come out at either end of the closed direction: it counts on both seam sides (and
+//! a point on a pole, whose other parameter is arbitrary, on every side),
 //! and the values an edge meets along a closed direction are unwrapped round the period
 //! before the part of the side it covers is taken (a whole circle at the end of a cylinder
 //! covers its side wherever its samples fall). This is a classification (which
@@ -23,8 +25,11 @@ use crate::model::Model;
 use crate::spline::closure::Closure;
 use crate::spline::project::SurfaceFoot;
 
-/// Points of each edge taken to the surface's parameters.
+/// Points of each edge taken to the surface's parameters, evenly spread over its domain;
+/// besides them, each knot span's ends and middle ([`sample_parameters`]).
 pub const SAMPLES: usize = 9;
+/// Knot spans of an edge sampled on their own at most (beyond, the even samples only).
+pub const MAX_SPANS: usize = 256;
 /// Distance from a side, relative to the rectangle's extent in that direction, within which
 /// a parameter point counts as on it.
 pub const RELATIVE: f64 = 1e-6;
@@ -81,13 +86,16 @@ pub fn natural_faces(b: &Brep, m: &Model) -> Vec<bool> {
             // Per side (u = u0, u = u1, v = v0, v = v1): the spans of the other parameter
             // that edges lying on it cover.
             let mut spans: [Vec<(f64, f64)>; 4] = Default::default();
+            // A sample on a pole has its other parameter arbitrary: it lies on every side, and
+            // only its pole's own parameter says where along a side it is.
+            let pole = |p: &[f64; 2], k: usize| {
+                (2 * k..2 * k + 2)
+                    .any(|side| closure.degenerate[side] && (p[k] - d[side]).abs() <= eps[k])
+            };
             for c in curves {
-                let (t0, t1) = c.hom.domain();
-                let uv: Vec<[f64; 2]> = (0..SAMPLES)
-                    .map(|i| {
-                        let t = t0 + (t1 - t0) * i as f64 / (SAMPLES - 1) as f64;
-                        foot.closest(&c.eval(&t))
-                    })
+                let uv: Vec<[f64; 2]> = sample_parameters(c)
+                    .into_iter()
+                    .map(|t| foot.closest(&c.eval(&t)))
                     .collect();
                 let mut on_some = false;
                 for (side, span) in spans.iter_mut().enumerate() {
@@ -97,10 +105,15 @@ pub fn natural_faces(b: &Brep, m: &Model) -> Vec<bool> {
                     let on = |p: &[f64; 2]| {
                         (p[k] - d[side]).abs() <= eps[k]
                             || (closed[k] && (p[k] - d[side ^ 1]).abs() <= eps[k])
+                            || pole(p, other)
                     };
                     if uv.iter().all(on) {
                         on_some = true;
-                        let along: Vec<f64> = uv.iter().map(|p| p[other]).collect();
+                        let along: Vec<f64> = uv
+                            .iter()
+                            .filter(|p| !pole(p, k))
+                            .map(|p| p[other])
+                            .collect();
                         let range = (d[2 * other], d[2 * other + 1]);
                         span.extend(arc_spans(&along, range, closed[other], eps[other]));
                     }
@@ -125,6 +138,27 @@ pub fn natural_faces(b: &Brep, m: &Model) -> Vec<bool> {
             pair_ok(0, closure.seam_u) && pair_ok(2, closure.seam_v)
         })
         .collect()
+}
+
+/// The parameters at which an edge is sampled, in increasing order: [`SAMPLES`] evenly spread
+/// over its domain and, for up to [`MAX_SPANS`] knot spans, each span's ends and middle (a
+/// polyline edge whose vertices alone lie on the border, dipping inside between them, is
+/// seen at its spans' middles).
+fn sample_parameters(c: &crate::spline::NurbsCurve<f64, 3>) -> Vec<f64> {
+    let (t0, t1) = c.hom.domain();
+    let mut ts: Vec<f64> = (0..SAMPLES)
+        .map(|i| t0 + (t1 - t0) * i as f64 / (SAMPLES - 1) as f64)
+        .collect();
+    let breaks = c.hom.knots.breakpoints();
+    if breaks.len() <= MAX_SPANS + 1 {
+        for w in breaks.windows(2) {
+            ts.extend([w[0], 0.5 * (w[0] + w[1]), w[1]]);
+        }
+    }
+    ts.retain(|t| (t0..=t1).contains(t));
+    ts.sort_by(f64::total_cmp);
+    ts.dedup();
+    ts
 }
 
 /// The spans of `[lo, hi]` that the values `t` met one after another along an edge cover:
