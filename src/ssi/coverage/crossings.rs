@@ -63,25 +63,37 @@ impl Piece {
             halves: OnceCell::new(),
         })
     }
-    /// The piece halved along its longer parameter direction (made once).
-    fn halves(&self) -> &[Rc<Piece>; 2] {
-        self.halves.get_or_init(|| {
-            let (l, r) = self.s.halve(self.s.longer_in_u());
-            [Piece::new(l), Piece::new(r)]
-        })
+    /// The piece halved along its longer parameter direction: made once and kept while
+    /// fewer than [`CACHED_HALVES`] halves are kept for the pair (`kept` counts them); past
+    /// that, made anew on every call (memory stays bounded on large runs).
+    fn halves(&self, kept: &std::cell::Cell<usize>) -> [Rc<Piece>; 2] {
+        if let Some(h) = self.halves.get() {
+            return h.clone();
+        }
+        let (l, r) = self.s.halve(self.s.longer_in_u());
+        let h = [Piece::new(l), Piece::new(r)];
+        if kept.get() < CACHED_HALVES {
+            kept.set(kept.get() + 2);
+            let _ = self.halves.set(h.clone());
+        }
+        h
     }
 }
 
+/// Halves of search pieces kept per pair of faces (each a few kilobytes of enclosures).
+pub(crate) const CACHED_HALVES: usize = 4096;
+
 /// Search `curve` against the piece `patch`: subdivide both until every part is empty, within `d` of
 /// the output (`near`, or `along` one of its cubic pieces) or inside a tube (within its reach
-/// of its polyline); stop at `max_depth` levels or `max_boxes` boxes.
+/// of its polyline); stop at `max_depth` levels or `max_boxes` boxes. `kept` counts the
+/// pieces' halves kept for the pair ([`CACHED_HALVES`]).
 pub(crate) fn search(
     curve: &ICurve,
     patch: &Rc<Piece>,
     (near, along, d): (&Near, &Along, f64),
     tubes: &[(Near, f64)],
-    max_depth: u32,
-    max_boxes: usize,
+    (max_depth, max_boxes): (u32, usize),
+    kept: &std::cell::Cell<usize>,
 ) -> CrossingSearch {
     let mut out = CrossingSearch::default();
     // Pieces are shared while only the curve splits.
@@ -174,9 +186,9 @@ pub(crate) fn search(
             stack.push((l, sp.clone(), depth + 1));
             stack.push((r, sp, depth + 1));
         } else {
-            let [l, r] = sp.halves();
-            stack.push((c.clone(), l.clone(), depth + 1));
-            stack.push((c, r.clone(), depth + 1));
+            let [l, r] = sp.halves(kept);
+            stack.push((c.clone(), l, depth + 1));
+            stack.push((c, r, depth + 1));
         }
     }
     out

@@ -324,6 +324,7 @@ pub(crate) fn coverage_in(
     }
     let mut boxes = 0usize;
     let kept = pp.kept();
+    let halves_kept = pp.halves_kept();
     let mut searched: rustc_hash::FxHashSet<[u64; 8]> = Default::default();
     let uncertified = |out: &mut CoverageOut, a: &Cell, b: &Cell, reason, point| {
         out.uncertified += 1;
@@ -416,8 +417,8 @@ pub(crate) fn coverage_in(
                         &piece,
                         (&near, &along, d),
                         &tubes,
-                        prm.max_crossing_depth,
-                        left,
+                        (prm.max_crossing_depth, left),
+                        halves_kept,
                     );
                     boxes += s.boxes;
                     out.crossing_boxes += s.boxes;

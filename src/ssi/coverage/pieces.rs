@@ -198,6 +198,7 @@ pub(crate) struct PairPieces<'s> {
     a: OnceCell<Vec<Rc<Cell>>>,
     b: OnceCell<Vec<Rc<Cell>>>,
     kept: std::cell::Cell<usize>,
+    halves_kept: std::cell::Cell<usize>,
 }
 
 impl<'s> PairPieces<'s> {
@@ -208,6 +209,7 @@ impl<'s> PairPieces<'s> {
             a: OnceCell::new(),
             b: OnceCell::new(),
             kept: std::cell::Cell::new(0),
+            halves_kept: std::cell::Cell::new(0),
         }
     }
     /// The surfaces, A and B.
@@ -225,6 +227,11 @@ impl<'s> PairPieces<'s> {
     /// The count of cells whose children are kept, over every step of the pair.
     pub(crate) fn kept(&self) -> &std::cell::Cell<usize> {
         &self.kept
+    }
+    /// The count of border-search pieces' halves kept, over every step of the pair
+    /// (`crossings::CACHED_HALVES`).
+    pub(crate) fn halves_kept(&self) -> &std::cell::Cell<usize> {
+        &self.halves_kept
     }
 }
 
