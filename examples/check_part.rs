@@ -27,9 +27,9 @@ fn main() {
     println!("{}: {} surfaces", path.display(), model.surfaces.len());
     if let Some(b) = &model.brep {
         let natural = vericad::brep::natural::natural_faces(b, &model);
-        let trimmed = natural.iter().filter(|n| !**n).count();
+        let whole = natural.iter().filter(|n| **n).count();
         println!(
-            "  {} faces, {trimmed} trimmed, {} edges",
+            "  {} faces ({whole} bounded by their surface's whole parameter rectangle), {} edges",
             b.faces.len(),
             b.edges.len()
         );

@@ -51,6 +51,8 @@
 //! let r = intersect_models(&a, Some(&b), &prm, &|_, _| {}).unwrap();
 //! assert_eq!((r.summary.branches, r.summary.closed_branches), (1, 1));
 //! assert!(r.summary.certified && r.summary.no_missed_branches);
+//! assert!(r.summary.all_points_within_tol && r.summary.dist_max <= prm.tol);
+//! assert!(r.summary.dist_curve_max.is_some_and(|d| d <= prm.tol));
 //! for p in &r.pairs[0].branches[0].points {
 //!     let radius = (p[0] * p[0] + p[1] * p[1]).sqrt();
 //!     assert!((radius - 3f64.sqrt()).abs() < 1e-6 && (p[2] - 1.0).abs() < 1e-6);
