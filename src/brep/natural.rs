@@ -9,7 +9,7 @@
 //! seam edge: a cylinder between two circles). A loop inside the rectangle has edges off its
 //! border, so a face with a hole is trimmed. "Lies along the border" is decided
 //! at [`SAMPLES`] points of each edge's 3D curve and at its knot spans' ends and middles
-//! ([`sample_parameters`]), each taken to the surface's parameters by a
+//! (`sample_parameters`), each taken to the surface's parameters by a
 //! closest-point search ([`crate::spline::project::SurfaceFoot`]) and compared with the
 //! border within [`RELATIVE`] of the rectangle's extent. On a closed surface a point on the
 //! seam may come out at either end of the closed direction: it counts on both seam sides (and
@@ -26,7 +26,7 @@ use crate::spline::closure::Closure;
 use crate::spline::project::SurfaceFoot;
 
 /// Points of each edge taken to the surface's parameters, evenly spread over its domain;
-/// besides them, each knot span's ends and middle ([`sample_parameters`]).
+/// besides them, each knot span's ends and middle (`sample_parameters`).
 pub const SAMPLES: usize = 9;
 /// Knot spans of an edge sampled on their own at most (beyond, the even samples only).
 pub const MAX_SPANS: usize = 256;
