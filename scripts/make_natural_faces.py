@@ -27,6 +27,8 @@ scripts/occt_natural_faces.py.
   trimmed-sphere-cap             a cap above a circle of latitude
   natural-cone-vapex, -seam      a cone from its apex (a vertex loop there, or a seam line
                                  through it) to a circle
+  natural-cone-circle            the same bounded by the circle alone (radius 2 + tan 0.3 at
+                                 height 1, half-angle 0.3: area pi r s, s = r / sin 0.3)
   natural-torus-seams            a whole torus bounded by its two seam circles
   trimmed-torus-hole             the same with a hole
 
@@ -186,7 +188,8 @@ def cone(kind):
         s = w.add("EDGE_CURVE('',#%d,#%d,#%d,.T.)" % (va, vt, line))
         b = [loop(w, [(s, True), (e, True), (s, False)], outer=True)]
     elif kind == "circle":
-        b = [loop(w, [(e, True)], outer=True)]
+        # The circle alone, run so that the face lies between it and the apex.
+        b = [loop(w, [(e, False)], outer=True)]
     return face(w, b, surf)
 
 def torus(kind):
@@ -222,6 +225,7 @@ def cases():
     yield "trimmed-sphere-cap", sphere("cap")
     yield "natural-cone-vapex", cone("vapex")
     yield "natural-cone-seam", cone("seam")
+    yield "natural-cone-circle", cone("circle")
     yield "natural-torus-seams", torus("seams")
     yield "trimmed-torus-hole", torus("hole")
 

@@ -120,7 +120,18 @@ impl Reader<'_> {
         if let Some(a) = e.part("CONICAL_SURFACE") {
             let f = self.placement(self.reference(id, a, 1)?)?;
             let (r, al) = (self.num(id, a, 2)?, self.num(id, a, 3)? * self.angle_scale);
-            let (h0, h1) = Self::axial_range(&f, &pts).unwrap_or((0.0, 1.0));
+            // A face bounded by one circle alone runs from it to the apex (radius
+            // `r + h tan α` vanishes at `h = −r / tan α`): the only finite face it bounds.
+            let apex = -r / al.tan();
+            let flat = |(lo, hi): (f64, f64)| hi - lo <= 1e-9 * (r.abs() + lo.abs() + hi.abs());
+            let (h0, h1) = match Self::axial_range(&f, &pts) {
+                Some(h) if !flat(h) => h,
+                one => one
+                    .map(|(lo, _)| lo)
+                    .or_else(|| pts.first().map(|p| crate::geom::dot(&p.sub(&f.o), &f.z)))
+                    .filter(|_| apex.is_finite())
+                    .map_or((0.0, 1.0), |h| (h.min(apex), h.max(apex))),
+            };
             return Ok(Some((
                 conv(construct::cone(&f, r, al, h0, h1))?,
                 SurfaceKind::Cone,
