@@ -74,24 +74,23 @@ pub fn natural_faces(b: &Brep, m: &Model) -> Vec<bool> {
             let mut foot = SurfaceFoot::new(nurbs);
             let closure = Closure::of(nurbs);
             let closed = [closure.seam_u, closure.seam_v];
-            // A vertex loop is natural only at a pole (a side that is a single point).
-            for p in &points {
-                let uv = foot.closest(p);
-                if !(0..4).any(|side| {
-                    closure.degenerate[side] && (uv[side / 2] - d[side]).abs() <= eps[side / 2]
-                }) {
-                    return false;
-                }
-            }
-            // Per side (u = u0, u = u1, v = v0, v = v1): the spans of the other parameter
-            // that edges lying on it cover.
-            let mut spans: [Vec<(f64, f64)>; 4] = Default::default();
-            // A sample on a pole has its other parameter arbitrary: it lies on every side, and
-            // only its pole's own parameter says where along a side it is.
+            // Whether `p` lies on a pole (a side that is a single point) of direction `k`:
+            // its other parameter is then arbitrary.
             let pole = |p: &[f64; 2], k: usize| {
                 (2 * k..2 * k + 2)
                     .any(|side| closure.degenerate[side] && (p[k] - d[side]).abs() <= eps[k])
             };
+            // A vertex loop is natural only at a pole.
+            for p in &points {
+                let uv = foot.closest(p);
+                if !(pole(&uv, 0) || pole(&uv, 1)) {
+                    return false;
+                }
+            }
+            // Per side (u = u0, u = u1, v = v0, v = v1): the spans of the other parameter
+            // that edges lying on it cover. A sample on a pole lies on every side, and only
+            // its pole's own parameter says where along a side it is.
+            let mut spans: [Vec<(f64, f64)>; 4] = Default::default();
             for c in curves {
                 let uv: Vec<[f64; 2]> = sample_parameters(c)
                     .into_iter()

@@ -40,25 +40,15 @@ impl Projector<'_> {
         let deg = p.curve.hom.degree();
         let one = NurbsCurve::new(knots.clone(), deg, put(here), w.clone()).ok()?;
         let twin = NurbsCurve::new(knots, deg, put(other), w).ok()?;
-        let (t0, t1) = arc.hom.domain();
-        let bound = |pc: &NurbsCurve<f64, 2>| {
-            self.cells
-                .as_ref()
-                .and_then(|x| x.bound(pc, arc, (t0, t1), fit.aim).ok())
-                .filter(|r| *r <= fit.off)
-        };
+        let bound =
+            |pc: &NurbsCurve<f64, 2>| self.check(pc, arc, fit.aim).ok().filter(|r| *r <= fit.off);
         // `one` is the projection itself where its control points lie exactly at the end
         // already (snapped there): its proven bound holds. On a surface closed exactly in
         // direction `d` (identical border rows) the twin has the same image as `one`
         // (`S(lo, ·) = S(hi, ·)`), so the same bound.
-        let here_bound = if one == p.curve {
-            p.bound.filter(|r| *r <= fit.off)
-        } else {
-            None
-        };
-        let one_bound = match here_bound {
-            Some(r) => r,
-            None => bound(&one)?,
+        let one_bound = match p.bound.filter(|r| *r <= fit.off) {
+            Some(r) if one == p.curve => r,
+            _ => bound(&one)?,
         };
         let twin_bound = if self.exact_seam[d] {
             one_bound

@@ -78,13 +78,15 @@ impl Reader<'_> {
     }
     /// Axial range of points in a frame (`None` without points).
     fn axial_range(f: &Frame, pts: &[[f64; 3]]) -> Option<(f64, f64)> {
-        let hs: Vec<f64> = pts
-            .iter()
+        Self::heights(f, pts).filter(|(lo, hi)| lo < hi)
+    }
+    /// The lowest and highest of `pts` along `f`'s z axis (`None` without points).
+    fn heights(f: &Frame, pts: &[[f64; 3]]) -> Option<(f64, f64)> {
+        pts.iter()
             .map(|p| crate::geom::dot(&p.sub(&f.o), &f.z))
-            .collect();
-        let lo = hs.iter().cloned().fold(f64::INFINITY, f64::min);
-        let hi = hs.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-        (lo < hi).then_some((lo, hi))
+            .fold(None, |m, h| {
+                Some(m.map_or((h, h), |(lo, hi): (f64, f64)| (lo.min(h), hi.max(h))))
+            })
     }
     /// The NURBS form of surface `id` (bounded by face `face` when given).
     pub(in crate::io::step) fn surface(
@@ -123,14 +125,11 @@ impl Reader<'_> {
             // A face bounded by one circle alone runs from it to the apex (radius
             // `r + h tan α` vanishes at `h = −r / tan α`): the only finite face it bounds.
             let apex = -r / al.tan();
-            let flat = |(lo, hi): (f64, f64)| hi - lo <= 1e-9 * (r.abs() + lo.abs() + hi.abs());
-            let (h0, h1) = match Self::axial_range(&f, &pts) {
-                Some(h) if !flat(h) => h,
-                one => one
-                    .map(|(lo, _)| lo)
-                    .or_else(|| pts.first().map(|p| crate::geom::dot(&p.sub(&f.o), &f.z)))
-                    .filter(|_| apex.is_finite())
-                    .map_or((0.0, 1.0), |h| (h.min(apex), h.max(apex))),
+            let flat = |lo: f64, hi: f64| hi - lo <= 1e-9 * (r.abs() + lo.abs() + hi.abs());
+            let (h0, h1) = match Self::heights(&f, &pts) {
+                Some((lo, hi)) if !flat(lo, hi) => (lo, hi),
+                Some((h, _)) if apex.is_finite() => (h.min(apex), h.max(apex)),
+                _ => (0.0, 1.0),
             };
             return Ok(Some((
                 conv(construct::cone(&f, r, al, h0, h1))?,
