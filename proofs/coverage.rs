@@ -23,6 +23,8 @@ fn params() -> CoverageParams {
         cancel: None,
         outside: None,
         tubes: Default::default(),
+        borders: Default::default(),
+        restrict: None,
     }
 }
 

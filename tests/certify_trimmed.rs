@@ -178,7 +178,11 @@ fn circle_over_a_hole_is_outside_the_faces() {
     assert!(!r.certified);
 
     // The two arcs outside the hole (|x| ≥ 0.3 + 1e-9 ⟺ |cos φ| ≥ (0.3 + 1e-9)/ρ), each ending
-    // 1e-5 of arc short of the trim's edge: within tol; vericad's two arcs found.
+    // 1e-5 of arc short of the trim's edge: within tol; vericad's two arcs found. Not
+    // certified as a whole: vericad's coverage claim is made about its output as restricted
+    // to the faces, and the pairs of pieces holding the circle's crossing over the hole (the
+    // hole's edge runs through them) are left undecided — the crossing lies outside the face,
+    // but the claim cannot tell it from one inside.
     let c0 = ((0.3 + 1e-9) / rho).acos() - 1e-5 / rho;
     let arc = |from: f64, to: f64| -> Vec<[f64; 3]> {
         (0..=200)
@@ -194,7 +198,7 @@ fn circle_over_a_hole_is_outside_the_faces() {
         assert_eq!(c.status, "within_tol", "{r}");
     }
     assert_eq!(r.missing_branches + r.partial_branches, 0, "{r}");
-    assert!(r.certified, "{r}");
+    assert!(!r.certified, "{r}");
 }
 
 /// One-file mode on a real B-rep (abc-0000.step: planes, cylinders, tori, spheres, trimmed):

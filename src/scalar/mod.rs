@@ -232,6 +232,27 @@ pub fn lift<S: Scalar>(x: f64) -> S {
     S::from_f64(x).expect("lift: caller guarantees a finite value")
 }
 
+/// Smallest `f64` `r` tried with `r² >= q` (proven in rationals).
+pub fn sqrt_upper(q: &Rational) -> f64 {
+    if q.is_zero() {
+        return 0.0;
+    }
+    let approx = Scalar::to_f64(&Scalar::abs(q)).sqrt();
+    let mut r = if approx > 0.0 {
+        approx
+    } else {
+        f64::MIN_POSITIVE
+    };
+    for _ in 0..64 {
+        let rq: Rational = lift(r);
+        if rq.clone() * rq >= *q {
+            return r;
+        }
+        r = r.next_up().max(r * (1.0 + 1e-15));
+    }
+    f64::INFINITY
+}
+
 #[cfg(test)]
 mod binomial_tests {
     use super::{BINOMIAL, binomial_i64};

@@ -20,6 +20,7 @@
 pub mod basis;
 pub mod bezier_curve;
 pub mod bezier_surface;
+pub mod border_match;
 pub mod bspline_curve;
 pub mod bspline_surface;
 pub mod closure;

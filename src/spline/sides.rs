@@ -14,11 +14,40 @@ fn clamped(k: &[f64], p: usize) -> bool {
         && k[k.len() - 1 - p..].iter().all(|x| *x == k[k.len() - 1])
 }
 
-/// The borders of `s` as a loop counterclockwise in the parameter plane: `v = v_min` in
-/// increasing `u`, `u = u_max` in increasing `v`, `v = v_max` in decreasing `u`, `u = u_min`
-/// in decreasing `v` (consecutive curves meet at the corners exactly: they share the corner's
-/// control point). `None` unless both knot vectors are clamped.
-pub fn sides(s: &NurbsSurface<f64, 3>) -> Option<[NurbsCurve<f64, 3>; 4]> {
+/// Which border of a parameter rectangle: the parameter held fixed (`0`: `u`, `1`: `v`) and
+/// whether at its largest value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Border {
+    pub fixed: usize,
+    pub at_max: bool,
+}
+
+impl Border {
+    /// `u_min`, `u_max`, `v_min` or `v_max`.
+    pub fn label(&self) -> &'static str {
+        match (self.fixed, self.at_max) {
+            (0, false) => "u_min",
+            (0, true) => "u_max",
+            (_, false) => "v_min",
+            (_, true) => "v_max",
+        }
+    }
+    /// The parameter point of the border at `t` (the running parameter) on a surface with
+    /// domain `(u0, u1, v0, v1)`.
+    pub fn at(&self, t: f64, d: (f64, f64, f64, f64)) -> [f64; 2] {
+        match (self.fixed, self.at_max) {
+            (0, false) => [d.0, t],
+            (0, true) => [d.1, t],
+            (_, false) => [t, d.2],
+            (_, true) => [t, d.3],
+        }
+    }
+}
+
+/// The four borders of `s`, each as the NURBS curve of its border row in the direction of
+/// the running parameter (not reversed: the knots are the surface's own), in the order
+/// `v_min`, `v_max`, `u_min`, `u_max`. `None` unless both knot vectors are clamped.
+pub fn borders(s: &NurbsSurface<f64, 3>) -> Option<[(Border, NurbsCurve<f64, 3>); 4]> {
     let h = &s.hom;
     let (p, q) = (h.ku.degree(), h.kv.degree());
     if !clamped(h.ku.knots(), p) || !clamped(h.kv.knots(), q) {
@@ -38,12 +67,22 @@ pub fn sides(s: &NurbsSurface<f64, 3>) -> Option<[NurbsCurve<f64, 3>; 4]> {
             hom: BSplineCurve::new(h.kv.knots().to_vec(), q, col).ok()?,
         })
     };
+    let b = |fixed, at_max| Border { fixed, at_max };
     Some([
-        along_u(0)?,
-        along_v(nu - 1)?,
-        along_u(nv - 1)?.reversed(),
-        along_v(0)?.reversed(),
+        (b(1, false), along_u(0)?),
+        (b(1, true), along_u(nv - 1)?),
+        (b(0, false), along_v(0)?),
+        (b(0, true), along_v(nu - 1)?),
     ])
+}
+
+/// The borders of `s` as a loop counterclockwise in the parameter plane: `v = v_min` in
+/// increasing `u`, `u = u_max` in increasing `v`, `v = v_max` in decreasing `u`, `u = u_min`
+/// in decreasing `v` (consecutive curves meet at the corners exactly: they share the corner's
+/// control point). `None` unless both knot vectors are clamped.
+pub fn sides(s: &NurbsSurface<f64, 3>) -> Option<[NurbsCurve<f64, 3>; 4]> {
+    let [(_, v_min), (_, v_max), (_, u_min), (_, u_max)] = borders(s)?;
+    Some([v_min, u_max, v_max.reversed(), u_min.reversed()])
 }
 
 #[cfg(test)]

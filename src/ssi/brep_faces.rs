@@ -11,10 +11,15 @@
 //!   curve (or of a shared vertex), the distance found by a local search on the curve from its
 //!   nearest of 512 samples (evidence). Such points are not claimed to be on the intersection
 //!   or off it; they are where the two faces meet by construction of the B-rep.
-//! * an uncertified coverage region is dropped only when its parameter box, widened by 1 % of
-//!   the domain, lies wholly outside one face's polygon; the coverage claim that remains is
-//!   about the faces as their polygons outline them.
+//! * an uncertified coverage region is dropped, and a coverage box pair skipped, only when
+//!   its parameter box, widened by 1e-9 of the domain (the rounding of the boxes' labels),
+//!   lies wholly outside one face's polygon;
+//! * the coverage claim is made about the output *as restricted here*
+//!   ([`Faces::restrict_for`]: the same inside and shared-edge decisions, taken before the
+//!   claim), so no output removed here can have decided a box pair: the claim is about the
+//!   faces as their polygons outline them.
 
+use super::coverage::FaceRestriction;
 use super::coverage::OutsideFaces;
 use super::report::{PairOut, TouchOut};
 pub use super::shared_tubes::SharedEdgeOut;
@@ -26,8 +31,11 @@ use serde::Serialize;
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
-/// Margin (fraction of the domain) by which coverage boxes are widened before the outside test.
-const REGION_MARGIN: f64 = 0.01;
+/// Margin (fraction of the domain) by which parameter boxes are widened before a test
+/// against a face's loop polygons (coverage boxes outside a face, uncertified regions outside
+/// it, common borders on it): the rounding of the coverage's box labels, and common borders
+/// that *are* the face's boundary, on its loop polygon up to rounding.
+const FACE_MARGIN: f64 = 1e-9;
 
 /// What restricting a pair to its faces removed.
 #[derive(Clone, Debug, Default, Serialize)]
@@ -41,6 +49,12 @@ pub struct FaceClipOut {
     pub touch_points_on_shared_edges: usize,
     /// Uncertified coverage regions wholly outside either face.
     pub regions_outside: usize,
+    /// Branch points outside either face kept as the outer end of a chord leaving the faces
+    /// (the output reaches the loop along it).
+    pub chord_ends_outside: usize,
+    /// Points of common borders farther than `1e-9` of the domain outside either face's
+    /// loops, or on a shared edge or vertex.
+    pub border_points_outside: usize,
 }
 
 /// Edges and vertices of the faces on one surface.
@@ -77,6 +91,8 @@ pub struct Faces<'a> {
     a: Arc<Vec<Option<TrimRegion>>>,
     b: Arc<Vec<Option<TrimRegion>>>,
     one_file: Option<(&'a Model, &'a Brep, Vec<SurfaceTopology>)>,
+    /// The two models (the second absent in a one-file run).
+    models: (&'a Model, Option<&'a Model>),
     /// The least attribution distance, `max(100 tol, 1e-6 size)`, and the largest, 1 % of
     /// the model size.
     delta: f64,
@@ -121,6 +137,7 @@ impl<'a> Faces<'a> {
         let size = model_size(a);
         Faces {
             a: Arc::new(ra),
+            models: (a, b),
             b: Arc::new(rb),
             one_file,
             delta: (100.0 * tol).max(1e-6 * size),
@@ -151,11 +168,44 @@ impl<'a> Faces<'a> {
         Some(OutsideFaces(Arc::new(move |ua, ub| {
             ra[i]
                 .as_ref()
-                .is_some_and(|r| r.box_outside(ua, REGION_MARGIN))
+                .is_some_and(|r| r.box_outside(ua, FACE_MARGIN))
                 || rb[j]
                     .as_ref()
-                    .is_some_and(|r| r.box_outside(ub, REGION_MARGIN))
+                    .is_some_and(|r| r.box_outside(ub, FACE_MARGIN))
         })))
+    }
+
+    /// The restriction of pair `(i, j)`'s output to its faces, as [`Faces::apply`] makes it,
+    /// for the coverage claim to be made about the restricted output (`None`: neither face is
+    /// trimmed and they share nothing). `tubes`: those of [`Faces::tubes_for`].
+    pub fn restrict_for(
+        &self,
+        i: usize,
+        j: usize,
+        tubes: Option<Arc<SharedTubes>>,
+    ) -> Option<FaceRestriction> {
+        let (ra, rb) = (self.a.clone(), self.second().clone());
+        let trimmed =
+            |r: &Arc<Vec<Option<TrimRegion>>>, k: usize| r.get(k).is_some_and(|x| x.is_some());
+        if !trimmed(&ra, i) && !trimmed(&rb, j) && tubes.is_none() {
+            return None;
+        }
+        let (ra2, rb2) = (ra.clone(), rb.clone());
+        Some(FaceRestriction {
+            inside: Arc::new(move |ua, ub| {
+                ra[i].as_ref().is_none_or(|r| r.inside(ua))
+                    && rb[j].as_ref().is_none_or(|r| r.inside(ub))
+            }),
+            meets: Arc::new(move |ba, bb| {
+                ra2[i]
+                    .as_ref()
+                    .is_none_or(|r| !r.box_outside(ba, FACE_MARGIN))
+                    && rb2[j]
+                        .as_ref()
+                        .is_none_or(|r| !r.box_outside(bb, FACE_MARGIN))
+            }),
+            shared: Arc::new(move |x| tubes.as_ref().is_some_and(|t| t.nearest(x).is_some())),
+        })
     }
 
     /// The tubes around the edges and vertices faces `i` and `j` share, in a one-file run on a
@@ -197,20 +247,53 @@ impl<'a> Faces<'a> {
         let inside = |uva: &[f64; 2], uvb: &[f64; 2]| {
             ra.is_none_or(|r| r.inside(uva)) && rb.is_none_or(|r| r.inside(uvb))
         };
+        // Parameter boxes on A and on B meeting both faces (within 1e-9 of the domain).
+        let meets = |ba: &[f64; 4], bb: &[f64; 4]| {
+            ra.is_none_or(|r| !r.box_outside(ba, FACE_MARGIN))
+                && rb.is_none_or(|r| !r.box_outside(bb, FACE_MARGIN))
+        };
+        // The same decisions as [`Faces::restrict_for`], which the coverage claim was made
+        // about; here with the counts and the shared edges' tallies.
         let mut branches = Vec::new();
         for b in &p.branches {
-            let mut keep = vec![true; b.points.len()];
-            for (i, k) in keep.iter_mut().enumerate() {
-                if on_shared(&b.points[i]) {
-                    *k = false;
-                } else if !inside(&b.uv_a[i], &b.uv_b[i]) {
-                    out.points_outside += 1;
-                    *k = false;
+            let shared: Vec<bool> = b.points.iter().map(&mut on_shared).collect();
+            let keep = super::coverage::keep_mask(b, &shared, &inside);
+            for (i, k) in keep.iter().enumerate() {
+                if !shared[i] && !inside(&b.uv_a[i], &b.uv_b[i]) {
+                    if *k {
+                        out.chord_ends_outside += 1;
+                    } else {
+                        out.points_outside += 1;
+                    }
                 }
             }
             branches.extend(clip_mask(b, &keep));
         }
         p.branches = branches;
+        // Common borders: the parts on both faces ([`super::common_borders::clip_to_faces`]);
+        // points on a shared edge are that edge (not counted to it: they are samples of the
+        // border, not traced points).
+        let (ma, mb) = self.models;
+        let mb = if self.one_file.is_some() {
+            ma
+        } else {
+            mb.unwrap_or(ma)
+        };
+        if let (Some(sa), Some(sb)) = (ma.surfaces.get(p.a), mb.surfaces.get(p.b)) {
+            let shared = |x: &[f64; 3]| tubes.is_some_and(|t| t.nearest(x).is_some());
+            let mut borders = Vec::new();
+            for c in &p.common_borders {
+                let (parts, removed) = super::common_borders::clip_to_faces(
+                    c,
+                    (&sa.nurbs, &sb.nurbs),
+                    &meets,
+                    &shared,
+                );
+                out.border_points_outside += removed;
+                borders.extend(parts);
+            }
+            p.common_borders = borders;
+        }
         // A tangent contact along a shared edge (a G1 join of two faces) is that edge; its
         // points outside either face are not the faces' contact.
         if let Some(c) = &mut p.tangent_contact {
@@ -252,8 +335,8 @@ impl<'a> Faces<'a> {
         if let Some(c) = &mut p.coverage {
             let before = c.uncertified_regions.len();
             c.uncertified_regions.retain(|g| {
-                !(ra.is_some_and(|r| r.box_outside(&g.uv_a, REGION_MARGIN))
-                    || rb.is_some_and(|r| r.box_outside(&g.uv_b, REGION_MARGIN)))
+                !(ra.is_some_and(|r| r.box_outside(&g.uv_a, FACE_MARGIN))
+                    || rb.is_some_and(|r| r.box_outside(&g.uv_b, FACE_MARGIN)))
             });
             out.regions_outside = before - c.uncertified_regions.len();
             c.uncertified -= out.regions_outside.min(c.uncertified);

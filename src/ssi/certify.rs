@@ -13,7 +13,7 @@
 
 use super::enclose::enclose_point;
 use crate::geom::{Point, lift_point};
-use crate::scalar::{Interval, Rational, Scalar, lift};
+use crate::scalar::{Interval, Rational, sqrt_upper};
 use crate::spline::NurbsSurface;
 use crate::spline::exact_point::{ExactEvaluator, ExactPoint};
 
@@ -82,27 +82,6 @@ impl ExactSurface {
     pub fn exact_point(&self, uv: &[f64; 2]) -> Option<ExactPoint> {
         self.ev.as_ref()?.point(uv[0], uv[1])
     }
-}
-
-/// Smallest `f64` `r` tried with `r² >= q` (proven in rationals).
-pub fn sqrt_upper(q: &Rational) -> f64 {
-    if q.is_zero() {
-        return 0.0;
-    }
-    let approx = Scalar::to_f64(&Scalar::abs(q)).sqrt();
-    let mut r = if approx > 0.0 {
-        approx
-    } else {
-        f64::MIN_POSITIVE
-    };
-    for _ in 0..64 {
-        let rq: Rational = lift(r);
-        if rq.clone() * rq >= *q {
-            return r;
-        }
-        r = r.next_up().max(r * (1.0 + 1e-15));
-    }
-    f64::INFINITY
 }
 
 #[cfg(test)]

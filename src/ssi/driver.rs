@@ -109,6 +109,9 @@ pub fn intersect_models(
                 Work::Surfaces(x, y) => {
                     let outside = faces.as_ref().and_then(|f| f.outside_for(i, j));
                     tubes = faces.as_ref().and_then(|f| f.tubes_for(i, j));
+                    let restrict = faces
+                        .as_ref()
+                        .and_then(|f| f.restrict_for(i, j, tubes.clone()));
                     if outside.is_some() || tubes.is_some() {
                         let mut p = prm.clone();
                         // Trimmed faces: branches are cut at their last point inside, which
@@ -118,6 +121,7 @@ pub fn intersect_models(
                             p.pieces = super::Pieces::Chords;
                         }
                         p.coverage_outside = outside;
+                        p.coverage_restrict = restrict;
                         p.shared_tubes = tubes.clone();
                         pair_canonical(x, y, (i, j), &p, deadline)
                     } else {
@@ -271,9 +275,10 @@ pub fn intersect_models(
         let shared = clip(|c| c.shared_edges.len());
         let on_shared: usize = clip(|c| c.shared_edges.iter().map(|e| e.points).sum::<usize>());
         certificate.push(format!(
-            "curves, touch points and uncertified regions restricted to the faces ({trimmed_faces} trimmed; trim loops polygonized with {SAMPLES_PER_CURVE} samples per curve, B-rep loops from their edges sampled at 1/150 of the model size and 3 degrees of turn): exact decisions against the polygons, evidence against the true loop curves; removed: {} branch points, {} touch points and {} uncertified regions outside the faces",
+            "curves, touch points, common borders and uncertified regions restricted to the faces ({trimmed_faces} trimmed; trim loops polygonized with {SAMPLES_PER_CURVE} samples per curve, B-rep loops from their edges sampled at 1/150 of the model size and 3 degrees of turn): exact decisions against the polygons, evidence against the true loop curves; the coverage claim is made about the output so restricted; removed: {} branch points, {} touch points, {} common border points and {} uncertified regions outside the faces",
             clip(|c| c.points_outside),
             clip(|c| c.touch_points_outside),
+            clip(|c| c.border_points_outside),
             clip(|c| c.regions_outside),
         ));
         if a.brep.is_some() && b.is_none() {
@@ -311,6 +316,15 @@ pub fn intersect_models(
             super::tangent_contact::MAX_SIN
         ));
     }
+    let borders: Vec<_> = pairs.iter().flat_map(|p| &p.common_borders).collect();
+    let borders_not_proven = borders.iter().filter(|c| !c.certified()).count();
+    if !borders.is_empty() {
+        certificate.push(format!(
+            "COMMON BORDERS: {} pieces of borders two faces have in common, piece by piece the same rational Bezier curves up to a proven gap (proportional weights, control points within the gap, exact rational arithmetic), listed per pair as common_borders, not as branches; the branch points and touch points traced within the match distance of them are moved into them (counted there, not in the branch and touch point figures); they are part of the output the coverage refers to. {} exact (gap 0): one curve on both faces, every point proven within curve_radius_max of the intersection (its border point lies on both faces); {borders_not_proven} NOT proven: within their gap of each other, whether the faces meet there is not decided",
+            borders.len(),
+            borders.len() - borders_not_proven,
+        ));
+    }
     if partial {
         certificate.push(format!(
             "PARTIAL: stopped by {}; {not_run} pairs not run, {} pairs stopped before their end",
@@ -342,13 +356,16 @@ pub fn intersect_models(
         uncertified_box_pairs: uncertified,
         coincident_pairs,
         tangent_contact_pairs: contact_pairs,
+        common_borders: borders.len(),
+        common_borders_not_proven: borders_not_proven,
         singular_points_proven,
         singular_points_uncertified,
         partial,
         certified: all_points_within_tol
             && !partial
             && (meshes || no_missed_branches)
-            && singular_points_uncertified == 0,
+            && singular_points_uncertified == 0
+            && borders_not_proven == 0,
         seconds: t0.elapsed().as_secs_f64(),
         certificate,
     };

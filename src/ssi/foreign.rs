@@ -327,10 +327,23 @@ pub fn certify(
         .map(|&(i, k)| {
             let p = &result.pairs[i];
             let br = &p.branches[k];
+            // Points of vericad's branch outside the faces (the outer ends of chords leaving
+            // them) are not the faces' intersection: not asked of the foreign curves.
+            let on_faces = |j: usize| match (br.uv_a.get(j), br.uv_b.get(j)) {
+                (Some(a), Some(b)) => {
+                    in_faces(
+                        trims,
+                        p.a,
+                        p.b,
+                        &[[a[0], a[0]], [a[1], a[1]], [b[0], b[0]], [b[1], b[1]]],
+                    ) != InFaces::Outside
+                }
+                _ => true,
+            };
             let uncovered: Vec<usize> = (0..br.points.len())
                 .filter(|&j| {
                     let x = br.points[j];
-                    !near.box_within(&(x, x), match_distance)
+                    !near.box_within(&(x, x), match_distance) && on_faces(j)
                 })
                 .collect();
             let frac = 1.0 - uncovered.len() as f64 / br.points.len().max(1) as f64;

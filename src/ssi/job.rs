@@ -111,8 +111,8 @@ pub fn to_vtp(r: &SsiResult, a: &Model, b: Option<&Model>) -> String {
         }
     }
     let polys = p.polys.len();
-    let (mut pair_id, mut branch_id, mut closed, mut dist) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut pair_id, mut branch_id, mut closed, mut dist, mut border) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for (k, pair) in r.pairs.iter().enumerate() {
         for (j, br) in pair.branches.iter().enumerate() {
             // Cubic pieces drawn at 16 samples each (the points alone would be a coarse
@@ -122,6 +122,16 @@ pub fn to_vtp(r: &SsiResult, a: &Model, b: Option<&Model>) -> String {
             branch_id.push(j as f64);
             closed.push(br.closed as u8 as f64);
             dist.push(br.dist_a_max.max(br.dist_b_max));
+            border.push(0.0);
+        }
+        // Common borders: `common_border` 1 exact, 2 within a gap; their index as `branch`.
+        for (j, c) in pair.common_borders.iter().enumerate() {
+            p.add_polyline(&c.points);
+            pair_id.push(k as f64);
+            branch_id.push(j as f64);
+            closed.push(0.0);
+            dist.push(c.dist_a_max.max(c.dist_b_max));
+            border.push(if c.exact { 1.0 } else { 2.0 });
         }
     }
     let pad = |v: Vec<f64>, fill: f64| {
@@ -151,6 +161,10 @@ pub fn to_vtp(r: &SsiResult, a: &Model, b: Option<&Model>) -> String {
         Array {
             name: "dist_max".into(),
             values: pad(dist, -1.0),
+        },
+        Array {
+            name: "common_border".into(),
+            values: pad(border, -1.0),
         },
     ];
     render(&p)

@@ -195,6 +195,7 @@ pub fn intersect_meshes(
         coincident: None,
         faces: None,
         tangent_contact: None,
+        common_borders: Vec::new(),
     })
 }
 

@@ -27,6 +27,7 @@ pub mod brep_faces;
 pub mod certify;
 pub mod closest;
 pub mod coincide;
+pub mod common_borders;
 pub mod control;
 pub mod coverage;
 pub mod driver;
@@ -129,6 +130,9 @@ pub struct SsiParams {
     /// The coverage certificate skips box pairs outside the faces (set per pair by the
     /// driver when faces are trimmed).
     pub coverage_outside: Option<coverage::OutsideFaces>,
+    /// Faces mode: the restriction of the output to the faces, made before the coverage
+    /// claim (set per pair by the driver when faces are trimmed or share edges).
+    pub coverage_restrict: Option<coverage::FaceRestriction>,
     /// In a one-file run on a B-rep, the tubes around the edges and vertices the pair's faces
     /// share (set per pair by the driver): a traced curve lying wholly in them is counted to
     /// the edge and not refined, and the coverage certificate accounts for them
@@ -193,6 +197,7 @@ impl Default for SsiParams {
             coverage_max_boxes: 200_000,
             respect_trims: true,
             coverage_outside: None,
+            coverage_restrict: None,
             shared_tubes: None,
             certify: true,
             fits: true,

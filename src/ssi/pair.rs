@@ -3,9 +3,10 @@
 use super::branch::{BranchNear, BranchResult, PairGeometry, refine_branch};
 use super::certify::ExactSurface;
 use super::coincide::coincidence;
+use super::common_borders;
 use super::control::CHECK_EVERY;
 use super::coverage::Suspects;
-use super::coverage::{CoverageParams, coverage_in};
+use super::coverage::{CoverageParams, Reason, coverage_in};
 use super::pair_meshes::meshes;
 use super::refine::RefineParams;
 use super::refine::Refined;
@@ -92,12 +93,13 @@ pub fn intersect_surfaces(
             coincident,
             faces: None,
             tangent_contact: None,
+            common_borders: Vec::new(),
         })
     };
     // What a pair stopped (time limit, cancel) before its branches are traced returns.
     let stopped = |stats: PairStats| early(stats, false, None, None);
     let coverage_on = prm.coverage && prm.certify;
-    let cp = coverage_params(prm, deadline);
+    let mut cp = coverage_params(prm, deadline);
     // Faces proven to have no common point (pieces subdivided until all pairs are free):
     // nothing to trace, and the coverage certificate holds as it stands (reported when
     // asked for).
@@ -192,6 +194,7 @@ pub fn intersect_surfaces(
         coincident: None,
         faces: None,
         tangent_contact: None,
+        common_borders: Vec::new(),
     };
     for (k, r) in singular.iter().enumerate() {
         out.touch_points.push(touch_out(
@@ -241,6 +244,34 @@ pub fn intersect_surfaces(
             }
         }
     }
+    // Borders the faces have in common: listed as such, with what the meshes traced along
+    // them, and part of the output the coverage refers to.
+    let borders = crate::spline::border_match::common_borders(sa, sb, prm.tol);
+    if !borders.is_empty() {
+        out.common_borders = borders
+            .iter()
+            .map(|m| common_borders::sample(m, (sa, sb), (&ea, &eb), cp.match_distance))
+            .collect();
+        common_borders::absorb(&mut out, cp.match_distance);
+        let d = cp.match_distance;
+        if common_borders::out_of_reach(&out.common_borders, (sa, sb), cp.outside.as_ref(), d) {
+            cp.max_boxes = cp.max_boxes.min(common_borders::OUT_OF_REACH_BOXES);
+        }
+        // The coverage refers to the borders as the faces mode keeps them.
+        cp.borders = std::sync::Arc::new(match &cp.restrict {
+            Some(r) => out
+                .common_borders
+                .iter()
+                .flat_map(|c| common_borders::clip_to_faces(c, (sa, sb), &*r.meets, &*r.shared).0)
+                .map(|c| c.points)
+                .collect(),
+            None => out
+                .common_borders
+                .iter()
+                .map(|c| c.points.clone())
+                .collect(),
+        });
+    }
     if out.complete && coverage_on && stop() {
         out.complete = false;
     }
@@ -251,7 +282,7 @@ pub fn intersect_surfaces(
         let parallel = out.coverage.as_ref().is_some_and(|c| {
             c.uncertified_regions
                 .iter()
-                .any(|r| r.reason == super::coverage::Reason::NormalsNotSeparated)
+                .any(|r| matches!(r.reason, Reason::NormalsNotSeparated | Reason::Budget))
         });
         if parallel {
             ctl.report(ids, "overlap", 0, 0);
@@ -273,12 +304,14 @@ fn coverage_params(prm: &SsiParams, deadline: Option<Instant>) -> CoverageParams
         deadline,
         cancel: prm.control.cancel.clone(),
         outside: prm.coverage_outside.clone(),
+        restrict: prm.coverage_restrict.clone(),
         tubes: std::sync::Arc::new(
             prm.shared_tubes
                 .as_ref()
                 .map(|t| t.polylines())
                 .unwrap_or_default(),
         ),
+        borders: Default::default(),
     }
 }
 

@@ -115,6 +115,15 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
             scene.polylines.push((run, colour[run_status]));
         }
     }
+    // Common borders: proven ones as proven curve, the others as not proven.
+    let mut borders = [0usize; 2];
+    for c in r.pairs.iter().flat_map(|p| &p.common_borders) {
+        let k = usize::from(!c.certified());
+        borders[k] += 1;
+        scene
+            .polylines
+            .push((c.points.clone(), if k == 0 { PROVEN } else { NOT_PROVEN }));
+    }
     let (mut singular, mut touch) = (0, 0);
     for t in r.pairs.iter().flat_map(|p| &p.touch_points) {
         let proven = t
@@ -159,6 +168,18 @@ pub fn picture(r: &SsiResult, a: &Model, b: Option<&Model>, view: &View) -> Stri
         if count[k] > 0 || k == 0 {
             legend.push((colour[k], format!("{} ({})", rows[k], count[k])));
         }
+    }
+    if borders[0] > 0 {
+        legend.push((
+            PROVEN,
+            format!("common borders, exact: on both faces ({})", borders[0]),
+        ));
+    }
+    if borders[1] > 0 {
+        legend.push((
+            NOT_PROVEN,
+            format!("common borders within a gap, not proven ({})", borders[1]),
+        ));
     }
     if singular > 0 {
         legend.push((

@@ -15,6 +15,9 @@ pub enum EndKind {
     Tangential,
     /// Where the curve leaves a trimmed face (or meets an edge it shares with the other face).
     TrimBoundary,
+    /// Where the curve meets a border the two faces have in common and was cut there (its
+    /// points along the border are that border's, [`super::common_borders`]).
+    CommonBorder,
     /// None of the above: the mesh curve stops at a point with one use that is not on a
     /// border (reported, never hidden).
     Unexplained,
@@ -28,6 +31,7 @@ impl EndKind {
             EndKind::BranchPoint => "branch_point",
             EndKind::Tangential => "tangential",
             EndKind::TrimBoundary => "trim_boundary",
+            EndKind::CommonBorder => "common_border",
             EndKind::Unexplained => "unexplained",
         }
     }
@@ -369,6 +373,10 @@ pub struct PairOut {
     /// the touch points and uncertified branches along it are listed there.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tangent_contact: Option<super::tangent_contact::TangentContactOut>,
+    /// Borders the two faces have in common ([`super::common_borders`]): listed as such, not
+    /// as branches.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub common_borders: Vec<super::common_borders::CommonBorderOut>,
 }
 
 /// What the whole run proves and what it does not.
@@ -405,6 +413,10 @@ pub struct Summary {
     pub coincident_pairs: usize,
     /// Face pairs measured to touch along a curve (see `PairOut::tangent_contact`).
     pub tangent_contact_pairs: usize,
+    /// Borders two faces have in common (see `PairOut::common_borders`), and those of them
+    /// not proven on the intersection (within a gap): any such one makes the run uncertified.
+    pub common_borders: usize,
+    pub common_borders_not_proven: usize,
     /// Tangential points whose kind is proven (touching point or branch point) and those
     /// left uncertified ([`super::singular`]); any uncertified one makes the run uncertified.
     pub singular_points_proven: usize,

@@ -125,6 +125,11 @@ pub fn clip(b: &BranchOut, ra: Option<&TrimRegion>, rb: Option<&TrimRegion>) -> 
 /// The runs of points of `b` with `keep` set, as branches of their own (cut ends
 /// [`EndKind::TrimBoundary`]); runs of one point are dropped.
 pub fn clip_mask(b: &BranchOut, keep: &[bool]) -> Vec<BranchOut> {
+    clip_mask_as(b, keep, EndKind::TrimBoundary)
+}
+
+/// [`clip_mask`] with cut ends of kind `cut`.
+pub fn clip_mask_as(b: &BranchOut, keep: &[bool], cut: EndKind) -> Vec<BranchOut> {
     let n = b.points.len();
     if keep.iter().all(|k| *k) {
         return vec![b.clone()];
@@ -156,7 +161,7 @@ pub fn clip_mask(b: &BranchOut, keep: &[bool]) -> Vec<BranchOut> {
                 if orig_end {
                     b.ends[if first { 0 } else { 1 }]
                 } else {
-                    EndKind::TrimBoundary
+                    cut
                 }
             };
             let curve = b.curve_results();

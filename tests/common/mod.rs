@@ -93,5 +93,7 @@ pub fn coverage_params(d: f64) -> vericad::ssi::coverage::CoverageParams {
         cancel: None,
         outside: None,
         tubes: Default::default(),
+        borders: Default::default(),
+        restrict: None,
     }
 }

@@ -5,7 +5,8 @@
 //!
 //! Let `S_A`, `S_B` be NURBS surfaces with positive weights on the parameter rectangles `D_A`,
 //! `D_B`, `I = {(z_a, z_b) : S_A(z_a) = S_B(z_b)}` their true intersection in `D_A × D_B`, and
-//! `O` the output (reported branch polylines, closed ones closed, and touching points). The
+//! `O` the output (reported branch polylines, closed ones closed, touching points, and the
+//! polylines of common borders, [`crate::ssi::common_borders`]). The
 //! rectangles are cut into Bézier pieces (knot spans) and these, adaptively, into quarters
 //! (or halves across the longer direction of a long, narrow piece: `pieces::Cell::kids`);
 //! the *leaf pairs* `α × β` of this refinement cover `D_A × D_B`. Every leaf pair is
@@ -75,11 +76,14 @@ pub mod numerator;
 pub mod patch;
 
 mod outcome;
+mod output;
 mod pieces;
 
 pub use along::piece_bound;
 pub(crate) use apart::{Suspects, tangency_suspects};
 pub use outcome::{CoverageOut, Reason, RegionOut};
+pub(crate) use output::output_set;
+pub use output::{FaceRestriction, keep_mask};
 pub(crate) use pieces::{Cell, PairPieces, roots};
 
 use super::report::{BranchOut, TouchOut};
@@ -115,6 +119,12 @@ pub struct CoverageParams {
     /// decided by it, and the claim excludes them (one-file runs on a B-rep: the edges and
     /// vertices the faces share, [`crate::ssi::shared_tubes`]). Empty for other runs.
     pub tubes: Tubes,
+    /// Polylines that are part of the output `O` besides the branches and touch points: the
+    /// borders the two faces have in common ([`crate::ssi::common_borders`]).
+    pub borders: std::sync::Arc<Vec<Vec<[f64; 3]>>>,
+    /// Faces mode: the output is restricted to the faces before the claim is made about it
+    /// (the borders in `borders` are given restricted already).
+    pub restrict: Option<FaceRestriction>,
 }
 
 /// Polylines with their reach (see [`CoverageParams::tubes`]).
@@ -192,46 +202,6 @@ pub(crate) fn normals_never_parallel_in(pp: &PairPieces) -> bool {
     }
 }
 
-/// Chords per cubic piece at most, when the output set replaces it by a polyline.
-const MAX_PIECE_CHORDS: usize = 1 << 16;
-
-/// The output set: branch polylines and touching points, with its *slack*: the proven
-/// Hausdorff distance between the set and the output it stands for. Chords are themselves
-/// (slack 0); cubic pieces ([`super::hermite`]) are replaced by polylines within `d / 16`
-/// of them ([`super::hermite::densify`]; more only past [`MAX_PIECE_CHORDS`] chords), so a
-/// point within `d − slack` of the set is within `d` of the output.
-pub(crate) fn output_set(branches: &[BranchOut], touches: &[TouchOut], d: f64) -> (Near, f64) {
-    let mut segs = Vec::new();
-    let mut slack = 0.0f64;
-    for b in branches {
-        let n = b.points.len();
-        if !b.tangents.is_empty() {
-            for h in b.pieces() {
-                let (pts, proven) = super::hermite::densify(&h, d / 16.0, MAX_PIECE_CHORDS);
-                slack = slack.max(proven);
-                segs.extend(pts.windows(2).map(|w| (w[0], w[1])));
-            }
-            if n == 1 {
-                segs.push((b.points[0], b.points[0]));
-            }
-            continue;
-        }
-        for k in 0..n {
-            if k + 1 < n {
-                segs.push((b.points[k], b.points[k + 1]));
-            } else if b.closed && n > 1 {
-                segs.push((b.points[k], b.points[0]));
-            } else if n == 1 {
-                segs.push((b.points[0], b.points[0]));
-            }
-        }
-    }
-    for t in touches {
-        segs.push((t.point, t.point));
-    }
-    (Near::with_chords(segs, (d - slack).max(0.0)), slack)
-}
-
 /// A border curve of a piece (which surface, the fixed parameter and its value, the range of
 /// the other) with the piece of the other surface it is searched against. Labels are the
 /// subdivision's own values, so neighbours that share a border produce the same key.
@@ -282,7 +252,15 @@ pub(crate) fn coverage_in(
 ) -> CoverageOut {
     let t0 = Instant::now();
     let (sa, sb) = pp.surfaces();
-    let (near, slack) = output_set(branches, touches, prm.match_distance);
+    let restricted;
+    let (branches, touches) = match &prm.restrict {
+        Some(r) => {
+            restricted = r.apply(branches, touches);
+            (&restricted.0[..], &restricted.1[..])
+        }
+        None => (branches, touches),
+    };
+    let (near, slack) = output_set(branches, touches, &prm.borders, prm.match_distance);
     let along = along::Along::new(
         branches
             .iter()

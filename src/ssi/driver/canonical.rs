@@ -54,6 +54,11 @@ fn swap_sides(mut p: PairOut) -> PairOut {
     for c in &mut p.contacts {
         std::mem::swap(&mut c.triangle_a, &mut c.triangle_b);
     }
+    for c in &mut p.common_borders {
+        std::mem::swap(&mut c.border_a, &mut c.border_b);
+        std::mem::swap(&mut c.uv_a, &mut c.uv_b);
+        std::mem::swap(&mut c.dist_a_max, &mut c.dist_b_max);
+    }
     if let Some(o) = p.coincident.as_mut().and_then(|c| c.overlap.as_mut()) {
         std::mem::swap(&mut o.uv_a, &mut o.uv_b);
     }
@@ -115,9 +120,10 @@ pub(super) fn pair_canonical(
 ) -> Result<PairOut, SsiError> {
     if canonical_key(sa) <= canonical_key(sb) {
         intersect_surfaces(sa, sb, ids, prm, deadline)
-    } else if let Some(o) = &prm.coverage_outside {
+    } else if prm.coverage_outside.is_some() || prm.coverage_restrict.is_some() {
         let mut swapped = prm.clone();
-        swapped.coverage_outside = Some(o.swapped());
+        swapped.coverage_outside = prm.coverage_outside.as_ref().map(|o| o.swapped());
+        swapped.coverage_restrict = prm.coverage_restrict.as_ref().map(|r| r.swapped());
         intersect_surfaces(sb, sa, (ids.1, ids.0), &swapped, deadline).map(swap_sides)
     } else {
         intersect_surfaces(sb, sa, (ids.1, ids.0), prm, deadline).map(swap_sides)

@@ -131,6 +131,38 @@ impl std::fmt::Display for SsiResult {
                 c.branches_moved
             )?;
         }
+        for p in &self.pairs {
+            for c in &p.common_borders {
+                let n = c.points.len();
+                let at = |k: usize| {
+                    let q = c.points[k.min(n - 1)];
+                    format!("({:.6}, {:.6}, {:.6})", q[0], q[1], q[2])
+                };
+                let what = match c.curve_radius_max {
+                    Some(r) if c.exact => {
+                        format!("exact: every point within {r:.1e} of the curve (proven)")
+                    }
+                    _ if c.exact => "exact, point bounds NOT proven".to_string(),
+                    _ => format!(
+                        "within {:.1e} (proven), whether the faces meet there NOT decided",
+                        c.gap
+                    ),
+                };
+                writeln!(
+                    f,
+                    "  faces ({}, {}): COMMON BORDER {} of A = {} of B{}: {n} points from {} to {}, {what}; {} branch points and {} touch points moved into it",
+                    p.a,
+                    p.b,
+                    c.border_a,
+                    c.border_b,
+                    if c.reversed { " (reversed)" } else { "" },
+                    at(0),
+                    at(n.saturating_sub(1)),
+                    c.branch_points_moved,
+                    c.touch_points_moved
+                )?;
+            }
+        }
         let cov: Vec<_> = self
             .pairs
             .iter()
