@@ -233,7 +233,7 @@ type At = ([f64; 3], [f64; 2], [f64; 2]);
 /// chord that *matters*: its parameter segments meet both faces, and, bisected (the midpoint on
 /// A's border: the border is a parameter line of A and affine on each piece of B's, so the
 /// midpoints of the parameter segments are the border's points), some part of it at depth
-/// [`CLIP_DEPTH`] still meets both faces without both its ends shared. So a stretch of the
+/// 24 still meets both faces without both its ends shared. So a stretch of the
 /// border on both faces shorter than a chord — a face trimmed to a thin strip across it — is
 /// kept, and one that reaches the faces only inside a shared vertex's tube (two faces of a
 /// solid meeting at a corner) is not.

@@ -58,12 +58,17 @@ pub(crate) fn output_set(
 #[derive(Clone)]
 pub struct FaceRestriction {
     /// Parameters on A and on B inside both faces (exact, against the loop polygons).
-    pub inside: std::sync::Arc<dyn Fn(&[f64; 2], &[f64; 2]) -> bool + Send + Sync>,
+    pub inside: std::sync::Arc<PointPairTest>,
     /// Parameter boxes on A and on B meeting both faces, within the faces' margin.
     pub meets: std::sync::Arc<super::BoxPairTest>,
     /// A point on an edge or vertex the two faces share (one-file runs on a B-rep).
-    pub shared: std::sync::Arc<dyn Fn(&[f64; 3]) -> bool + Send + Sync>,
+    pub shared: std::sync::Arc<PointTest>,
 }
+
+/// A decision on a pair of parameter points (on A, on B).
+pub type PointPairTest = dyn Fn(&[f64; 2], &[f64; 2]) -> bool + Send + Sync;
+/// A decision on a model point.
+pub type PointTest = dyn Fn(&[f64; 3]) -> bool + Send + Sync;
 
 impl std::fmt::Debug for FaceRestriction {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -99,10 +104,9 @@ impl FaceRestriction {
             .iter()
             .filter(|t| {
                 !(self.shared)(&t.point)
-                    && !t
-                        .uv_a
+                    && t.uv_a
                         .zip(t.uv_b)
-                        .is_some_and(|(a, b)| !(self.inside)(&a, &b))
+                        .is_none_or(|(a, b)| (self.inside)(&a, &b))
             })
             .cloned()
             .collect();
