@@ -96,11 +96,15 @@ fn line_beyond_a_trim_is_outside_the_faces() {
     let outside = segment(&f, 0.1, 0.9, 16);
     let across = segment(&f, -0.9, 0.9, 18);
 
-    // The faces' line, up to 5e-5 of the trim (within the match distance 1e-4): certified.
+    // The faces' line, up to 5e-5 of the trim (within the match distance 1e-4): within tol,
+    // nothing missing. Not certified as a whole: vericad's own coverage lists the pairs the
+    // trim runs through (`trim_in_pair`: a branch of the faces could end at the trim there,
+    // and the loop's crossings with the wall are not searched).
     let r = run(&a, &b, std::slice::from_ref(&inside));
     assert_eq!(r.curves[0].status, "within_tol", "{r}");
     assert_eq!(r.curves[0].points_on_curve, inside.len());
-    assert!(r.certified, "{r}");
+    assert_eq!(r.missing_branches + r.partial_branches, 0, "{r}");
+    assert!(!r.certified, "{r}");
 
     // On both surfaces, beyond the trim: every point outside the faces, none accepted, and
     // vericad's branch (on x ≤ 0) missing.

@@ -191,7 +191,13 @@ impl<'a> Faces<'a> {
             return None;
         }
         let (ra2, rb2) = (ra.clone(), rb.clone());
+        let (ra3, rb3) = (ra.clone(), rb.clone());
+        let widen = |b: &[f64; 4], r: &TrimRegion| r.box_inside_widened(b, FACE_MARGIN);
         Some(FaceRestriction {
+            pair_inside: Arc::new(move |ba, bb| {
+                ra3[i].as_ref().is_none_or(|r| widen(ba, r))
+                    && rb3[j].as_ref().is_none_or(|r| widen(bb, r))
+            }),
             inside: Arc::new(move |ua, ub| {
                 ra[i].as_ref().is_none_or(|r| r.inside(ua))
                     && rb[j].as_ref().is_none_or(|r| r.inside(ub))

@@ -95,6 +95,16 @@ impl TrimRegion {
         self.regions.iter().any(|r| r.box_inside(b))
     }
 
+    /// The parameter box, widened by `margin` of the domain, lies wholly inside one of the
+    /// regions.
+    pub fn box_inside_widened(&self, b: &[f64; 4], margin: f64) -> bool {
+        self.regions.iter().any(|r| {
+            let mu = margin * (r.domain[1] - r.domain[0]).abs();
+            let mv = margin * (r.domain[3] - r.domain[2]).abs();
+            r.box_inside(&[b[0] - mu, b[1] + mu, b[2] - mv, b[3] + mv])
+        })
+    }
+
     /// Inside any of the regions.
     pub fn inside(&self, p: &[f64; 2]) -> bool {
         self.regions.iter().any(|r| r.inside(p))

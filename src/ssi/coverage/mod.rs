@@ -23,8 +23,9 @@
 //!    control-point hull, lies within the reach `r_e` of one segment of a listed polyline
 //!    `E_e` (an edge or vertex two faces share, [`crate::ssi::shared_tubes`]): every
 //!    intersection point of the pair lies in the tube `T_e`.
-//! 3. **transversal** — the normal cones are separated ([`cones`]: no parallel normals, both
-//!    pieces regular), and every point where a border curve of `α` meets the piece `β`, or a
+//! 3. **transversal** — (in faces mode, both pieces wholly inside both faces: a component of
+//!    the faces' intersection could otherwise end at a trim loop inside the pair) the normal
+//!    cones are separated ([`cones`]: no parallel normals, both pieces regular), and every point where a border curve of `α` meets the piece `β`, or a
 //!    border curve of `β` meets `α`, is enclosed in boxes proven within `d` of `O` or inside a
 //!    tube ([`crossings`]). With separated cones, `I ∩ (α × β)` is a 1-manifold (implicit
 //!    function theorem: the Jacobian `[S_Au S_Av −S_Bs −S_Bt]` has rank 3), and a component
@@ -95,6 +96,10 @@ use near::Near;
 use patch::{Box3, SIDES, Side, V, disjoint, meet, separated_along};
 use std::rc::Rc;
 use std::time::Instant;
+
+/// Splits (of both pieces together) of a pair a trim loop runs through, past which it is
+/// listed (`trim_in_pair`) rather than split further: a budget only.
+const TRIM_DEPTH: u32 = 12;
 
 /// Budgets and the match distance.
 #[derive(Clone, Debug)]
@@ -293,6 +298,7 @@ pub(crate) fn coverage_in(
         match_distance: prm.match_distance,
         ..Default::default()
     };
+    let can_split = |c: &Cell, depth: u32| depth < prm.max_pair_depth && c.diag() > 0.25 * d;
     let mut free_leaves: Vec<([f64; 4], [f64; 4], f64)> = Vec::new();
     let mut stack: Vec<(Rc<Cell>, Rc<Cell>, u32, u32)> = Vec::new();
     for a in ra {
@@ -378,7 +384,18 @@ pub(crate) fn coverage_in(
             uncertified(&mut out, &a, &b, Reason::Budget, Some(centre(&m)));
             continue;
         }
-        if a.cones_apart(&b) {
+        // Faces mode: a component of the faces' intersection may end at a trim loop inside
+        // the pair, away from the border crossings case 3 relies on — so a pair a loop runs
+        // through is decided only near the output (or split, or listed).
+        let trim_in_pair = prm
+            .restrict
+            .as_ref()
+            .is_some_and(|r| !(r.pair_inside)(&a.uv, &b.uv));
+        if trim_in_pair && (da + db >= TRIM_DEPTH || !(can_split(&a, da) || can_split(&b, db))) {
+            uncertified(&mut out, &a, &b, Reason::TrimInPair, Some(centre(&m)));
+            continue;
+        }
+        if !trim_in_pair && a.cones_apart(&b) {
             let mut open = None;
             'sides: for (k, (from, to)) in [(&a, &b), (&b, &a)].into_iter().enumerate() {
                 let piece = to.piece();
@@ -424,8 +441,8 @@ pub(crate) fn coverage_in(
         }
         // Not decided: split the larger piece (pieces below a quarter of the match
         // distance are not split further: they are decided by the output or listed).
-        let can_a = da < prm.max_pair_depth && a.diag() > 0.25 * d;
-        let can_b = db < prm.max_pair_depth && b.diag() > 0.25 * d;
+        let can_a = can_split(&a, da);
+        let can_b = can_split(&b, db);
         let split_a = can_a && (!can_b || a.diag() >= b.diag());
         if split_a {
             for k in a.kids(kept).iter() {

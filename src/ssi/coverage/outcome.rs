@@ -18,6 +18,9 @@ pub enum Reason {
     NoEnclosure,
     /// The box or time budget ran out before the pair was decided.
     Budget,
+    /// A trim loop runs through the pair (faces mode) and the pair is not near the output:
+    /// a branch of the faces may begin or end at the loop inside it.
+    TrimInPair,
 }
 
 /// A pair of parameter boxes that could not be certified.

@@ -63,6 +63,9 @@ pub struct FaceRestriction {
     pub meets: std::sync::Arc<super::BoxPairTest>,
     /// A point on an edge or vertex the two faces share (one-file runs on a B-rep).
     pub shared: std::sync::Arc<PointTest>,
+    /// Parameter boxes on A and on B wholly inside both faces (their boxes widened by the
+    /// faces' margin).
+    pub pair_inside: std::sync::Arc<super::BoxPairTest>,
 }
 
 /// A decision on a pair of parameter points (on A, on B).
@@ -79,11 +82,16 @@ impl std::fmt::Debug for FaceRestriction {
 impl FaceRestriction {
     /// The same restriction with the two surfaces' roles exchanged.
     pub fn swapped(&self) -> FaceRestriction {
-        let (i, m) = (self.inside.clone(), self.meets.clone());
+        let (i, m, p) = (
+            self.inside.clone(),
+            self.meets.clone(),
+            self.pair_inside.clone(),
+        );
         FaceRestriction {
             inside: std::sync::Arc::new(move |a, b| i(b, a)),
             meets: std::sync::Arc::new(move |a, b| m(b, a)),
             shared: self.shared.clone(),
+            pair_inside: std::sync::Arc::new(move |a, b| p(b, a)),
         }
     }
 
