@@ -280,9 +280,12 @@ pub fn intersect_surfaces(
         out.coverage = Some(coverage_in(&pieces, &out.branches, &out.touch_points, &cp));
         super::regions::refine_undecided_in(&mut out, &pieces, prm, &cp, deadline);
         let parallel = out.coverage.as_ref().is_some_and(|c| {
-            c.uncertified_regions
-                .iter()
-                .any(|r| matches!(r.reason, Reason::NormalsNotSeparated | Reason::Budget))
+            c.uncertified_regions.iter().any(|r| {
+                matches!(
+                    r.reason,
+                    Reason::NormalsNotSeparated | Reason::Budget | Reason::TrimInPair
+                )
+            })
         });
         if parallel {
             ctl.report(ids, "overlap", 0, 0);

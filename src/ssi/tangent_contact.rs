@@ -6,7 +6,8 @@
 //! gave 2 branches and 63 tangential points, an internal one 0 branches and 62 points — the
 //! same situation, told two ways. This step tells it one way.
 //!
-//! Test, run only for pairs whose coverage is refused with parallel normals or by its budget (as
+//! Test, run only for pairs whose coverage is refused with parallel normals, by its budget or
+//! at a trim loop (as
 //! [`super::overlap`]) and that are not coincident: a *contact point* is a point of an
 //! uncertified touch point (no proven kind) or of a branch none of whose points carries a curve
 //! certificate, at which the normals of both surfaces (at the point's own parameters) make an
