@@ -263,9 +263,12 @@ impl<'a> Faces<'a> {
         let mut branches = Vec::new();
         for b in &p.branches {
             let shared: Vec<bool> = b.points.iter().map(&mut on_shared).collect();
-            let keep = super::coverage::keep_mask(b, &shared, &inside);
+            let ins: Vec<bool> = (0..b.points.len())
+                .map(|i| inside(&b.uv_a[i], &b.uv_b[i]))
+                .collect();
+            let keep = super::coverage::keep_mask(b, &shared, &ins);
             for (i, k) in keep.iter().enumerate() {
-                if !shared[i] && !inside(&b.uv_a[i], &b.uv_b[i]) {
+                if !shared[i] && !ins[i] {
                     if *k {
                         out.chord_ends_outside += 1;
                     } else {

@@ -105,7 +105,10 @@ impl FaceRestriction {
         let mut out = Vec::with_capacity(branches.len());
         for b in branches {
             let shared: Vec<bool> = b.points.iter().map(|x| (self.shared)(x)).collect();
-            let keep = keep_mask(b, &shared, &*self.inside);
+            let inside: Vec<bool> = (0..b.points.len())
+                .map(|i| (self.inside)(&b.uv_a[i], &b.uv_b[i]))
+                .collect();
+            let keep = keep_mask(b, &shared, &inside);
             out.extend(crate::ssi::trims::clip_mask(b, &keep));
         }
         let touch = touches
@@ -127,15 +130,10 @@ impl FaceRestriction {
 /// point (not shared): the curve inside the faces runs on to the loop along that chord, and
 /// the chord is output with it (its end outside counted `chord_ends_outside`), so that the
 /// output reaches the loop.
-pub fn keep_mask(
-    b: &BranchOut,
-    shared: &[bool],
-    inside: &dyn Fn(&[f64; 2], &[f64; 2]) -> bool,
-) -> Vec<bool> {
+/// `inside`: each point's parameters inside both faces.
+pub fn keep_mask(b: &BranchOut, shared: &[bool], inside: &[bool]) -> Vec<bool> {
     let n = b.points.len();
-    let ins: Vec<bool> = (0..n)
-        .map(|i| !shared[i] && inside(&b.uv_a[i], &b.uv_b[i]))
-        .collect();
+    let ins: Vec<bool> = (0..n).map(|i| !shared[i] && inside[i]).collect();
     let segs = if b.closed { n } else { n.saturating_sub(1) };
     let mut keep = ins.clone();
     for i in 0..segs {
