@@ -97,14 +97,14 @@ fn line_beyond_a_trim_is_outside_the_faces() {
     let across = segment(&f, -0.9, 0.9, 18);
 
     // The faces' line, up to 5e-5 of the trim (within the match distance 1e-4): within tol,
-    // nothing missing. Not certified as a whole: vericad's own coverage lists the pairs the
-    // trim runs through (`trim_in_pair`: a branch of the faces could end at the trim there,
-    // and the loop's crossings with the wall are not searched).
+    // nothing missing, certified: vericad's coverage decides the pairs the trim runs through
+    // with the trim edge's crossing with the wall found near its output, and the border
+    // crossings beyond the trim left out as outside the faces.
     let r = run(&a, &b, std::slice::from_ref(&inside));
     assert_eq!(r.curves[0].status, "within_tol", "{r}");
     assert_eq!(r.curves[0].points_on_curve, inside.len());
     assert_eq!(r.missing_branches + r.partial_branches, 0, "{r}");
-    assert!(!r.certified, "{r}");
+    assert!(r.certified, "{r}");
 
     // On both surfaces, beyond the trim: every point outside the faces, none accepted, and
     // vericad's branch (on x ≤ 0) missing.
@@ -182,11 +182,10 @@ fn circle_over_a_hole_is_outside_the_faces() {
     assert!(!r.certified);
 
     // The two arcs outside the hole (|x| ≥ 0.3 + 1e-9 ⟺ |cos φ| ≥ (0.3 + 1e-9)/ρ), each ending
-    // 1e-5 of arc short of the trim's edge: within tol; vericad's two arcs found. Not
-    // certified as a whole: vericad's coverage claim is made about its output as restricted
-    // to the faces, and the pairs of pieces holding the circle's crossing over the hole (the
-    // hole's edge runs through them) are left undecided — the crossing lies outside the face,
-    // but the claim cannot tell it from one inside.
+    // 1e-5 of arc short of the trim's edge: within tol; vericad's two arcs found; certified:
+    // the pairs of pieces the hole's edge runs through are decided with the edge's crossings
+    // with the other surface found near the output, and the circle's border crossings over
+    // the hole left out as outside the face.
     let c0 = ((0.3 + 1e-9) / rho).acos() - 1e-5 / rho;
     let arc = |from: f64, to: f64| -> Vec<[f64; 3]> {
         (0..=200)
@@ -202,7 +201,7 @@ fn circle_over_a_hole_is_outside_the_faces() {
         assert_eq!(c.status, "within_tol", "{r}");
     }
     assert_eq!(r.missing_branches + r.partial_branches, 0, "{r}");
-    assert!(!r.certified, "{r}");
+    assert!(r.certified, "{r}");
 }
 
 /// One-file mode on a real B-rep (abc-0000.step: planes, cylinders, tori, spheres, trimmed):

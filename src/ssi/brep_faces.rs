@@ -19,8 +19,8 @@
 //!   claim), so no output removed here can have decided a box pair: the claim is about the
 //!   faces as their polygons outline them.
 
-use super::coverage::FaceRestriction;
 use super::coverage::OutsideFaces;
+use super::coverage::{BoxTest, EdgesTest, FaceRestriction};
 use super::report::{PairOut, TouchOut};
 pub use super::shared_tubes::SharedEdgeOut;
 use super::shared_tubes::SharedTubes;
@@ -118,6 +118,36 @@ fn model_size(m: &Model) -> f64 {
     if d.is_finite() { d } else { 0.0 }
 }
 
+/// [`FaceRestriction::outside_a`] for face `k` of `r`.
+fn outside_one(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> Arc<BoxTest> {
+    let r = r.clone();
+    Arc::new(move |b| {
+        r.get(k)
+            .and_then(|x| x.as_ref())
+            .is_some_and(|x| x.box_outside(b, FACE_MARGIN))
+    })
+}
+
+/// [`FaceRestriction::inside_a`] for face `k` of `r`.
+fn inside_one(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> Arc<BoxTest> {
+    let r = r.clone();
+    Arc::new(move |b| {
+        r.get(k)
+            .and_then(|x| x.as_ref())
+            .is_none_or(|x| x.box_inside_widened(b, FACE_MARGIN))
+    })
+}
+
+/// [`FaceRestriction::edges_a`] for face `k` of `r`.
+fn edges_one(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> Arc<EdgesTest> {
+    let r = r.clone();
+    Arc::new(move |b| {
+        r.get(k)
+            .and_then(|x| x.as_ref())
+            .map_or_else(Vec::new, |x| x.edges_meeting(b, FACE_MARGIN))
+    })
+}
+
 impl<'a> Faces<'a> {
     pub fn new(a: &'a Model, b: Option<&'a Model>, tol: f64) -> Faces<'a> {
         let (ra, mut failed) = TrimRegion::of_model(a);
@@ -211,6 +241,12 @@ impl<'a> Faces<'a> {
                         .is_none_or(|r| !r.box_outside(bb, FACE_MARGIN))
             }),
             shared: Arc::new(move |x| tubes.as_ref().is_some_and(|t| t.nearest(x).is_some())),
+            outside_a: outside_one(&self.a, i),
+            outside_b: outside_one(self.second(), j),
+            inside_a: inside_one(&self.a, i),
+            inside_b: inside_one(self.second(), j),
+            edges_a: edges_one(&self.a, i),
+            edges_b: edges_one(self.second(), j),
         })
     }
 

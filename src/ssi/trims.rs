@@ -110,6 +110,15 @@ impl TrimRegion {
         self.regions.iter().any(|r| r.inside(p))
     }
 
+    /// The loop polygons' edges meeting the parameter box widened by `margin` of the domain
+    /// ([`crate::tessellate::region::FaceRegion::edges_meeting`], over every region).
+    pub fn edges_meeting(&self, b: &[f64; 4], margin: f64) -> Vec<([f64; 2], [f64; 2])> {
+        self.regions
+            .iter()
+            .flat_map(|r| r.edges_meeting(b, margin))
+            .collect()
+    }
+
     /// The parameter box (widened by `margin` of the domain) lies outside every region.
     pub fn box_outside(&self, b: &[f64; 4], margin: f64) -> bool {
         self.regions.iter().all(|r| r.box_outside(b, margin))

@@ -128,6 +128,29 @@ impl FaceRegion {
                 })
         })
     }
+    /// The polygon edges meeting the parameter box `[u0, u1, v0, v1]` widened by `margin` (a
+    /// fraction of the domain's extent in each direction), each shifted by the whole periods
+    /// under which it meets the box (so it lies in the box's frame). Every point of the box
+    /// on the border of the face (as [`FaceRegion::inside`] outlines it) lies on one of them,
+    /// up to the rounding of the shifts (the shifts are added in `f64`, as `inside` adds them).
+    pub fn edges_meeting(&self, b: &[f64; 4], margin: f64) -> Vec<([f64; 2], [f64; 2])> {
+        let mu = margin * (self.domain[1] - self.domain[0]).abs();
+        let mv = margin * (self.domain[3] - self.domain[2]).abs();
+        let mut out = Vec::new();
+        for s in self.shifts() {
+            let lo = [b[0] - mu + s[0], b[2] - mv + s[1]];
+            let hi = [b[1] + mu + s[0], b[3] + mv + s[1]];
+            for poly in &self.polys {
+                for k in 0..poly.len() {
+                    let (p, q) = (&poly[k], &poly[(k + 1) % poly.len()]);
+                    if segment_meets_box(p, q, &lo, &hi) {
+                        out.push(([p[0] - s[0], p[1] - s[1]], [q[0] - s[0], q[1] - s[1]]));
+                    }
+                }
+            }
+        }
+        out
+    }
 }
 
 /// Liang–Barsky: whether the segment `a b` meets the closed box `lo..hi`.

@@ -8,6 +8,7 @@
 use super::along::Along;
 use super::crossing_newton::{Crossings, PatchJet, crossings, patch_jet};
 use super::near::Near;
+use super::output::BoxTest;
 use super::patch::{Box3, ICurve, IPatch, V, apart, box_of, diagonal, disjoint, meet, range_along};
 use std::cell::OnceCell;
 use std::rc::Rc;
@@ -21,6 +22,8 @@ pub(crate) struct CrossingSearch {
     pub near_output: usize,
     /// Boxes holding possible crossings, proven inside a tube ([`super::CoverageParams::tubes`]).
     pub near_tubes: usize,
+    /// Boxes left out as outside the faces ([`Skip`]).
+    pub outside_faces: usize,
     /// A box that may hold a crossing and is not proven near the output (its model-space
     /// enclosure), if any was left at the depth or box limit.
     pub open: Option<Box3>,
@@ -31,6 +34,13 @@ pub(crate) struct CrossingSearch {
 /// projection onto it, and its enclosures for the crossing test (made when first asked for).
 pub(crate) struct Piece {
     s: IPatch,
+    /// Its parameter box on its surface (a label: rounded midpoints of the refinement), and
+    /// whether that box lies outside its face, or wholly inside it ([`Skip::piece`]'s tests,
+    /// made when first asked for: the face of a surface is the same in every search of the
+    /// face pair).
+    uv: [f64; 4],
+    outside_face: OnceCell<bool>,
+    inside_face: OnceCell<bool>,
     pts: Option<(Vec<V>, Box3)>,
     normal: [f64; 3],
     range: Option<(f64, f64)>,
@@ -41,21 +51,30 @@ pub(crate) struct Piece {
 }
 
 impl Piece {
-    fn new(s: IPatch) -> Rc<Piece> {
+    fn new(s: IPatch, uv: [f64; 4]) -> Rc<Piece> {
         let pts = s.cartesian().map(|p| {
             let b = box_of(&p);
             (p, b)
         });
         let normal = s.rough_normal();
-        Piece::with(s, pts, normal)
+        Piece::with(s, pts, normal, uv)
     }
     /// A piece from its enclosed Cartesian control points with their box (as
-    /// [`IPatch::cartesian`] gives them) and its rough normal ([`IPatch::rough_normal`]):
-    /// made once per piece of the refinement and shared by every search against it.
-    pub(crate) fn with(s: IPatch, pts: Option<(Vec<V>, Box3)>, normal: [f64; 3]) -> Rc<Piece> {
+    /// [`IPatch::cartesian`] gives them), its rough normal ([`IPatch::rough_normal`]) and
+    /// its parameter box: made once per piece of the refinement and shared by every search
+    /// against it.
+    pub(crate) fn with(
+        s: IPatch,
+        pts: Option<(Vec<V>, Box3)>,
+        normal: [f64; 3],
+        uv: [f64; 4],
+    ) -> Rc<Piece> {
         let range = pts.as_ref().and_then(|(p, _)| range_along(p, &normal));
         Rc::new(Piece {
             s,
+            uv,
+            outside_face: OnceCell::new(),
+            inside_face: OnceCell::new(),
             pts,
             normal,
             range,
@@ -70,8 +89,22 @@ impl Piece {
         if let Some(h) = self.halves.get() {
             return h.clone();
         }
-        let (l, r) = self.s.halve(self.s.longer_in_u());
-        let h = [Piece::new(l), Piece::new(r)];
+        let along_u = self.s.longer_in_u();
+        let (l, r) = self.s.halve(along_u);
+        let [u0, u1, v0, v1] = self.uv;
+        let h = if along_u {
+            let um = 0.5 * (u0 + u1);
+            [
+                Piece::new(l, [u0, um, v0, v1]),
+                Piece::new(r, [um, u1, v0, v1]),
+            ]
+        } else {
+            let vm = 0.5 * (v0 + v1);
+            [
+                Piece::new(l, [u0, u1, v0, vm]),
+                Piece::new(r, [u0, u1, vm, v1]),
+            ]
+        };
         if kept.get() < CACHED_HALVES {
             kept.set(kept.get() + 2);
             let _ = self.halves.set(h.clone());
@@ -83,10 +116,41 @@ impl Piece {
 /// Halves of search pieces kept per pair of faces (each a few kilobytes of enclosures).
 pub(crate) const CACHED_HALVES: usize = 4096;
 
+/// Which crossings a search may leave out: those outside the faces (faces mode). A crossing
+/// is a point of the curve's surface, at the curve's parameters, and one of the piece's
+/// surface; where the curve part's parameter box lies outside its face, or the piece part's
+/// outside its own, no crossing of the two parts is a point of the faces' intersection.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Skip<'a> {
+    /// The curve's parameter segment on its surface (`t ↦ a + t (b − a)`, a label of the
+    /// border it is: rounded like the pieces' labels) with the test of its face.
+    pub curve: Option<(&'a BoxTest, [f64; 2], [f64; 2])>,
+    /// The tests of the piece's face: outside it, and wholly inside it.
+    pub piece: Option<(&'a BoxTest, &'a BoxTest)>,
+}
+
+impl Skip<'_> {
+    /// Whether the curve part on `[t0, t1]` against the piece part `sp` can be left out.
+    fn outside(&self, (t0, t1): (f64, f64), sp: &Piece) -> bool {
+        self.piece
+            .is_some_and(|(f, _)| *sp.outside_face.get_or_init(|| f(&sp.uv)))
+            || self.curve.is_some_and(|(f, a, b)| {
+                let at = |t: f64| [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+                let (p, q) = (at(t0), at(t1));
+                f(&[
+                    p[0].min(q[0]),
+                    p[0].max(q[0]),
+                    p[1].min(q[1]),
+                    p[1].max(q[1]),
+                ])
+            })
+    }
+}
+
 /// Search `curve` against the piece `patch`: subdivide both until every part is empty, within `d` of
-/// the output (`near`, or `along` one of its cubic pieces) or inside a tube (within its reach
-/// of its polyline); stop at `max_depth` levels or `max_boxes` boxes. `kept` counts the
-/// pieces' halves kept for the pair ([`CACHED_HALVES`]).
+/// the output (`near`, or `along` one of its cubic pieces), inside a tube (within its reach
+/// of its polyline) or, by `skip`, outside the faces; stop at `max_depth` levels or
+/// `max_boxes` boxes. `kept` counts the pieces' halves kept for the pair ([`CACHED_HALVES`]).
 pub(crate) fn search(
     curve: &ICurve,
     patch: &Rc<Piece>,
@@ -94,13 +158,15 @@ pub(crate) fn search(
     tubes: &[(Near, f64)],
     (max_depth, max_boxes): (u32, usize),
     kept: &std::cell::Cell<usize>,
+    skip: Skip,
 ) -> CrossingSearch {
     let mut out = CrossingSearch::default();
-    // Pieces are shared while only the curve splits.
-    let mut stack: Vec<(ICurve, Rc<Piece>, u32)> = vec![(curve.clone(), patch.clone(), 0)];
+    // Pieces are shared while only the curve splits; each curve part with its parameter range.
+    type Part = (ICurve, (f64, f64), Rc<Piece>, u32);
+    let mut stack: Vec<Part> = vec![(curve.clone(), (0.0, 1.0), patch.clone(), 0)];
     // Consecutive parts of the curve are usually near the same output chord.
     let hint = super::near::Hint::default();
-    while let Some((c, sp, depth)) = stack.pop() {
+    while let Some((c, tr, sp, depth)) = stack.pop() {
         out.boxes += 1;
         let s = &sp.s;
         let (pc, (ps, hs)) = match (c.cartesian(), sp.pts.as_ref()) {
@@ -123,6 +189,11 @@ pub(crate) fn search(
                 .zip(range_along(&pc, &sp.normal))
                 .is_some_and(|(a, b)| apart(a, b))
         {
+            continue;
+        }
+        // Parts whose crossings all lie outside the faces (tested after the cheap box tests).
+        if skip.outside(tr, &sp) {
+            out.outside_faces += 1;
             continue;
         }
         let m = meet(&hc, hs);
@@ -180,15 +251,21 @@ pub(crate) fn search(
         // split: its halves lie in the same slab, so separation along the normal gains
         // nothing, and a curve lying in the plane along the output is decided by its own
         // control points (a scheduling choice: any order of splits is sound).
-        let planar = thickness(ps, &sp.normal) <= 1e-10 * diagonal(hs);
+        // A planar piece the border of its face runs through is split too: its parts outside
+        // the face are then left out.
+        let planar = skip
+            .piece
+            .is_none_or(|(_, inside)| *sp.inside_face.get_or_init(|| inside(&sp.uv)))
+            && thickness(ps, &sp.normal) <= 1e-10 * diagonal(hs);
         if 2.0 * diagonal(&hc) >= diagonal(hs) || planar {
             let (l, r) = c.halve();
-            stack.push((l, sp.clone(), depth + 1));
-            stack.push((r, sp, depth + 1));
+            let tm = 0.5 * (tr.0 + tr.1);
+            stack.push((l, (tr.0, tm), sp.clone(), depth + 1));
+            stack.push((r, (tm, tr.1), sp, depth + 1));
         } else {
             let [l, r] = sp.halves(kept);
-            stack.push((c.clone(), l, depth + 1));
-            stack.push((c, r, depth + 1));
+            stack.push((c.clone(), tr, l, depth + 1));
+            stack.push((c, tr, r, depth + 1));
         }
     }
     out

@@ -78,27 +78,30 @@ pub mod patch;
 
 mod outcome;
 mod output;
+mod pair_search;
 mod pieces;
+mod trim_crossings;
 
 pub use along::piece_bound;
 pub(crate) use apart::{Suspects, tangency_suspects};
 pub use outcome::{CoverageOut, Reason, RegionOut};
 pub(crate) use output::output_set;
-pub use output::{FaceRestriction, keep_mask};
+pub use output::{BoxTest, EdgesTest, FaceRestriction, keep_mask};
 pub(crate) use pieces::{Cell, PairPieces, roots};
 
 use super::report::{BranchOut, TouchOut};
 use super::singular::{BranchRegion, branch_region, disjoint_regions};
 use crate::spline::NurbsSurface;
 use cones::cones_separated;
-use crossings::search;
 use near::Near;
-use patch::{Box3, SIDES, Side, V, disjoint, meet, separated_along};
+use pair_search::SearchCtx;
+use patch::{Box3, V, disjoint, meet, separated_along};
 use std::rc::Rc;
 use std::time::Instant;
 
-/// Splits (of both pieces together) of a pair a trim loop runs through, past which it is
-/// listed (`trim_in_pair`) rather than split further: a budget only.
+/// Splits (of both pieces together) of a pair a trim loop runs through, past which a pair
+/// neither decided transversal nor near the output is listed (`trim_in_pair`) rather than
+/// split further: a budget only.
 const TRIM_DEPTH: u32 = 12;
 
 /// Budgets and the match distance.
@@ -207,28 +210,6 @@ pub(crate) fn normals_never_parallel_in(pp: &PairPieces) -> bool {
     }
 }
 
-/// A border curve of a piece (which surface, the fixed parameter and its value, the range of
-/// the other) with the piece of the other surface it is searched against. Labels are the
-/// subdivision's own values, so neighbours that share a border produce the same key.
-fn edge_key(from: usize, uv: &[f64; 4], side: Side, to: &[f64; 4]) -> [u64; 8] {
-    let (axis, fixed, lo, hi) = match side {
-        Side::U0 => (0, uv[0], uv[2], uv[3]),
-        Side::U1 => (0, uv[1], uv[2], uv[3]),
-        Side::V0 => (1, uv[2], uv[0], uv[1]),
-        Side::V1 => (1, uv[3], uv[0], uv[1]),
-    };
-    [
-        (from * 2 + axis) as u64,
-        fixed.to_bits(),
-        lo.to_bits(),
-        hi.to_bits(),
-        to[0].to_bits(),
-        to[1].to_bits(),
-        to[2].to_bits(),
-        to[3].to_bits(),
-    ]
-}
-
 fn centre(b: &Box3) -> [f64; 3] {
     std::array::from_fn(|k| 0.5 * b.0[k] + 0.5 * b.1[k])
 }
@@ -279,7 +260,7 @@ pub(crate) fn coverage_in(
     let tubes: Vec<(Near, f64)> = prm
         .tubes
         .iter()
-        .map(|(segs, r)| (Near::new(segs.clone()), *r))
+        .map(|(segs, r)| (Near::with_chords(segs.clone(), *r), *r))
         .collect();
     // Regions of proven branch points whose point is within `d` of the output (class 3′ of
     // the module comment); none on trimmed faces.
@@ -385,49 +366,32 @@ pub(crate) fn coverage_in(
             continue;
         }
         // Faces mode: a component of the faces' intersection may end at a trim loop inside
-        // the pair, away from the border crossings case 3 relies on — so a pair a loop runs
-        // through is decided only near the output (or split, or listed).
+        // the pair, away from its border: such a pair is transversal only with every
+        // crossing of the loops' edges with the other piece found too (`trim_crossings`).
         let trim_in_pair = prm
             .restrict
             .as_ref()
             .is_some_and(|r| !(r.pair_inside)(&a.uv, &b.uv));
-        if trim_in_pair && (da + db >= TRIM_DEPTH || !(can_split(&a, da) || can_split(&b, db))) {
-            uncertified(&mut out, &a, &b, Reason::TrimInPair, Some(centre(&m)));
-            continue;
-        }
-        if !trim_in_pair && a.cones_apart(&b) {
-            let mut open = None;
-            'sides: for (k, (from, to)) in [(&a, &b), (&b, &a)].into_iter().enumerate() {
-                let piece = to.piece();
-                for side in SIDES {
-                    // A border shared by two neighbouring pieces is one exact curve: a search
-                    // that succeeded against the same piece of the other surface holds for both.
-                    let key = edge_key(k, &from.uv, side, &to.uv);
-                    if searched.contains(&key) {
-                        continue;
-                    }
-                    let left = prm.max_boxes.saturating_sub(boxes).max(1);
-                    let s = search(
-                        &from.patch.edge(side),
-                        &piece,
-                        (&near, &along, d),
-                        &tubes,
-                        (prm.max_crossing_depth, left),
-                        halves_kept,
-                    );
-                    boxes += s.boxes;
-                    out.crossing_boxes += s.boxes;
-                    out.crossing_boxes_near_output += s.near_output;
-                    out.crossing_boxes_near_shared_edges += s.near_tubes;
-                    if s.open.is_some() {
-                        open = s.open;
-                        break 'sides;
-                    }
-                    searched.insert(key);
-                }
-            }
+        if a.cones_apart(&b) {
+            let mut ctx = SearchCtx {
+                near: &near,
+                along: &along,
+                d,
+                tubes: &tubes,
+                prm,
+                halves_kept,
+                boxes: &mut boxes,
+                out: &mut out,
+            };
+            let open = ctx
+                .borders(&a, &b, &mut searched)
+                .or_else(|| trim_in_pair.then(|| ctx.trim_edges(&a, &b)).flatten());
             match open {
-                None => out.transversal += 1,
+                None => {
+                    out.transversal += 1;
+                    out.transversal_with_trim_loops += usize::from(trim_in_pair);
+                    continue;
+                }
                 Some(bx) => {
                     let reason = if boxes > prm.max_boxes {
                         Reason::Budget
@@ -435,8 +399,14 @@ pub(crate) fn coverage_in(
                         Reason::CrossingAwayFromOutput
                     };
                     uncertified(&mut out, &a, &b, reason, Some(centre(&bx)));
+                    continue;
                 }
             }
+        }
+        // A pair a loop runs through whose cones are not separated is split while its
+        // budget lasts: in smaller pairs the loop's part may be decided near the output.
+        if trim_in_pair && (da + db >= TRIM_DEPTH || !(can_split(&a, da) || can_split(&b, db))) {
+            uncertified(&mut out, &a, &b, Reason::TrimInPair, Some(centre(&m)));
             continue;
         }
         // Not decided: split the larger piece (pieces below a quarter of the match

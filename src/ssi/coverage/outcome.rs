@@ -63,6 +63,12 @@ pub struct CoverageOut {
     /// of an edge or vertex two faces of a B-rep share).
     pub near_shared_edges: usize,
     pub crossing_boxes_near_shared_edges: usize,
+    /// Faces mode: crossing boxes left out as outside the faces, searches of a loop
+    /// polygon's edge in a piece ([`crate::ssi::coverage`]'s trim crossings), and the
+    /// transversal pairs a loop runs through (counted in `transversal` too).
+    pub crossing_boxes_outside_faces: usize,
+    pub trim_edge_searches: usize,
+    pub transversal_with_trim_loops: usize,
     /// The match distance `d` of the claim.
     pub match_distance: f64,
     /// Whether every leaf pair is free, near the output or transversal: then every branch of

@@ -66,7 +66,25 @@ pub struct FaceRestriction {
     /// Parameter boxes on A and on B wholly inside both faces (their boxes widened by the
     /// faces' margin).
     pub pair_inside: std::sync::Arc<super::BoxPairTest>,
+    /// A parameter box of A (of B) lies outside face A (face B), widened by the faces'
+    /// margin: no point of it is in the face.
+    pub outside_a: std::sync::Arc<BoxTest>,
+    pub outside_b: std::sync::Arc<BoxTest>,
+    /// A parameter box of A (of B), widened by the faces' margin, lies wholly inside face A
+    /// (face B); always for an untrimmed face.
+    pub inside_a: std::sync::Arc<BoxTest>,
+    pub inside_b: std::sync::Arc<BoxTest>,
+    /// The loop polygons' edges of face A (of B) meeting a parameter box widened by the faces'
+    /// margin, in the box's frame: every point of the box on the face's border lies on one
+    /// (none for an untrimmed face: its border is the domain's).
+    pub edges_a: std::sync::Arc<EdgesTest>,
+    pub edges_b: std::sync::Arc<EdgesTest>,
 }
+
+/// A decision on one parameter box `[u0, u1, v0, v1]`.
+pub type BoxTest = dyn Fn(&[f64; 4]) -> bool + Send + Sync;
+/// Segments in a parameter plane found for a parameter box.
+pub type EdgesTest = dyn Fn(&[f64; 4]) -> Vec<([f64; 2], [f64; 2])> + Send + Sync;
 
 /// A decision on a pair of parameter points (on A, on B).
 pub type PointPairTest = dyn Fn(&[f64; 2], &[f64; 2]) -> bool + Send + Sync;
@@ -92,6 +110,12 @@ impl FaceRestriction {
             meets: std::sync::Arc::new(move |a, b| m(b, a)),
             shared: self.shared.clone(),
             pair_inside: std::sync::Arc::new(move |a, b| p(b, a)),
+            outside_a: self.outside_b.clone(),
+            outside_b: self.outside_a.clone(),
+            inside_a: self.inside_b.clone(),
+            inside_b: self.inside_a.clone(),
+            edges_a: self.edges_b.clone(),
+            edges_b: self.edges_a.clone(),
         }
     }
 

@@ -23,6 +23,11 @@ const CACHED_CELLS: usize = 10_000;
 /// One piece of a domain: its exact-enclosed patch, uv label, box and cached data.
 pub(crate) struct Cell {
     pub(crate) uv: [f64; 4],
+    /// Where the piece lies exactly: its Bézier piece's knot span `[u0, u1, v0, v1]` (exact
+    /// `f64` knots) and the dyadic part `[a0, a1, b0, b1]` of that span's `[0, 1]²` it is
+    /// (exact: halvings of `[0, 1]`, while fewer than 53 in a direction).
+    pub(crate) span: [f64; 4],
+    pub(crate) frac: [f64; 4],
     pub(crate) patch: IPatch,
     /// Enclosed Cartesian control points, their box, and a rough normal.
     pub(super) pts: Option<Vec<V>>,
@@ -38,9 +43,19 @@ pub(crate) struct Cell {
 
 impl Cell {
     fn new(patch: IPatch, uv: [f64; 4], polynomial: bool) -> Rc<Cell> {
+        Cell::at(patch, uv, (uv, [0.0, 1.0, 0.0, 1.0]), polynomial)
+    }
+    fn at(
+        patch: IPatch,
+        uv: [f64; 4],
+        (span, frac): ([f64; 4], [f64; 4]),
+        polynomial: bool,
+    ) -> Rc<Cell> {
         let pts = patch.cartesian();
         Rc::new(Cell {
             uv,
+            span,
+            frac,
             hull: pts.as_deref().map(box_of),
             pts,
             normal: patch.rough_normal(),
@@ -58,7 +73,7 @@ impl Cell {
         self.piece
             .get_or_init(|| {
                 let pts = self.pts.clone().zip(self.hull);
-                Piece::with(self.patch.clone(), pts, self.normal)
+                Piece::with(self.patch.clone(), pts, self.normal, self.uv)
             })
             .clone()
     }
@@ -136,26 +151,31 @@ impl Cell {
         }
         let [u0, u1, v0, v1] = self.uv;
         let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        let [a0, a1, b0, b1] = self.frac;
+        let (am, bm) = (0.5 * (a0 + a1), 0.5 * (b0 + b1));
         let (lu, lv) = self.patch.border_lengths();
+        let kid = |p: IPatch, uv: [f64; 4], frac: [f64; 4]| {
+            Cell::at(p, uv, (self.span, frac), self.polynomial)
+        };
         let k: Rc<[Rc<Cell>]> = if lu > 16.0 * lv {
             let (a, b) = self.patch.halve(true);
             Rc::new([
-                Cell::new(a, [u0, um, v0, v1], self.polynomial),
-                Cell::new(b, [um, u1, v0, v1], self.polynomial),
+                kid(a, [u0, um, v0, v1], [a0, am, b0, b1]),
+                kid(b, [um, u1, v0, v1], [am, a1, b0, b1]),
             ])
         } else if lv > 16.0 * lu {
             let (a, b) = self.patch.halve(false);
             Rc::new([
-                Cell::new(a, [u0, u1, v0, vm], self.polynomial),
-                Cell::new(b, [u0, u1, vm, v1], self.polynomial),
+                kid(a, [u0, u1, v0, vm], [a0, a1, b0, bm]),
+                kid(b, [u0, u1, vm, v1], [a0, a1, bm, b1]),
             ])
         } else {
             let [a, b, c, d] = self.patch.quarters();
             Rc::new([
-                Cell::new(a, [u0, um, v0, vm], self.polynomial),
-                Cell::new(b, [u0, um, vm, v1], self.polynomial),
-                Cell::new(c, [um, u1, v0, vm], self.polynomial),
-                Cell::new(d, [um, u1, vm, v1], self.polynomial),
+                kid(a, [u0, um, v0, vm], [a0, am, b0, bm]),
+                kid(b, [u0, um, vm, v1], [a0, am, bm, b1]),
+                kid(c, [um, u1, v0, vm], [am, a1, b0, bm]),
+                kid(d, [um, u1, vm, v1], [am, a1, bm, b1]),
             ])
         };
         if kept.get() < CACHED_CELLS {
