@@ -89,14 +89,16 @@ impl FaceRegion {
     }
 
     /// Whether the parameter box `[u0, u1, v0, v1]`, widened by `margin` (a fraction of the
-    /// domain's extent in each direction), lies wholly outside the face: no polygon edge meets
+    /// domain's extent in each direction) and by the labels' rounding ([`LABEL_ULPS`]), lies
+    /// wholly outside the face: no polygon edge meets
     /// it and its centre is outside (under every shift).
     pub fn box_outside(&self, b: &[f64; 4], margin: f64) -> bool {
         let mu = margin * (self.domain[1] - self.domain[0]).abs();
         let mv = margin * (self.domain[3] - self.domain[2]).abs();
+        let (wl, wh) = widened(b, mu, mv);
         for s in self.shifts() {
-            let lo = [b[0] - mu + s[0], b[2] - mv + s[1]];
-            let hi = [b[1] + mu + s[0], b[3] + mv + s[1]];
+            let lo = [wl[0] + s[0], wl[1] + s[1]];
+            let hi = [wh[0] + s[0], wh[1] + s[1]];
             let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
             if self.inside_once(&centre) {
                 return false;
@@ -111,14 +113,16 @@ impl FaceRegion {
         }
         true
     }
-    /// Whether the parameter box `[u0, u1, v0, v1]` lies wholly inside the face: under some
+    /// Whether the parameter box `[u0, u1, v0, v1]`, widened by the labels' rounding
+    /// ([`LABEL_ULPS`]), lies wholly inside the face: under some
     /// shift by whole periods, no polygon edge meets the closed box and its centre is inside
     /// (the box is connected and crosses no edge, so every point of it is on the centre's
     /// side of every polygon).
     pub fn box_inside(&self, b: &[f64; 4]) -> bool {
+        let (wl, wh) = widened(b, 0.0, 0.0);
         self.shifts().iter().any(|s| {
-            let lo = [b[0] + s[0], b[2] + s[1]];
-            let hi = [b[1] + s[0], b[3] + s[1]];
+            let lo = [wl[0] + s[0], wl[1] + s[1]];
+            let hi = [wh[0] + s[0], wh[1] + s[1]];
             let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
             self.inside_once(&centre)
                 && self.polys.iter().all(|poly| {
@@ -129,7 +133,8 @@ impl FaceRegion {
         })
     }
     /// The polygon edges meeting the parameter box `[u0, u1, v0, v1]` widened by `margin` (a
-    /// fraction of the domain's extent in each direction), each shifted by the whole periods
+    /// fraction of the domain's extent in each direction) and by the labels' rounding
+    /// ([`LABEL_ULPS`]), each shifted by the whole periods
     /// under which it meets the box (so it lies in the box's frame). Every point of the box
     /// on the border of the face (as [`FaceRegion::inside`] outlines it) lies on one of them,
     /// up to the rounding of the shifts (the shifts are added in `f64`, as `inside` adds them).
@@ -137,9 +142,10 @@ impl FaceRegion {
         let mu = margin * (self.domain[1] - self.domain[0]).abs();
         let mv = margin * (self.domain[3] - self.domain[2]).abs();
         let mut out = Vec::new();
+        let (wl, wh) = widened(b, mu, mv);
         for s in self.shifts() {
-            let lo = [b[0] - mu + s[0], b[2] - mv + s[1]];
-            let hi = [b[1] + mu + s[0], b[3] + mv + s[1]];
+            let lo = [wl[0] + s[0], wl[1] + s[1]];
+            let hi = [wh[0] + s[0], wh[1] + s[1]];
             for poly in &self.polys {
                 for k in 0..poly.len() {
                     let (p, q) = (&poly[k], &poly[(k + 1) % poly.len()]);
@@ -151,6 +157,23 @@ impl FaceRegion {
         }
         out
     }
+}
+
+/// Half-ulps of rounding a box's labels may carry: labels made by repeated rounded midpoints
+/// (`0.5 * (a + b)`, within half an ulp of the exact midpoint each time) stay within
+/// `n / 2` ulps of the exact box after `n` halvings; the box tests below widen every box by
+/// this many ulps of its largest coordinate (an ulp of `x` is at most `ε |x|`), so they hold
+/// for the exact boxes of fewer than 512 halvings (the coverage refinement and its crossing
+/// searches make at most a few hundred).
+pub const LABEL_ULPS: f64 = 256.0;
+
+/// The box `[u0, u1, v0, v1]` widened by `mu`, `mv` and by [`LABEL_ULPS`] ulps of its
+/// largest coordinate (rounding of the widening itself included: the margin is doubled).
+fn widened(b: &[f64; 4], mu: f64, mv: f64) -> ([f64; 2], [f64; 2]) {
+    let big = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let pad = LABEL_ULPS * f64::EPSILON * big;
+    let (pu, pv) = (mu + 2.0 * pad, mv + 2.0 * pad);
+    ([b[0] - pu, b[2] - pv], [b[1] + pu, b[3] + pv])
 }
 
 /// Liang–Barsky: whether the segment `a b` meets the closed box `lo..hi`.

@@ -23,8 +23,8 @@
 //!    control-point hull, lies within the reach `r_e` of one segment of a listed polyline
 //!    `E_e` (an edge or vertex two faces share, [`crate::ssi::shared_tubes`]): every
 //!    intersection point of the pair lies in the tube `T_e`.
-//! 3. **transversal** — (in faces mode, both pieces wholly inside both faces: a component of
-//!    the faces' intersection could otherwise end at a trim loop inside the pair) the normal
+//! 3. **transversal** — (in faces mode, for a pair a trim loop runs through, also every
+//!    crossing of a loop edge with the other piece: the lemma in `pair_search.rs`) the normal
 //!    cones are separated ([`cones`]: no parallel normals, both pieces regular), and every point where a border curve of `α` meets the piece `β`, or a
 //!    border curve of `β` meets `α`, is enclosed in boxes proven within `d` of `O` or inside a
 //!    tube ([`crossings`]). With separated cones, `I ∩ (α × β)` is a 1-manifold (implicit

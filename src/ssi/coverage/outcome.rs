@@ -18,8 +18,9 @@ pub enum Reason {
     NoEnclosure,
     /// The box or time budget ran out before the pair was decided.
     Budget,
-    /// A trim loop runs through the pair (faces mode) and the pair is not near the output:
-    /// a branch of the faces may begin or end at the loop inside it.
+    /// A trim loop runs through the pair (faces mode), its normal cones are not separated and
+    /// it is not near the output within the split budget: a branch of the faces may begin
+    /// or end at the loop inside it.
     TrimInPair,
 }
 

@@ -20,10 +20,11 @@
 //! the other piece are then searched like a border curve's ([`super::crossings::search`]).
 //!
 //! Which part of the edge: the segment is clipped to the piece's label box widened by
-//! [`MARGIN`] of its width plus 512 ulps of its coordinates. A label differs from the exact
-//! box by the rounding of the midpoints that made it (half an ulp per halving, fewer than
-//! 200 halvings), and the clip's own rounding moves its ends by a few ulps: the clipped
-//! segment holds the edge's whole part in the exact piece. A longer segment only adds
+//! [`MARGIN`] of its width plus 512 ulps of the larger of its coordinates and the edge's. A
+//! label differs from the exact box by the rounding of the midpoints that made it (half an
+//! ulp per halving, fewer than 512 halvings), and the clip's own rounding moves its ends by a
+//! few ulps of the edge's coordinates: the clipped segment holds the edge's whole part in the
+//! exact piece. A longer segment only adds
 //! crossings to examine (of the piece's polynomial continued a little beyond it), never hides
 //! one.
 
@@ -45,7 +46,13 @@ type H = [Interval; 4];
 /// image is a curve with unbounded control points, which no search can decide.
 pub(crate) fn edge_image(cell: &Cell, e: &([f64; 2], [f64; 2])) -> Option<ICurve> {
     let [u0, u1, v0, v1] = cell.uv;
-    let pad = |a: f64, b: f64| MARGIN * (b - a).abs() + 512.0 * f64::EPSILON * a.abs().max(b.abs());
+    // The clip's own rounding moves its ends by a few ulps of the edge's coordinates.
+    let big = [e.0[0], e.0[1], e.1[0], e.1[1]]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let pad = |a: f64, b: f64| {
+        MARGIN * (b - a).abs() + 512.0 * f64::EPSILON * a.abs().max(b.abs()).max(big)
+    };
     let (pu, pv) = (pad(u0, u1), pad(v0, v1));
     let (t0, t1) = clip(e, [u0 - pu, v0 - pv], [u1 + pu, v1 + pv])?;
     let (a, b) = (e.0, e.1);
