@@ -36,7 +36,7 @@ impl Rect {
     }
     /// The rectangle's sides meeting the box widened by `W` (each side is its own bounding
     /// box, so the overlap test is exact).
-    fn sides_meeting(&self, b: &[f64; 4]) -> Vec<([f64; 2], [f64; 2])> {
+    fn sides_meeting(&self, b: &[f64; 4]) -> Vec<([f64; 2], [f64; 2], [f64; 2])> {
         let [u0, u1, v0, v1] = self.0;
         [
             ([u0, v0], [u1, v0]),
@@ -54,6 +54,7 @@ impl Rect {
             ];
             !(sb[1] < b[0] - W || b[1] + W < sb[0] || sb[3] < b[2] - W || b[3] + W < sb[2])
         })
+        .map(|(p, q)| (p, q, [0.0; 2]))
         .collect()
     }
 }

@@ -112,7 +112,11 @@ impl TrimRegion {
 
     /// The loop polygons' edges meeting the parameter box widened by `margin` of the domain
     /// ([`crate::tessellate::region::FaceRegion::edges_meeting`], over every region).
-    pub fn edges_meeting(&self, b: &[f64; 4], margin: f64) -> Vec<([f64; 2], [f64; 2])> {
+    pub fn edges_meeting(
+        &self,
+        b: &[f64; 4],
+        margin: f64,
+    ) -> Vec<crate::tessellate::region::LoopEdge> {
         self.regions
             .iter()
             .flat_map(|r| r.edges_meeting(b, margin))

@@ -95,10 +95,8 @@ impl FaceRegion {
     pub fn box_outside(&self, b: &[f64; 4], margin: f64) -> bool {
         let mu = margin * (self.domain[1] - self.domain[0]).abs();
         let mv = margin * (self.domain[3] - self.domain[2]).abs();
-        let (wl, wh) = widened(b, mu, mv);
         for s in self.shifts() {
-            let lo = [wl[0] + s[0], wl[1] + s[1]];
-            let hi = [wh[0] + s[0], wh[1] + s[1]];
+            let (lo, hi) = widened(b, mu, mv, s);
             let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
             if self.inside_once(&centre) {
                 return false;
@@ -119,10 +117,8 @@ impl FaceRegion {
     /// (the box is connected and crosses no edge, so every point of it is on the centre's
     /// side of every polygon).
     pub fn box_inside(&self, b: &[f64; 4]) -> bool {
-        let (wl, wh) = widened(b, 0.0, 0.0);
         self.shifts().iter().any(|s| {
-            let lo = [wl[0] + s[0], wl[1] + s[1]];
-            let hi = [wh[0] + s[0], wh[1] + s[1]];
+            let (lo, hi) = widened(b, 0.0, 0.0, *s);
             let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
             self.inside_once(&centre)
                 && self.polys.iter().all(|poly| {
@@ -134,23 +130,20 @@ impl FaceRegion {
     }
     /// The polygon edges meeting the parameter box `[u0, u1, v0, v1]` widened by `margin` (a
     /// fraction of the domain's extent in each direction) and by the labels' rounding
-    /// ([`LABEL_ULPS`]), each shifted by the whole periods
-    /// under which it meets the box (so it lies in the box's frame). Every point of the box
-    /// on the border of the face (as [`FaceRegion::inside`] outlines it) lies on one of them,
-    /// up to the rounding of the shifts (the shifts are added in `f64`, as `inside` adds them).
-    pub fn edges_meeting(&self, b: &[f64; 4], margin: f64) -> Vec<([f64; 2], [f64; 2])> {
+    /// ([`LABEL_ULPS`]), each with the shift by whole periods under which it meets the box
+    /// ([`LoopEdge`]). Every point `x` of the box on the border of the face — the points `x`
+    /// with `x + s` in a polygon for some shift `s`, taken exactly — lies on one of them.
+    pub fn edges_meeting(&self, b: &[f64; 4], margin: f64) -> Vec<LoopEdge> {
         let mu = margin * (self.domain[1] - self.domain[0]).abs();
         let mv = margin * (self.domain[3] - self.domain[2]).abs();
         let mut out = Vec::new();
-        let (wl, wh) = widened(b, mu, mv);
         for s in self.shifts() {
-            let lo = [wl[0] + s[0], wl[1] + s[1]];
-            let hi = [wh[0] + s[0], wh[1] + s[1]];
+            let (lo, hi) = widened(b, mu, mv, s);
             for poly in &self.polys {
                 for k in 0..poly.len() {
                     let (p, q) = (&poly[k], &poly[(k + 1) % poly.len()]);
                     if segment_meets_box(p, q, &lo, &hi) {
-                        out.push(([p[0] - s[0], p[1] - s[1]], [q[0] - s[0], q[1] - s[1]]));
+                        out.push((*p, *q, s));
                     }
                 }
             }
@@ -167,14 +160,26 @@ impl FaceRegion {
 /// searches make at most a few hundred).
 pub const LABEL_ULPS: f64 = 256.0;
 
-/// The box `[u0, u1, v0, v1]` widened by `mu`, `mv` and by [`LABEL_ULPS`] ulps of its
-/// largest coordinate (rounding of the widening itself included: the margin is doubled).
-fn widened(b: &[f64; 4], mu: f64, mv: f64) -> ([f64; 2], [f64; 2]) {
-    let big = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+/// The box `[u0, u1, v0, v1]` shifted by `s` and widened by `mu`, `mv` and by [`LABEL_ULPS`]
+/// ulps of its largest coordinate before and after the shift (which the shift's own rounding
+/// moves by half an ulp of the latter; the margin is doubled for the rounding of the
+/// widening itself).
+fn widened(b: &[f64; 4], mu: f64, mv: f64, s: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+    let big = (0..4).fold(0.0f64, |m, k| {
+        m.max(b[k].abs()).max((b[k] + s[k / 2]).abs())
+    });
     let pad = LABEL_ULPS * f64::EPSILON * big;
     let (pu, pv) = (mu + 2.0 * pad, mv + 2.0 * pad);
-    ([b[0] - pu, b[2] - pv], [b[1] + pu, b[3] + pv])
+    (
+        [b[0] - pu + s[0], b[2] - pv + s[1]],
+        [b[1] + pu + s[0], b[3] + pv + s[1]],
+    )
 }
+
+/// A loop polygon's edge `(a, b, s)`: the segment from `a` to `b` of the polygon, which
+/// bounds the face at the points `x` with `x + s` on it (`s` a shift by whole periods; the
+/// segment itself is not shifted, so it is the polygon's exact edge).
+pub type LoopEdge = ([f64; 2], [f64; 2], [f64; 2]);
 
 /// Liang–Barsky: whether the segment `a b` meets the closed box `lo..hi`.
 fn segment_meets_box(a: &[f64; 2], b: &[f64; 2], lo: &[f64; 2], hi: &[f64; 2]) -> bool {

@@ -75,16 +75,16 @@ pub struct FaceRestriction {
     pub inside_a: std::sync::Arc<BoxTest>,
     pub inside_b: std::sync::Arc<BoxTest>,
     /// The loop polygons' edges of face A (of B) meeting a parameter box widened by the faces'
-    /// margin, in the box's frame: every point of the box on the face's border lies on one
-    /// (none for an untrimmed face: its border is the domain's).
+    /// margin, each with its shift by whole periods: every point of the box on the face's
+    /// border lies on one (none for an untrimmed face: its border is the domain's).
     pub edges_a: std::sync::Arc<EdgesTest>,
     pub edges_b: std::sync::Arc<EdgesTest>,
 }
 
 /// A decision on one parameter box `[u0, u1, v0, v1]`.
 pub type BoxTest = dyn Fn(&[f64; 4]) -> bool + Send + Sync;
-/// Segments in a parameter plane found for a parameter box.
-pub type EdgesTest = dyn Fn(&[f64; 4]) -> Vec<([f64; 2], [f64; 2])> + Send + Sync;
+/// Loop edges ([`crate::tessellate::region::LoopEdge`]) found for a parameter box.
+pub type EdgesTest = dyn Fn(&[f64; 4]) -> Vec<crate::tessellate::region::LoopEdge> + Send + Sync;
 
 /// A decision on a pair of parameter points (on A, on B).
 pub type PointPairTest = dyn Fn(&[f64; 2], &[f64; 2]) -> bool + Send + Sync;

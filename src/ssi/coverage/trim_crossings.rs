@@ -31,6 +31,7 @@
 use super::patch::{ICurve, IPatch};
 use super::pieces::Cell;
 use crate::scalar::Interval;
+use crate::tessellate::region::LoopEdge;
 
 /// Relative widening of a piece's label box before an edge is clipped to it.
 pub(crate) const MARGIN: f64 = 1e-9;
@@ -38,28 +39,35 @@ pub(crate) const MARGIN: f64 = 1e-9;
 /// Homogeneous interval point: three coordinates and the weight.
 type H = [Interval; 4];
 
-/// The image on `cell`'s piece of the part of the parameter segment `e` (on the piece's
-/// surface) inside the piece: a curve of degree `p + q` whose every crossing with a piece of
+/// The image on `cell`'s piece of the part inside the piece of the loop edge `e` (on the
+/// piece's surface, with its shift by whole periods): a curve of degree `p + q` whose every crossing with a piece of
 /// the other surface is a crossing of the edge's part in the piece (or of its continuation a
 /// little past the piece). `None` when the segment misses the piece. Where the piece's place
 /// cannot be enclosed (a knot span not certified positive, more than 52 halvings a way) the
 /// image is a curve with unbounded control points, which no search can decide.
-pub(crate) fn edge_image(cell: &Cell, e: &([f64; 2], [f64; 2])) -> Option<ICurve> {
+pub(crate) fn edge_image(cell: &Cell, e: &LoopEdge) -> Option<ICurve> {
     let [u0, u1, v0, v1] = cell.uv;
+    let (a, b, sh) = (e.0, e.1, e.2);
+    // The edge in the piece's frame, rounded (only to clip: the image is of the exact one).
+    let seg = ([a[0] - sh[0], a[1] - sh[1]], [b[0] - sh[0], b[1] - sh[1]]);
     // The clip's own rounding moves its ends by a few ulps of the edge's coordinates.
-    let big = [e.0[0], e.0[1], e.1[0], e.1[1]]
-        .iter()
-        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let big = [
+        a[0], a[1], b[0], b[1], seg.0[0], seg.0[1], seg.1[0], seg.1[1],
+    ]
+    .iter()
+    .fold(0.0f64, |m, x| m.max(x.abs()));
     let pad = |a: f64, b: f64| {
         MARGIN * (b - a).abs() + 512.0 * f64::EPSILON * a.abs().max(b.abs()).max(big)
     };
     let (pu, pv) = (pad(u0, u1), pad(v0, v1));
-    let (t0, t1) = clip(e, [u0 - pu, v0 - pv], [u1 + pu, v1 + pv])?;
-    let (a, b) = (e.0, e.1);
+    let (t0, t1) = clip(&seg, [u0 - pu, v0 - pv], [u1 + pu, v1 + pv])?;
+    // The exact point `a + t (b − a) − s`, enclosed, in the piece's own coordinates.
     let at = |t: f64| -> Option<[Interval; 2]> {
         let t = Interval::point(t);
-        let g =
-            |k: usize| Interval::point(a[k]) + t * (Interval::point(b[k]) - Interval::point(a[k]));
+        let g = |k: usize| {
+            let (ak, bk) = (Interval::point(a[k]), Interval::point(b[k]));
+            ak + t * (bk - ak) - Interval::point(sh[k])
+        };
         Some([local(cell, 0, g(0))?, local(cell, 1, g(1))?])
     };
     Some(match (at(t0), at(t1)) {

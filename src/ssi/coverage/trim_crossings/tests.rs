@@ -55,12 +55,13 @@ fn the_image_holds_the_exact_surface_along_the_edge() {
         deep = deep.iter().flat_map(|c| c.kids(&kept).to_vec()).collect();
         cells.extend(deep.iter().take(6).cloned());
     }
+    // The last two shifted: the edge's exact points minus the shift are on the piece.
     let edges = [
-        ([0.05, -1.2], [0.95, 1.8]),
-        ([0.9, -1.0], [0.1, 1.7]),
-        ([0.2, 0.25], [0.8, 0.35]),
-        ([0.44, -0.9], [0.44, 1.6]),
-        ([0.3001, 0.3], [0.31, 0.31]),
+        ([0.05, -1.2], [0.95, 1.8], [0.0, 0.0]),
+        ([0.9, -1.0], [0.1, 1.7], [0.0, 0.0]),
+        ([0.2, 0.25], [0.8, 0.35], [0.0, 0.0]),
+        ([0.44 + 0.7, -0.9], [0.44 + 0.7, 1.6], [0.7, 0.0]),
+        ([0.3001, 0.3 - 0.3], [0.31, 0.31 - 0.3], [0.0, -0.3]),
     ];
     let mut checked = 0;
     for c in &cells {
@@ -78,6 +79,7 @@ fn the_image_holds_the_exact_surface_along_the_edge() {
                 let t = lift::<Q>(k as f64) / lift::<Q>(32.0);
                 let p: [Q; 2] = std::array::from_fn(|d| {
                     lift::<Q>(e.0[d]) + t.clone() * (lift::<Q>(e.1[d]) - lift::<Q>(e.0[d]))
+                        - lift::<Q>(e.2[d])
                 });
                 let inside = eu0 <= p[0] && p[0] <= eu1 && ev0 <= p[1] && p[1] <= ev1;
                 if !inside {
@@ -159,7 +161,13 @@ fn segments_missing_the_piece_have_no_image() {
     let s = surface();
     let root = &crate::ssi::coverage::roots(&s)[0];
     let [u0, u1, v0, v1] = root.uv;
-    assert!(edge_image(root, &([u1 + 0.1, v0], [u1 + 0.2, v1])).is_none());
-    assert!(edge_image(root, &([u0, v0], [u0, v1])).is_some());
-    assert!(edge_image(root, &([u0 - 1.0, v0 - 1.0], [u0 - 0.5, v1 + 1.0])).is_none());
+    assert!(edge_image(root, &([u1 + 0.1, v0], [u1 + 0.2, v1], [0.0; 2])).is_none());
+    assert!(edge_image(root, &([u0, v0], [u0, v1], [0.0; 2])).is_some());
+    assert!(
+        edge_image(
+            root,
+            &([u0 - 1.0, v0 - 1.0], [u0 - 0.5, v1 + 1.0], [0.0; 2])
+        )
+        .is_none()
+    );
 }
