@@ -83,7 +83,8 @@ impl Piece {
         })
     }
     /// The piece halved along its longer parameter direction: made once and kept while
-    /// fewer than [`CACHED_HALVES`] halves are kept for the pair (`kept` counts them); past
+    /// fewer than [`CACHED_HALVES`] control points of halves are kept for the pair (`kept`
+    /// counts them); past
     /// that, made anew on every call (memory stays bounded on large runs).
     fn halves(&self, kept: &std::cell::Cell<usize>) -> [Rc<Piece>; 2] {
         if let Some(h) = self.halves.get() {
@@ -106,15 +107,16 @@ impl Piece {
             ]
         };
         if kept.get() < CACHED_HALVES {
-            kept.set(kept.get() + 2);
+            kept.set(kept.get() + 2 * self.s.x.len());
             let _ = self.halves.set(h.clone());
         }
         h
     }
 }
 
-/// Halves of search pieces kept per pair of faces (each a few kilobytes of enclosures).
-pub(crate) const CACHED_HALVES: usize = 4096;
+/// Control points of the search pieces' halves kept per pair of faces: 4,096 bicubic halves
+/// (each a few kilobytes of enclosures); halves of higher degree count for more.
+pub(crate) const CACHED_HALVES: usize = 4096 * 16;
 
 /// Which crossings a search may leave out: those outside the faces (faces mode). A crossing
 /// is a point of the curve's surface, at the curve's parameters, and one of the piece's

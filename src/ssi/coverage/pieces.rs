@@ -15,10 +15,13 @@ use std::rc::Rc;
 
 type Q = Rational;
 
-/// Pieces whose quarters are kept for reuse, per face pair (about 5 KB each for bicubic
-/// pieces: about 50 MB per face pair; abc-0000.step peaked at 3.7 GB before this bound, 0.39 GB
-/// with it, the same certificate).
-const CACHED_CELLS: usize = 10_000;
+/// Control points of the pieces kept for reuse (children of split pieces), per face pair:
+/// 10,000 bicubic pieces, about 5 KB each, about 50 MB per face pair; a piece of higher
+/// degree counts for more (its enclosures and cone generators grow with its net), so memory
+/// stays about that whatever the degrees. abc-0000.step peaked at 3.7 GB before any bound,
+/// 0.39 GB with it; occt-BUC50025.igs (degrees up to 9 × 12) at 1.68 GB when the bound
+/// counted pieces.
+const CACHED_CELLS: usize = 10_000 * 16;
 
 /// One piece of a domain: its exact-enclosed patch, uv label, box and cached data.
 pub(crate) struct Cell {
@@ -143,7 +146,7 @@ impl Cell {
     /// four quarters. Any partition of the piece serves the certificate; halving a long,
     /// narrow piece (beside a pole, where the parameter lines converge) keeps the children
     /// from growing narrower still. Kept for the next pair that splits this piece while
-    /// fewer than [`CACHED_CELLS`] pieces are kept in this run (`kept` counts them); past
+    /// fewer than [`CACHED_CELLS`] control points are kept in this run (`kept` counts them); past
     /// that, made afresh each time, so memory stays bounded however deep the refinement goes.
     pub(super) fn kids(&self, kept: &std::cell::Cell<usize>) -> Rc<[Rc<Cell>]> {
         if let Some(k) = self.kids.get() {
@@ -179,7 +182,7 @@ impl Cell {
             ])
         };
         if kept.get() < CACHED_CELLS {
-            kept.set(kept.get() + k.len());
+            kept.set(kept.get() + k.len() * self.patch.x.len());
             let _ = self.kids.set(k.clone());
         }
         k
@@ -210,7 +213,7 @@ fn enclose(x: &Q) -> Interval {
 /// steps — the disjointness test, the whole-surface cone test and the coverage refinement —
 /// with the quarters, normal-cone generators and crossing pieces each [`Cell`] caches. Every
 /// step reads the same enclosures the separate extractions gave, so its decisions are those
-/// it made on its own extraction; only the work is shared. At most [`CACHED_CELLS`] cells are
+/// it made on its own extraction; only the work is shared. At most [`CACHED_CELLS`] control points of cells are
 /// kept over all the steps together.
 pub(crate) struct PairPieces<'s> {
     sa: &'s NurbsSurface<f64, 3>,
