@@ -3,7 +3,9 @@
 //!
 //! Each border is the NURBS curve of its border row of the control net
 //! ([`super::sides::borders`]: clamped knots, The NURBS Book eq. (2.5)), split into its Bézier
-//! pieces by knot insertion in exact rational arithmetic ([`crate::scalar::Rational`]). The
+//! pieces by knot insertion in exact rational arithmetic ([`crate::scalar::Rational`]), the
+//! border of lower degree first raised to the other's degree (exact degree elevation,
+//! [`super::elevate::elevate_curve_to`]: the same curve, with the same parametrization). The
 //! borders *match* when they have as many pieces, and piece `i` of A's border corresponds to
 //! piece `j(i)` of B's — in order, or in reverse order with each piece reversed, and for a
 //! closed border (first point equal to the last, exactly) also with the pieces rotated — such
@@ -74,7 +76,8 @@ struct Piece {
     ctrl: Vec<Hom<Rational, 3>>,
 }
 
-fn exact_pieces(c: &NurbsCurve<f64, 3>) -> Option<Vec<Piece>> {
+/// The Bézier pieces of `c` raised to degree `degree` (when lower), exactly.
+fn exact_pieces(c: &NurbsCurve<f64, 3>, degree: usize) -> Option<Vec<Piece>> {
     let r = c.hom.map(
         |k| lift::<Rational>(*k),
         |h| Hom {
@@ -82,6 +85,7 @@ fn exact_pieces(c: &NurbsCurve<f64, 3>) -> Option<Vec<Piece>> {
             w: lift(h.w),
         },
     );
+    let r = super::elevate::elevate_curve_to(&r, degree);
     let out: Vec<Piece> = r
         .bezier_pieces()
         .into_iter()
@@ -187,9 +191,6 @@ fn match_pieces(pa: &[Piece], pb: &[Piece], tol: f64) -> Option<(bool, Vec<[f64;
 /// pieces' end points, which matched pieces hold within the gap) agree within `tol` plus a
 /// rounding allowance, and the borders are not single points (poles).
 fn may_match(a: &NurbsCurve<f64, 3>, b: &NurbsCurve<f64, 3>, tol: f64) -> bool {
-    if a.hom.degree() != b.hom.degree() {
-        return false;
-    }
     let boxed = |c: &NurbsCurve<f64, 3>| {
         let br = c.hom.knots.breakpoints();
         let mut lo = [f64::INFINITY; 3];
@@ -226,15 +227,24 @@ pub fn common_borders(
     let mut out = Vec::new();
     for (a, ca) in &ba {
         let mut best: Option<BorderMatch> = None;
-        let mut pa: Option<Option<Vec<Piece>>> = None;
+        // A's pieces per degree they are raised to.
+        let mut pa_at: Vec<(usize, Option<Vec<Piece>>)> = Vec::new();
         for (b, cb) in &bb {
             if !may_match(ca, cb, tol) {
                 continue;
             }
-            let Some(pa) = pa.get_or_insert_with(|| exact_pieces(ca)).as_ref() else {
+            let d = ca.hom.degree().max(cb.hom.degree());
+            let k = match pa_at.iter().position(|(e, _)| *e == d) {
+                Some(k) => k,
+                None => {
+                    pa_at.push((d, exact_pieces(ca, d)));
+                    pa_at.len() - 1
+                }
+            };
+            let Some(pa) = pa_at[k].1.as_ref() else {
                 break;
             };
-            let Some(pb) = exact_pieces(cb) else {
+            let Some(pb) = exact_pieces(cb, d) else {
                 continue;
             };
             if let Some((reversed, pieces, g2)) = match_pieces(pa, &pb, tol) {

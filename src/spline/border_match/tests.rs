@@ -162,3 +162,58 @@ fn poles_and_unrelated_borders_are_not_matched() {
     .unwrap();
     assert!(common_borders(&s1, &plane, 1e-6).is_empty());
 }
+
+/// A floor (bilinear) and a wall of degree 2 along its border — the same segment as the
+/// floor's, the wall's border row being the floor's degree-1 border raised to degree 2
+/// (control points P0, (P0 + P1)/2, P1: exact in `f64`): matched exactly after degree
+/// elevation, every point at the matched parameters the same. With the wall's middle border
+/// point lifted by 1e-9 it matches within a gap of at least 5e-10 (the true largest distance,
+/// at the middle: Bernstein weight 1/2) and at most 1e-9 (the lemma), and not at all below it.
+#[test]
+fn borders_of_different_degrees_match_after_elevation() {
+    let floor = bilinear(
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+    )
+    .unwrap();
+    // Wall: u (degree 2) along y at x = 0, v (degree 1) up in z; net row-major in u.
+    let wall = |lift: f64| {
+        NurbsSurface::new(
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            2,
+            vec![0.0, 0.0, 1.0, 1.0],
+            1,
+            3,
+            2,
+            vec![
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [0.0, 0.5, lift],
+                [0.0, 0.5, 1.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 1.0, 1.0],
+            ],
+            vec![1.0; 6],
+        )
+        .unwrap()
+    };
+    let exact = wall(0.0);
+    let m = common_borders(&floor, &exact, 1e-6);
+    assert_eq!(m.len(), 1, "{m:?}");
+    let m = &m[0];
+    assert!(m.exact && m.gap == 0.0, "{m:?}");
+    for k in 0..=8 {
+        let t = k as f64 / 8.0;
+        assert_eq!(exact_gap2(&floor, &exact, m, t), 0.0, "t = {t}");
+    }
+    let near = wall(1e-9);
+    let m = common_borders(&floor, &near, 1e-6);
+    assert_eq!(m.len(), 1, "{m:?}");
+    let m = &m[0];
+    assert!(!m.exact && m.gap >= 5e-10 && m.gap <= 1.0000001e-9, "{m:?}");
+    let mid = exact_gap2(&floor, &near, m, 0.5).sqrt();
+    assert!(mid <= m.gap && mid >= 0.49e-9, "{mid}");
+    assert!(common_borders(&floor, &near, 1e-10).is_empty());
+}
