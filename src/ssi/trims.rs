@@ -12,6 +12,7 @@ use super::fit::fit_branch;
 use super::krawczyk::Uncertified;
 use super::report::{BranchOut, EndKind};
 use crate::model::{Model, Surface};
+use crate::spline::closure::Closure;
 use crate::tessellate::domain::BoundaryPoint;
 use crate::tessellate::region::FaceRegion;
 use crate::tessellate::{MeshParams, face_regions};
@@ -26,12 +27,17 @@ pub struct TrimRegion {
 }
 
 impl TrimRegion {
-    /// `None` when the face has no trim loops (the whole domain is the face).
+    /// `None` when the face has no trim loops (the whole domain is the face). With only inner
+    /// loops (holes; IGES 144 with no outer boundary, N1 = 0: "the outer boundary is the
+    /// boundary of D") the domain's rectangle is the outer loop, so the face is the domain
+    /// minus the holes. On a surface closed in a direction (a seam, [`Closure`]) the face is
+    /// periodic in it, as a B-rep face's region is: a point is in the face when some shift
+    /// by whole periods puts it in the polygons.
     pub fn of(s: &Surface) -> Option<TrimRegion> {
         if s.trim_loops.is_empty() {
             return None;
         }
-        let polys = s
+        let mut polys = s
             .trim_loops
             .iter()
             .map(|l| {
@@ -47,8 +53,21 @@ impl TrimRegion {
             })
             .collect::<Vec<_>>();
         let (u0, u1, v0, v1) = s.nurbs.hom.domain();
+        if !s.trim_loops.iter().any(|l| l.outer) {
+            polys.push(
+                [[u0, v0], [u1, v0], [u1, v1], [u0, v1]]
+                    .into_iter()
+                    .map(|uv| BoundaryPoint::straight(uv, 0))
+                    .collect(),
+            );
+        }
+        let closure = Closure::of(&s.nurbs);
+        let period = [
+            closure.seam_u.then_some(u1 - u0),
+            closure.seam_v.then_some(v1 - v0),
+        ];
         Some(TrimRegion {
-            regions: vec![FaceRegion::new(0, &polys, [None, None], [u0, u1, v0, v1])],
+            regions: vec![FaceRegion::new(0, &polys, period, [u0, u1, v0, v1])],
         })
     }
 
