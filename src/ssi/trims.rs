@@ -29,15 +29,14 @@ pub struct TrimRegion {
 impl TrimRegion {
     /// `None` when the face has no trim loops (the whole domain is the face). With only inner
     /// loops (holes; IGES 144 with no outer boundary, N1 = 0: "the outer boundary is the
-    /// boundary of D") the domain's rectangle is the outer loop, so the face is the domain
-    /// minus the holes. On a surface closed in a direction (a seam, [`Closure`]) the face is
+    /// boundary of D") the face is the domain minus the holes ([`FaceRegion::complement`]). On a surface closed in a direction (a seam, [`Closure`]) the face is
     /// periodic in it, as a B-rep face's region is: a point is in the face when some shift
     /// by whole periods puts it in the polygons.
     pub fn of(s: &Surface) -> Option<TrimRegion> {
         if s.trim_loops.is_empty() {
             return None;
         }
-        let mut polys = s
+        let polys = s
             .trim_loops
             .iter()
             .map(|l| {
@@ -53,21 +52,16 @@ impl TrimRegion {
             })
             .collect::<Vec<_>>();
         let (u0, u1, v0, v1) = s.nurbs.hom.domain();
-        if !s.trim_loops.iter().any(|l| l.outer) {
-            polys.push(
-                [[u0, v0], [u1, v0], [u1, v1], [u0, v1]]
-                    .into_iter()
-                    .map(|uv| BoundaryPoint::straight(uv, 0))
-                    .collect(),
-            );
-        }
         let closure = Closure::of(&s.nurbs);
         let period = [
             closure.seam_u.then_some(u1 - u0),
             closure.seam_v.then_some(v1 - v0),
         ];
         Some(TrimRegion {
-            regions: vec![FaceRegion::new(0, &polys, period, [u0, u1, v0, v1])],
+            regions: vec![
+                FaceRegion::new(0, &polys, period, [u0, u1, v0, v1])
+                    .complemented(!s.trim_loops.iter().any(|l| l.outer)),
+            ],
         })
     }
 
@@ -77,6 +71,7 @@ impl TrimRegion {
     pub fn of_brep(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
         let mut out: Vec<Option<TrimRegion>> = (0..m.surfaces.len()).map(|_| None).collect();
         let mut failed = Vec::new();
+        let mut unclipped = vec![false; m.surfaces.len()];
         let Some(brep) = &m.brep else {
             return (out, failed);
         };
@@ -93,7 +88,19 @@ impl TrimRegion {
                         .regions
                         .push(r)
                 }
-                Err(e) => failed.push(format!("face {}: {e}", f.source)),
+                Err(e) => {
+                    failed.push(format!("face {}: {e}", f.source));
+                    if let Some(s) = f.surface.filter(|s| *s < out.len()) {
+                        unclipped[s] = true;
+                    }
+                }
+            }
+        }
+        // A surface with a face that could not be outlined is not clipped at all (its other
+        // faces' regions would leave that face's part out).
+        for (s, u) in unclipped.iter().enumerate() {
+            if *u {
+                out[s] = None;
             }
         }
         (out, failed)

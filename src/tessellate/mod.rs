@@ -354,7 +354,17 @@ pub fn face_regions(
                 &mut add,
             )
             .map_err(|e| e.to_string())?;
-            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain))
+            // The loops run counter-clockwise about the face's normal around the face (holes
+            // clockwise): a negative total signed area, in the parameter plane oriented by
+            // the face's normal, says every loop is a hole — a face with no outer loop, or a
+            // sphere minus a cap — and the face is the domain minus the polygons.
+            let total: f64 = polys.iter().map(|p| domain::signed_area(p)).sum();
+            let complement = if f.same_sense {
+                total < 0.0
+            } else {
+                total > 0.0
+            };
+            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement))
         })
         .collect()
 }

@@ -90,7 +90,7 @@ fn local(cell: &Cell, k: usize, x: Interval) -> Option<Interval> {
     let (k0, k1) = (cell.span[2 * k], cell.span[2 * k + 1]);
     let (f0, f1) = (cell.frac[2 * k], cell.frac[2 * k + 1]);
     // Fewer than 53 halvings: f₀, f₁ and their difference are exact.
-    if !(f1 - f0 >= f64::EPSILON * 4.0) {
+    if f1 - f0 < f64::EPSILON * 4.0 || (f1 - f0).is_nan() {
         return None;
     }
     let span = Interval::point(k1) - Interval::point(k0);
@@ -107,7 +107,7 @@ fn clip(e: &([f64; 2], [f64; 2]), lo: [f64; 2], hi: [f64; 2]) -> Option<(f64, f6
         let delta = b[d] - a[d];
         for (p, q) in [(-delta, a[d] - lo[d]), (delta, hi[d] - a[d])] {
             if p == 0.0 {
-                if !(q >= 0.0) {
+                if q < 0.0 || q.is_nan() {
                     return None;
                 }
             } else {

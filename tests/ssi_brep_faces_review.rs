@@ -1,0 +1,196 @@
+//! B-rep faces whose loops are all holes on closed surfaces, and faces that cannot be
+//! outlined: a sphere minus a cap (one circle loop), a sphere band between two circles, an
+//! IGES 144 face with no outer boundary sewn from its 142 curves, and two faces on one plane
+//! of which one cannot be outlined. The faces' regions were once taken by the even-odd rule
+//! alone (the cap, the two caps, the hole), and a surface was clipped to its outlined face
+//! only: each run was certified with the faces' intersection absent. The loops' orientation
+//! now says when the polygons outline the complement, and a surface with a face that cannot
+//! be outlined is not clipped.
+use vericad::brep::{Brep, CurveKind, Edge, EdgeCurve, Face, Loop, LoopKind, OrientedEdge, Vertex};
+use vericad::model::{Model, Surface};
+use vericad::spline::NurbsCurve;
+use vericad::spline::construct::bilinear;
+use vericad::ssi::{SsiParams, intersect_models};
+
+fn plane_model(o: [f64; 3], du: [f64; 3], dv: [f64; 3]) -> Model {
+    let p = |a: f64, b: f64| {
+        [
+            o[0] + a * du[0] + b * dv[0],
+            o[1] + a * du[1] + b * dv[1],
+            o[2] + a * du[2] + b * dv[2],
+        ]
+    };
+    Model {
+        surfaces: vec![Surface::new(
+            "plane",
+            bilinear(p(-1., -1.), p(1., -1.), p(-1., 1.), p(1., 1.)).unwrap(),
+        )],
+        ..Default::default()
+    }
+}
+/// (certified, all output points) of A against B.
+fn run(a: &Model, b: &Model) -> (bool, Vec<[f64; 3]>) {
+    let r = intersect_models(a, Some(b), &SsiParams::default(), &|_, _| {}).expect("runs");
+    let pts = r
+        .pairs
+        .iter()
+        .flat_map(|p| p.branches.iter().flat_map(|b| b.points.clone()))
+        .collect();
+    (r.summary.certified, pts)
+}
+fn read(p: &str) -> Model {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/review3")
+        .join(p);
+    vericad::io::read_model(&path).unwrap()
+}
+
+#[test]
+fn sphere_with_one_hole_loop() {
+    // Sphere r = 2 about the origin minus the cap x >= 1.5 (one circle loop, oriented so the
+    // face is x < 1.5); cut by z = 0.5: the face's intersection is the arc with x < 1.5.
+    let (cert, pts) = run(
+        &read("f6_sphere_hole.step"),
+        &plane_model([0., 0., 0.5], [3., 0., 0.], [0., 3., 0.]),
+    );
+    let has_true_arc = pts.iter().any(|p| p[0] < 0.0);
+    eprintln!(
+        "certified {cert}, {} points, min x {:?}",
+        pts.len(),
+        pts.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min)
+    );
+    assert!(
+        !cert || has_true_arc,
+        "FALSE CERTIFICATE: the arc x < 1.5 (e.g. (-1.936, 0, 0.5)) is missing"
+    );
+}
+
+#[test]
+fn sphere_band_between_two_circles() {
+    // Band |x| <= 0.5 of the sphere r = 2; cut by z = 0.5: arcs near (0, +-1.936, 0.5).
+    let (cert, pts) = run(
+        &read("f7_band_x.step"),
+        &plane_model([0., 0., 0.5], [3., 0., 0.], [0., 3., 0.]),
+    );
+    let has = pts.iter().any(|p| p[0].abs() < 0.1);
+    assert!(
+        !cert || has,
+        "FALSE CERTIFICATE: (0, 1.936, 0.5) is in the face and on the plane, no output near it"
+    );
+}
+
+#[test]
+fn iges_144_hole_only_with_model_space_curves() {
+    // Plane [0,10]^2 minus the hole [4,6]^2 (144 N1 = 0, 142 with BPTR and CPTR); cut by x = 2.
+    let (cert, pts) = run(
+        &read("hole_only.igs"),
+        &plane_model([2., 5., 0.], [0., 0., 20.], [0., 20., 0.]),
+    );
+    assert!(
+        !cert || !pts.is_empty(),
+        "FALSE CERTIFICATE: the segment x = 2, y in [0, 10] is in the face"
+    );
+}
+
+#[test]
+fn two_faces_on_one_surface_one_not_outlined() {
+    // One plane surface [0,10]^2 (z = 0), two B-rep faces on it: [0,5]x[0,10] (outlined) and
+    // [5,10]x[0,10] whose right edge has no curve (not outlined: "its whole surface is taken
+    // as the face", says the certificate). Cut by x = 7: the segment lies in the second face.
+    let s = bilinear([0., 0., 0.], [10., 0., 0.], [0., 10., 0.], [10., 10., 0.]).unwrap();
+    let pts = [
+        [0., 0., 0.],
+        [5., 0., 0.],
+        [5., 10., 0.],
+        [0., 10., 0.],
+        [10., 0., 0.],
+        [10., 10., 0.],
+    ];
+    let vertices: Vec<Vertex> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Vertex {
+            source: format!("v{i}"),
+            point: *p,
+        })
+        .collect();
+    let line = |a: usize, b: usize, curve: bool| Edge {
+        source: format!("e{a}{b}"),
+        start: a,
+        end: b,
+        curve: curve.then(|| EdgeCurve {
+            source: format!("c{a}{b}"),
+            kind: CurveKind::Line,
+            nurbs: NurbsCurve::new(vec![0., 0., 1., 1.], 1, vec![pts[a], pts[b]], vec![1., 1.])
+                .unwrap(),
+            vertex_gap: 0.0,
+        }),
+        pcurves: vec![],
+    };
+    // edges: 0:(0,1) 1:(1,2) 2:(2,3) 3:(3,0) 4:(1,4) 5:(4,5) no curve, 6:(5,2)
+    let edges = vec![
+        line(0, 1, true),
+        line(1, 2, true),
+        line(2, 3, true),
+        line(3, 0, true),
+        line(1, 4, true),
+        line(4, 5, false),
+        line(5, 2, true),
+    ];
+    let lp = |es: Vec<(usize, bool)>| Loop {
+        source: "l".into(),
+        loop_source: "l".into(),
+        outer: true,
+        orientation: true,
+        kind: LoopKind::Edges(
+            es.into_iter()
+                .map(|(edge, forward)| OrientedEdge { edge, forward })
+                .collect(),
+        ),
+    };
+    let face = |name: &str, l: Loop| Face {
+        source: name.into(),
+        surface: Some(0),
+        surface_source: "s".into(),
+        same_sense: true,
+        loops: vec![l],
+    };
+    let brep = Brep {
+        vertices,
+        edges,
+        faces: vec![
+            face("left", lp(vec![(0, true), (1, true), (2, true), (3, true)])),
+            face(
+                "right",
+                lp(vec![(4, true), (5, true), (6, true), (1, false)]),
+            ),
+        ],
+        ..Default::default()
+    };
+    let a = Model {
+        surfaces: vec![Surface::new("s", s)],
+        brep: Some(brep),
+        ..Default::default()
+    };
+    let r = intersect_models(
+        &a,
+        Some(&plane_model([7., 5., 0.], [0., 0., 20.], [0., 20., 0.])),
+        &SsiParams::default(),
+        &|_, _| {},
+    )
+    .unwrap();
+    let n: usize = r.pairs.iter().map(|p| p.branches.len()).sum();
+    eprintln!(
+        "certified {} branches {n}; certificate: {:?}",
+        r.summary.certified,
+        r.summary
+            .certificate
+            .iter()
+            .filter(|c| c.contains("NOT restricted"))
+            .collect::<Vec<_>>()
+    );
+    assert!(
+        !r.summary.certified || n > 0,
+        "FALSE CERTIFICATE: segment x = 7 in the face that was not outlined"
+    );
+}
