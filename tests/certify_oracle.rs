@@ -309,3 +309,30 @@ fn a_curve_through_both_seams_is_accepted() {
         assert!(!off.certified, "{off}");
     }
 }
+
+/// A sphere touching the plane z = 1 at one point and another crossing it in a circle of
+/// radius √0.75: a foreign result with the circle alone is not complete (the touching point
+/// is a component of the intersection it misses) — never certified; with the point as well,
+/// nothing of vericad's output is left uncovered.
+#[test]
+fn a_missing_touching_point_is_not_complete() {
+    let at = |o: [f64; 3]| Frame { o, ..Frame::WORLD };
+    // The touching sphere in a rotated frame: its poles are away from the contact.
+    let a = model(vec![
+        sphere(&rotated([0.0, 0.0, 0.0]), 1.0).unwrap(),
+        sphere(&at([3.0, 0.0, 0.5]), 1.0).unwrap(),
+    ]);
+    let b = model(vec![plane(&Frame::WORLD, 1.0, 5.0)]);
+    let ring = circle(&at([3.0, 0.0, 0.0]), 0.75f64.sqrt(), 1.0, 2000, [0.0; 3]);
+    let r = run(&a, &b, vec![ring.clone()], TOL);
+    // vericad's own coverage holds and the circle is within tol: only the touching point
+    // tells the result is incomplete.
+    assert!(
+        r.vericad_no_missed_branches && r.curves[0].within_tol,
+        "{r}"
+    );
+    assert!(r.touch_and_border_points_not_covered >= 1, "{r}");
+    assert!(!r.foreign_complete && !r.certified, "{r}");
+    let r = run(&a, &b, vec![ring, vec![[0.0, 0.0, 1.0]]], TOL);
+    assert_eq!(r.touch_and_border_points_not_covered, 0, "{r}");
+}

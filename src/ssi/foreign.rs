@@ -140,6 +140,9 @@ pub struct CertifyReport {
     pub missing_branches: usize,
     pub partial_branches: usize,
     pub unverified_branches: usize,
+    /// vericad's touching points and common-border points not within `match_distance` of a
+    /// foreign curve (each leaves `foreign_complete` false).
+    pub touch_and_border_points_not_covered: usize,
     /// vericad's own coverage certificate: every true branch comes within its match
     /// distance of vericad's output (and the run is complete).
     pub vericad_no_missed_branches: bool,
@@ -388,7 +391,23 @@ pub fn certify(
         .collect();
     let count = |s: &str| branches.iter().filter(|b| b.status == s).count();
     let vericad_ok = result.summary.no_missed_branches && !result.summary.partial;
-    let foreign_complete = vericad_ok && branches.iter().all(|b| b.status == "found");
+    // vericad's touching points and common borders are components (or parts) of the
+    // intersection too: each point of them not within the match distance of a foreign curve
+    // leaves the foreign result's completeness not established.
+    let points_not_covered: usize = result
+        .pairs
+        .iter()
+        .flat_map(|p| {
+            p.touch_points.iter().map(|t| t.point).chain(
+                p.common_borders
+                    .iter()
+                    .flat_map(|c| c.points.iter().copied()),
+            )
+        })
+        .filter(|x| !near.box_within(&(*x, *x), match_distance))
+        .count();
+    let foreign_complete =
+        vericad_ok && points_not_covered == 0 && branches.iter().all(|b| b.status == "found");
     let curves_within_tol = curves.iter().filter(|c| c.within_tol).count();
     let mut notes = vec![
         "dist_a_max / dist_b_max: proven upper bounds on each checked point's distance to face set A / B, global over all faces (branch and bound on enclosed Bezier pieces); dist_lower_max: proven lower bound on the distance to the intersection".into(),
@@ -407,6 +426,9 @@ pub fn certify(
             "{f}: its loops could not be outlined, so its whole surface is taken as the face"
         ));
     }
+    if points_not_covered > 0 {
+        notes.push(format!("{points_not_covered} of vericad's touching points and common-border points are not within match_distance of a foreign curve: the completeness of the foreign result is not established"));
+    }
     if !vericad_ok {
         notes.push("vericad's own coverage certificate does not hold on this input (uncertified regions or a partial run): the completeness of the foreign result is not established".into());
     }
@@ -420,6 +442,7 @@ pub fn certify(
         missing_branches: count("missing"),
         partial_branches: count("partial"),
         unverified_branches: count("unverified"),
+        touch_and_border_points_not_covered: points_not_covered,
         vericad_no_missed_branches: vericad_ok,
         foreign_complete,
         certified: foreign_complete && curves_within_tol == curves.len(),
