@@ -2,44 +2,13 @@
 //! 40 short pieces inside the teeth, between traced points outside them. The run must not be
 //! certified with any of them absent from the output (the coverage once decided the pair
 //! transversal on border crossings near output kept outside the teeth).
-use vericad::model::{Model, Surface, TrimLoop};
+mod common;
+use vericad::model::TrimLoop;
+use vericad::spline::NurbsSurface;
 use vericad::spline::construct::bilinear;
-use vericad::spline::{NurbsCurve, NurbsSurface};
 use vericad::ssi::{SsiParams, intersect_models};
 
-fn model(surfaces: Vec<NurbsSurface<f64, 3>>) -> Model {
-    Model {
-        surfaces: surfaces
-            .into_iter()
-            .enumerate()
-            .map(|(k, s)| Surface::new(format!("face {k}"), s))
-            .collect(),
-        ..Default::default()
-    }
-}
-fn trim_line(a: [f64; 2], b: [f64; 2]) -> NurbsCurve<f64, 2> {
-    NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0, 1.0]).unwrap()
-}
-fn poly(p: &[[f64; 2]]) -> Vec<NurbsCurve<f64, 2>> {
-    (0..p.len())
-        .map(|k| trim_line(p[k], p[(k + 1) % p.len()]))
-        .collect()
-}
-fn seg_dist(q: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
-    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let aq = [q[0] - a[0], q[1] - a[1], q[2] - a[2]];
-    let l2: f64 = ab.iter().map(|x| x * x).sum();
-    let t = if l2 > 0.0 {
-        (0..3).map(|k| ab[k] * aq[k]).sum::<f64>() / l2
-    } else {
-        0.0
-    };
-    let t = t.clamp(0.0, 1.0);
-    (0..3)
-        .map(|k| (a[k] + t * ab[k] - q[k]).powi(2))
-        .sum::<f64>()
-        .sqrt()
-}
+use common::trims::{model, poly, seg_dist};
 
 fn run(wall_y: f64, teeth: &[f64], w: f64, swap: bool) {
     run_s(1.0, wall_y, teeth, w, swap)

@@ -214,13 +214,24 @@ pub type LoopEdge = ([f64; 2], [f64; 2], [f64; 2]);
 
 /// Liang–Barsky: whether the segment `a b` meets the closed box `lo..hi`.
 fn segment_meets_box(a: &[f64; 2], b: &[f64; 2], lo: &[f64; 2], hi: &[f64; 2]) -> bool {
+    clip_segment(a, b, lo, hi).is_some()
+}
+
+/// Liang–Barsky: the range `[t0, t1] ⊆ [0, 1]` of `t` with `a + t (b − a)` in the closed box
+/// `lo..hi`, `None` when the segment misses it (rounded: callers widen the box for that).
+pub fn clip_segment(
+    a: &[f64; 2],
+    b: &[f64; 2],
+    lo: &[f64; 2],
+    hi: &[f64; 2],
+) -> Option<(f64, f64)> {
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
     for d in 0..2 {
         let delta = b[d] - a[d];
         for (p, q) in [(-delta, a[d] - lo[d]), (delta, hi[d] - a[d])] {
             if p == 0.0 {
-                if q < 0.0 {
-                    return false;
+                if q < 0.0 || q.is_nan() {
+                    return None;
                 }
             } else {
                 let r = q / p;
@@ -230,12 +241,12 @@ fn segment_meets_box(a: &[f64; 2], b: &[f64; 2], lo: &[f64; 2], hi: &[f64; 2]) -
                     t1 = t1.min(r);
                 }
                 if t0 > t1 {
-                    return false;
+                    return None;
                 }
             }
         }
     }
-    true
+    Some((t0, t1))
 }
 
 #[cfg(test)]

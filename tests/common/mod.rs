@@ -9,6 +9,7 @@ pub mod mesh;
 pub mod reparam;
 pub mod scan;
 pub mod shapes;
+pub mod trims;
 
 use vericad::geom::lift_point;
 use vericad::scalar::Rational;

@@ -31,7 +31,7 @@
 use super::patch::{ICurve, IPatch};
 use super::pieces::Cell;
 use crate::scalar::Interval;
-use crate::tessellate::region::LoopEdge;
+use crate::tessellate::region::{LoopEdge, clip_segment};
 
 /// Relative widening of a piece's label box before an edge is clipped to it.
 pub(crate) const MARGIN: f64 = 1e-9;
@@ -60,7 +60,7 @@ pub(crate) fn edge_image(cell: &Cell, e: &LoopEdge) -> Option<ICurve> {
         MARGIN * (b - a).abs() + 512.0 * f64::EPSILON * a.abs().max(b.abs()).max(big)
     };
     let (pu, pv) = (pad(u0, u1), pad(v0, v1));
-    let (t0, t1) = clip(&seg, [u0 - pu, v0 - pv], [u1 + pu, v1 + pv])?;
+    let (t0, t1) = clip_segment(&seg.0, &seg.1, &[u0 - pu, v0 - pv], &[u1 + pu, v1 + pv])?;
     // The exact point `a + t (b − a) − s`, enclosed, in the piece's own coordinates.
     let at = |t: f64| -> Option<[Interval; 2]> {
         let t = Interval::point(t);
@@ -96,31 +96,6 @@ fn local(cell: &Cell, k: usize, x: Interval) -> Option<Interval> {
     let span = Interval::point(k1) - Interval::point(k0);
     let s = (x - Interval::point(k0)).checked_div(span)?;
     (s - Interval::point(f0)).checked_div(Interval::point(f1) - Interval::point(f0))
-}
-
-/// Liang–Barsky: the range `[t0, t1] ⊆ [0, 1]` of `t` with `a + t (b − a)` in the box
-/// `lo..hi`, `None` when the segment misses it.
-fn clip(e: &([f64; 2], [f64; 2]), lo: [f64; 2], hi: [f64; 2]) -> Option<(f64, f64)> {
-    let (a, b) = e;
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for d in 0..2 {
-        let delta = b[d] - a[d];
-        for (p, q) in [(-delta, a[d] - lo[d]), (delta, hi[d] - a[d])] {
-            if p == 0.0 {
-                if q < 0.0 || q.is_nan() {
-                    return None;
-                }
-            } else {
-                let r = q / p;
-                if p < 0.0 {
-                    t0 = t0.max(r);
-                } else {
-                    t1 = t1.min(r);
-                }
-            }
-        }
-    }
-    (t0 <= t1).then_some((t0, t1))
 }
 
 /// Blossom of a row of homogeneous points (degree `n = row.len() − 1`) at `ts` (`n` values):
