@@ -194,3 +194,81 @@ fn two_faces_on_one_surface_one_not_outlined() {
         "FALSE CERTIFICATE: segment x = 7 in the face that was not outlined"
     );
 }
+
+/// A plane face [0, 5] × [0, 10] whose loop, declared outer, runs clockwise (a file with the
+/// orientation wrong): on a surface with no seam and no pole the declared outer loop bounds
+/// the face, so the face is the rectangle, not the rest of the plane. Cut by x = 2 (in the
+/// face) the segment is found and certified; cut by x = 7 (outside the face, on the plane)
+/// nothing is found.
+#[test]
+fn a_declared_outer_loop_on_a_plane_bounds_the_face_whatever_its_orientation() {
+    let s = bilinear([0., 0., 0.], [10., 0., 0.], [0., 10., 0.], [10., 10., 0.]).unwrap();
+    let pts = [[0., 0., 0.], [5., 0., 0.], [5., 10., 0.], [0., 10., 0.]];
+    let vertices: Vec<Vertex> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Vertex {
+            source: format!("v{i}"),
+            point: *p,
+        })
+        .collect();
+    let line = |a: usize, b: usize| Edge {
+        source: format!("e{a}{b}"),
+        start: a,
+        end: b,
+        curve: Some(EdgeCurve {
+            source: format!("c{a}{b}"),
+            kind: CurveKind::Line,
+            nurbs: NurbsCurve::new(vec![0., 0., 1., 1.], 1, vec![pts[a], pts[b]], vec![1., 1.])
+                .unwrap(),
+            vertex_gap: 0.0,
+        }),
+        pcurves: vec![],
+    };
+    let edges = vec![line(0, 1), line(1, 2), line(2, 3), line(3, 0)];
+    // Clockwise about +z (the plane's S_u × S_v): the edges reversed, in reverse order.
+    let cw = Loop {
+        source: "l".into(),
+        loop_source: "l".into(),
+        outer: true,
+        orientation: true,
+        kind: LoopKind::Edges(
+            [3, 2, 1, 0]
+                .into_iter()
+                .map(|edge| OrientedEdge {
+                    edge,
+                    forward: false,
+                })
+                .collect(),
+        ),
+    };
+    let brep = Brep {
+        vertices,
+        edges,
+        faces: vec![Face {
+            source: "rect".into(),
+            surface: Some(0),
+            surface_source: "s".into(),
+            same_sense: true,
+            loops: vec![cw],
+        }],
+        ..Default::default()
+    };
+    let a = Model {
+        surfaces: vec![Surface::new("s", s)],
+        brep: Some(brep),
+        ..Default::default()
+    };
+    let inside = run(&a, &plane_model([2., 5., 0.], [0., 0., 20.], [0., 20., 0.]));
+    assert!(
+        inside.0 && inside.1.iter().any(|p| (p[1] - 5.0).abs() < 1.0),
+        "x = 2: {:?}",
+        inside.0
+    );
+    let outside = run(&a, &plane_model([7., 5., 0.], [0., 0., 20.], [0., 20., 0.]));
+    assert!(
+        outside.1.is_empty(),
+        "x = 7 is off the face: {} points",
+        outside.1.len()
+    );
+}

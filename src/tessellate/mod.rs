@@ -357,13 +357,22 @@ pub fn face_regions(
             // The loops run counter-clockwise about the face's normal around the face (holes
             // clockwise): a negative total signed area, in the parameter plane oriented by
             // the face's normal, says every loop is a hole — a face with no outer loop, or a
-            // sphere minus a cap — and the face is the domain minus the polygons.
+            // sphere minus a cap — and the face is the domain minus the polygons. On a surface
+            // with no seam and no pole a loop declared outer bounds the face whatever its
+            // orientation (only on closed surfaces is "outer" without meaning).
             let total: f64 = polys.iter().map(|p| domain::signed_area(p)).sum();
-            let complement = if f.same_sense {
+            let holes_only = if f.same_sense {
                 total < 0.0
             } else {
                 total > 0.0
             };
+            let closed =
+                fs.period.iter().any(Option::is_some) || fs.closure.degenerate.iter().any(|d| *d);
+            let declared_outer = f
+                .loops
+                .iter()
+                .any(|l| l.outer && matches!(l.kind, LoopKind::Edges(_)));
+            let complement = holes_only && (closed || !declared_outer);
             Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement))
         })
         .collect()
