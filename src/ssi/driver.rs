@@ -287,14 +287,17 @@ pub fn intersect_models(
                 clip(|c| c.touch_points_on_shared_edges)
             ));
         }
-        if !faces_not_outlined.is_empty() {
-            certificate.push(format!(
-                "NOT restricted: {} faces could not be outlined in their parameter plane, their whole surfaces were intersected: {}",
-                faces_not_outlined.len(),
-                faces_not_outlined.join("; ")
-            ));
-        }
-    } else if !prm.respect_trims && (a.brep.is_some() || b.is_some_and(|m| m.brep.is_some())) {
+    }
+    // Said whether or not another face clips: a run whose only face could not be outlined
+    // once said nothing of it.
+    if prm.respect_trims && !faces_not_outlined.is_empty() {
+        certificate.push(format!(
+            "NOT restricted, NOT certified: {} faces could not be outlined in their parameter plane, their whole surfaces were intersected: {}",
+            faces_not_outlined.len(),
+            faces_not_outlined.join("; ")
+        ));
+    }
+    if !prm.respect_trims && (a.brep.is_some() || b.is_some_and(|m| m.brep.is_some())) {
         certificate.push("untrimmed: the faces' whole surfaces were intersected (the B-rep's loops and shared edges ignored, --untrimmed)".to_string());
     }
     if coincident_pairs > overlap_pairs {
@@ -365,7 +368,8 @@ pub fn intersect_models(
             && !partial
             && (meshes || no_missed_branches)
             && singular_points_uncertified == 0
-            && borders_not_proven == 0,
+            && borders_not_proven == 0
+            && faces_not_outlined.is_empty(),
         seconds: t0.elapsed().as_secs_f64(),
         certificate,
     };

@@ -340,6 +340,13 @@ pub fn face_regions(
             let si = f.surface.ok_or_else(|| "no surface".to_string())?;
             let fs = FaceSurface::new(&model.surfaces[si].nurbs, size);
             let (rings, vertex_loop) = face_rings(brep, fi, &es, &fs)?;
+            // Loops winding around both periodic directions (a torus band between Villarceau
+            // circles) are closed into bands one direction at a time, which outlines another
+            // region: such a face is not outlined (its surface is then not clipped).
+            if rings.iter().any(|r| r.winding[0] != 0 && r.winding[1] != 0) {
+                return Err("loops winding around both periodic directions are not outlined".into());
+            }
+            let winds = rings.iter().any(|r| r.winding != [0, 0]);
             let mut add = |_: [f64; 3]| {
                 extra += 1;
                 extra - 1
@@ -373,7 +380,17 @@ pub fn face_regions(
                 .iter()
                 .any(|l| l.outer && matches!(l.kind, LoopKind::Edges(_)));
             let complement = holes_only && (closed || !declared_outer);
-            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement))
+            // The complement of a band closed around the surface has not been checked against
+            // constructions: not outlined rather than guessed.
+            if complement && winds {
+                return Err(
+                    "loops winding around the surface that outline the face's complement are not outlined"
+                        .into(),
+                );
+            }
+            let mut r = region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement);
+            r.banded = winds;
+            Ok(r)
         })
         .collect()
 }

@@ -26,6 +26,8 @@ pub struct FaceRegion {
     /// interior (its loops are all holes, as a face with no outer loop, or a sphere minus a
     /// cap, has them).
     pub complement: bool,
+    /// Some loop winds around the surface (closed into a band or a cap across a seam).
+    pub banded: bool,
 }
 
 impl FaceRegion {
@@ -45,6 +47,7 @@ impl FaceRegion {
             period,
             domain,
             complement: false,
+            banded: false,
         }
     }
 
@@ -263,6 +266,7 @@ mod tests {
             period: [None, None],
             domain: [0.0, 1.0, 0.0, 1.0],
             complement: false,
+            banded: false,
         }
     }
 
@@ -302,6 +306,7 @@ mod tests {
             period: [Some(1.0), None],
             domain: [0.0, 1.0, 0.0, 1.0],
             complement: false,
+            banded: false,
         };
         assert!(r.inside(&[0.1, 0.1]));
         assert!(r.inside(&[0.9, 0.1]));
