@@ -272,3 +272,42 @@ fn a_declared_outer_loop_on_a_plane_bounds_the_face_whatever_its_orientation() {
         outside.1.len()
     );
 }
+
+/// A torus (R = 3, r = 1) face bounded by two Villarceau circles (loops winding around both
+/// periodic directions) cut by the plane x = 3, which misses the face: such loops are not
+/// outlined, and the run says its surface was intersected whole and is not certified (it
+/// was certified, silently unrestricted, with a branch of 1,787 points off the face).
+#[test]
+fn a_villarceau_band_is_not_outlined_and_not_certified() {
+    let r = intersect_models(
+        &read("torus_villarceau_band.step"),
+        Some(&read("plane_x3.json")),
+        &SsiParams::default(),
+        &|_, _| {},
+    )
+    .unwrap();
+    assert!(!r.summary.certified);
+    assert!(
+        r.summary
+            .certificate
+            .iter()
+            .any(|c| c.contains("NOT restricted") && c.contains("both periodic directions")),
+        "{:?}",
+        r.summary.certificate
+    );
+}
+
+/// The torus minus the band |z| <= 0.5 (two loops winding around the axis) cut by the plane
+/// y = 0 through the seam: its coverage is not claimed (it once was, with the arcs |z| > 0.5
+/// of the seam's meridian absent from the output).
+#[test]
+fn a_band_complement_cut_through_the_seam_is_not_claimed() {
+    let r = intersect_models(
+        &read("torus_band_complement.step"),
+        Some(&read("plane_y0.json")),
+        &SsiParams::default(),
+        &|_, _| {},
+    )
+    .unwrap();
+    assert!(!r.summary.no_missed_branches && !r.summary.certified);
+}
