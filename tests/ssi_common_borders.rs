@@ -4,21 +4,12 @@
 //! constructions (planes, cylinders and cones placed in closed form), checked against the
 //! coordinates, not against vericad's own figures.
 
-use vericad::model::{Model, Surface};
+mod common;
+use common::trims::{model, trim_line};
+use vericad::model::Model;
 use vericad::spline::NurbsSurface;
 use vericad::spline::construct::{Frame, bilinear, cone, cylinder};
 use vericad::ssi::{SsiParams, SsiResult, intersect_models};
-
-fn model(surfaces: Vec<NurbsSurface<f64, 3>>) -> Model {
-    Model {
-        surfaces: surfaces
-            .into_iter()
-            .enumerate()
-            .map(|(k, s)| Surface::new(format!("face {k}"), s))
-            .collect(),
-        ..Default::default()
-    }
-}
 
 fn ssi(surfaces: Vec<NurbsSurface<f64, 3>>) -> SsiResult {
     intersect_models(&model(surfaces), None, &SsiParams::default(), &|_, _| {}).expect("runs")
@@ -198,12 +189,6 @@ fn a_wall_through_the_floor_is_a_branch_not_a_border() {
     assert_eq!(r.summary.common_borders, 0);
     assert_eq!(r.summary.branches, 1);
     assert!(r.summary.certified);
-}
-
-/// A line segment of the parameter plane as a trim curve.
-fn trim_line(a: [f64; 2], b: [f64; 2]) -> vericad::spline::NurbsCurve<f64, 2> {
-    vericad::spline::NurbsCurve::new(vec![0.0, 0.0, 1.0, 1.0], 1, vec![a, b], vec![1.0, 1.0])
-        .unwrap()
 }
 
 /// The floor trimmed to the strip `0.40 <= v <= 0.45` (v is y on the floor).

@@ -57,21 +57,17 @@ impl FaceRegion {
         self
     }
 
-    /// The shifts by whole periods under which a parameter point is tested.
-    fn shifts(&self) -> Vec<[f64; 2]> {
-        let ks = |d: usize| -> Vec<f64> {
+    /// The shifts by whole periods under which a parameter point is tested (no allocation:
+    /// the box tests call this for every box of the coverage's crossing searches).
+    fn shifts(&self) -> impl Iterator<Item = [f64; 2]> {
+        let ks = |d: usize| -> ([f64; 5], usize) {
             match self.period[d] {
-                Some(p) => vec![0.0, -p, p, -2.0 * p, 2.0 * p],
-                None => vec![0.0],
+                Some(p) => ([0.0, -p, p, -2.0 * p, 2.0 * p], 5),
+                None => ([0.0; 5], 1),
             }
         };
-        let mut out = Vec::new();
-        for a in ks(0) {
-            for b in ks(1) {
-                out.push([a, b]);
-            }
-        }
-        out
+        let ((a, na), (b, nb)) = (ks(0), ks(1));
+        (0..na).flat_map(move |i| (0..nb).map(move |j| [a[i], b[j]]))
     }
 
     /// Even-odd rule for one point (no shift); a point on a polygon edge counts as inside.
@@ -100,7 +96,6 @@ impl FaceRegion {
     pub fn inside(&self, uv: &[f64; 2]) -> bool {
         let in_polys = self
             .shifts()
-            .iter()
             .any(|s| self.inside_once(&[uv[0] + s[0], uv[1] + s[1]]));
         in_polys != self.complement
     }
@@ -151,8 +146,8 @@ impl FaceRegion {
     fn box_in_polys(&self, b: &[f64; 4], margin: f64) -> bool {
         let mu = margin * (self.domain[1] - self.domain[0]).abs();
         let mv = margin * (self.domain[3] - self.domain[2]).abs();
-        self.shifts().iter().any(|s| {
-            let (lo, hi) = widened(b, mu, mv, *s);
+        self.shifts().any(|s| {
+            let (lo, hi) = widened(b, mu, mv, s);
             let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
             self.inside_once(&centre)
                 && self.polys.iter().all(|poly| {
