@@ -78,7 +78,6 @@ fn faces(ra: Option<Rect>, rb: Option<Rect>) -> (FaceRestriction, OutsideFaces) 
         inside_b: Arc::new(move |b| rb.is_none_or(|r| r.box_inside(b))),
         edges_a: Arc::new(move |b| ra.map_or_else(Vec::new, |r| r.sides_meeting(b))),
         edges_b: Arc::new(move |b| rb.map_or_else(Vec::new, |r| r.sides_meeting(b))),
-        trims_decide: true,
     };
     let outside = OutsideFaces(Arc::new(move |a, b| out_a(a) || out_b(b)));
     (restrict, outside)

@@ -48,7 +48,6 @@ fn restriction(r: FaceRegion) -> (FaceRestriction, OutsideFaces) {
         inside_b: Arc::new(|_| true),
         edges_a: Arc::new(move |b| r6.edges_meeting(b, FACE_MARGIN)),
         edges_b: Arc::new(|_| Vec::new()),
-        trims_decide: true,
     };
     let o = OutsideFaces(Arc::new(move |a, _| r.box_outside(a, FACE_MARGIN)));
     (f, o)
@@ -119,7 +118,6 @@ fn label_rounding_hides_a_branch() {
         period: [None, None],
         domain: [u0, u1, 0.0, 1.0],
         complement: false,
-        banded: false,
     };
     // Ground truth, exact (integers in units of 2^-60). The faces' intersection holds
     // {A(t_w, v) : v ∈ [0.3, 0.4]} = {(x_w, v, t_w²)}: it is on the wall (y ∈ [0.3, 0.4],

@@ -128,13 +128,6 @@ fn outside_one(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> Arc<BoxTest> {
     })
 }
 
-/// Whether face `k` of `r` has loops winding around its surface.
-fn banded(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> bool {
-    r.get(k)
-        .and_then(|x| x.as_ref())
-        .is_some_and(|x| x.banded())
-}
-
 /// [`FaceRestriction::inside_a`] for face `k` of `r`.
 fn inside_one(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> Arc<BoxTest> {
     let r = r.clone();
@@ -254,7 +247,6 @@ impl<'a> Faces<'a> {
             inside_b: inside_one(self.second(), j),
             edges_a: edges_one(&self.a, i),
             edges_b: edges_one(self.second(), j),
-            trims_decide: !(banded(&self.a, i) || banded(self.second(), j)),
         })
     }
 

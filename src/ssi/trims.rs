@@ -136,11 +136,6 @@ impl TrimRegion {
         self.regions.iter().any(|r| r.inside(p))
     }
 
-    /// Some region's loops wind around the surface ([`FaceRegion::banded`]).
-    pub fn banded(&self) -> bool {
-        self.regions.iter().any(|r| r.banded)
-    }
-
     /// The loop polygons' edges meeting the parameter box widened by `margin` of the domain
     /// ([`crate::tessellate::region::FaceRegion::edges_meeting`], over every region).
     pub fn edges_meeting(

@@ -344,9 +344,10 @@ pub fn face_regions(
             // circles) are closed into bands one direction at a time, which outlines another
             // region: such a face is not outlined (its surface is then not clipped).
             if rings.iter().any(|r| r.winding[0] != 0 && r.winding[1] != 0) {
-                return Err("loops winding around both periodic directions are not outlined".into());
+                return Err(
+                    "loops winding around both periodic directions are not outlined".into(),
+                );
             }
-            let winds = rings.iter().any(|r| r.winding != [0, 0]);
             let mut add = |_: [f64; 3]| {
                 extra += 1;
                 extra - 1
@@ -380,17 +381,7 @@ pub fn face_regions(
                 .iter()
                 .any(|l| l.outer && matches!(l.kind, LoopKind::Edges(_)));
             let complement = holes_only && (closed || !declared_outer);
-            // The complement of a band closed around the surface has not been checked against
-            // constructions: not outlined rather than guessed.
-            if complement && winds {
-                return Err(
-                    "loops winding around the surface that outline the face's complement are not outlined"
-                        .into(),
-                );
-            }
-            let mut r = region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement);
-            r.banded = winds;
-            Ok(r)
+            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement))
         })
         .collect()
 }

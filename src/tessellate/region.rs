@@ -26,8 +26,6 @@ pub struct FaceRegion {
     /// interior (its loops are all holes, as a face with no outer loop, or a sphere minus a
     /// cap, has them).
     pub complement: bool,
-    /// Some loop winds around the surface (closed into a band or a cap across a seam).
-    pub banded: bool,
 }
 
 impl FaceRegion {
@@ -47,7 +45,6 @@ impl FaceRegion {
             period,
             domain,
             complement: false,
-            banded: false,
         }
     }
 
@@ -261,7 +258,6 @@ mod tests {
             period: [None, None],
             domain: [0.0, 1.0, 0.0, 1.0],
             complement: false,
-            banded: false,
         }
     }
 
@@ -301,7 +297,6 @@ mod tests {
             period: [Some(1.0), None],
             domain: [0.0, 1.0, 0.0, 1.0],
             complement: false,
-            banded: false,
         };
         assert!(r.inside(&[0.1, 0.1]));
         assert!(r.inside(&[0.9, 0.1]));

@@ -372,8 +372,7 @@ pub(crate) fn coverage_in(
             .restrict
             .as_ref()
             .is_some_and(|r| !(r.pair_inside)(&a.uv, &b.uv));
-        let trims_decide = prm.restrict.as_ref().is_none_or(|r| r.trims_decide);
-        if (!trim_in_pair || trims_decide) && a.cones_apart(&b) {
+        if a.cones_apart(&b) {
             let mut ctx = SearchCtx {
                 near: &near,
                 along: &along,

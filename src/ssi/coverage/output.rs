@@ -79,11 +79,6 @@ pub struct FaceRestriction {
     /// border lies on one (none for an untrimmed face: its border is the domain's).
     pub edges_a: std::sync::Arc<EdgesTest>,
     pub edges_b: std::sync::Arc<EdgesTest>,
-    /// Pairs a loop runs through may be decided transversal with the loops' crossings
-    /// searched: not where a face's loops wind around its surface (bands closed across a
-    /// seam, where a cut line along the seam is an edge of the polygon; not checked against
-    /// constructions: such pairs are split and listed as before).
-    pub trims_decide: bool,
 }
 
 /// A decision on one parameter box `[u0, u1, v0, v1]`.
@@ -121,7 +116,6 @@ impl FaceRestriction {
             inside_b: self.inside_a.clone(),
             edges_a: self.edges_b.clone(),
             edges_b: self.edges_a.clone(),
-            trims_decide: self.trims_decide,
         }
     }
 
