@@ -105,9 +105,30 @@ impl<'a> FaceSurface<'a> {
 }
 
 /// A loop in the parameter plane and how many times it winds around each periodic direction.
+#[derive(Clone, Debug)]
 pub struct Ring {
     pub points: Vec<BoundaryPoint>,
     pub winding: [i64; 2],
+}
+
+impl Ring {
+    /// The same loop starting at its point `i` (the points before it follow, moved on by the
+    /// loop's winding times the periods: the loop stays unwrapped).
+    pub fn starting_at(&self, i: usize, period: [Option<f64>; 2]) -> Ring {
+        let i = i % self.points.len().max(1);
+        let mut points = self.points[i..].to_vec();
+        points.extend(self.points[..i].iter().map(|p| {
+            let mut q = *p;
+            for d in 0..2 {
+                q = q.shifted(d, self.winding[d] as f64 * period[d].unwrap_or(0.0));
+            }
+            q
+        }));
+        Ring {
+            points,
+            winding: self.winding,
+        }
+    }
 }
 
 /// Project a loop's points `(vertex, point)` (closed: the last joins the first), unwrap
@@ -403,12 +424,17 @@ pub fn inside(polys: &[Vec<BoundaryPoint>], x: &[f64; 2]) -> bool {
     c
 }
 
-/// Shift a non-winding ring by whole periods so that its first point lies in `[lo, lo + per)`
-/// in each periodic direction.
+/// Shift a non-winding ring by whole periods so that its lowest point lies in `[lo, lo + per)`
+/// in each periodic direction (a ring whose range does not hold `lo` modulo the period then
+/// lies between `lo` and `lo + per`, where a band's cut lines are).
 pub fn shift_into(fs: &FaceSurface, r: &mut [BoundaryPoint], lo: [f64; 2]) {
     for d in 0..2 {
-        if let (Some(per), Some(p0)) = (fs.period[d], r.first()) {
-            let s = ((p0.uv[d] - lo[d]) / per).floor() * per;
+        if let Some(per) = fs.period[d] {
+            let min = r.iter().map(|p| p.uv[d]).fold(f64::INFINITY, f64::min);
+            if !min.is_finite() {
+                continue;
+            }
+            let s = ((min - lo[d]) / per).floor() * per;
             for p in r.iter_mut() {
                 *p = p.shifted(d, -s);
             }

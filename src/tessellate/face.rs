@@ -5,6 +5,7 @@
 //! oriented with the face, and the face's area integrated over those parameter triangles.
 
 use super::domain::{self, BoundaryPoint, FaceSurface, Ring};
+use super::outline::Sense;
 use crate::geom::{Point, cross, dist, norm};
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
@@ -26,8 +27,16 @@ pub enum FaceError {
     Winding(usize, char),
     #[error("the loop winds around the seam but the border it leaves open is not a pole")]
     OpenBorder,
-    #[error("loop boundary segments cross in the parameter plane (at #{0})")]
-    Crossing(usize),
+    #[error("loop boundary segments cross in the parameter plane (at {0})")]
+    Crossing(String),
+    #[error(
+        "the face's loops wind around direction {0} on its side of a strip whose other side is the surface's open border; not triangulated"
+    )]
+    BandSide(char),
+    #[error(
+        "the face's holes cover a whole period of the surface between them; its outline has no place for the seam"
+    )]
+    Covered,
     #[error("the parameter-plane region is empty")]
     Empty,
     #[error("parameter point not representable: {0}")]
@@ -36,7 +45,7 @@ pub enum FaceError {
 
 /// Grid resolution along the parameter box `lo..hi` in direction `d`: enough segments for
 /// length `h` and a turn of at most `max_turn` per segment along the middle iso-curve.
-fn resolution(
+pub(super) fn resolution(
     fs: &FaceSurface,
     lo: [f64; 2],
     hi: [f64; 2],
@@ -70,130 +79,19 @@ fn resolution(
 }
 
 /// Triangulate a face. `rings`: its loops in the parameter plane; `vertex_loop`: the mesh
-/// vertex of a vertex loop, if any (a pole); `same_sense`: the face normal is `S_u × S_v`;
-/// `add` makes a new mesh vertex; `h`: target edge length.
+/// vertex of a vertex loop, if any (a pole); `sense`: the face normal's sense and whether a
+/// loop is declared outer ([`Sense`]); `add` makes a new mesh vertex; `h`: target edge length.
 pub fn mesh_face(
     fs: &FaceSurface,
     rings: Vec<Ring>,
     vertex_loop: Option<usize>,
-    same_sense: bool,
+    sense: Sense,
     h: f64,
     max_turn: f64,
     add: &mut dyn FnMut([f64; 3]) -> usize,
 ) -> Result<FaceMesh, FaceError> {
-    let polys = face_polygons(fs, rings, vertex_loop, same_sense, h, max_turn, add)?;
-    triangulate(fs, &polys, same_sense, h, max_turn, add)
-}
-
-/// The closed parameter-plane polygons of a face (even-odd: the face is inside an odd number
-/// of them): winding loops closed into bands or pole caps, the other loops shifted by periods
-/// into the range of the first. Arguments as [`mesh_face`]; cut and pole points get vertices
-/// from `add`.
-pub fn face_polygons(
-    fs: &FaceSurface,
-    mut rings: Vec<Ring>,
-    vertex_loop: Option<usize>,
-    same_sense: bool,
-    h: f64,
-    max_turn: f64,
-    add: &mut dyn FnMut([f64; 3]) -> usize,
-) -> Result<Vec<Vec<BoundaryPoint>>, FaceError> {
-    // Loops winding around a periodic direction, closed into polygons.
-    let mut polys: Vec<Vec<BoundaryPoint>> = Vec::new();
-    for d in 0..2 {
-        let winding: Vec<usize> = (0..rings.len())
-            .filter(|&i| rings[i].winding[d] != 0)
-            .collect();
-        if winding.is_empty() {
-            continue;
-        }
-        let name = if d == 0 { 'u' } else { 'v' };
-        let box_of = |r: &Ring| {
-            let mut lo = [f64::INFINITY; 2];
-            let mut hi = [f64::NEG_INFINITY; 2];
-            for p in &r.points {
-                for k in 0..2 {
-                    lo[k] = lo[k].min(p.uv[k]);
-                    hi[k] = hi[k].max(p.uv[k]);
-                }
-            }
-            (lo, hi)
-        };
-        let (lo, hi) = box_of(&rings[winding[0]]);
-        let cuts = |span: f64, lo: [f64; 2], hi: [f64; 2]| {
-            let n = resolution(fs, lo, hi, 1 - d, h, max_turn) as f64;
-            ((span.abs() / (hi[1 - d] - lo[1 - d]).max(1e-300) * n).ceil() as usize).clamp(1, 400)
-        };
-        match winding.len() {
-            2 => {
-                let (a, b) = (&rings[winding[0]], &rings[winding[1]]);
-                if a.winding[d].abs() != 1 || a.winding[d] != -b.winding[d] {
-                    return Err(FaceError::Winding(2, name));
-                }
-                let span = a.points[0].uv[1 - d] - b.points[0].uv[1 - d];
-                let (blo, bhi) = box_of(b);
-                let l = [lo[0].min(blo[0]), lo[1].min(blo[1])];
-                let u = [hi[0].max(bhi[0]), hi[1].max(bhi[1])];
-                let n = cuts(span, l, u);
-                polys.push(domain::join_band(fs, d, a, b, n, add));
-            }
-            1 => {
-                let a = &rings[winding[0]];
-                if a.winding[d].abs() != 1 {
-                    return Err(FaceError::Winding(1, name));
-                }
-                // The region lies left of the loop (right when the face is reversed).
-                let up = (a.winding[d] > 0) == same_sense;
-                let side = match (d, up) {
-                    (0, true) => 3,
-                    (0, false) => 2,
-                    (_, true) => 0,
-                    (_, false) => 1,
-                };
-                let Some(pole) = fs.pole(side) else {
-                    return Err(FaceError::OpenBorder);
-                };
-                let pv = vertex_loop.unwrap_or_else(|| add(pole));
-                let span = a.points[0].uv[1 - d] - fs.domain[side];
-                let mut l = lo;
-                let mut u = hi;
-                l[1 - d] = l[1 - d].min(fs.domain[side]);
-                u[1 - d] = u[1 - d].max(fs.domain[side]);
-                let n = cuts(span, l, u);
-                polys.push(domain::join_pole(fs, d, a, side, pv, n, add));
-            }
-            k => return Err(FaceError::Winding(k, name)),
-        }
-        rings.retain(|r| r.winding[d] == 0);
-    }
-    // Non-winding loops: the largest first, the others shifted by periods into its range.
-    rings.sort_by(|a, b| {
-        domain::signed_area(&b.points)
-            .abs()
-            .total_cmp(&domain::signed_area(&a.points).abs())
-    });
-    let anchor = polys
-        .first()
-        .or_else(|| rings.first().map(|r| &r.points))
-        .map(|p| {
-            let mut lo = [f64::INFINITY; 2];
-            for q in p {
-                lo[0] = lo[0].min(q.uv[0]);
-                lo[1] = lo[1].min(q.uv[1]);
-            }
-            lo
-        });
-    let Some(anchor) = anchor else {
-        return Err(FaceError::Empty);
-    };
-    for (i, r) in rings.into_iter().enumerate() {
-        let mut pts = r.points;
-        if i > 0 || !polys.is_empty() {
-            domain::shift_into(fs, &mut pts, anchor);
-        }
-        polys.push(pts);
-    }
-    Ok(polys)
+    let polys = super::polygons::face_polygons(fs, rings, vertex_loop, sense, h, max_turn, add)?;
+    triangulate(fs, &polys, sense.same_sense, h, max_turn, add)
 }
 
 fn triangulate(
@@ -267,7 +165,7 @@ fn triangulate(
                 continue;
             }
             if !cdt.can_add_constraint(a, b) {
-                return Err(FaceError::Crossing(p[i].vertex));
+                return Err(FaceError::Crossing(format!("#{}", p[i].vertex)));
             }
             cdt.add_constraint(a, b);
             segments.push((p[i].uv, p[(i + 1) % p.len()].uv));

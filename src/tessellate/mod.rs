@@ -12,7 +12,10 @@ pub mod bound;
 pub mod chordal;
 pub mod domain;
 pub mod face;
+pub mod outline;
+pub mod polygons;
 pub mod region;
+pub mod simple;
 pub mod surfaces;
 
 use crate::brep::{Brep, LoopKind};
@@ -206,6 +209,18 @@ fn face_rings(
     Ok((rings, vertex_loop))
 }
 
+/// How face `f`'s loops are read ([`outline::Sense`]): its normal's sense, and whether one of
+/// its edge loops is declared outer.
+fn sense_of(f: &crate::brep::Face) -> outline::Sense {
+    outline::Sense {
+        same_sense: f.same_sense,
+        declared_outer: f
+            .loops
+            .iter()
+            .any(|l| l.outer && matches!(l.kind, LoopKind::Edges(_))),
+    }
+}
+
 /// Faces a shell uses reversed (`oriented_face` with orientation .F.).
 fn reversed_in_shell(brep: &Brep) -> Vec<bool> {
     let mut r = vec![false; brep.faces.len()];
@@ -274,7 +289,7 @@ pub fn mesh_brep(model: &Model, brep: &Brep, params: &MeshParams) -> BrepMesh {
             &fs,
             rings,
             vertex_loop,
-            f.same_sense,
+            sense_of(f),
             h,
             params.max_turn,
             &mut add,
@@ -352,36 +367,17 @@ pub fn face_regions(
                 extra += 1;
                 extra - 1
             };
-            let polys = face::face_polygons(
+            let polys = polygons::face_polygons(
                 &fs,
                 rings,
                 vertex_loop,
-                f.same_sense,
+                sense_of(f),
                 h,
                 params.max_turn,
                 &mut add,
             )
             .map_err(|e| e.to_string())?;
-            // The loops run counter-clockwise about the face's normal around the face (holes
-            // clockwise): a negative total signed area, in the parameter plane oriented by
-            // the face's normal, says every loop is a hole — a face with no outer loop, or a
-            // sphere minus a cap — and the face is the domain minus the polygons. On a surface
-            // with no seam and no pole a loop declared outer bounds the face whatever its
-            // orientation (only on closed surfaces is "outer" without meaning).
-            let total: f64 = polys.iter().map(|p| domain::signed_area(p)).sum();
-            let holes_only = if f.same_sense {
-                total < 0.0
-            } else {
-                total > 0.0
-            };
-            let closed =
-                fs.period.iter().any(Option::is_some) || fs.closure.degenerate.iter().any(|d| *d);
-            let declared_outer = f
-                .loops
-                .iter()
-                .any(|l| l.outer && matches!(l.kind, LoopKind::Edges(_)));
-            let complement = holes_only && (closed || !declared_outer);
-            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain).complemented(complement))
+            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain))
         })
         .collect()
 }

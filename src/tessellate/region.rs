@@ -1,5 +1,5 @@
 //! A trimmed face's region in its surface's parameter plane: the closed polygons of its loops
-//! ([`super::face::face_polygons`]), tested by the even-odd rule with exact orientation signs
+//! ([`super::polygons::face_polygons`]), tested by the even-odd rule with exact orientation signs
 //! against the polygon edges, periodic directions taken modulo their period.
 //!
 //! The polygons join points of the loops' edges projected onto the surface; between them they

@@ -113,7 +113,10 @@ pub(super) fn brep(
                     continue;
                 }
                 LoopKind::Edges(oes) => {
-                    let oes = ordered(oes, l.orientation);
+                    // IGES faces have no sense: the loops run counter-clockwise about the
+                    // surface's normal around the face (reversed for same_sense .F.; the
+                    // shell's flag says the face is used reversed).
+                    let oes = ordered(oes, l.orientation == face.same_sense);
                     let pole = |o: &OrientedEdge| seamed.poles.contains(&o.edge);
                     if let Some(bad) = oes
                         .iter()

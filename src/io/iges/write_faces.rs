@@ -67,7 +67,9 @@ pub(super) fn faces(
                     vertex_loops += 1;
                     continue;
                 }
-                LoopKind::Edges(oes) => ordered(oes, l.orientation),
+                // IGES faces have no sense: the loops run counter-clockwise about the
+                // surface's normal around the face (reversed for a face with same_sense .F.).
+                LoopKind::Edges(oes) => ordered(oes, l.orientation == face.same_sense),
             };
             // Model space: the edge curves the loop runs along (a pole is a point there).
             let curves: Option<Vec<_>> = oes
