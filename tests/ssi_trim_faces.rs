@@ -223,3 +223,34 @@ fn a_band_across_a_seam_is_periodic() {
         assert!(res.certified, "band {band:?}: the arc found and certified");
     }
 }
+
+/// A face whose own trim loops cross (an outer square and a "hole" square straddling its
+/// edge): the even-odd rule would take the overlap for the complement of the face. The loops
+/// are refused — the surface is not clipped — and the run says so and is not certified.
+#[test]
+fn crossing_trim_loops_are_not_outlined_and_not_certified() {
+    let mut m = model(vec![
+        bilinear([0., 0., 0.], [10., 0., 0.], [0., 10., 0.], [10., 10., 0.]).unwrap(),
+        bilinear([5., 5., -5.], [5., 5., 5.], [5., 15., -5.], [5., 15., 5.]).unwrap(),
+    ]);
+    m.surfaces[0].trim_loops = vec![
+        TrimLoop {
+            outer: true,
+            curves: poly(&[[0.0, 0.0], [0.6, 0.0], [0.6, 0.6], [0.0, 0.6]]),
+        },
+        TrimLoop {
+            outer: false,
+            curves: poly(&[[0.4, 0.2], [0.8, 0.2], [0.8, 0.4], [0.4, 0.4]]),
+        },
+    ];
+    let r = intersect_models(&m, None, &SsiParams::default(), &|_, _| {}).expect("runs");
+    assert!(!r.summary.certified);
+    assert!(
+        r.summary
+            .certificate
+            .iter()
+            .any(|c| c.contains("NOT restricted") && c.contains("trim loops' polygons cross")),
+        "{:?}",
+        r.summary.certificate
+    );
+}

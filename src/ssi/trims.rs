@@ -31,10 +31,12 @@ impl TrimRegion {
     /// loops (holes; IGES 144 with no outer boundary, N1 = 0: "the outer boundary is the
     /// boundary of D") the face is the domain minus the holes ([`FaceRegion::complement`]). On a surface closed in a direction (a seam, [`Closure`]) the face is
     /// periodic in it, as a B-rep face's region is: a point is in the face when some shift
-    /// by whole periods puts it in the polygons.
-    pub fn of(s: &Surface) -> Option<TrimRegion> {
+    /// by whole periods puts it in the polygons. `Err` when the loops' polygons cross (exact,
+    /// [`crate::tessellate::simple::first_crossing`]): the even-odd rule would take a pocket
+    /// of the face for its complement, or the reverse.
+    pub fn of(s: &Surface) -> Result<Option<TrimRegion>, String> {
         if s.trim_loops.is_empty() {
-            return None;
+            return Ok(None);
         }
         let polys = s
             .trim_loops
@@ -51,18 +53,24 @@ impl TrimRegion {
                 poly
             })
             .collect::<Vec<_>>();
+        if let Some((e, _)) = crate::tessellate::simple::first_crossing(&polys) {
+            return Err(format!(
+                "surface {}: its trim loops' polygons cross in the parameter plane (at {:?})",
+                s.name, polys[e.0][e.1].uv
+            ));
+        }
         let (u0, u1, v0, v1) = s.nurbs.hom.domain();
         let closure = Closure::of(&s.nurbs);
         let period = [
             closure.seam_u.then_some(u1 - u0),
             closure.seam_v.then_some(v1 - v0),
         ];
-        Some(TrimRegion {
+        Ok(Some(TrimRegion {
             regions: vec![
                 FaceRegion::new(0, &polys, period, [u0, u1, v0, v1])
                     .complemented(!s.trim_loops.iter().any(|l| l.outer)),
             ],
-        })
+        }))
     }
 
     /// The regions of the B-rep faces on each surface of `m` (`None`: no face of the B-rep
@@ -107,12 +115,24 @@ impl TrimRegion {
     }
 
     /// The regions of every surface of `m`: its B-rep faces' when it has a B-rep
-    /// ([`TrimRegion::of_brep`]), else each surface's own trim loops ([`TrimRegion::of`]).
+    /// ([`TrimRegion::of_brep`]), else each surface's own trim loops ([`TrimRegion::of`]);
+    /// with the faces or surfaces that could not be outlined (not clipped), and why.
     pub fn of_model(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
         if m.brep.is_some() {
             TrimRegion::of_brep(m)
         } else {
-            (m.surfaces.iter().map(TrimRegion::of).collect(), vec![])
+            let mut failed = Vec::new();
+            let regions = m
+                .surfaces
+                .iter()
+                .map(|s| {
+                    TrimRegion::of(s).unwrap_or_else(|e| {
+                        failed.push(e);
+                        None
+                    })
+                })
+                .collect();
+            (regions, failed)
         }
     }
 
