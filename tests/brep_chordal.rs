@@ -155,11 +155,11 @@ fn a_sphere_without_a_brep_is_meshed_within_the_tolerance() {
         surfaces: vec![vericad::model::Surface::new("s", sphere(&f, 1.0).unwrap())],
         ..Default::default()
     };
-    let (coarse, none) = mesh_surfaces(&m, None, false);
+    let (coarse, none, _) = mesh_surfaces(&m, None, false);
     assert!(none.is_none());
     let on_sphere = |p: &[f64; 3]| (vericad::geom::dist(p, &f.o) - 1.0).abs();
     assert!(dense_max(&coarse, on_sphere) > 1e-3);
-    let (t, c) = mesh_surfaces(&m, Some(1e-4), false);
+    let (t, c, _) = mesh_surfaces(&m, Some(1e-4), false);
     let c = c.unwrap();
     assert!(
         c.unmet.is_none() && c.measured <= 1e-4 && c.rounds > 1,

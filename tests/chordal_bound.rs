@@ -62,7 +62,7 @@ fn surface_to_mesh(t: &Triangulation, pts: &[[f64; 3]]) -> f64 {
 }
 
 fn check(m: &Model, tol: f64, d: &dyn Fn(&[f64; 3]) -> f64) -> (f64, f64) {
-    let (t, c) = mesh_surfaces(m, Some(tol), true);
+    let (t, c, _) = mesh_surfaces(m, Some(tol), true);
     let c = c.unwrap();
     let proven = c.proven.expect("asked for");
     assert_eq!(

@@ -70,3 +70,30 @@ fn a_loop_in_a_hole_across_the_cut_is_not_in_the_face() {
     assert!(pts.is_empty(), "output in the hole: {:?}", &pts[..1]);
     assert!(claimed);
 }
+
+/// An IGES face on a cylinder (radius 2) whose one loop, an ellipse about (theta, z) =
+/// (1.2, 2) with half-axes 0.7 and 1.0, is declared outer (510 OF = 1) but runs clockwise
+/// about the surface's normal (written so for a face whose normal opposes the surface's). The
+/// orientation says the face is the rest of the cylinder, the declaration the ellipse: either
+/// is possible, and a run against the plane z = 2 (the truth under the declaration: the arc
+/// theta in [0.5, 1.9]; under the orientation, the rest of the circle) was certified with the
+/// rest. It is outlined by the orientation and not certified, the reason said.
+#[test]
+fn a_declared_outer_loop_running_clockwise_on_a_closed_surface_is_not_certified() {
+    let r = intersect_models(
+        &read("cyl_ellipse_cw_outer.igs"),
+        Some(&read("plane_z2.json")),
+        &SsiParams::default(),
+        &|_, _| {},
+    )
+    .expect("runs");
+    assert!(!r.summary.certified);
+    assert!(
+        r.summary
+            .certificate
+            .iter()
+            .any(|c| c.contains("outlined against what their files declare")),
+        "{:?}",
+        r.summary.certificate
+    );
+}

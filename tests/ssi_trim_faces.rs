@@ -249,7 +249,7 @@ fn crossing_trim_loops_are_not_outlined_and_not_certified() {
         r.summary
             .certificate
             .iter()
-            .any(|c| c.contains("NOT restricted") && c.contains("trim loops' polygons cross")),
+            .any(|c| c.contains("NOT restricted") && c.contains("trim loops are not outlined")),
         "{:?}",
         r.summary.certificate
     );

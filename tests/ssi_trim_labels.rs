@@ -117,7 +117,7 @@ fn label_rounding_hides_a_branch() {
         ]],
         period: [None, None],
         domain: [u0, u1, 0.0, 1.0],
-        complement: false,
+        ambiguous: false,
     };
     // Ground truth, exact (integers in units of 2^-60). The faces' intersection holds
     // {A(t_w, v) : v ∈ [0.3, 0.4]} = {(x_w, v, t_w²)}: it is on the wall (y ∈ [0.3, 0.4],

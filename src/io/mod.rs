@@ -318,17 +318,10 @@ pub fn write_model_chordal(
     {
         // Surfaces without a B-rep, to a mesh format that holds triangles only (or a chordal
         // tolerance asked for): each surface triangulated whole.
-        let (mesh, reached) = crate::tessellate::surfaces::mesh_surfaces(m, chordal, prove);
-        let trimmed = m
-            .surfaces
-            .iter()
-            .filter(|s| !s.trim_loops.is_empty())
-            .count();
-        if trimmed > 0 {
-            warnings.push(format!(
-                "{trimmed} surface(s) have trim loops, which this triangulation does not follow: written untrimmed"
-            ));
-        }
+        // Surfaces with their own trim loops are triangulated inside them; those whose
+        // loops cannot be (crossing, winding twice...) are written untrimmed, each named.
+        let (mesh, reached, notes) = crate::tessellate::surfaces::mesh_surfaces(m, chordal, prove);
+        warnings.extend(notes);
         let mut rest = write_model_as(path, &with_mesh(m, mesh), Some(&ext))?;
         warnings.append(&mut rest);
         return Ok((warnings, reached));

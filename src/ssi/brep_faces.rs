@@ -99,6 +99,8 @@ pub struct Faces<'a> {
     cap: f64,
     /// Faces whose region could not be outlined (their surfaces are not clipped).
     pub failed: Vec<String>,
+    /// Faces outlined against their declared outer loop (the run is not certified).
+    pub ambiguous: Vec<String>,
     /// Faces (trim loops or B-rep faces) that clip.
     pub trimmed: usize,
 }
@@ -150,11 +152,12 @@ fn edges_one(r: &Arc<Vec<Option<TrimRegion>>>, k: usize) -> Arc<EdgesTest> {
 
 impl<'a> Faces<'a> {
     pub fn new(a: &'a Model, b: Option<&'a Model>, tol: f64) -> Faces<'a> {
-        let (ra, mut failed) = TrimRegion::of_model(a);
+        let (ra, mut failed, mut ambiguous) = TrimRegion::of_model(a);
         let rb = match b {
             Some(m) => {
-                let (r, f) = TrimRegion::of_model(m);
+                let (r, f, amb) = TrimRegion::of_model(m);
                 failed.extend(f);
+                ambiguous.extend(amb);
                 r
             }
             None => Vec::new(),
@@ -173,6 +176,7 @@ impl<'a> Faces<'a> {
             delta: (100.0 * tol).max(1e-6 * size),
             cap: 1e-2 * size,
             failed,
+            ambiguous,
             trimmed,
         }
     }

@@ -148,12 +148,14 @@ pub fn intersect_models(
     }
     let mut trimmed_faces = 0;
     let mut faces_not_outlined = Vec::new();
+    let mut faces_ambiguous = Vec::new();
     if let Some(faces) = faces {
         trimmed_faces = faces.trimmed;
         for (p, t) in pairs.iter_mut().zip(&pair_tubes) {
             faces.apply(p, t.as_deref());
         }
         faces_not_outlined = faces.failed;
+        faces_ambiguous = faces.ambiguous;
     }
     let partial = not_run > 0 || pairs.iter().any(|p| !p.complete);
     let branches: Vec<_> = pairs.iter().flat_map(|p| &p.branches).collect();
@@ -297,6 +299,13 @@ pub fn intersect_models(
             faces_not_outlined.join("; ")
         ));
     }
+    if prm.respect_trims && !faces_ambiguous.is_empty() {
+        certificate.push(format!(
+            "NOT certified: {} faces are outlined against what their files declare: {}",
+            faces_ambiguous.len(),
+            faces_ambiguous.join("; ")
+        ));
+    }
     if !prm.respect_trims && (a.brep.is_some() || b.is_some_and(|m| m.brep.is_some())) {
         certificate.push("untrimmed: the faces' whole surfaces were intersected (the B-rep's loops and shared edges ignored, --untrimmed)".to_string());
     }
@@ -369,7 +378,8 @@ pub fn intersect_models(
             && (meshes || no_missed_branches)
             && singular_points_uncertified == 0
             && borders_not_proven == 0
-            && faces_not_outlined.is_empty(),
+            && faces_not_outlined.is_empty()
+            && (!prm.respect_trims || faces_ambiguous.is_empty()),
         seconds: t0.elapsed().as_secs_f64(),
         certificate,
     };

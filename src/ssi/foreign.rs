@@ -219,10 +219,11 @@ pub fn certify(
     let fa = prep(a);
     let fb = b.map(prep);
     let fbs = fb.as_deref();
-    let (ta, mut failed) = TrimRegion::of_model(a);
+    let (ta, mut failed, mut ambiguous) = TrimRegion::of_model(a);
     let tb = b.map(|m| {
-        let (t, f) = TrimRegion::of_model(m);
+        let (t, f, amb) = TrimRegion::of_model(m);
         failed.extend(f);
+        ambiguous.extend(amb);
         t
     });
     let trims = (&ta[..], tb.as_deref());
@@ -424,6 +425,11 @@ pub fn certify(
     for f in &failed {
         notes.push(format!(
             "{f}: its loops could not be outlined, so its whole surface is taken as the face"
+        ));
+    }
+    for f in &ambiguous {
+        notes.push(format!(
+            "{f}: verdicts on points near it rest on that reading"
         ));
     }
     if points_not_covered > 0 {

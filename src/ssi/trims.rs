@@ -1,7 +1,8 @@
 //! Clipping intersection curves to the faces' trimming loops (on by default; `--untrimmed` turns it off).
 //!
 //! Each trim loop is polygonized in the parameter plane (every curve sampled at
-//! [`SAMPLES_PER_CURVE`] + 1 parameters, the curves' end points exactly); a parameter point is
+//! [`SAMPLES_PER_CURVE`] + 1 parameters, the curves' end points exactly) and outlined as the
+//! mesher outlines it ([`crate::tessellate::trimmed`]); a parameter point is
 //! inside the face when the even-odd rule over all loops says so, decided with exact
 //! orientation signs against the polygon edges. The polygon is an approximation of the trim
 //! curves (evidence-level near the trim boundary, said in the report); the decision for the
@@ -13,11 +14,15 @@ use super::krawczyk::Uncertified;
 use super::report::{BranchOut, EndKind};
 use crate::model::{Model, Surface};
 use crate::spline::closure::Closure;
-use crate::tessellate::domain::BoundaryPoint;
 use crate::tessellate::region::FaceRegion;
-use crate::tessellate::{MeshParams, face_regions};
+use crate::tessellate::{MeshParams, face_regions, trimmed};
 
-pub const SAMPLES_PER_CURVE: usize = 64;
+pub use crate::tessellate::trimmed::SAMPLES_PER_CURVE;
+
+/// Every face's or surface's region (`None`: not clipped), the faces that could not be
+/// outlined (with why), and the faces outlined against their declared outer loop
+/// ([`FaceRegion::ambiguous`]).
+pub type Outlined = (Vec<Option<TrimRegion>>, Vec<String>, Vec<String>);
 
 /// A face's trimmed region as polygons in its parameter plane: one or more
 /// [`FaceRegion`]s (a B-rep face each, or the face's own trim loops); inside any of them is
@@ -27,9 +32,11 @@ pub struct TrimRegion {
 }
 
 impl TrimRegion {
-    /// `None` when the face has no trim loops (the whole domain is the face). With only inner
+    /// `None` when the face has no trim loops (the whole domain is the face). The loops are
+    /// outlined as the mesher outlines them ([`trimmed::trim_polygons`]): with only inner
     /// loops (holes; IGES 144 with no outer boundary, N1 = 0: "the outer boundary is the
-    /// boundary of D") the face is the domain minus the holes ([`FaceRegion::complement`]). On a surface closed in a direction (a seam, [`Closure`]) the face is
+    /// boundary of D") the face is the domain minus the holes (a frame around them), loops
+    /// winding around a seam are closed into bands. On a surface closed in a direction (a seam, [`Closure`]) the face is
     /// periodic in it, as a B-rep face's region is: a point is in the face when some shift
     /// by whole periods puts it in the polygons. `Err` when the loops' polygons cross (exact,
     /// [`crate::tessellate::simple::first_crossing`]): the even-odd rule would take a pocket
@@ -38,50 +45,38 @@ impl TrimRegion {
         if s.trim_loops.is_empty() {
             return Ok(None);
         }
-        let polys = s
-            .trim_loops
-            .iter()
-            .map(|l| {
-                let mut poly = Vec::new();
-                for c in &l.curves {
-                    let (t0, t1) = c.hom.domain();
-                    for k in 0..SAMPLES_PER_CURVE {
-                        let uv = c.eval(&(t0 + (t1 - t0) * k as f64 / SAMPLES_PER_CURVE as f64));
-                        poly.push(BoundaryPoint::straight(uv, 0));
-                    }
-                }
-                poly
-            })
-            .collect::<Vec<_>>();
-        if let Some((e, _)) = crate::tessellate::simple::first_crossing(&polys) {
-            return Err(format!(
-                "surface {}: its trim loops' polygons cross in the parameter plane (at {:?})",
-                s.name, polys[e.0][e.1].uv
-            ));
-        }
-        let (u0, u1, v0, v1) = s.nurbs.hom.domain();
+        let size = trimmed::surface_size(s);
+        let p = MeshParams::for_area();
+        let mut none = |_: [f64; 3]| 0;
+        let polys = trimmed::trim_polygons(
+            s,
+            size,
+            SAMPLES_PER_CURVE,
+            (p.relative_edge * size, p.max_turn),
+            &mut none,
+        )
+        .map_err(|e| format!("surface {}: its trim loops are not outlined: {e}", s.name))?;
         let closure = Closure::of(&s.nurbs);
+        let (u0, u1, v0, v1) = s.nurbs.hom.domain();
         let period = [
             closure.seam_u.then_some(u1 - u0),
             closure.seam_v.then_some(v1 - v0),
         ];
         Ok(Some(TrimRegion {
-            regions: vec![
-                FaceRegion::new(0, &polys, period, [u0, u1, v0, v1])
-                    .complemented(!s.trim_loops.iter().any(|l| l.outer)),
-            ],
+            regions: vec![FaceRegion::new(0, &polys, period, [u0, u1, v0, v1])],
         }))
     }
 
     /// The regions of the B-rep faces on each surface of `m` (`None`: no face of the B-rep
     /// uses the surface, or none could be outlined — then the surface is not clipped; the
     /// faces that could not be outlined are returned with the reason).
-    pub fn of_brep(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
+    pub fn of_brep(m: &Model) -> Outlined {
         let mut out: Vec<Option<TrimRegion>> = (0..m.surfaces.len()).map(|_| None).collect();
         let mut failed = Vec::new();
+        let mut ambiguous = Vec::new();
         let mut unclipped = vec![false; m.surfaces.len()];
         let Some(brep) = &m.brep else {
-            return (out, failed);
+            return (out, failed, ambiguous);
         };
         for (f, r) in brep
             .faces
@@ -90,6 +85,12 @@ impl TrimRegion {
         {
             match r {
                 Ok(r) => {
+                    if r.ambiguous {
+                        ambiguous.push(format!(
+                            "face {}: a loop declared outer runs clockwise about the face's normal on a closed surface (taken as the rest of the surface, as the orientation says; the declaration says its inside)",
+                            f.source
+                        ));
+                    }
                     let s = r.surface;
                     out[s]
                         .get_or_insert_with(|| TrimRegion { regions: vec![] })
@@ -111,13 +112,14 @@ impl TrimRegion {
                 out[s] = None;
             }
         }
-        (out, failed)
+        (out, failed, ambiguous)
     }
 
     /// The regions of every surface of `m`: its B-rep faces' when it has a B-rep
     /// ([`TrimRegion::of_brep`]), else each surface's own trim loops ([`TrimRegion::of`]);
-    /// with the faces or surfaces that could not be outlined (not clipped), and why.
-    pub fn of_model(m: &Model) -> (Vec<Option<TrimRegion>>, Vec<String>) {
+    /// with the faces or surfaces that could not be outlined (not clipped), and why, and the
+    /// ambiguous faces.
+    pub fn of_model(m: &Model) -> Outlined {
         if m.brep.is_some() {
             TrimRegion::of_brep(m)
         } else {
@@ -132,7 +134,7 @@ impl TrimRegion {
                     })
                 })
                 .collect();
-            (regions, failed)
+            (regions, failed, vec![])
         }
     }
 

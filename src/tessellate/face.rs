@@ -94,7 +94,8 @@ pub fn mesh_face(
     triangulate(fs, &polys, sense.same_sense, h, max_turn, add)
 }
 
-fn triangulate(
+/// The constrained triangulation of a face's polygons ([`super::polygons::face_polygons`]).
+pub(super) fn triangulate(
     fs: &FaceSurface,
     polys: &[Vec<BoundaryPoint>],
     same_sense: bool,

@@ -17,6 +17,7 @@ pub mod polygons;
 pub mod region;
 pub mod simple;
 pub mod surfaces;
+pub mod trimmed;
 
 use crate::brep::{Brep, LoopKind};
 use crate::geom::dist;
@@ -367,17 +368,30 @@ pub fn face_regions(
                 extra += 1;
                 extra - 1
             };
+            // A loop declared outer that runs clockwise about the normal on a closed surface,
+            // with no loop winding around it: the orientation says the face is the rest of the
+            // surface, the declaration its inside (files written with loops about the
+            // surface's normal for a reversed face read so). Outlined by the orientation, and
+            // said.
+            let sense = sense_of(f);
+            let loops: Vec<Vec<domain::BoundaryPoint>> =
+                rings.iter().map(|r| r.points.clone()).collect();
+            let ambiguous = sense.declared_outer
+                && rings.iter().all(|r| r.winding == [0, 0])
+                && outline::holes_only(&fs, &loops, sense);
             let polys = polygons::face_polygons(
                 &fs,
                 rings,
                 vertex_loop,
-                sense_of(f),
+                sense,
                 h,
                 params.max_turn,
                 &mut add,
             )
             .map_err(|e| e.to_string())?;
-            Ok(region::FaceRegion::new(si, &polys, fs.period, fs.domain))
+            let mut r = region::FaceRegion::new(si, &polys, fs.period, fs.domain);
+            r.ambiguous = ambiguous;
+            Ok(r)
         })
         .collect()
 }

@@ -194,7 +194,13 @@ fn polygons_once(
         let frame = outline::frame(fs, &mut polys, sense, n, add)?;
         polys.insert(0, frame);
     }
-    if let Some((e, _)) = simple::first_crossing(&polys) {
+    let on_pole = |a: &[f64; 2], b: &[f64; 2]| {
+        (0..4).any(|side| {
+            let (d, at) = (side / 2, fs.domain[side]);
+            fs.closure.degenerate[side] && a[d] == at && b[d] == at
+        })
+    };
+    if let Some((e, _)) = simple::first_crossing(&polys, &on_pole) {
         return Err(FaceError::Crossing(format!("{:?}", polys[e.0][e.1].uv)));
     }
     Ok(polys)

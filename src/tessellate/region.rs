@@ -22,10 +22,11 @@ pub struct FaceRegion {
     pub period: [Option<f64>; 2],
     /// The surface's parameter domain `[u0, u1, v0, v1]`.
     pub domain: [f64; 4],
-    /// The polygons outline the face's complement: the face is the domain minus their
-    /// interior (its loops are all holes, as a face with no outer loop, or a sphere minus a
-    /// cap, has them).
-    pub complement: bool,
+    /// A loop is declared outer but runs clockwise about the face's normal on a closed
+    /// surface: the polygons outline the rest of the surface (the loops' orientation), the
+    /// declaration says the loop's inside. Either reading is possible; results that rest on
+    /// the face are not certified.
+    pub ambiguous: bool,
 }
 
 impl FaceRegion {
@@ -44,14 +45,8 @@ impl FaceRegion {
                 .collect(),
             period,
             domain,
-            complement: false,
+            ambiguous: false,
         }
-    }
-
-    /// The same polygons outlining the face's complement ([`FaceRegion::complement`]).
-    pub fn complemented(mut self, complement: bool) -> FaceRegion {
-        self.complement = complement;
-        self
     }
 
     /// The shifts by whole periods under which a parameter point is tested (no allocation:
@@ -88,13 +83,11 @@ impl FaceRegion {
         odd
     }
 
-    /// Whether `uv` lies in the face (under some shift by whole periods in the polygons; for
-    /// a complement, under none, on an edge counting as in the polygons).
+    /// Whether `uv` lies in the face (under some shift by whole periods in the polygons, on an
+    /// edge counting as in them).
     pub fn inside(&self, uv: &[f64; 2]) -> bool {
-        let in_polys = self
-            .shifts()
-            .any(|s| self.inside_once(&[uv[0] + s[0], uv[1] + s[1]]));
-        in_polys != self.complement
+        self.shifts()
+            .any(|s| self.inside_once(&[uv[0] + s[0], uv[1] + s[1]]))
     }
 
     /// Whether the parameter box `[u0, u1, v0, v1]`, widened by `margin` (a fraction of the
@@ -102,13 +95,6 @@ impl FaceRegion {
     /// wholly outside the face: no polygon edge meets
     /// it and its centre is outside (under every shift).
     pub fn box_outside(&self, b: &[f64; 4], margin: f64) -> bool {
-        if self.complement {
-            return self.box_in_polys(b, margin);
-        }
-        self.box_off_polys(b, margin)
-    }
-    /// The box (widened as in [`FaceRegion::box_outside`]) outside the polygons' region.
-    fn box_off_polys(&self, b: &[f64; 4], margin: f64) -> bool {
         let mu = margin * (self.domain[1] - self.domain[0]).abs();
         let mv = margin * (self.domain[3] - self.domain[2]).abs();
         for s in self.shifts() {
@@ -133,18 +119,8 @@ impl FaceRegion {
     /// (the box is connected and crosses no edge, so every point of it is on the centre's
     /// side of every polygon).
     pub fn box_inside(&self, b: &[f64; 4]) -> bool {
-        if self.complement {
-            return self.box_off_polys(b, 0.0);
-        }
-        self.box_in_polys(b, 0.0)
-    }
-    /// The box (widened by `margin` of the domain and the labels' rounding) in the interior
-    /// of the polygons' region under some shift.
-    fn box_in_polys(&self, b: &[f64; 4], margin: f64) -> bool {
-        let mu = margin * (self.domain[1] - self.domain[0]).abs();
-        let mv = margin * (self.domain[3] - self.domain[2]).abs();
         self.shifts().any(|s| {
-            let (lo, hi) = widened(b, mu, mv, s);
+            let (lo, hi) = widened(b, 0.0, 0.0, s);
             let centre = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
             self.inside_once(&centre)
                 && self.polys.iter().all(|poly| {
@@ -257,7 +233,7 @@ mod tests {
             ],
             period: [None, None],
             domain: [0.0, 1.0, 0.0, 1.0],
-            complement: false,
+            ambiguous: false,
         }
     }
 
@@ -296,7 +272,7 @@ mod tests {
             polys: vec![vec![[0.5, 0.0], [1.5, 0.0], [1.5, 0.3], [0.5, 0.3]]],
             period: [Some(1.0), None],
             domain: [0.0, 1.0, 0.0, 1.0],
-            complement: false,
+            ambiguous: false,
         };
         assert!(r.inside(&[0.1, 0.1]));
         assert!(r.inside(&[0.9, 0.1]));

@@ -43,8 +43,14 @@ fn only_at(p: &[f64; 2], q: &[f64; 2], r: &[f64; 2]) -> bool {
 
 /// The first pair of edges that meet where they may not, if any (`polys` closed: the last
 /// corner joins the first). Consecutive edges of one polygon may share their corner; any two
-/// edges may meet at a corner both have exactly (same coordinates) and nowhere else.
-pub fn first_crossing(polys: &[Vec<BoundaryPoint>]) -> Option<(EdgeId, EdgeId)> {
+/// edges may meet at a corner both have exactly (same coordinates) and nowhere else; two
+/// edges both on a pole line (`on_pole`: a degenerate border of the domain, one point of the
+/// surface, where loops through the pole lay their expanded pole points) may overlap: they
+/// are parallel to the even-odd rule's rays and bound no area.
+pub fn first_crossing(
+    polys: &[Vec<BoundaryPoint>],
+    on_pole: &dyn Fn(&[f64; 2], &[f64; 2]) -> bool,
+) -> Option<(EdgeId, EdgeId)> {
     let edges: Vec<(EdgeId, [f64; 2], [f64; 2])> = polys
         .iter()
         .enumerate()
@@ -81,7 +87,7 @@ pub fn first_crossing(polys: &[Vec<BoundaryPoint>]) -> Option<(EdgeId, EdgeId)> 
         for (s, &e) in list.iter().enumerate() {
             for &f in &list[s + 1..] {
                 let ((ie, a, b), (jf, c, d)) = (edges[e], edges[f]);
-                if !meet(&a, &b, &c, &d) {
+                if !meet(&a, &b, &c, &d) || (on_pole(&a, &b) && on_pole(&c, &d)) {
                     continue;
                 }
                 // Allowed: one common corner and no other common point.
@@ -105,6 +111,10 @@ pub fn first_crossing(polys: &[Vec<BoundaryPoint>]) -> Option<(EdgeId, EdgeId)> 
 mod tests {
     use super::*;
 
+    fn no_pole(_: &[f64; 2], _: &[f64; 2]) -> bool {
+        false
+    }
+
     fn poly(pts: &[[f64; 2]]) -> Vec<BoundaryPoint> {
         pts.iter()
             .map(|uv| BoundaryPoint::straight(*uv, 0))
@@ -114,33 +124,33 @@ mod tests {
     #[test]
     fn squares_apart_touching_and_crossing() {
         let sq = |x: f64, y: f64, s: f64| poly(&[[x, y], [x + s, y], [x + s, y + s], [x, y + s]]);
-        assert!(first_crossing(&[sq(0.0, 0.0, 1.0)]).is_none());
+        assert!(first_crossing(&[sq(0.0, 0.0, 1.0)], &no_pole).is_none());
         assert!(
-            first_crossing(&[sq(0.0, 0.0, 4.0), sq(1.0, 1.0, 1.0)]).is_none(),
+            first_crossing(&[sq(0.0, 0.0, 4.0), sq(1.0, 1.0, 1.0)], &no_pole).is_none(),
             "a hole"
         );
         assert!(
-            first_crossing(&[sq(0.0, 0.0, 1.0), sq(0.5, 0.5, 1.0)]).is_some(),
+            first_crossing(&[sq(0.0, 0.0, 1.0), sq(0.5, 0.5, 1.0)], &no_pole).is_some(),
             "overlap"
         );
         // A corner of one on the other's edge (not a shared corner): a crossing.
         let tri = poly(&[[1.0, 0.5], [2.0, 0.0], [2.0, 1.0]]);
         assert!(
-            first_crossing(&[sq(0.0, 0.0, 1.0), tri]).is_some(),
+            first_crossing(&[sq(0.0, 0.0, 1.0), tri], &no_pole).is_some(),
             "corner on an edge"
         );
         // Collinear consecutive edges (a cut line's points): allowed.
         let cut = poly(&[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]);
-        assert!(first_crossing(&[cut]).is_none());
+        assert!(first_crossing(&[cut], &no_pole).is_none());
         // Two squares sharing exactly one corner: allowed.
-        assert!(first_crossing(&[sq(0.0, 0.0, 1.0), sq(1.0, 1.0, 1.0)]).is_none());
+        assert!(first_crossing(&[sq(0.0, 0.0, 1.0), sq(1.0, 1.0, 1.0)], &no_pole).is_none());
         // Collinear overlapping edges (two squares side by side): a crossing.
-        assert!(first_crossing(&[sq(0.0, 0.0, 1.0), sq(1.0, 0.0, 1.0)]).is_some());
+        assert!(first_crossing(&[sq(0.0, 0.0, 1.0), sq(1.0, 0.0, 1.0)], &no_pole).is_some());
         // A bow tie crosses itself.
         let bow = poly(&[[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]);
-        assert!(first_crossing(&[bow]).is_some());
+        assert!(first_crossing(&[bow], &no_pole).is_some());
         // A spike folding back along itself.
         let spike = poly(&[[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
-        assert!(first_crossing(&[spike]).is_some());
+        assert!(first_crossing(&[spike], &no_pole).is_some());
     }
 }

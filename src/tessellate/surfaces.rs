@@ -88,7 +88,8 @@ pub fn mesh_surfaces(
     model: &Model,
     tol: Option<f64>,
     prove: bool,
-) -> (Triangulation, Option<Chordal>) {
+) -> (Triangulation, Option<Chordal>, Vec<String>) {
+    let mut notes = Vec::new();
     let mut t = Triangulation {
         name: "surfaces".into(),
         vertices: vec![],
@@ -105,7 +106,20 @@ pub fn mesh_surfaces(
         let mut halved = 0;
         loop {
             let mark = t.vertices.len();
-            let (tris, corners) = grid(s, m, &mut t);
+            let (tris, corners) = match trimmed(surf, m, k, &mut t) {
+                Some(Ok(x)) => x,
+                Some(Err(e)) => {
+                    if halved == 0 {
+                        notes.push(format!(
+                            "surface {}: its trim loops could not be triangulated ({e}): written untrimmed",
+                            surf.name
+                        ));
+                    }
+                    t.vertices.truncate(mark);
+                    grid(s, m, &mut t)
+                }
+                None => grid(s, m, &mut t),
+            };
             let Some(tol) = tol else {
                 t.triangles.extend(tris);
                 break;
@@ -159,5 +173,31 @@ pub fn mesh_surfaces(
         proven: prove.then_some(proven),
         unbounded,
     });
-    (t, chordal)
+    (t, chordal, notes)
+}
+
+/// A surface with its own trim loops triangulated inside them ([`super::trimmed`]) at about
+/// the grid's cell size (`m` cells a knot span, `k` spans a direction); `None` when it has no
+/// trim loops.
+#[allow(clippy::type_complexity)]
+fn trimmed(
+    surf: &crate::model::Surface,
+    m: [usize; 2],
+    k: [usize; 2],
+    t: &mut Triangulation,
+) -> Option<Result<(Vec<[u32; 3]>, Vec<[[f64; 2]; 3]>), super::face::FaceError>> {
+    if surf.trim_loops.is_empty() {
+        return None;
+    }
+    let size = super::trimmed::surface_size(surf);
+    let cells = (m[0] * k[0]).max(m[1] * k[1]);
+    let mut add = |p: [f64; 3]| {
+        t.vertices.push(p);
+        t.vertices.len() - 1
+    };
+    let r = super::trimmed::mesh_trimmed(surf, size, cells, &mut add);
+    Some(r.map(|f| {
+        let tris = f.triangles.iter().map(|x| x.map(|i| i as u32)).collect();
+        (tris, f.uv)
+    }))
 }
