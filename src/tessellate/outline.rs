@@ -54,7 +54,8 @@ fn gap(polys: &[Vec<BoundaryPoint>], d: usize, per: f64) -> Option<f64> {
     for p in polys {
         let lo = p.iter().map(|b| b.uv[d]).fold(f64::INFINITY, f64::min);
         let hi = p.iter().map(|b| b.uv[d]).fold(f64::NEG_INFINITY, f64::max);
-        if !(hi - lo < per) {
+        // Not less than a period (or not a number): no gap.
+        if (hi - lo).partial_cmp(&per) != Some(std::cmp::Ordering::Less) {
             return None;
         }
         let s = lo.rem_euclid(per);

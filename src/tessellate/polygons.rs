@@ -12,7 +12,7 @@ use super::simple;
 /// of them): winding loops closed into bands or pole caps on the face's side of them (the
 /// left about its normal, [`super::outline`]), the other loops shifted by periods into the
 /// range of the first, and when every loop is a hole ([`outline::holes_only`]) the domain's
-/// frame around them ([`outline::frame`]). Arguments as [`mesh_face`]; cut, pole and frame
+/// frame around them ([`outline::frame`]). Arguments as [`super::face::mesh_face`]; cut, pole and frame
 /// points get vertices from `add`.
 pub fn face_polygons(
     fs: &FaceSurface,
@@ -45,7 +45,7 @@ pub fn face_polygons(
         let once = polygons_once(fs, tried, vertex_loop, sense, h, max_turn, &mut record);
         match once {
             Ok(mut polys) => {
-                let real: Vec<usize> = made.into_iter().map(|p| add(p)).collect();
+                let real: Vec<usize> = made.into_iter().map(&mut *add).collect();
                 for b in polys.iter_mut().flatten() {
                     if b.vertex >= PROVISIONAL {
                         b.vertex = real[b.vertex - PROVISIONAL];
