@@ -6,7 +6,7 @@
 //! two loops winding around its seam at heights 0.2 and 0.8 (2 pi 0.6, chords of a measured
 //! chordal deviation below 1e-4), and loops that cross (written untrimmed, named: 100).
 mod common;
-use common::trims::{model, poly, trim_line};
+use common::trims::{crossing_loops, model, poly, trim_line};
 use std::f64::consts::PI;
 use vericad::model::{Model, TrimLoop};
 use vericad::spline::construct::{Frame, bilinear, cylinder};
@@ -100,16 +100,7 @@ fn a_cylinder_band_between_loops_winding_around_the_seam() {
 #[test]
 fn crossing_loops_are_written_untrimmed_and_named() {
     let mut m = plane();
-    m.surfaces[0].trim_loops = vec![
-        TrimLoop {
-            outer: true,
-            curves: poly(&[[0.0, 0.0], [0.6, 0.0], [0.6, 0.6], [0.0, 0.6]]),
-        },
-        TrimLoop {
-            outer: false,
-            curves: poly(&[[0.4, 0.2], [0.8, 0.2], [0.8, 0.4], [0.4, 0.4]]),
-        },
-    ];
+    m.surfaces[0].trim_loops = crossing_loops();
     let (a, notes) = area(&m, None);
     assert!((a - 100.0).abs() < 1e-9, "{a}");
     assert!(

@@ -9,7 +9,7 @@ use vericad::model::{Model, TrimLoop};
 use vericad::spline::construct::{Frame, bilinear, cylinder};
 use vericad::ssi::{SsiParams, intersect_models};
 
-use common::trims::{model, poly, seg_dist};
+use common::trims::{crossing_loops, model, poly, seg_dist};
 
 /// Even-odd (crossing number) test of my own, closed: points on an edge count inside.
 fn in_polys(polys: &[Vec<[f64; 2]>], p: [f64; 2]) -> bool {
@@ -233,16 +233,7 @@ fn crossing_trim_loops_are_not_outlined_and_not_certified() {
         bilinear([0., 0., 0.], [10., 0., 0.], [0., 10., 0.], [10., 10., 0.]).unwrap(),
         bilinear([5., 5., -5.], [5., 5., 5.], [5., 15., -5.], [5., 15., 5.]).unwrap(),
     ]);
-    m.surfaces[0].trim_loops = vec![
-        TrimLoop {
-            outer: true,
-            curves: poly(&[[0.0, 0.0], [0.6, 0.0], [0.6, 0.6], [0.0, 0.6]]),
-        },
-        TrimLoop {
-            outer: false,
-            curves: poly(&[[0.4, 0.2], [0.8, 0.2], [0.8, 0.4], [0.4, 0.4]]),
-        },
-    ];
+    m.surfaces[0].trim_loops = crossing_loops();
     let r = intersect_models(&m, None, &SsiParams::default(), &|_, _| {}).expect("runs");
     assert!(!r.summary.certified);
     assert!(

@@ -1,6 +1,6 @@
 //! Faces given by their own trim loops, for the end-to-end trim tests: a model of surfaces,
 //! polygon loops of straight trim curves, and the distance from a point to a segment.
-use vericad::model::{Model, Surface};
+use vericad::model::{Model, Surface, TrimLoop};
 use vericad::spline::{NurbsCurve, NurbsSurface};
 
 pub fn model(surfaces: Vec<NurbsSurface<f64, 3>>) -> Model {
@@ -35,4 +35,19 @@ pub fn seg_dist(q: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
         .map(|k| (a[k] + t * ab[k] - q[k]).powi(2))
         .sum::<f64>()
         .sqrt()
+}
+
+/// Trim loops whose polygons cross, in the unit parameter square: an outer square
+/// [0, 0.6]^2 and a "hole" [0.4, 0.8] x [0.2, 0.4] straddling its edge.
+pub fn crossing_loops() -> Vec<TrimLoop> {
+    vec![
+        TrimLoop {
+            outer: true,
+            curves: poly(&[[0.0, 0.0], [0.6, 0.0], [0.6, 0.6], [0.0, 0.6]]),
+        },
+        TrimLoop {
+            outer: false,
+            curves: poly(&[[0.4, 0.2], [0.8, 0.2], [0.8, 0.4], [0.4, 0.4]]),
+        },
+    ]
 }
