@@ -37,6 +37,8 @@ pub enum FaceError {
         "the face's holes cover a whole period of the surface between them; its outline has no place for the seam"
     )]
     Covered,
+    #[error("loops winding around both periodic directions are not outlined")]
+    BothDirections,
     #[error("the parameter-plane region is empty")]
     Empty,
     #[error("parameter point not representable: {0}")]

@@ -356,14 +356,6 @@ pub fn face_regions(
             let si = f.surface.ok_or_else(|| "no surface".to_string())?;
             let fs = FaceSurface::new(&model.surfaces[si].nurbs, size);
             let (rings, vertex_loop) = face_rings(brep, fi, &es, &fs)?;
-            // Loops winding around both periodic directions (a torus band between Villarceau
-            // circles) are closed into bands one direction at a time, which outlines another
-            // region: such a face is not outlined (its surface is then not clipped).
-            if rings.iter().any(|r| r.winding[0] != 0 && r.winding[1] != 0) {
-                return Err(
-                    "loops winding around both periodic directions are not outlined".into(),
-                );
-            }
             let mut add = |_: [f64; 3]| {
                 extra += 1;
                 extra - 1
@@ -374,8 +366,8 @@ pub fn face_regions(
             // surface's normal for a reversed face read so). Outlined by the orientation, and
             // said.
             let sense = sense_of(f);
-            let loops: Vec<Vec<domain::BoundaryPoint>> =
-                rings.iter().map(|r| r.points.clone()).collect();
+            let loops: Vec<&[domain::BoundaryPoint]> =
+                rings.iter().map(|r| r.points.as_slice()).collect();
             let ambiguous = sense.declared_outer
                 && rings.iter().all(|r| r.winding == [0, 0])
                 && outline::holes_only(&fs, &loops, sense);

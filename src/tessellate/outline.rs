@@ -41,8 +41,8 @@ impl Sense {
 /// there "outer" has no meaning) or no loop is declared outer. On an open surface a loop
 /// declared outer bounds the face whatever its orientation (files with a clockwise outer loop
 /// exist).
-pub fn holes_only(fs: &FaceSurface, polys: &[Vec<BoundaryPoint>], sense: Sense) -> bool {
-    let total: f64 = polys.iter().map(|p| sense.area(p)).sum();
+pub fn holes_only<P: AsRef<[BoundaryPoint]>>(fs: &FaceSurface, polys: &[P], sense: Sense) -> bool {
+    let total: f64 = polys.iter().map(|p| sense.area(p.as_ref())).sum();
     let closed = fs.period.iter().any(Option::is_some) || fs.closure.degenerate.iter().any(|d| *d);
     total < 0.0 && (closed || !sense.declared_outer)
 }

@@ -26,6 +26,11 @@ pub fn face_polygons(
     // The cuts start where the winding loops start; where they cross a loop (one folding
     // back, a hole across the seam) the loops are tried from other points. The vertices of an
     // attempt are provisional until it succeeds.
+    // Loops winding around both periodic directions (a torus band between Villarceau circles)
+    // would be closed into bands one direction at a time, which outlines another region.
+    if rings.iter().any(|r| r.winding[0] != 0 && r.winding[1] != 0) {
+        return Err(FaceError::BothDirections);
+    }
     const TRIES: usize = 8;
     const PROVISIONAL: usize = usize::MAX / 2;
     let mut last = FaceError::Empty;

@@ -34,11 +34,7 @@ fn lines(k: &[f64], lo: f64, hi: f64, m: usize) -> Vec<f64> {
 
 /// One surface's grid (cells per knot span `m`, see [`lines`]): its points appended to `t`,
 /// its triangles and the triangles' parameter corners.
-fn grid(
-    s: &crate::spline::NurbsSurface<f64, 3>,
-    m: [usize; 2],
-    t: &mut Triangulation,
-) -> (Vec<[u32; 3]>, Vec<[[f64; 2]; 3]>) {
+fn grid(s: &crate::spline::NurbsSurface<f64, 3>, m: [usize; 2], t: &mut Triangulation) -> Cells {
     let (u0, u1, v0, v1) = s.hom.domain();
     let us = lines(s.hom.ku.knots(), u0, u1, m[0]);
     let vs = lines(s.hom.kv.knots(), v0, v1, m[1]);
@@ -104,17 +100,18 @@ pub fn mesh_surfaces(
         let k = spans(s);
         let mut m = k.map(|x| FIRST_CELLS.div_ceil(x).max(1));
         let mut halved = 0;
+        // Trim loops that could not be triangulated once are not tried again on finer grids.
+        let mut untrimmed = surf.trim_loops.is_empty();
         loop {
             let mark = t.vertices.len();
-            let (tris, corners) = match trimmed(surf, m, k, &mut t) {
+            let (tris, corners) = match (!untrimmed).then(|| trimmed(surf, m, k, &mut t)) {
                 Some(Ok(x)) => x,
                 Some(Err(e)) => {
-                    if halved == 0 {
-                        notes.push(format!(
-                            "surface {}: its trim loops could not be triangulated ({e}): written untrimmed",
-                            surf.name
-                        ));
-                    }
+                    notes.push(format!(
+                        "surface {}: its trim loops could not be triangulated ({e}): written untrimmed",
+                        surf.name
+                    ));
+                    untrimmed = true;
                     t.vertices.truncate(mark);
                     grid(s, m, &mut t)
                 }
@@ -176,19 +173,17 @@ pub fn mesh_surfaces(
     (t, chordal, notes)
 }
 
+/// A surface's triangles and the parameter points of their corners.
+type Cells = (Vec<[u32; 3]>, Vec<[[f64; 2]; 3]>);
+
 /// A surface with its own trim loops triangulated inside them ([`super::trimmed`]) at about
-/// the grid's cell size (`m` cells a knot span, `k` spans a direction); `None` when it has no
-/// trim loops.
-#[allow(clippy::type_complexity)]
+/// the grid's cell size (`m` cells a knot span, `k` spans a direction).
 fn trimmed(
     surf: &crate::model::Surface,
     m: [usize; 2],
     k: [usize; 2],
     t: &mut Triangulation,
-) -> Option<Result<(Vec<[u32; 3]>, Vec<[[f64; 2]; 3]>), super::face::FaceError>> {
-    if surf.trim_loops.is_empty() {
-        return None;
-    }
+) -> Result<Cells, super::face::FaceError> {
     let size = super::trimmed::surface_size(surf);
     let cells = (m[0] * k[0]).max(m[1] * k[1]);
     let mut add = |p: [f64; 3]| {
@@ -196,8 +191,8 @@ fn trimmed(
         t.vertices.len() - 1
     };
     let r = super::trimmed::mesh_trimmed(surf, size, cells, &mut add);
-    Some(r.map(|f| {
+    r.map(|f| {
         let tris = f.triangles.iter().map(|x| x.map(|i| i as u32)).collect();
         (tris, f.uv)
-    }))
+    })
 }

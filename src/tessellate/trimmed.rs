@@ -8,20 +8,14 @@
 use super::domain::{BoundaryPoint, FaceSurface, Ring};
 use super::face::{FaceError, FaceMesh, triangulate};
 use super::outline::Sense;
+use crate::geom::Aabb;
+use crate::geom::dist;
 use crate::model::Surface;
 
 /// The diagonal of the box of `surf`'s control points (0 when not finite).
 pub fn surface_size(surf: &Surface) -> f64 {
-    let (lo, hi) = surf.nurbs.points_weights().0.iter().fold(
-        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-        |(lo, hi), p| {
-            (
-                [0, 1, 2].map(|i| lo[i].min(p[i])),
-                [0, 1, 2].map(|i| hi[i].max(p[i])),
-            )
-        },
-    );
-    let d = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+    let pts = surf.nurbs.points_weights().0;
+    let d = Aabb::of_points(&pts).map_or(0.0, |b| dist(&b.min, &b.max));
     if d.is_finite() { d } else { 0.0 }
 }
 
